@@ -1,0 +1,31 @@
+"""thermocontact: steady thermoelastic sliding contact with frictional heating.
+
+A heat-conducting elastic cylinder slides over a stationary heat-conducting elastic
+half-plane; frictional heat distorts both surfaces.  :func:`solve` returns the
+contact's load ratio, offset, heat partition, pressure and heat-flux
+distributions and the validity of the single-patch solution.
+"""
+
+from importlib.metadata import PackageNotFoundError, version
+
+from . import collocation as _collocation  # noqa: F401  (registers "paper")
+from .assembly import METHODS
+from .parameters import InputError, Parameters, SolveError
+from .solver import ContactSolution, solve
+from .validity import Validity
+
+try:
+    __version__ = version("thermocontact")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0+unknown"
+
+__all__ = [
+    "METHODS",
+    "ContactSolution",
+    "InputError",
+    "Parameters",
+    "SolveError",
+    "Validity",
+    "solve",
+    "__version__",
+]

@@ -1,0 +1,77 @@
+"""The discrete system shared by every discretisation method, and their registry.
+
+Unknowns (derivation section 6): the pressure's bounded factor ``phi`` at the
+nodes of a :class:`~thermocontact.quadrature.BoundedRule` and the heat-flux
+difference's factor ``psi`` at the nodes of a
+:class:`~thermocontact.quadrature.SingularRule`.  A method supplies the blocks of
+
+* the contact equation (D14) at ``n + 1`` points ``s_k``::
+
+      (C - F Tp) phi - F Tq psi = (2/pi) (L sigma + L s_k)
+
+* the heat equation (D18) at ``n - 1`` points ``s'_k``::
+
+      Hp phi + Hq psi = 0
+
+with the load and heat-partition rows ``w_p . phi = 1`` and
+``w_q . psi = lam - eta``.  Nothing in the blocks depends on ``F = fHPe``,
+``lam`` or ``sigma``, so one assembly serves a whole sweep over them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from .parameters import Parameters
+from .quadrature import BoundedRule, SingularRule
+
+__all__ = ["Blocks", "METHODS", "register"]
+
+
+@dataclass(frozen=True)
+class Blocks:
+    """Assembled, ``F``-independent blocks of the discrete equations.
+
+    Attributes
+    ----------
+    n : int
+        Unknowns per function.
+    pressure_rule, flux_rule : BoundedRule, SingularRule
+        Node sets of ``phi`` and ``psi``.
+    contact_points : ndarray, shape (n + 1,)
+        Where the contact equation is enforced.
+    C, Tp : ndarray, shape (n + 1, n)
+        Cauchy and thermal-distortion operators on ``phi``.
+    Tq : ndarray, shape (n + 1, n)
+        Thermal-distortion operator on ``psi``.
+    Hp, Hq : ndarray, shape (n - 1, n)
+        Heat-equation operators on ``phi`` and ``psi``.
+    """
+
+    n: int
+    pressure_rule: BoundedRule
+    flux_rule: SingularRule
+    contact_points: np.ndarray
+    C: np.ndarray
+    Tp: np.ndarray
+    Tq: np.ndarray
+    Hp: np.ndarray
+    Hq: np.ndarray
+
+
+Assembler = Callable[[Parameters, int], Blocks]
+
+METHODS: dict[str, Assembler] = {}
+
+
+def register(name: str):
+    """Add an assembler to :data:`METHODS` under ``name``."""
+
+    def deco(func: Assembler) -> Assembler:
+        METHODS[name] = func
+        return func
+
+    return deco

@@ -1,0 +1,151 @@
+"""Command line: a thin layer over :func:`thermocontact.solve`.
+
+Errors in the input or the solve are reported on one line of standard error with
+exit status 2; nothing here raises a traceback for bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import click
+
+from . import __version__
+from .assembly import METHODS
+from .parameters import InputError, SolveError
+from .solver import DEFAULT_N, solve
+
+__all__ = ["main", "solution_record"]
+
+
+def solution_record(sol) -> dict:
+    """The JSON record of a :class:`~thermocontact.solver.ContactSolution`.
+
+    Pressure profile ``s``/``pressure`` is normalised to unit integral (Hertz:
+    ``(2/pi) sqrt(1 - s^2)``); gaps are in units of ``Delta^2/R``; positions in
+    ``s = (x - sigma)/Delta``.
+    """
+    par = sol.parameters
+    v = sol.validity
+    rec = {
+        "load_ratio": sol.load_ratio,
+        "lam": sol.lam,
+        "sigma_over_delta": sol.sigma_over_delta,
+        "pe": par.pe,
+        "fhpe": par.fhpe,
+        "K2_over_K1": par.K2_over_K1,
+        "k2_over_k1": par.k2_over_k1,
+        "delta1_over_delta2": par.delta1_over_delta2,
+        "n": sol.n,
+        "method": sol.method,
+        "valid": v.valid,
+        "positive_load": v.positive_load,
+        "min_pressure": v.min_pressure,
+        "min_pressure_at": v.min_pressure_at,
+        "pressure_margin": v.pressure_margin,
+        "pressure_margin_at": v.pressure_margin_at,
+        "min_gap": v.min_gap,
+        "min_gap_at": v.min_gap_at,
+        "gap_margin": v.gap_margin,
+        "gap_margin_at": v.gap_margin_at,
+        "edge_slope_residual": list(v.edge_slope_residual),
+        "rcond": sol.rcond,
+        "load_ratio_change": sol.load_ratio_change,
+        "s": sol.s.tolist(),
+        "pressure": sol.pressure.tolist(),
+        "flux_s": sol.flux_s.tolist(),
+        "flux_difference": sol.flux_difference.tolist(),
+        "flux_cylinder": sol.flux_cylinder.tolist(),
+        "flux_half_plane": sol.flux_half_plane.tolist(),
+        "version": __version__,
+    }
+    return rec
+
+
+def _summary(sol) -> str:
+    par = sol.parameters
+    v = sol.validity
+    lines = [
+        f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
+        f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
+        f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}",
+        f"  P_H/P         = {sol.load_ratio:.10g}",
+        f"  lambda        = {sol.lam:.10g}",
+        f"  sigma/Delta   = {sol.sigma_over_delta:.10g}",
+    ]
+    if sol.load_ratio_change is not None:
+        lines.append(f"  |P_H/P(2n) - P_H/P(n)| = {sol.load_ratio_change:.2e}")
+    lines += [
+        f"  valid         = {v.valid}",
+        f"  min pressure  = {v.min_pressure:.4g} at s = {v.min_pressure_at:.4f}"
+        f"  (margin p/sqrt(1-s^2) = {v.pressure_margin:.4g} at s = {v.pressure_margin_at:.4f})",
+        f"  min gap       = {v.min_gap:.4g} Delta^2/R at s = {v.min_gap_at:.4f}"
+        f"  (margin g/(|s|-1)^1.5 = {v.gap_margin:.4g} at s = {v.gap_margin_at:.4f})",
+        f"  load positive = {v.positive_load}",
+    ]
+    return "\n".join(lines)
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="thermocontact")
+def cli():
+    """Thermoelastic sliding contact of a conducting cylinder on a conducting half-plane."""
+
+
+@cli.command("solve")
+@click.option("--pe", type=float, required=True, help="Peclet number v Delta/(2 k2) > 0.")
+@click.option("--fhpe", type=float, required=True, help="Thermoelastic coupling f H Pe >= 0.")
+@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
+              help="Conductivity ratio K2/K1 > 0.")
+@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
+@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
+              help="Distortivity ratio delta1/delta2 >= 0.")
+@click.option("--lam", type=float, default=None,
+              help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma.")
+@click.option("--sigma", type=float, default=None,
+              help="Contact offset sigma/Delta; give this or --lam.")
+@click.option("-n", "n", type=int, default=DEFAULT_N, show_default=True,
+              help="Unknowns per function.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default="paper",
+              show_default=True, help="Discretisation method.")
+@click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,
+              method, check, as_json):
+    """Solve one case in dimensionless form."""
+    if (lam is None) == (sigma is None):
+        raise InputError("give exactly one of --lam and --sigma")
+    sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
+                delta1_over_delta2=delta1_over_delta2, lam=lam,
+                sigma_over_delta=sigma, n=n, method=method, check_convergence=check)
+    if as_json:
+        click.echo(json.dumps(solution_record(sol), allow_nan=False))
+    else:
+        click.echo(_summary(sol))
+
+
+def main(argv=None) -> int:
+    """Entry point; returns the exit status (0, or 2 for any error)."""
+    try:
+        cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
+    except click.exceptions.Exit as exc:
+        return exc.exit_code
+    except click.ClickException as exc:
+        click.echo(f"error: {exc.format_message()}", err=True)
+        return 2
+    except (InputError, SolveError) as exc:
+        click.echo(f"error: {exc}", err=True)
+        return 2
+    except click.exceptions.Abort:
+        click.echo("error: aborted", err=True)
+        return 130
+    except ValueError as exc:  # e.g. a non-finite number reaching json
+        click.echo(f"error: {exc}", err=True)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

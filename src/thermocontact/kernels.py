@@ -1,0 +1,189 @@
+"""Green's-function kernels of the sliding-contact problem, in dimensionless form.
+
+Every kernel takes the dimensionless separation ``u`` between a field point and a
+line source.  For the moving cylinder (body 1) ``u = v (x - xi) / (2 k1)``, i.e.
+``u = Pe * (k2/k1) * (s - r)`` in contact coordinates; the cylinder's surface moves
+in the ``-x`` direction, so ``u > 0`` is upstream of the source (material that has
+not yet passed it) and ``u < 0`` is downstream (its hot wake).  See
+``docs/derivation.md`` sections 2-4 for the derivations and checks.
+
+All functions are vectorised over ``u`` and use SciPy's exponentially scaled
+Bessel functions, so that no factor ``exp(+-u)`` is ever formed on its own.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import i0e, i1e, k0e, k1e
+
+__all__ = [
+    "cylinder_displacement",
+    "cylinder_slope",
+    "cylinder_temperature",
+    "cylinder_temperature_gradient",
+    "cylinder_temperature_gradient_regular",
+    "half_plane_slope",
+]
+
+
+def cylinder_displacement(u):
+    """Outward surface displacement of the moving body per unit heat input.
+
+    ``E(u) = exp(-u) I0(u)`` for ``u >= 0`` and ``E(u) = 1`` for ``u < 0``, in units
+    of ``2 delta1 k1 Q1 / v`` (derivation eq. D6, Barber's moving-source solution,
+    the paper's eq. 1).  ``E`` is continuous at ``u = 0`` and ``-dE/du`` is
+    :func:`cylinder_slope`.
+
+    Parameters
+    ----------
+    u : array_like
+        Dimensionless separation ``v (x - xi) / (2 k1)``.
+
+    Returns
+    -------
+    ndarray
+        ``E(u)``, in ``(0, 1]``.
+    """
+    u = np.asarray(u, dtype=float)
+    return np.where(u > 0.0, i0e(np.maximum(u, 0.0)), 1.0)
+
+
+def cylinder_slope(u):
+    """Slope kernel ``N(u) H(u)`` of the moving body's thermal distortion.
+
+    ``N(u) = exp(-u) [I0(u) - I1(u)]`` (derivation eq. D7; the paper's eq. 2 writes
+    ``I0(-u)``, harmless since ``I0`` is even, and drops the Heaviside factor from
+    eq. 12 onward).  The outward slope is ``dw1/dx = -delta1 q1 N(u) H(u)``.  At
+    ``u = 0`` the step takes its mean value 1/2.
+
+    Parameters
+    ----------
+    u : array_like
+        Dimensionless separation ``v (x - xi) / (2 k1)``.
+
+    Returns
+    -------
+    ndarray
+        ``N(u) H(u)``; 0 downstream, 1 at the source, ``~ (2 pi u)**-0.5 / (2u)``
+        far upstream.
+    """
+    u = np.asarray(u, dtype=float)
+    up = np.maximum(u, 0.0)
+    n = i0e(up) - i1e(up)
+    return np.where(u > 0.0, n, np.where(u == 0.0, 0.5, 0.0))
+
+
+def cylinder_temperature(u):
+    """Surface temperature of the moving body per unit line heat input.
+
+    ``exp(-u) K0(|u|)`` in units of ``Q1 / (pi K1)`` (Carslaw and Jaeger's moving
+    line source, the paper's eq. 15; derivation eq. D9).  Logarithmically singular
+    at ``u = 0``; the hot wake is at ``u < 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        Dimensionless separation, non-zero.
+
+    Returns
+    -------
+    ndarray
+    """
+    u = np.asarray(u, dtype=float)
+    a = np.abs(u)
+    # exp(-u) K0(|u|) = k0e(|u|) * exp(-u - |u|): the exponent is 0 downstream.
+    return k0e(a) * np.exp(-u - a)
+
+
+def cylinder_temperature_gradient(u):
+    """Kernel ``M(u)`` of the moving body's surface temperature gradient.
+
+    ``M(u) = exp(-u) [K0(|u|) + sgn(u) K1(|u|)]`` so that
+    ``dT1/dx = -(v / (2 pi k1 K1)) * integral M(u) q1 dxi`` (derivation eq. D10).
+    The paper's ``M = exp(-u) [K0(u) + K1(u)]`` is not real for ``u < 0``; this is
+    its continuation.  ``M(u) = 1/u - ln|u| + O(1)`` as ``u -> 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        Dimensionless separation, non-zero.
+
+    Returns
+    -------
+    ndarray
+    """
+    u = np.asarray(u, dtype=float)
+    a = np.abs(u)
+    scale = np.exp(-u - a)  # exp(-2u) upstream, 1 in the wake
+    return scale * (k0e(a) + np.sign(u) * k1e(a))
+
+
+def cylinder_temperature_gradient_regular(u, scale):
+    """The Cauchy-free part ``c M(c u) - 1/u`` of the scaled gradient kernel.
+
+    With ``c = Pe k2/k1`` and ``u = s - r`` this is the kernel left in the heat
+    equation after its ``1/(s - r)`` part is taken out (derivation eq. D16); it is
+    only logarithmically singular at ``u = 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        Separation ``s - r`` in contact coordinates, non-zero.
+    scale : float
+        ``c = Pe k2/k1 > 0``.
+
+    Returns
+    -------
+    ndarray
+    """
+    u = np.asarray(u, dtype=float)
+    cu = scale * u
+    a = np.abs(cu)
+    # For small |cu| the two terms cancel to O(ln|cu|); form the difference with
+    # the series of k1e to keep full relative accuracy there.
+    small = a < 1e-3
+    big = ~small
+    out = np.empty_like(cu)
+    if np.any(big):
+        out[big] = scale * cylinder_temperature_gradient(cu[big]) - 1.0 / u[big]
+    if np.any(small):
+        x = cu[small]
+        out[small] = scale * _regular_series(x)
+    return out
+
+
+def _regular_series(x):
+    """``M(x) - 1/x`` for ``|x| < 1e-3`` from the ascending Bessel series.
+
+    With ``L = ln(z/2) + gamma`` and ``z = |x|``:
+    ``K0(z) = -L + (z^2/4)(1 - L) + O(z^4 ln z)`` and
+    ``K1(z) = 1/z + (z/2)(L - 1/2) + (z^3/16)(L - 5/4) + O(z^5 ln z)``
+    (Abramowitz and Stegun 9.6.11, 9.6.13); the neglected terms are below 1e-13
+    of the result for ``|x| < 1e-3``.
+    """
+    z = np.abs(x)
+    sg = np.sign(x)
+    lg = np.log(z / 2.0) + np.euler_gamma
+    k0 = -lg + 0.25 * z * z * (1.0 - lg)
+    k1_rest = sg * (0.5 * z * (lg - 0.5) + z**3 / 16.0 * (lg - 1.25))
+    e = np.exp(-x)
+    # exp(-x) sgn(x) K1(|x|) - 1/x = (exp(-x) - 1)/x + exp(-x) * k1_rest
+    return e * k0 + np.expm1(-x) / x + e * k1_rest
+
+
+def half_plane_slope(u):
+    """Slope kernel ``sgn(u)/2`` of the stationary half-plane's thermal distortion.
+
+    The outward slope is ``dw2/dx = -delta2 * integral q2(xi) sgn(x - xi)/2 dxi``
+    (Dundurs; the paper's eq. 3 with its inward sign convention; derivation eq. D4).
+
+    Parameters
+    ----------
+    u : array_like
+        Separation ``x - xi`` in any units.
+
+    Returns
+    -------
+    ndarray
+    """
+    return 0.5 * np.sign(np.asarray(u, dtype=float))

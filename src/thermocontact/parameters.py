@@ -1,0 +1,107 @@
+"""Dimensionless parameters of the problem, validated on construction."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["InputError", "Parameters", "SolveError"]
+
+
+class InputError(ValueError):
+    """A parameter outside its allowed range; the message names both."""
+
+
+class SolveError(RuntimeError):
+    """The discrete problem has no (unique, well-conditioned) solution."""
+
+
+def _real(name: str, value) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise InputError(f"{name} must be finite, got {value!r}")
+    return x
+
+
+def check_positive(name: str, value) -> float:
+    """Return ``value`` as a float, or raise :class:`InputError` unless finite and > 0."""
+    x = _real(name, value)
+    if x <= 0.0:
+        raise InputError(f"{name} must be > 0 (finite), got {value!r}")
+    return x
+
+
+def check_nonnegative(name: str, value) -> float:
+    """Return ``value`` as a float, or raise :class:`InputError` unless finite and >= 0."""
+    x = _real(name, value)
+    if x < 0.0:
+        raise InputError(f"{name} must be >= 0 (finite), got {value!r}")
+    return x
+
+
+def check_finite(name: str, value) -> float:
+    """Return ``value`` as a float, or raise :class:`InputError` unless finite."""
+    return _real(name, value)
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """The dimensionless groups of the sliding-contact problem.
+
+    Parameters
+    ----------
+    pe : float
+        Peclet number ``Pe = v Delta / (2 k2)`` of the half-plane, > 0.
+    fhpe : float
+        Thermoelastic coupling ``f H Pe`` (Barber's ``a beta``), >= 0, with
+        ``H = k2 delta2 / A`` and ``A = (1 - nu1)/mu1 + (1 - nu2)/mu2``.
+    K2_over_K1 : float
+        Conductivity ratio, > 0.
+    k2_over_k1 : float, optional
+        Diffusivity ratio, > 0; defaults to ``K2_over_K1`` (equal volumetric heat
+        capacities, the paper's choice for all its results).
+    delta1_over_delta2 : float, optional
+        Distortivity ratio ``delta1/delta2 >= 0``; 0 is a cylinder that does not
+        distort.  Default 1.
+
+    Notes
+    -----
+    Derived groups used by the equations (derivation section 5):
+    ``c = Pe k2/k1``, the scale of the cylinder's kernels, and
+    ``eta = (1 - K2/K1) / (1 + K2/K1)``, the share of the pressure in the heat-flux
+    difference that removes the Cauchy part of the heat equation's pressure term.
+    """
+
+    pe: float
+    fhpe: float
+    K2_over_K1: float
+    k2_over_k1: float | None = None
+    delta1_over_delta2: float = 1.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "pe", check_positive("pe", self.pe))
+        object.__setattr__(self, "fhpe", check_nonnegative("fhpe", self.fhpe))
+        object.__setattr__(
+            self, "K2_over_K1", check_positive("K2_over_K1", self.K2_over_K1)
+        )
+        k = self.K2_over_K1 if self.k2_over_k1 is None else self.k2_over_k1
+        object.__setattr__(self, "k2_over_k1", check_positive("k2_over_k1", k))
+        object.__setattr__(
+            self,
+            "delta1_over_delta2",
+            check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
+        )
+
+    @property
+    def cylinder_scale(self) -> float:
+        """``c = Pe k2/k1``: the cylinder kernels' argument is ``c (s - r)``."""
+        return self.pe * self.k2_over_k1
+
+    @property
+    def eta(self) -> float:
+        """``eta = (1 - K2/K1)/(1 + K2/K1)`` (corrected eq. 23; derivation D17)."""
+        rho = self.K2_over_K1
+        return (1.0 - rho) / (1.0 + rho)

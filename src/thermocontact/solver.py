@@ -1,0 +1,315 @@
+"""Solve the coupled contact and heat equations for one set of parameters.
+
+Two ways to close the problem (derivation section 6):
+
+* ``lam`` given: the unknowns are ``phi``, ``psi``, ``L sigma`` and ``L``.  The
+  equations are linear in all of them, so the heat partition is met exactly in one
+  solve; ``sigma = (L sigma)/L``.  The partition at which ``L`` vanishes is reached
+  by no finite ``sigma`` and is refused.
+* ``sigma_over_delta`` given: the unknowns are ``phi``, ``psi`` and ``L``; ``lam``
+  follows from the heat flux.  With ``fhpe = 0`` this problem has no bounded
+  solution unless ``sigma = 0``, and then ``lam`` is undetermined: refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import LinAlgError, lu_factor, lu_solve
+from scipy.linalg.lapack import dgecon
+
+from .assembly import METHODS, Blocks
+from .parameters import InputError, Parameters, SolveError, check_finite
+from .quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+from .validity import Validity, assess, gap
+
+__all__ = ["ContactSolution", "DEFAULT_N", "N_RANGE", "RCOND_MIN", "solve", "solve_blocks"]
+
+DEFAULT_N = 128
+N_RANGE = (4, 2048)
+#: Systems whose reciprocal 1-norm condition number is below this are refused.
+RCOND_MIN = 1e-12
+
+
+@dataclass(frozen=True)
+class ContactSolution:
+    """One solution of the sliding-contact problem, in dimensionless form.
+
+    Attributes
+    ----------
+    parameters : Parameters
+    method : str
+        Discretisation method, a key of :data:`~thermocontact.assembly.METHODS`.
+    n : int
+        Unknowns per function.
+    load_ratio : float
+        ``P_H/P``: the Hertz load for the same half-width over the actual load.
+    lam : float
+        Heat partition ``(Q1 - Q2)/(Q1 + Q2)``.
+    sigma_over_delta : float
+        Offset of the contact centre from the cylinder's initial point of contact,
+        in half-widths, positive toward the leading edge (``+x``).
+    eta : float
+        ``(1 - K2/K1)/(1 + K2/K1)``.
+    s, pressure : ndarray
+        Nodes in ``[-1, 1]`` (edges included) and the contact pressure there,
+        normalised to unit integral and positive in compression.
+    flux_s : ndarray
+        Nodes of the heat-flux distributions (interior; they are singular at the
+        edges).
+    flux_difference, flux_cylinder, flux_half_plane : ndarray
+        ``q = q1 - q2``, ``q1`` and ``q2`` at ``flux_s``, in units of
+        ``f v P / Delta`` so that ``q1 + q2`` is the pressure and the integral of
+        ``q`` is ``lam``.
+    validity : Validity
+    rcond : float
+        Reciprocal condition number (1-norm) of the linear system.
+    load_ratio_change : float or None
+        ``|P_H/P(2n) - P_H/P(n)|`` when a convergence check was asked for.
+    """
+
+    parameters: Parameters
+    method: str
+    n: int
+    load_ratio: float
+    lam: float
+    sigma_over_delta: float
+    eta: float
+    s: np.ndarray
+    pressure: np.ndarray
+    flux_s: np.ndarray
+    flux_difference: np.ndarray
+    flux_cylinder: np.ndarray
+    flux_half_plane: np.ndarray
+    validity: Validity
+    rcond: float
+    load_ratio_change: float | None = None
+    blocks: Blocks = field(default=None, repr=False, compare=False)
+    phi: np.ndarray = field(default=None, repr=False, compare=False)
+    psi: np.ndarray = field(default=None, repr=False, compare=False)
+
+    @property
+    def valid(self) -> bool:
+        """Whether every contact inequality holds (see :class:`Validity`)."""
+        return self.validity.valid
+
+    def pressure_at(self, s):
+        """Pressure at ``s`` in ``[-1, 1]`` from the ``U``-series of ``phi``."""
+        s = np.asarray(s, dtype=float)
+        a = u_series_coefficients(self.phi)
+        return np.sqrt(np.clip(1.0 - s * s, 0.0, None)) * u_series_value(a, s)
+
+    def flux_difference_at(self, s):
+        """Heat-flux difference ``q = q' + eta p`` at ``s`` in ``(-1, 1)``."""
+        s = np.asarray(s, dtype=float)
+        b = t_series_coefficients(self.psi)
+        psi = np.polynomial.chebyshev.chebval(s, b)
+        return psi / np.sqrt(1.0 - s * s) + self.eta * self.pressure_at(s)
+
+    def gap_at(self, s):
+        """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D21-D22)."""
+        g, _ = gap(self.parameters, self.blocks.pressure_rule, self.blocks.flux_rule,
+                   self.phi, self.psi, self.load_ratio, self.sigma_over_delta,
+                   self.lam, s)
+        return g
+
+
+def _factor(A):
+    try:
+        lu = lu_factor(A, check_finite=True)
+    except (LinAlgError, ValueError) as exc:
+        raise SolveError(f"the linear system could not be factorised ({exc})") from None
+    rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
+    if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
+        raise SolveError(
+            f"the linear system is singular or ill-conditioned (reciprocal condition "
+            f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
+            f"well-determined solution"
+        )
+    return lu, float(rcond)
+
+
+def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
+                 sigma_over_delta=None) -> ContactSolution:
+    """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
+
+    Parameters
+    ----------
+    par : Parameters
+    blocks : Blocks
+        From ``METHODS[method](par, n)``; reusable across ``fhpe``, ``lam``,
+        ``sigma``.
+    method : str
+    lam, sigma_over_delta : float
+        Exactly one of them.
+
+    Returns
+    -------
+    ContactSolution
+
+    Raises
+    ------
+    InputError
+        Both or neither of ``lam`` and ``sigma_over_delta``; or ``sigma`` given
+        with ``fhpe = 0``.
+    SolveError
+        A singular or ill-conditioned system, or a ``lam`` that no finite
+        ``sigma`` reaches.
+    """
+    if (lam is None) == (sigma_over_delta is None):
+        raise InputError("give exactly one of lam and sigma_over_delta")
+    n = blocks.n
+    F = par.fhpe
+    pr, fr = blocks.pressure_rule, blocks.flux_rule
+    eta = par.eta
+    sk = blocks.contact_points
+    np1, nm1 = n + 1, n - 1
+    two_pi = 2.0 / np.pi
+
+    if lam is not None:
+        lam = check_finite("lam", lam)
+        size = 2 * n + 2
+    else:
+        sigma = check_finite("sigma_over_delta", sigma_over_delta)
+        if F == 0.0:
+            raise InputError(
+                "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
+                "coupling the contact is Hertzian, a bounded solution needs "
+                "sigma_over_delta = 0 and then lam is undetermined; give lam instead"
+            )
+        size = 2 * n + 1
+
+    A = np.zeros((size, size))
+    b = np.zeros(size)
+    A[:np1, :n] = blocks.C - F * blocks.Tp
+    A[:np1, n:2 * n] = -F * blocks.Tq
+    A[np1, :n] = pr.weights
+    b[np1] = 1.0
+    A[np1 + 1:np1 + 1 + nm1, :n] = blocks.Hp
+    A[np1 + 1:np1 + 1 + nm1, n:2 * n] = blocks.Hq
+    if lam is not None:
+        A[2 * n + 1, n:2 * n] = fr.weights
+        b[2 * n + 1] = lam - eta
+        A[:np1, 2 * n] = -two_pi
+        A[:np1, 2 * n + 1] = -two_pi * sk
+    else:
+        A[:np1, 2 * n] = -two_pi * (sigma + sk)
+
+    lu, rcond = _factor(A)
+    x = lu_solve(lu, b)
+    phi, psi = x[:n], x[n:2 * n]
+    if lam is not None:
+        L_sigma, L = x[2 * n], x[2 * n + 1]
+        if abs(L) <= 1e-12 * max(1.0, abs(L_sigma)):
+            raise SolveError(
+                f"lam = {lam:g} is reached by no finite sigma_over_delta (it is the "
+                f"limit of lam as sigma_over_delta -> +-infinity); choose another lam"
+            )
+        sigma = L_sigma / L
+    else:
+        L = x[2 * n]
+        lam = float(fr.weights @ psi + eta * (pr.weights @ phi))
+    if not np.all(np.isfinite(x)):
+        raise SolveError("the linear solve produced non-finite values")
+
+    validity = assess(par, pr, fr, phi, psi, L, sigma, lam)
+    p_nodes = np.sqrt(1.0 - pr.nodes**2) * phi
+    p_at_flux = np.sqrt(1.0 - fr.nodes**2) * u_series_value(
+        u_series_coefficients(phi), fr.nodes
+    )
+    q = psi / np.sqrt(1.0 - fr.nodes**2) + eta * p_at_flux
+    return ContactSolution(
+        parameters=par,
+        method=method,
+        n=n,
+        load_ratio=float(L),
+        lam=float(lam),
+        sigma_over_delta=float(sigma),
+        eta=eta,
+        s=np.concatenate([[-1.0], pr.nodes, [1.0]]),
+        pressure=np.concatenate([[0.0], p_nodes, [0.0]]),
+        flux_s=fr.nodes.copy(),
+        flux_difference=q,
+        flux_cylinder=0.5 * (p_at_flux + q),
+        flux_half_plane=0.5 * (p_at_flux - q),
+        validity=validity,
+        rcond=rcond,
+        blocks=blocks,
+        phi=phi,
+        psi=psi,
+    )
+
+
+def check_n(n) -> int:
+    """Return ``n`` as an int, or raise :class:`InputError` outside :data:`N_RANGE`."""
+    lo, hi = N_RANGE
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+        if isinstance(n, float) and n.is_integer():
+            n = int(n)
+        else:
+            raise InputError(f"n must be an integer in [{lo}, {hi}], got {n!r}")
+    if not lo <= n <= hi:
+        raise InputError(f"n must be an integer in [{lo}, {hi}], got {n!r}")
+    return int(n)
+
+
+def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
+          lam=None, sigma_over_delta=None, n=DEFAULT_N, method="paper",
+          check_convergence=False) -> ContactSolution:
+    """Solve the steady thermoelastic sliding-contact problem.
+
+    Parameters
+    ----------
+    pe : float
+        ``Pe = v Delta / (2 k2) > 0``.
+    fhpe : float
+        ``f H Pe >= 0``.
+    K2_over_K1 : float
+        Conductivity ratio ``> 0``.
+    k2_over_k1 : float, optional
+        Diffusivity ratio ``> 0``; defaults to ``K2_over_K1``.
+    delta1_over_delta2 : float, optional
+        Distortivity ratio ``>= 0`` (default 1).
+    lam, sigma_over_delta : float
+        Exactly one: the heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the contact
+        offset.
+    n : int, optional
+        Unknowns per function, in :data:`N_RANGE`.
+    method : str, optional
+        A key of :data:`~thermocontact.assembly.METHODS`.
+    check_convergence : bool, optional
+        Also solve with ``2n`` and report ``|P_H/P(2n) - P_H/P(n)|``.
+
+    Returns
+    -------
+    ContactSolution
+
+    Raises
+    ------
+    InputError
+        A parameter out of range (the message names it and the range).
+    SolveError
+        No well-determined solution of the discrete problem.
+
+    Examples
+    --------
+    >>> from thermocontact import solve
+    >>> round(solve(5, 0.0, 10, lam=-1).load_ratio, 12)
+    1.0
+    """
+    par = Parameters(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2)
+    n = check_n(n)
+    if method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    if (lam is None) == (sigma_over_delta is None):
+        raise InputError("give exactly one of lam and sigma_over_delta")
+    assemble = METHODS[method]
+    sol = solve_blocks(par, assemble(par, n), method, lam=lam,
+                       sigma_over_delta=sigma_over_delta)
+    if check_convergence:
+        n2 = min(2 * n, N_RANGE[1])
+        fine = solve_blocks(par, assemble(par, n2), method, lam=lam,
+                            sigma_over_delta=sigma_over_delta)
+        object.__setattr__(sol, "load_ratio_change", abs(fine.load_ratio - sol.load_ratio))
+    return sol

@@ -1,0 +1,264 @@
+"""The inequalities of unilateral contact: compressive pressure, open gap, positive load.
+
+The gap outside the contact is the integral of the slope mismatch ``G(s)``, the
+left side minus the right side of the contact equation (D14) continued to
+``|s| > 1`` (derivation section 7, which corrects the paper's eqs. 29-30).  Every
+piece is integrated in closed form: the Cauchy part term by term in the pressure's
+``U``-series, the cylinder's step kernel through its antiderivative
+``-E(u) = -exp(-u) I0(u)`` and the half-plane's ``sgn`` kernel exactly.  The
+discrete solution satisfies (D14) only at collocation points, so its slope
+mismatch at an edge, ``G(+-1)``, is a discretisation residual rather than zero; it
+is removed (and reported) so that the sign of the gap just outside an edge is
+decided by the solution's ``(|s| - 1)^{3/2}`` term, not by that residual.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kernels import cylinder_displacement, cylinder_slope
+from .parameters import Parameters
+from .quadrature import (
+    BoundedRule,
+    SingularRule,
+    t_series_coefficients,
+    u_series_coefficients,
+    u_series_value,
+)
+
+__all__ = ["Validity", "assess", "gap"]
+
+
+@dataclass(frozen=True)
+class Validity:
+    """Margins of the contact inequalities of one solution.
+
+    Positions are in ``s = (x - sigma)/Delta``; ``s = -1`` is the trailing edge
+    ``x = a`` (where the cylinder's surface leaves the contact), ``s = +1`` the
+    leading edge ``x = b``.  Pressures are normalised so that their integral over
+    the contact is 1; gaps are in units of ``Delta^2 / R``.
+
+    Attributes
+    ----------
+    valid : bool
+        All of: positive load, ``pressure_margin >= 0``, ``gap_margin >= 0`` and
+        both ``edge_log_coefficients <= 0``.
+    positive_load : bool
+        ``P_H/P > 0``.
+    min_pressure, min_pressure_at : float
+        Least contact pressure and where (0 at an edge for a valid solution).
+    pressure_margin, pressure_margin_at : float
+        Least value of ``p(s) / sqrt(1 - s^2)`` over ``-1 <= s <= 1``: negative
+        when the pressure is tensile anywhere, including just inside an edge.
+    min_gap, min_gap_at : float
+        Least gap outside the contact and where (0 at an edge when valid).
+    gap_margin, gap_margin_at : float
+        Least value of ``g(s) / (|s| - 1)^{3/2}`` outside the contact: negative
+        where the bodies interpenetrate.
+    edge_log_coefficients : tuple of float
+        Coefficients ``k-`` and ``k+`` of the terms ``k sqrt(1 -+ s) ln(1 -+ s)``
+        in the pressure at ``s = -1`` and ``+1``:
+        ``k = sqrt(2) fHPe (1 - delta1/delta2) psi(+-1) / pi`` (derivation section
+        8).  A positive ``k`` makes the pressure tensile in a layer just inside
+        that edge however fine the discretisation (heat flowing at the edge into
+        the less distortive body); zero when ``delta1 = delta2``.
+    edge_slope_residual : tuple of float
+        Slope mismatch ``G`` of the discrete solution at ``s = -1`` and ``+1``
+        (zero for the exact solution; a measure of discretisation error).
+    """
+
+    valid: bool
+    positive_load: bool
+    min_pressure: float
+    min_pressure_at: float
+    pressure_margin: float
+    pressure_margin_at: float
+    min_gap: float
+    min_gap_at: float
+    gap_margin: float
+    gap_margin_at: float
+    edge_log_coefficients: tuple[float, float]
+    edge_slope_residual: tuple[float, float]
+
+
+def _cauchy_outside_integral(m, tt):
+    """``I_m = integral_1^{1+tt} w(y)^m dy`` with ``w = y - sqrt(y^2 - 1)``, ``tt >= 0``.
+
+    ``w^m = (1/pi) integral sqrt(1 - r^2) U_{m-1}(r) / (y - r) dr`` for ``y > 1``;
+    with ``y = cosh u``: ``I_m = (1/2) integral_0^U (e^{-(m-1)u} - e^{-(m+1)u}) du``.
+    The distance ``tt`` past the edge is the argument, not ``1 + tt``, so that
+    ``U = arccosh(1 + tt)`` keeps full relative accuracy next to the edge.
+
+    Parameters
+    ----------
+    m : ndarray of int, shape (k,)
+    tt : ndarray, shape (j,)
+
+    Returns
+    -------
+    ndarray, shape (j, k)
+    """
+    u = np.log1p(tt + np.sqrt(tt * (tt + 2.0)))[:, None]
+    m = np.asarray(m)[None, :]
+    mm1 = np.where(m > 1, m - 1, 1)
+    first = np.where(m > 1, -np.expm1(-mm1 * u) / mm1, u)
+    second = -np.expm1(-(m + 1) * u) / (m + 1)
+    return 0.5 * (first - second)
+
+
+def _displacement_drop(a, h):
+    """``E(a) - E(a + h)`` for ``a >= 0`` and each ``h >= 0``, to full relative accuracy.
+
+    For ``h < 1e-2`` the difference of two nearly equal values would lose digits;
+    there it is the integral of ``N H = -E'`` over ``[a, a + h]`` by 4-point
+    Gauss–Legendre (error ``O(h^9)``).
+
+    Returns
+    -------
+    ndarray, shape (h.size, a.size)
+    """
+    h = h[:, None]
+    a = a[None, :]
+    out = cylinder_displacement(a) - cylinder_displacement(a + h)
+    small = h[:, 0] < 1e-2
+    if np.any(small):
+        x, wq = np.polynomial.legendre.leggauss(4)
+        hs = h[small]
+        pts = a[..., None] + 0.5 * hs[..., None] * (1.0 + x)
+        out[small] = 0.5 * hs * (cylinder_slope(pts) @ wq)
+    return out
+
+
+def _quadrature_pair(pr: BoundedRule, fr: SingularRule, phi, psi, eta):
+    """Nodes and weights that integrate ``p + q = (1 + eta) p + q'`` exactly as the solver."""
+    nodes = np.concatenate([pr.nodes, fr.nodes])
+    weights = np.concatenate([(1.0 + eta) * pr.weights * phi, fr.weights * psi])
+    return nodes, weights
+
+
+def gap(par: Parameters, pr: BoundedRule, fr: SingularRule, phi, psi, load_ratio,
+        sigma, lam, s):
+    """Gap ``g(s)`` outside the contact, in units of ``Delta^2 / R``.
+
+    Implements derivation eqs. (D21)-(D22): for ``s > 1``
+    ``g = sigma (s - 1) + (s^2 - 1)/2 - (pi / 2L) [J_C - F J_T]`` with the Cauchy
+    part ``J_C = sum_j a_j I_{j+1}(s)``, the thermal part
+    ``J_T = d/c integral (p + q)(r) [E(c(1 - r)) - E(c(s - r))] dr + (1 - lam)(s - 1)/2``,
+    and the edge residual ``G(1)(s - 1)`` removed; mirrored for ``s < -1``.
+
+    Parameters
+    ----------
+    par : Parameters
+    pr, fr : BoundedRule, SingularRule
+    phi, psi : ndarray, shape (n,)
+        Nodal values of the unknowns.
+    load_ratio, sigma, lam : float
+        ``P_H/P``, ``sigma/Delta`` and ``lambda`` of the solution.
+    s : array_like
+        Points with ``|s| >= 1``.
+
+    Returns
+    -------
+    g : ndarray
+        Gap at ``s``.
+    residual : tuple of float
+        ``(G(-1), G(1))``.
+    """
+    s = np.atleast_1d(np.asarray(s, dtype=float))
+    F = par.fhpe
+    c = par.cylinder_scale
+    d = par.delta1_over_delta2
+    a = u_series_coefficients(phi)
+    m = np.arange(1, a.size + 1)
+    sign_m = np.where(m % 2 == 1, -1.0, 1.0)  # (-1)^m
+    L = load_ratio
+    nodes, w = _quadrature_pair(pr, fr, phi, psi, par.eta)
+
+    # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).
+    nh_edge = w @ cylinder_slope(c * (1.0 - nodes)) if d else 0.0
+    g_right_edge = a.sum() - F * (d * nh_edge + 0.5 * (1.0 - lam)) - (2 / np.pi) * L * (sigma + 1.0)
+    g_left_edge = (sign_m * a).sum() + F * 0.5 * (1.0 - lam) - (2 / np.pi) * L * (sigma - 1.0)
+
+    out = np.zeros_like(s)
+    # Work with the distance tt = |s| - 1 past the edge (exact in floating point
+    # near the edge) so that no O(1) quantity is formed and cancelled there.
+    right = s > 1.0
+    if np.any(right):
+        tt = s[right] - 1.0
+        jc = _cauchy_outside_integral(m, tt) @ a
+        jt = 0.5 * (1.0 - lam) * tt
+        if d:
+            jt = jt + (d / c) * (_displacement_drop(c * (1.0 - nodes), c * tt) @ w)
+        j = jc - F * jt - g_right_edge * tt
+        out[right] = sigma * tt + tt * (1.0 + 0.5 * tt) - np.pi / (2 * L) * j
+    left = s < -1.0
+    if np.any(left):
+        tt = -1.0 - s[left]
+        jc = _cauchy_outside_integral(m, tt) @ (sign_m * a)
+        j = jc + F * 0.5 * (1.0 - lam) * tt - g_left_edge * tt
+        out[left] = -sigma * tt + tt * (1.0 + 0.5 * tt) + np.pi / (2 * L) * j
+    return out, (float(g_left_edge), float(g_right_edge))
+
+
+def _outside_grid(par: Parameters, sigma, lam, load_ratio, points=400):
+    """Points ``|s| - 1`` from 1e-8 out to where ``s^2/2`` dominates every other term."""
+    d = par.delta1_over_delta2
+    reach = 2.0 + 2.0 * abs(sigma)
+    reach += np.pi / abs(load_ratio) * par.fhpe * (2.0 + 2.0 * abs(lam)) * (1.0 + d)
+    t = np.geomspace(1e-8, min(max(10.0, 4.0 * reach), 1e6), points)
+    return np.concatenate([-1.0 - t[::-1], 1.0 + t])
+
+
+def assess(par: Parameters, pr: BoundedRule, fr: SingularRule, phi, psi,
+           load_ratio, sigma, lam) -> Validity:
+    """Evaluate every contact inequality of a discrete solution.
+
+    The pressure is sampled at 2049 Chebyshev points of ``[-1, 1]`` (edges
+    included) through its ``U``-series; the gap at 400 points on each side, spaced
+    geometrically from ``1e-8`` to where the ``s^2/2`` term dominates.
+
+    Returns
+    -------
+    Validity
+    """
+    a = u_series_coefficients(phi)
+    sp = np.cos(np.linspace(np.pi, 0.0, 2049))
+    phis = u_series_value(a, sp)
+    p = np.sqrt(np.clip(1.0 - sp * sp, 0.0, None)) * phis
+    ip = int(np.argmin(p))
+    iphi = int(np.argmin(phis))
+
+    so = _outside_grid(par, sigma, lam, load_ratio)
+    g, residual = gap(par, pr, fr, phi, psi, load_ratio, sigma, lam, so)
+    ig = int(np.argmin(g))
+    margin = g / (np.abs(so) - 1.0) ** 1.5
+    im = int(np.argmin(margin))
+    # The gap vanishes at both edges by construction: include them in the minimum.
+    if g[ig] > 0.0:
+        min_gap, min_gap_at = 0.0, float(np.sign(so[im]))
+    else:
+        min_gap, min_gap_at = float(g[ig]), float(so[ig])
+
+    b = t_series_coefficients(psi)
+    psi_edges = np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])
+    k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
+
+    positive = bool(load_ratio > 0.0)
+    valid = (positive and phis[iphi] >= 0.0 and margin[im] >= 0.0
+             and np.all(k_log <= 0.0))
+    return Validity(
+        valid=bool(valid),
+        positive_load=positive,
+        min_pressure=float(p[ip]),
+        min_pressure_at=float(sp[ip]),
+        pressure_margin=float(phis[iphi]),
+        pressure_margin_at=float(sp[iphi]),
+        min_gap=min_gap,
+        min_gap_at=min_gap_at,
+        gap_margin=float(margin[im]),
+        gap_margin_at=float(so[im]),
+        edge_log_coefficients=(float(k_log[0]), float(k_log[1])),
+        edge_slope_residual=residual,
+    )

@@ -1,0 +1,150 @@
+"""Contact inequalities: the gap's closed forms against brute-force quadrature, the
+Hertz gap, and detection of tensile pressure, interpenetration and negative load."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from thermocontact import solve
+from thermocontact.kernels import cylinder_slope
+from thermocontact.quadrature import u_series_coefficients, u_series_value
+
+HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz
+
+
+def hertz_gap(s):
+    """Exact Hertz gap in units of Delta^2/R: (|s| sqrt(s^2 - 1) - arccosh|s|)/2."""
+    a = np.abs(s)
+    return 0.5 * (a * np.sqrt(a * a - 1) - np.arccosh(a))
+
+
+def test_hertz_gap_exact():
+    """fHPe = 0: gap equals the closed-form Hertz gap to 1e-13 (abs) on both sides."""
+    sol = solve(5, 0.0, 10, lam=-1, n=16)
+    t = np.geomspace(1e-7, 30, 50)
+    s = np.concatenate([-1 - t, 1 + t])
+    assert np.max(np.abs(sol.gap_at(s) - hertz_gap(s))) < 1e-13 * max(1, 30**2)
+    v = sol.validity
+    assert v.valid and v.min_gap == 0.0 and v.min_pressure == 0.0
+    assert abs(v.pressure_margin - 2 / np.pi) < 1e-12
+    # g/(|s|-1)^1.5 -> 2 sqrt2/3 at the edge; the grid starts at 1e-8 (next term O(1e-8)).
+    assert abs(v.gap_margin - HERTZ_EDGE) < 1e-6
+
+
+def brute_force_slope_mismatch(sol, t):
+    """G(t) for |t| >= 1 by adaptive quadrature of the contact equation's terms (D14)."""
+    par = sol.parameters
+    F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
+    from thermocontact.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+
+    a = u_series_coefficients(sol.phi)
+    b = t_series_coefficients(sol.psi)
+    phi = lambda r: u_series_value(a, r)
+    psi = lambda r: np.polynomial.chebyshev.chebval(r, b)
+    bounded = dict(weight="alg", wvar=(0.5, 0.5), limit=200, epsabs=1e-14, epsrel=1e-13)
+    singular = dict(weight="alg", wvar=(-0.5, -0.5), limit=200, epsabs=1e-14, epsrel=1e-13)
+    nh = lambda r: d * cylinder_slope(c * (t - r))
+    sg = np.sign(t)
+    if abs(t) == 1.0:  # at an edge sqrt(1-r^2)/(t-r) is a Jacobi weight times t
+        wv = (0.5, -0.5) if t > 0 else (-0.5, 0.5)
+        cauchy = t * quad(phi, -1, 1, weight="alg", wvar=wv, limit=200)[0] / np.pi
+    else:
+        cauchy = quad(lambda r: phi(r) / (t - r), -1, 1, **bounded)[0] / np.pi
+    kp = quad(lambda r: phi(r) * (nh(r) + 0.5 * sg), -1, 1, **bounded)[0]
+    # q = psi/sqrt(1-r^2) + eta p
+    kq = quad(lambda r: psi(r) * (nh(r) - 0.5 * sg), -1, 1, **singular)[0]
+    kq += sol.eta * quad(lambda r: phi(r) * (nh(r) - 0.5 * sg), -1, 1, **bounded)[0]
+    L, sig = sol.load_ratio, sol.sigma_over_delta
+    return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
+
+
+def brute_force_gap(sol, s):
+    """Gap by quadrature of G - G(edge) from the edge to s (derivation D21-D22)."""
+    L = sol.load_ratio
+    if s > 1:
+        g1 = brute_force_slope_mismatch(sol, 1.0)
+        j = quad(lambda t: brute_force_slope_mismatch(sol, t) - g1, 1, s, epsabs=1e-13,
+                 epsrel=1e-12)[0]
+        return -np.pi / (2 * L) * j
+    g1 = brute_force_slope_mismatch(sol, -1.0)
+    j = quad(lambda t: brute_force_slope_mismatch(sol, t) - g1, s, -1, epsabs=1e-13,
+             epsrel=1e-12)[0]
+    return np.pi / (2 * L) * j
+
+
+GAP_CASES = [
+    (dict(pe=5, fhpe=0.3, K2_over_K1=10, k2_over_k1=1, lam=-1), -2.5),
+    (dict(pe=5, fhpe=0.3, K2_over_K1=10, k2_over_k1=1, lam=-1), 1.05),
+    (dict(pe=2, fhpe=0.2, K2_over_K1=3, k2_over_k1=0.5, delta1_over_delta2=2.0, lam=0.5), 4.0),
+]
+
+
+@pytest.mark.parametrize("case,s", GAP_CASES)
+def test_gap_closed_form_matches_quadrature(case, s):
+    """Closed-form gap (Cauchy moments, E antiderivative, exact sgn) equals nested adaptive
+    quadrature of the slope mismatch to 1e-9 (abs, quadrature tolerance)."""
+    sol = solve(n=24, **case)
+    ref = brute_force_gap(sol, s)
+    assert abs(sol.gap_at(s)[0] - ref) < 1e-9 * max(1.0, abs(ref))
+
+
+@pytest.mark.parametrize("lam", [-1.0, 0.5])
+def test_edge_gap_follows_edge_pressure(lam):
+    """Near an edge the gap is Hertz-like: g/(|s|-1)^1.5 -> (pi/2L)(2 sqrt2/3) phi(+-1),
+    with phi = p/sqrt(1-s^2) (local analysis, derivation section 7); checked at
+    |s| - 1 = 1e-10 to rel. 1e-3 (next term O((|s|-1)^0.5))."""
+    sol = solve(5, 0.3, 10, k2_over_k1=1, lam=lam, n=64)
+    for edge in (-1.0, 1.0):
+        s = edge * (1 + 1e-10)
+        margin = sol.gap_at(s)[0] / 1e-15
+        phi_edge = u_series_value(u_series_coefficients(sol.phi), edge)
+        expected = np.pi / (2 * sol.load_ratio) * HERTZ_EDGE * phi_edge
+        assert abs(margin / expected - 1) < 1e-3
+
+
+def test_edge_log_term_makes_contact_invalid():
+    """Heat into a non-distorting cylinder at its leading edge (lam = 1,
+    delta1/delta2 = 0, fHPe = 0.3): the pressure carries k sqrt(1-s) ln(1-s) with
+    k > 0 at s = +1, tensile just inside that edge.  The polynomial representation
+    sees it only through a drift of phi_n(1) = p/sqrt(1-s^2) at s = 1 of about
+    -sqrt(2) k ln 2 per doubling of n (it resolves 1 - s down to ~1/n^2); the drift
+    measured for n = 128 ... 1024 (ratios to the prediction 1.20, 1.12, 1.07, falling
+    toward 1 as the O(1/ln n) corrections fade) agrees with the predicted k to 25%; by
+    n = 256 the discrete pressure itself is tensile at the edge."""
+    sols = [solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=0, lam=1, n=n)
+            for n in (128, 256, 512, 1024)]
+    for sol in sols:
+        k_minus, k_plus = sol.validity.edge_log_coefficients
+        assert k_plus > 0 and not sol.valid and sol.load_ratio > 0
+    phi1 = np.array([u_series_value(u_series_coefficients(s.phi), 1.0) for s in sols])
+    drift = np.diff(phi1)
+    predicted = -np.sqrt(2) * sols[-1].validity.edge_log_coefficients[1] * np.log(2)
+    ratio = drift / predicted
+    assert np.all(np.abs(ratio - 1) < 0.25) and np.all(np.diff(ratio) < 0), ratio
+    v = sols[1].validity
+    assert v.pressure_margin < 0 and v.pressure_margin_at == 1.0
+    assert v.gap_margin < 0 and 1.0 < v.gap_margin_at < 1.01
+
+
+def test_equal_distortivities_have_no_edge_log_term():
+    """delta1 = delta2: the step kernels' jumps cancel at the edges, k = 0 exactly."""
+    sol = solve(5, 0.3, 10, k2_over_k1=1, lam=1, n=64)
+    assert sol.validity.edge_log_coefficients == (0.0, 0.0)
+
+
+def test_interpenetration_away_from_edges_detected():
+    """lam = 4, delta1/delta2 = 5, fHPe = 0.3: compressive everywhere, but the bodies
+    overlap near s = 1.5 (the closed-form gap is checked against quadrature above)."""
+    sol = solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=5, lam=4, n=64)
+    v = sol.validity
+    assert v.pressure_margin > 0 and v.min_pressure == 0.0
+    assert v.min_gap < 0 and not v.valid
+    assert 1.2 < v.min_gap_at < 2.0
+    assert sol.gap_at(v.min_gap_at)[0] == v.min_gap
+
+
+def test_negative_load_is_invalid():
+    """Past the limiting contact width (fHPe = 1 here) P_H/P < 0: not valid."""
+    sol = solve(5, 1.0, 10, k2_over_k1=1, lam=-1, n=32)
+    assert sol.load_ratio < 0
+    assert not sol.validity.positive_load and not sol.valid
