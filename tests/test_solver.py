@@ -114,3 +114,20 @@ def test_convergence_check_reports_change():
     a = solve(5, 0.2, 10, k2_over_k1=1, lam=-1, n=32, check_convergence=True)
     b = solve(5, 0.2, 10, k2_over_k1=1, lam=-1, n=64)
     assert a.load_ratio_change == pytest.approx(abs(b.load_ratio - a.load_ratio), rel=1e-12)
+
+
+def test_approaches_barber_insulated_cylinder_at_first_order():
+    """lam = -1, fHPe = 0.2, k2/k1 = 1: as K2/K1 grows the general solver approaches
+    Barber's insulated, non-distorting cylinder (independent Galerkin solution in
+    thermocontact.limits, accurate to 1e-15) at first order in K1/K2: the error
+    falls by 10.0 and 10.1 per decade of K2/K1 = 10, 100, 1000 (asserted 9.5-10.6),
+    with (K2/K1)(P_H/P - Barber) ~ 0.089.  The heat left in the cylinder is
+    q1 = p/(1 + K2/K1) + q'/2 with q' = O(K1/K2) (derivation section 5)."""
+    from thermocontact.limits import barber_insulated
+
+    LB = barber_insulated(0.2).load_ratio
+    err = np.array([solve(5, 0.2, rho, k2_over_k1=1, lam=-1, n=512).load_ratio - LB
+                    for rho in (10, 100, 1000)])
+    ratios = err[:-1] / err[1:]
+    assert np.all((ratios > 9.5) & (ratios < 10.6)), ratios
+    assert np.all(np.abs(err * np.array([10, 100, 1000]) - 0.089) < 0.002)

@@ -1,0 +1,135 @@
+"""The command line: JSON record, summary, and one-line errors for every bad input."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from thermocontact.cli import main
+from thermocontact.limits import hertz_pressure
+
+BASE = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10"]
+REQUIRED = {
+    "load_ratio", "lam", "sigma_over_delta", "pe", "fhpe", "K2_over_K1", "k2_over_k1",
+    "delta1_over_delta2", "n", "valid", "min_pressure", "min_pressure_at", "min_gap",
+    "min_gap_at", "s", "pressure",
+}
+
+
+def run_json(capsys, args):
+    assert main(args + ["--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_json_record(capsys):
+    """The documented case: every required key, lam = -1 to 1e-10, a unit-integral,
+    non-negative profile on s in [-1, 1], and the CLI values equal to the Python API's."""
+    rec = run_json(capsys, BASE + ["--lam", "-1"])
+    assert REQUIRED <= rec.keys()
+    assert abs(rec["lam"] + 1) < 1e-10
+    s, p = np.array(rec["s"]), np.array(rec["pressure"])
+    assert s[0] == -1 and s[-1] == 1 and np.all(np.diff(s) > 0)
+    # Trapezoid on Chebyshev nodes of a sqrt-vanishing profile: integral 1 to 1e-3.
+    assert abs(np.trapezoid(p, s) - 1) < 1e-3
+    from thermocontact import solve
+    sol = solve(5, 0.2, 10, lam=-1)
+    assert rec["load_ratio"] == sol.load_ratio and rec["valid"] == sol.valid
+    assert rec["k2_over_k1"] == 10 and rec["delta1_over_delta2"] == 1
+
+
+def test_no_coupling_json_is_hertz(capsys):
+    """--fhpe 0 --lam -1: load_ratio 1 and sigma 0 to 1e-10, the Hertz profile to 1e-12."""
+    rec = run_json(capsys, ["solve", "--pe", "5", "--fhpe", "0", "--K2-over-K1", "10", "--lam", "-1"])
+    assert abs(rec["load_ratio"] - 1) < 1e-10
+    assert abs(rec["sigma_over_delta"]) < 1e-10
+    s = np.array(rec["s"])
+    assert np.max(np.abs(np.array(rec["pressure"]) - hertz_pressure(s))) < 1e-12
+    assert rec["valid"] and rec["min_pressure"] == 0 and rec["min_gap"] == 0
+
+
+def test_all_options(capsys):
+    """--sigma, --k2-over-k1, --delta1-over-delta2, -n and --check reach the solver."""
+    rec = run_json(capsys, BASE + ["--sigma", "0.05", "--k2-over-k1", "2",
+                                   "--delta1-over-delta2", "0.5", "-n", "24", "--check"])
+    assert rec["sigma_over_delta"] == 0.05 and rec["n"] == 24
+    assert rec["k2_over_k1"] == 2 and rec["delta1_over_delta2"] == 0.5
+    assert rec["load_ratio_change"] > 0
+
+
+def test_summary(capsys):
+    """Without --json a readable summary naming P_H/P, lambda, sigma and validity."""
+    assert main(BASE + ["--lam", "-1"]) == 0
+    out = capsys.readouterr().out
+    for word in ("P_H/P", "lambda", "sigma/Delta", "valid", "min gap"):
+        assert word in out
+
+
+BAD = [
+    (["--pe", "0"], "pe"),
+    (["--pe", "-3"], "pe"),
+    (["--pe", "nan"], "pe"),
+    (["--pe", "inf"], "pe"),
+    (["--fhpe", "-0.1"], "fhpe"),
+    (["--K2-over-K1", "0"], "K2_over_K1"),
+    (["--k2-over-k1", "-1"], "k2_over_k1"),
+    (["--delta1-over-delta2", "-1"], "delta1_over_delta2"),
+    (["-n", "2"], "n must be an integer in [4, 2048]"),
+    (["-n", "100000"], "n must be an integer in [4, 2048]"),
+    (["--lam", "nan"], "lam"),
+    (["--pe", "abc"], "--pe"),
+]
+
+
+@pytest.mark.parametrize("change,needle", BAD)
+def test_bad_input_one_line(capsys, change, needle):
+    """Each bad value: exit status 2, one line on stderr naming the parameter, no stdout."""
+    args = dict(zip(BASE[1::2], BASE[2::2]))
+    args["--lam"] = "-1"
+    for k, v in zip(change[::2], change[1::2]):
+        args[k] = v
+    argv = ["solve"] + [x for kv in args.items() for x in kv]
+    assert main(argv) == 2
+    cap = capsys.readouterr()
+    assert cap.out == ""
+    lines = cap.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:") and needle in lines[0]
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (BASE, "exactly one of --lam and --sigma"),
+    (BASE + ["--lam", "0", "--sigma", "0.1"], "exactly one of --lam and --sigma"),
+    (["solve", "--pe", "5", "--fhpe", "0", "--K2-over-K1", "10", "--sigma", "0.2"], "fhpe = 0"),
+    (["solve", "--pe", "5", "--fhpe", "1e-12", "--K2-over-K1", "10", "--sigma", "0.2", "-n", "32"],
+     "ill-conditioned"),
+    (BASE + ["--lam", "-1", "--method", "magic"], "--method"),
+])
+def test_bad_combinations(capsys, argv, needle):
+    """Both or neither of --lam/--sigma, sigma without coupling, an ill-conditioned
+    system, an unknown method: exit 2 with one line naming the problem."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle in err[0]
+
+
+def test_unreachable_lam(capsys):
+    """A lam that no sigma reaches (where P_H/P vanishes) exits 2 with one line."""
+    from thermocontact import solve
+    a, b = solve(5, 0.2, 10, lam=0.0, n=32), solve(5, 0.2, 10, lam=1.0, n=32)
+    lam_star = -a.load_ratio / (b.load_ratio - a.load_ratio)
+    assert main(BASE + ["--lam", repr(lam_star), "-n", "32"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no finite sigma_over_delta" in err[0]
+
+
+def test_installed_command_subprocess():
+    """The installed entry point (as a module) prints the JSON record and exits 0;
+    a bad input exits non-zero with one stderr line and no traceback."""
+    cmd = [sys.executable, "-m", "thermocontact.cli"]
+    ok = subprocess.run(cmd + BASE + ["--lam", "-1", "--json"], capture_output=True, text=True)
+    assert ok.returncode == 0 and REQUIRED <= json.loads(ok.stdout).keys()
+    bad = subprocess.run(cmd + ["solve", "--pe", "-1", "--fhpe", "0", "--K2-over-K1", "1",
+                                "--lam", "0"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr
+    assert len(bad.stderr.strip().splitlines()) == 1
