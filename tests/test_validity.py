@@ -59,7 +59,7 @@ def brute_force_slope_mismatch(sol, t):
 
 
 def brute_force_gap(sol, s):
-    """Gap by quadrature of G - G(edge) from the edge to s (derivation D21-D22)."""
+    """Gap by quadrature of G - G(edge) from the edge to s (derivation D20-D21)."""
     L = sol.load_ratio
     if s > 1:
         g1 = brute_force_slope_mismatch(sol, 1.0)

@@ -30,7 +30,7 @@ def cylinder_displacement(u):
     """Outward surface displacement of the moving body per unit heat input.
 
     ``E(u) = exp(-u) I0(u)`` for ``u >= 0`` and ``E(u) = 1`` for ``u < 0``, in units
-    of ``2 delta1 k1 Q1 / v`` (derivation eq. D6, Barber's moving-source solution,
+    of ``2 delta1 k1 Q1 / v`` (derivation eq. D5, Barber's moving-source solution,
     the paper's eq. 1).  ``E`` is continuous at ``u = 0`` and ``-dE/du`` is
     :func:`cylinder_slope`.
 
@@ -77,7 +77,7 @@ def cylinder_temperature(u):
     """Surface temperature of the moving body per unit line heat input.
 
     ``exp(-u) K0(|u|)`` in units of ``Q1 / (pi K1)`` (Carslaw and Jaeger's moving
-    line source, the paper's eq. 15; derivation eq. D9).  Logarithmically singular
+    line source, the paper's eq. 15; derivation eq. D8).  Logarithmically singular
     at ``u = 0``; the hot wake is at ``u < 0``.
 
     Parameters

@@ -108,7 +108,7 @@ class ContactSolution:
         return psi / np.sqrt(1.0 - s * s) + self.eta * self.pressure_at(s)
 
     def gap_at(self, s):
-        """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D21-D22)."""
+        """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D20-D21)."""
         g, _ = gap(self.parameters, self.blocks.pressure_rule, self.blocks.flux_rule,
                    self.phi, self.psi, self.load_ratio, self.sigma_over_delta,
                    self.lam, s)

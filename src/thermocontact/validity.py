@@ -142,7 +142,7 @@ def gap(par: Parameters, pr: BoundedRule, fr: SingularRule, phi, psi, load_ratio
         sigma, lam, s):
     """Gap ``g(s)`` outside the contact, in units of ``Delta^2 / R``.
 
-    Implements derivation eqs. (D21)-(D22): for ``s > 1``
+    Implements derivation eqs. (D20)-(D21): for ``s > 1``
     ``g = sigma (s - 1) + (s^2 - 1)/2 - (pi / 2L) [J_C - F J_T]`` with the Cauchy
     part ``J_C = sum_j a_j I_{j+1}(s)``, the thermal part
     ``J_T = d/c integral (p + q)(r) [E(c(1 - r)) - E(c(s - r))] dr + (1 - lam)(s - 1)/2``,
