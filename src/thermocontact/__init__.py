@@ -9,6 +9,7 @@ distributions and the validity of the single-patch solution.
 from importlib.metadata import PackageNotFoundError, version
 
 from . import collocation as _collocation  # noqa: F401  (registers "paper")
+from . import product as _product  # noqa: F401  (registers "product")
 from .assembly import METHODS
 from .parameters import InputError, Parameters, SolveError
 from .solver import ContactSolution, solve

@@ -1,0 +1,231 @@
+"""Moments of a kernel against the Chebyshev bases of the two unknowns.
+
+For points ``s`` and a convolution kernel ``K(s - r)`` this computes, to about
+machine precision,
+
+    B[k, j] = integral K(s_k - r) sqrt(1 - r^2) U_j(r) dr
+            = integral_0^pi K(s_k - cos t) sin t sin((j + 1) t) dt,
+    S[k, j] = integral K(s_k - r) T_j(r) / sqrt(1 - r^2) dr
+            = integral_0^pi K(s_k - cos t) cos(j t) dt,
+
+for ``j < n``.  In ``t = arccos r`` both integrands are free of the weights' edge
+singularities.  The kernels of this problem are smooth except at ``r = s``
+(a jump, a logarithm, and structure on the scale ``1/c`` of the moving body's
+kernels), so the integral is split (derivation section 10):
+
+* a common rule for every ``s``: ``M`` equal panels in ``t`` with 16-point
+  Gauss–Legendre each, enough for the bases' ``n/2`` oscillations;
+* for each ``s``, the panel holding ``t_s = arccos s`` and its two neighbours are
+  replaced by panels halving in length toward ``t_s`` from either side, down to
+  ``1e-14`` of their length, which integrates jumps, logarithms, nearly polar
+  behaviour and any scale of the kernel to about machine precision.
+
+Points outside ``[-1, 1]`` are graded toward the nearer edge.  The sums over the
+bases use the three-term recurrences of ``cos(j t)`` and ``sin((j + 1) t)``.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+__all__ = ["kernel_moments", "sgn_moments"]
+
+_GL = 16
+
+
+@lru_cache(maxsize=8)
+def _gauss_legendre(m: int):
+    x, w = np.polynomial.legendre.leggauss(m)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+@lru_cache(maxsize=4)
+def _graded_reference():
+    """Nodes and weights on ``(0, 1]`` graded toward 0.
+
+    Breakpoints halve from 1 to below ``1e-14``: every panel is as far from 0 as it
+    is long, so a pole-like kernel (``c M(c u) - 1/u`` is ``-1/u`` beyond
+    ``|u| ~ 1/c``) or a logarithm at 0 costs Gauss–Legendre nothing in accuracy.
+    The two outer panels, where the bases may oscillate, get 16 points, the rest 10.
+    """
+    bps = [1.0]
+    while bps[-1] > 1e-14:
+        bps.append(0.5 * bps[-1])
+    bps.append(0.0)
+    nodes, weights = [], []
+    for i, (a, b) in enumerate(zip(bps[1:], bps[:-1])):
+        x, w = _gauss_legendre(_GL if i < 2 else 10)
+        nodes.append(a + (b - a) * x)
+        weights.append((b - a) * w)
+    return np.concatenate(nodes), np.concatenate(weights)
+
+
+@lru_cache(maxsize=16)
+def _common(n: int):
+    """Common panel rule on ``[0, pi]`` and the bases at its nodes."""
+    m = max(8, -(-n // 4) + 2)
+    h = np.pi / m
+    x, w = _gauss_legendre(_GL)
+    t = (np.arange(m)[:, None] + x[None, :]).ravel() * h
+    wt = np.tile(w, m) * h
+    j = np.arange(n)
+    gb = np.sin(t)[:, None] * np.sin((j + 1)[None, :] * t[:, None])
+    gs = np.cos(j[None, :] * t[:, None])
+    panel = np.repeat(np.arange(m), _GL)
+    return m, h, t, wt, gb, gs, panel
+
+
+def _basis_sums(t, kw, n):
+    """``sum_q kw[k, q] g_j(t[k, q])`` for both bases, by recurrence in ``j``.
+
+    Parameters
+    ----------
+    t, kw : ndarray, shape (k, q)
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (k, n)
+    """
+    c = np.cos(t)
+    st = np.sin(t)
+    two_c = 2.0 * c
+    bounded = np.empty((t.shape[0], n))
+    singular = np.empty((t.shape[0], n))
+    # cos(j t): T-recurrence; sin((j + 1) t): U-recurrence (times sin t).
+    cm, c0 = np.ones_like(t), c  # cos(0 t), cos(1 t)
+    sm, s0 = st, 2.0 * c * st  # sin(1 t), sin(2 t)
+    kws = kw * st
+    singular[:, 0] = kw.sum(axis=1)
+    bounded[:, 0] = (kws * sm).sum(axis=1)
+    for j in range(1, n):
+        singular[:, j] = (kw * c0).sum(axis=1)
+        bounded[:, j] = (kws * s0).sum(axis=1)
+        cm, c0 = c0, two_c * c0 - cm
+        sm, s0 = s0, two_c * s0 - sm
+    return bounded, singular
+
+
+_P = 20  # interpolation points of the bases across the innermost interval
+_OUTER = 3  # panels per side between the innermost interval and the common rule
+
+
+@lru_cache(maxsize=4)
+def _inner_reference():
+    """Graded rule on (0, 1] and the Lagrange basis of ``_P`` Chebyshev points there.
+
+    Returns ``tau, omega, x, lagrange`` with ``lagrange[q, p] = l_p(tau_q)``.
+    """
+    tau, om = _graded_reference()
+    x = 0.5 * (1.0 - np.cos(np.pi * (np.arange(_P) + 0.5) / _P))
+    # Barycentric weights of the first-kind Chebyshev points.
+    lam = (-1.0) ** np.arange(_P) * np.sin(np.pi * (np.arange(_P) + 0.5) / _P)
+    diff = tau[:, None] - x[None, :]
+    terms = lam[None, :] / diff
+    lagrange = terms / terms.sum(axis=1, keepdims=True)
+    return tau, om, x, lagrange
+
+
+def _offsets_to_u(s, ts, d):
+    """``s - cos(t_s + d)`` without cancellation next to ``t_s``.
+
+    ``(s - cos t_s) + 2 sin(t_s + d/2) sin(d/2)``; ``s - cos t_s`` is 0 inside
+    ``[-1, 1]`` and ``s -+ 1`` outside.
+    """
+    return (s - np.clip(s, -1.0, 1.0))[:, None] + 2.0 * np.sin(ts[:, None] + 0.5 * d) * np.sin(0.5 * d)
+
+
+def kernel_moments(kernel, s, n: int):
+    """Moments of ``kernel(s - r)`` against ``sqrt(1-r^2) U_j`` and ``T_j/sqrt(1-r^2)``.
+
+    Parameters
+    ----------
+    kernel : callable
+        Vectorised ``K(u)``, ``u = s - r``; may jump or be logarithmically singular
+        at ``u = 0`` and vary on any scale near it.
+    s : ndarray, shape (k,)
+        Points; inside or outside ``[-1, 1]``.
+    n : int
+        Number of basis functions.
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (k, n)
+        ``B`` and ``S`` of the module docstring.
+
+    Notes
+    -----
+    Within ``w = 6/(n + 1)`` of ``t_s`` no basis function completes a period, so
+    there the bases are replaced by their interpolants on ``_P`` Chebyshev points
+    and only the kernel's moments against the ``_P`` Lagrange polynomials are
+    summed over the graded rule; between ``w`` and the common rule, ``_OUTER``
+    geometric panels of 16 points carry the bases directly.
+    """
+    s = np.asarray(s, dtype=float)
+    m, h, t, wt, gb, gs, panel = _common(n)
+    ts = np.arccos(np.clip(s, -1.0, 1.0))
+    p0 = np.minimum((ts / h).astype(int), m - 1)
+    lo = np.maximum(p0 - 1, 0) * h
+    hi = np.minimum(p0 + 2, m) * h
+
+    # Far field on the common rule, near panels masked out.
+    near = (panel[None, :] >= (p0 - 1)[:, None]) & (panel[None, :] <= (p0 + 1)[:, None])
+    kf = kernel(s[:, None] - np.cos(t)[None, :]) * wt[None, :]
+    kf[near] = 0.0
+    bounded = kf @ gb
+    singular = kf @ gs
+
+    tau, om, xp, lagr = _inner_reference()
+    xg, wg = _gauss_legendre(_GL)
+    w_in = 6.0 / (n + 1)
+    for sign, side in ((-1.0, ts - lo), (1.0, hi - ts)):
+        inner = np.minimum(side, w_in)
+        # Innermost interval: kernel moments against the Lagrange basis.
+        d = sign * inner[:, None] * tau[None, :]
+        wq = inner[:, None] * om[None, :]
+        u = np.where(wq > 0.0, _offsets_to_u(s, ts, d), 1.0)
+        mu = (kernel(u) * wq) @ lagr
+        tp = ts[:, None] + sign * inner[:, None] * xp[None, :]
+        b2, s2 = _basis_sums(tp, mu, n)
+        bounded += b2
+        singular += s2
+        # Outer panels, geometric from the innermost interval to the side's end.
+        ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
+        edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
+        a, b = edges[:, :-1], edges[:, 1:]
+        dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(len(s), -1)
+        wq = ((b - a)[:, :, None] * wg[None, None, :]).reshape(len(s), -1)
+        d = sign * dist
+        u = np.where(wq > 0.0, _offsets_to_u(s, ts, d), 1.0)
+        b3, s3 = _basis_sums(ts[:, None] + d, kernel(u) * wq, n)
+        bounded += b3
+        singular += s3
+    return bounded, singular
+
+
+def sgn_moments(s, n: int):
+    """Exact moments of ``sgn(s - r)`` for ``-1 <= s <= 1``.
+
+    With ``t_s = arccos s``:
+    ``integral sgn(s - r) sqrt(1-r^2) U_j dr = 2 C_j(t_s) - (pi/2) [j = 0]``,
+    ``C_0 = (pi - t_s + sin(2 t_s)/2)/2``,
+    ``C_j = -(sin(j t_s)/j - sin((j + 2) t_s)/(j + 2))/2``; and
+    ``integral sgn(s - r) T_j / sqrt(1-r^2) dr = 2 D_j(t_s) - pi [j = 0]``,
+    ``D_0 = pi - t_s``, ``D_j = -sin(j t_s)/j``.
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (k, n)
+    """
+    ts = np.arccos(np.clip(np.asarray(s, dtype=float), -1.0, 1.0))[:, None]
+    j = np.arange(n)[None, :]
+    jj = np.where(j > 0, j, 1)
+    cb = np.where(j > 0, -0.5 * (np.sin(j * ts) / jj - np.sin((j + 2) * ts) / (j + 2)),
+                  0.5 * (np.pi - ts + 0.5 * np.sin(2 * ts)))
+    cs = np.where(j > 0, -np.sin(j * ts) / jj, np.pi - ts)
+    bounded = 2.0 * cb
+    bounded[:, 0] -= 0.5 * np.pi
+    singular = 2.0 * cs
+    singular[:, 0] -= np.pi
+    return bounded, singular
