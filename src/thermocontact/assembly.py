@@ -20,7 +20,7 @@ with the load and heat-partition rows ``w_p . phi = 1`` and
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -49,6 +49,12 @@ class Blocks:
         Thermal-distortion operator on ``psi``.
     Hp, Hq : ndarray, shape (n - 1, n)
         Heat-equation operators on ``phi`` and ``psi``.
+    integrate : callable
+        ``integrate(kernel, s, scale=None) -> (Ib, Is)``, row operators with
+        ``integral K(s - r) p(r) dr = Ib @ phi`` and
+        ``integral K(s - r) q'(r) dr = Is @ psi`` for any kernel, computed the
+        method's way (used by the validity checks); ``kernel`` receives arrays
+        whose rows belong to the points ``s``.
     """
 
     n: int
@@ -60,6 +66,7 @@ class Blocks:
     Tq: np.ndarray
     Hp: np.ndarray
     Hq: np.ndarray
+    integrate: Callable = field(repr=False, compare=False)
 
 
 Assembler = Callable[[Parameters, int], Blocks]

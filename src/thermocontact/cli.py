@@ -14,7 +14,7 @@ import click
 from . import __version__
 from .assembly import METHODS
 from .parameters import InputError, SolveError
-from .solver import DEFAULT_N, solve
+from .solver import DEFAULT_METHOD, DEFAULT_TOL, N_AUTO_MAX, solve
 
 __all__ = ["main", "solution_record"]
 
@@ -52,6 +52,10 @@ def solution_record(sol) -> dict:
         "edge_slope_residual": list(v.edge_slope_residual),
         "rcond": sol.rcond,
         "load_ratio_change": sol.load_ratio_change,
+        "error_estimate": sol.error_estimate,
+        "converged": sol.converged,
+        "auto_n": sol.auto_n,
+        "tol": sol.tol,
         "s": sol.s.tolist(),
         "pressure": sol.pressure.tolist(),
         "flux_s": sol.flux_s.tolist(),
@@ -70,6 +74,8 @@ def _summary(sol) -> str:
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
         f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}",
+        f"  error estimate {sol.error_estimate:.1e} (target {sol.tol:.0e}, "
+        f"{'met' if sol.converged else 'NOT met'}; n {'chosen' if sol.auto_n else 'given'})",
         f"  P_H/P         = {sol.load_ratio:.10g}",
         f"  lambda        = {sol.lam:.10g}",
         f"  sigma/Delta   = {sol.sigma_over_delta:.10g}",
@@ -106,20 +112,24 @@ def cli():
               help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma.")
 @click.option("--sigma", type=float, default=None,
               help="Contact offset sigma/Delta; give this or --lam.")
-@click.option("-n", "n", type=int, default=DEFAULT_N, show_default=True,
-              help="Unknowns per function.")
-@click.option("--method", type=click.Choice(sorted(METHODS)), default="paper",
-              show_default=True, help="Discretisation method.")
+@click.option("-n", "n", type=int, default=None,
+              help=f"Unknowns per function [default: chosen, doubling from 16 to "
+                   f"{N_AUTO_MAX} until the error estimate is below --tol].")
+@click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
+              help="Target of the error estimate when n is chosen.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
+              show_default=True, help="Discretisation: exact kernel moments, or the paper's.")
 @click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,
-              method, check, as_json):
+              tol, method, check, as_json):
     """Solve one case in dimensionless form."""
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=delta1_over_delta2, lam=lam,
-                sigma_over_delta=sigma, n=n, method=method, check_convergence=check)
+                sigma_over_delta=sigma, n=n, method=method, tol=tol,
+                check_convergence=check)
     if as_json:
         click.echo(json.dumps(solution_record(sol), allow_nan=False))
     else:

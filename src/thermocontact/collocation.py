@@ -73,4 +73,10 @@ def assemble_paper(par: Parameters, n: int) -> Blocks:
     Hp = (pr.weights[None, :] / np.pi) * (
         2.0 * rho / (1.0 + rho) ** 2 * cylinder_temperature_gradient_regular(vp, c)
     )
-    return Blocks(n, pr, fr, pr.collocation, C, Tp, Tq, Hp, Hq)
+
+    def integrate(kernel, s_pts, scale=None):
+        s_pts = np.asarray(s_pts, dtype=float)[:, None]
+        return (pr.weights[None, :] * kernel(s_pts - pr.nodes[None, :]),
+                fr.weights[None, :] * kernel(s_pts - fr.nodes[None, :]))
+
+    return Blocks(n, pr, fr, pr.collocation, C, Tp, Tq, Hp, Hq, integrate)

@@ -41,19 +41,16 @@ def _gauss_legendre(m: int):
     return 0.5 * (x + 1.0), 0.5 * w
 
 
-@lru_cache(maxsize=4)
-def _graded_reference():
+@lru_cache(maxsize=64)
+def _graded_reference(levels: int = 47):
     """Nodes and weights on ``(0, 1]`` graded toward 0.
 
-    Breakpoints halve from 1 to below ``1e-14``: every panel is as far from 0 as it
-    is long, so a pole-like kernel (``c M(c u) - 1/u`` is ``-1/u`` beyond
+    Breakpoints halve from 1 ``levels`` times (47: below ``1e-14``): every panel is
+    as far from 0 as it is long, so a pole-like kernel (``c M(c u) - 1/u`` is ``-1/u`` beyond
     ``|u| ~ 1/c``) or a logarithm at 0 costs Gauss–Legendre nothing in accuracy.
     The two outer panels, where the bases may oscillate, get 16 points, the rest 10.
     """
-    bps = [1.0]
-    while bps[-1] > 1e-14:
-        bps.append(0.5 * bps[-1])
-    bps.append(0.0)
+    bps = [0.5**i for i in range(levels + 1)] + [0.0]
     nodes, weights = [], []
     for i, (a, b) in enumerate(zip(bps[1:], bps[:-1])):
         x, w = _gauss_legendre(_GL if i < 2 else 10)
@@ -111,13 +108,13 @@ _P = 20  # interpolation points of the bases across the innermost interval
 _OUTER = 3  # panels per side between the innermost interval and the common rule
 
 
-@lru_cache(maxsize=4)
-def _inner_reference():
+@lru_cache(maxsize=64)
+def _inner_reference(levels: int):
     """Graded rule on (0, 1] and the Lagrange basis of ``_P`` Chebyshev points there.
 
     Returns ``tau, omega, x, lagrange`` with ``lagrange[q, p] = l_p(tau_q)``.
     """
-    tau, om = _graded_reference()
+    tau, om = _graded_reference(levels)
     x = 0.5 * (1.0 - np.cos(np.pi * (np.arange(_P) + 0.5) / _P))
     # Barycentric weights of the first-kind Chebyshev points.
     lam = (-1.0) ** np.arange(_P) * np.sin(np.pi * (np.arange(_P) + 0.5) / _P)
@@ -136,18 +133,24 @@ def _offsets_to_u(s, ts, d):
     return (s - np.clip(s, -1.0, 1.0))[:, None] + 2.0 * np.sin(ts[:, None] + 0.5 * d) * np.sin(0.5 * d)
 
 
-def kernel_moments(kernel, s, n: int):
+def kernel_moments(kernel, s, n: int, scale=None):
     """Moments of ``kernel(s - r)`` against ``sqrt(1-r^2) U_j`` and ``T_j/sqrt(1-r^2)``.
 
     Parameters
     ----------
     kernel : callable
-        Vectorised ``K(u)``, ``u = s - r``; may jump or be logarithmically singular
-        at ``u = 0`` and vary on any scale near it.
+        Vectorised ``K(u)``, ``u = s - r``, called with arrays of shape
+        ``(len(s), q)`` whose rows belong to the points ``s``; may jump or be
+        logarithmically singular at ``u = 0`` and vary on any scale near it.
     s : ndarray, shape (k,)
         Points; inside or outside ``[-1, 1]``.
     n : int
         Number of basis functions.
+    scale : float, optional
+        For a kernel that is smooth on either side of ``u = 0`` (a jump at most)
+        and varies on the scale ``1/scale`` there, the grading toward ``t_s`` stops
+        at ``1e-3/scale``; by default it goes to ``1e-14`` of the interval, as a
+        logarithm needs.
 
     Returns
     -------
@@ -176,9 +179,12 @@ def kernel_moments(kernel, s, n: int):
     bounded = kf @ gb
     singular = kf @ gs
 
-    tau, om, xp, lagr = _inner_reference()
     xg, wg = _gauss_legendre(_GL)
     w_in = 6.0 / (n + 1)
+    levels = 47
+    if scale is not None:
+        levels = int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
+    tau, om, xp, lagr = _inner_reference(levels)
     for sign, side in ((-1.0, ts - lo), (1.0, hi - ts)):
         inner = np.minimum(side, w_in)
         # Innermost interval: kernel moments against the Lagrange basis.

@@ -71,7 +71,7 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
     C = eval_chebyt(j[None, :] + 1, sk[:, None])
     sgn_b, sgn_s = sgn_moments(sk, n)
     if d:
-        nh_b, nh_s = kernel_moments(lambda u: cylinder_slope(c * u), sk, n)
+        nh_b, nh_s = kernel_moments(lambda u: cylinder_slope(c * u), sk, n, scale=c)
     else:
         nh_b = nh_s = 0.0
     Tp = d * (1.0 + eta) * nh_b + 0.5 * (1.0 - eta) * sgn_b
@@ -83,4 +83,10 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
     Hq = cauchy_t + (rho / (1.0 + rho)) * mr_s / np.pi
     Hp = (2.0 * rho / (1.0 + rho) ** 2) * mr_b / np.pi
 
-    return Blocks(n, pr, fr, sk, C @ to_u, Tp @ to_u, Tq @ to_t, Hp @ to_u, Hq @ to_t)
+
+    def integrate(kernel, s_pts, scale=None):
+        b, t = kernel_moments(kernel, np.asarray(s_pts, dtype=float), n, scale=scale)
+        return b @ to_u, t @ to_t
+
+    return Blocks(n, pr, fr, sk, C @ to_u, Tp @ to_u, Tq @ to_t, Hp @ to_u, Hq @ to_t,
+                  integrate)

@@ -13,21 +13,39 @@ Two ways to close the problem (derivation section 6):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import LinAlgError, lu_factor, lu_solve
 from scipy.linalg.lapack import dgecon
 
 from .assembly import METHODS, Blocks
-from .parameters import InputError, Parameters, SolveError, check_finite
+from .parameters import InputError, Parameters, SolveError, check_finite, check_positive
 from .quadrature import t_series_coefficients, u_series_coefficients, u_series_value
 from .validity import Validity, assess, gap
 
-__all__ = ["ContactSolution", "DEFAULT_N", "N_RANGE", "RCOND_MIN", "solve", "solve_blocks"]
+__all__ = [
+    "ContactSolution",
+    "DEFAULT_METHOD",
+    "DEFAULT_TOL",
+    "N_AUTO_MAX",
+    "N_RANGE",
+    "RCOND_MIN",
+    "error_estimate",
+    "solve",
+    "solve_blocks",
+]
 
-DEFAULT_N = 128
+#: Default method and error target.
+DEFAULT_METHOD = "product"
+DEFAULT_TOL = 1e-8
 N_RANGE = (4, 2048)
+#: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX.
+N_AUTO_START = 16
+N_AUTO_MAX = 1024
+#: Largest convergence order the error estimate believes.
+P_MAX = 5.0
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
 RCOND_MIN = 1e-12
 
@@ -67,6 +85,15 @@ class ContactSolution:
         Reciprocal condition number (1-norm) of the linear system.
     load_ratio_change : float or None
         ``|P_H/P(2n) - P_H/P(n)|`` when a convergence check was asked for.
+    error_estimate : float or None
+        Estimated relative error of ``P_H/P`` and ``sigma/Delta`` (the larger),
+        see :func:`error_estimate`.
+    converged : bool or None
+        ``error_estimate <= tol``.
+    auto_n : bool
+        Whether ``n`` was chosen automatically.
+    tol : float or None
+        The error target.
     """
 
     parameters: Parameters
@@ -85,6 +112,10 @@ class ContactSolution:
     validity: Validity
     rcond: float
     load_ratio_change: float | None = None
+    error_estimate: float | None = None
+    converged: bool | None = None
+    auto_n: bool = False
+    tol: float | None = None
     blocks: Blocks = field(default=None, repr=False, compare=False)
     phi: np.ndarray = field(default=None, repr=False, compare=False)
     psi: np.ndarray = field(default=None, repr=False, compare=False)
@@ -109,9 +140,8 @@ class ContactSolution:
 
     def gap_at(self, s):
         """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D20-D21)."""
-        g, _ = gap(self.parameters, self.blocks.pressure_rule, self.blocks.flux_rule,
-                   self.phi, self.psi, self.load_ratio, self.sigma_over_delta,
-                   self.lam, s)
+        g, _ = gap(self.parameters, self.blocks, self.phi, self.psi, self.load_ratio,
+                   self.sigma_over_delta, self.lam, s)
         return g
 
 
@@ -213,7 +243,7 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
 
-    validity = assess(par, pr, fr, phi, psi, L, sigma, lam)
+    validity = assess(par, blocks, phi, psi, L, sigma, lam)
     p_nodes = np.sqrt(1.0 - pr.nodes**2) * phi
     p_at_flux = np.sqrt(1.0 - fr.nodes**2) * u_series_value(
         u_series_coefficients(phi), fr.nodes
@@ -254,9 +284,64 @@ def check_n(n) -> int:
     return int(n)
 
 
+@lru_cache(maxsize=8)
+def _assembled(method: str, pe: float, K: float, k: float, d: float, n: int) -> Blocks:
+    """Assembly depends on neither fHPe, lam nor sigma: keep the last few for sweeps."""
+    return METHODS[method](Parameters(pe, 0.0, K, k, d), n)
+
+
+def _blocks(par: Parameters, method: str, n: int) -> Blocks:
+    return _assembled(method, par.pe, par.K2_over_K1, par.k2_over_k1,
+                      par.delta1_over_delta2, n)
+
+
+def _relative(x: float) -> float:
+    return max(abs(x), 0.01)
+
+
+def error_estimate(levels) -> float:
+    """Richardson estimate of the error of the finest of successive solutions.
+
+    For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
+    in ``sigma/Delta``), the observed order is ``p = log2(d1/d2)``, clamped to
+    ``[1, 5]`` (1 also when fewer than three levels are given), and the error of
+    the finest is ``d2 / (2^p - 1)``.  The cap 5 is just above the product
+    method's asymptotic order (about 4, set by the edge terms of derivation
+    section 8): a sudden drop of ``d2`` while the discretisation first resolves
+    the cylinder's kernels must not be read as a higher order.  The estimate is the larger of the two
+    quantities' errors, each relative to ``max(|value|, 0.01)``.
+
+    Parameters
+    ----------
+    levels : sequence of ContactSolution
+        At least two, ``n`` doubling, coarsest first.
+
+    Returns
+    -------
+    float
+    """
+    est = 0.0
+    for attr in ("load_ratio", "sigma_over_delta"):
+        v = [getattr(sol, attr) for sol in levels[-3:]]
+        d2 = abs(v[-1] - v[-2])
+        p = 1.0
+        if len(v) == 3:
+            d1 = abs(v[1] - v[0])
+            if d1 > 0.0 and d2 > 0.0:
+                p = float(np.clip(np.log2(d1 / d2), 1.0, P_MAX))
+            elif d2 == 0.0:
+                p = P_MAX
+        est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))
+    return est
+
+
+def _with(sol: ContactSolution, **fields) -> ContactSolution:
+    return replace(sol, **fields)
+
+
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-          lam=None, sigma_over_delta=None, n=DEFAULT_N, method="paper",
-          check_convergence=False) -> ContactSolution:
+          lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
+          tol=DEFAULT_TOL, check_convergence=False) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     Parameters
@@ -275,15 +360,21 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         Exactly one: the heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the contact
         offset.
     n : int, optional
-        Unknowns per function, in :data:`N_RANGE`.
+        Unknowns per function, in :data:`N_RANGE`.  By default it is chosen: ``n``
+        doubles from 16 until :func:`error_estimate` is below ``tol`` (or
+        :data:`N_AUTO_MAX` is reached, reported by ``converged = False``).
     method : str, optional
-        A key of :data:`~thermocontact.assembly.METHODS`.
+        A key of :data:`~thermocontact.assembly.METHODS`: ``"product"`` (default,
+        exact kernel moments) or ``"paper"`` (the paper's collocation).
+    tol : float, optional
+        Target of the error estimate when ``n`` is chosen (default 1e-8).
     check_convergence : bool, optional
         Also solve with ``2n`` and report ``|P_H/P(2n) - P_H/P(n)|``.
 
     Returns
     -------
     ContactSolution
+        With ``error_estimate`` from the solutions at ``n``, ``n/2`` and ``n/4``.
 
     Raises
     ------
@@ -299,17 +390,34 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     1.0
     """
     par = Parameters(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2)
-    n = check_n(n)
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     if (lam is None) == (sigma_over_delta is None):
         raise InputError("give exactly one of lam and sigma_over_delta")
-    assemble = METHODS[method]
-    sol = solve_blocks(par, assemble(par, n), method, lam=lam,
-                       sigma_over_delta=sigma_over_delta)
-    if check_convergence:
-        n2 = min(2 * n, N_RANGE[1])
-        fine = solve_blocks(par, assemble(par, n2), method, lam=lam,
+    tol = check_positive("tol", tol)
+    auto = n is None
+    if not auto:
+        n = check_n(n)
+
+    def at(m):
+        return solve_blocks(par, _blocks(par, method, m), method, lam=lam,
                             sigma_over_delta=sigma_over_delta)
-        object.__setattr__(sol, "load_ratio_change", abs(fine.load_ratio - sol.load_ratio))
+
+    if auto:
+        levels = [at(N_AUTO_START), at(2 * N_AUTO_START)]
+        while True:
+            est = error_estimate(levels)
+            if est <= tol or levels[-1].n >= N_AUTO_MAX:
+                break
+            levels.append(at(2 * levels[-1].n))
+    else:
+        coarse = [m for m in (n // 4, n // 2) if m >= N_RANGE[0]]
+        levels = [at(m) for m in coarse] + [at(n)]
+        est = error_estimate(levels) if len(levels) > 1 else float("inf")
+    sol = _with(levels[-1], error_estimate=float(est), converged=bool(est <= tol),
+                auto_n=auto, tol=tol)
+    if check_convergence:
+        n2 = min(2 * sol.n, N_RANGE[1])
+        fine = at(n2)
+        sol = _with(sol, load_ratio_change=abs(fine.load_ratio - sol.load_ratio))
     return sol
