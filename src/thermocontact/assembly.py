@@ -67,6 +67,8 @@ class Blocks:
     Hp: np.ndarray
     Hq: np.ndarray
     integrate: Callable = field(repr=False, compare=False)
+    #: Row operators of the validity checks, which depend only on the blocks.
+    cache: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 Assembler = Callable[[Parameters, int], Blocks]

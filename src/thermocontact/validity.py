@@ -163,13 +163,18 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     L = load_ratio
     eta = par.eta
 
-    def against_p_plus_q(kernel, points, scale=None):
-        # integral K (p + q) dr with p + q = (1 + eta) p + q'
-        ib, iq = blocks.integrate(kernel, points, scale)
+    def against_p_plus_q(key, kernel, points, scale=None):
+        # integral K (p + q) dr with p + q = (1 + eta) p + q'; the row operators
+        # depend only on the blocks and the points, so sweeps reuse them.
+        key = (key, np.asarray(points, dtype=float).tobytes())
+        if key not in blocks.cache:
+            blocks.cache[key] = blocks.integrate(kernel, points, scale)
+        ib, iq = blocks.cache[key]
         return (1.0 + eta) * (ib @ phi) + iq @ psi
 
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).
-    nh_edge = against_p_plus_q(lambda u: cylinder_slope(c * u), [1.0], c)[0] if d else 0.0
+    nh_edge = (against_p_plus_q("nh", lambda u: cylinder_slope(c * u), [1.0], c)[0]
+               if d else 0.0)
     g_right_edge = a.sum() - F * (d * nh_edge + 0.5 * (1.0 - lam)) - (2 / np.pi) * L * (sigma + 1.0)
     g_left_edge = (sign_m * a).sum() + F * 0.5 * (1.0 - lam) - (2 / np.pi) * L * (sigma - 1.0)
 
@@ -185,7 +190,7 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
             # E(c(1 - r)) - E(c(1 + tt - r)) as a kernel of u = s - r = 1 + tt - r.
             h = c * tt[:, None]
             drop = lambda u: _displacement_drop(c * u - h, h)
-            jt = jt + (d / c) * against_p_plus_q(drop, 1.0 + tt, c)
+            jt = jt + (d / c) * against_p_plus_q("drop", drop, 1.0 + tt, c)
         j = jc - F * jt - g_right_edge * tt
         out[right] = sigma * tt + tt * (1.0 + 0.5 * tt) - np.pi / (2 * L) * j
     left = s < -1.0
@@ -197,12 +202,19 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     return out, (float(g_left_edge), float(g_right_edge))
 
 
-def _outside_grid(par: Parameters, sigma, lam, load_ratio, points=160):
-    """Points ``|s| - 1`` from 1e-8 out to where ``s^2/2`` dominates every other term."""
+#: Distances ``|s| - 1`` where the gap is checked: 160 points from 1e-8 to 1e3,
+#: extended when the terms linear in ``s`` could still compete with ``s^2/2`` there.
+_GAP_T = np.geomspace(1e-8, 1e3, 160)
+
+
+def _outside_grid(par: Parameters, sigma, lam, load_ratio):
+    """Points outside the contact, out to where ``s^2/2`` dominates every other term."""
     d = par.delta1_over_delta2
     reach = 2.0 + 2.0 * abs(sigma)
     reach += np.pi / abs(load_ratio) * par.fhpe * (2.0 + 2.0 * abs(lam)) * (1.0 + d)
-    t = np.geomspace(1e-8, min(max(10.0, 4.0 * reach), 1e6), points)
+    t = _GAP_T
+    if 4.0 * reach > t[-1]:
+        t = np.concatenate([t, np.geomspace(t[-1], min(4.0 * reach, 1e8), 41)[1:]])
     return np.concatenate([-1.0 - t[::-1], 1.0 + t])
 
 
@@ -211,7 +223,8 @@ def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validit
 
     The pressure is sampled at 2049 Chebyshev points of ``[-1, 1]`` (edges
     included) through its ``U``-series; the gap at 160 points on each side, spaced
-    geometrically from ``1e-8`` to where the ``s^2/2`` term dominates.
+    geometrically from ``1e-8`` to ``1e3`` (further when the ``s^2/2`` term does
+    not yet dominate there).
 
     Returns
     -------
