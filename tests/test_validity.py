@@ -106,11 +106,11 @@ def test_edge_log_term_makes_contact_invalid():
     """Heat into a non-distorting cylinder at its leading edge (lam = 1,
     delta1/delta2 = 0, fHPe = 0.3): the pressure carries k sqrt(1-s) ln(1-s) with
     k > 0 at s = +1, tensile just inside that edge.  The polynomial representation
-    sees it only through a drift of phi_n(1) = p/sqrt(1-s^2) at s = 1 of about
-    -sqrt(2) k ln 2 per doubling of n (it resolves 1 - s down to ~1/n^2); the drift
-    measured for n = 128 ... 1024 (ratios to the prediction 1.20, 1.12, 1.07, falling
-    toward 1 as the O(1/ln n) corrections fade) agrees with the predicted k to 25%; by
-    n = 256 the discrete pressure itself is tensile at the edge."""
+    sees it only through a drift of phi_n(1) = p/sqrt(1-s^2) at s = 1 of
+    -sqrt(2) k ln 2 per doubling of n (it resolves 1 - s down to ~1/n^2): with
+    product integration the drifts for n = 128 ... 1024 are 0.9944, 0.9972 and
+    0.9986 of the prediction (asserted within 1 %), and by n = 256 the discrete
+    pressure itself is tensile at the edge."""
     sols = [solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=0, lam=1, n=n)
             for n in (128, 256, 512, 1024)]
     for sol in sols:
@@ -120,7 +120,7 @@ def test_edge_log_term_makes_contact_invalid():
     drift = np.diff(phi1)
     predicted = -np.sqrt(2) * sols[-1].validity.edge_log_coefficients[1] * np.log(2)
     ratio = drift / predicted
-    assert np.all(np.abs(ratio - 1) < 0.25) and np.all(np.diff(ratio) < 0), ratio
+    assert np.all(np.abs(ratio - 1) < 0.01), ratio
     v = sols[1].validity
     assert v.pressure_margin < 0 and v.pressure_margin_at == 1.0
     assert v.gap_margin < 0 and 1.0 < v.gap_margin_at < 1.01
@@ -134,12 +134,13 @@ def test_equal_distortivities_have_no_edge_log_term():
 
 def test_interpenetration_away_from_edges_detected():
     """lam = 4, delta1/delta2 = 5, fHPe = 0.3: compressive everywhere, but the bodies
-    overlap near s = 1.5 (the closed-form gap is checked against quadrature above)."""
+    overlap near s = 2.2 (n = 64 ... 256 with product integration; the closed-form gap
+    is checked against quadrature above)."""
     sol = solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=5, lam=4, n=64)
     v = sol.validity
     assert v.pressure_margin > 0 and v.min_pressure == 0.0
     assert v.min_gap < 0 and not v.valid
-    assert 1.2 < v.min_gap_at < 2.0
+    assert 2.0 < v.min_gap_at < 2.5
     assert sol.gap_at(v.min_gap_at)[0] == pytest.approx(v.min_gap, rel=1e-13)
 
 
