@@ -180,11 +180,15 @@ def header_lines():
     except (OSError, subprocess.SubprocessError):
         commit = "unknown"
     proc = platform.processor() or platform.machine() or "unknown"
+    # BLAS threading changes the timings a lot on small machines: record it.
+    threads = ", ".join(f"{v}={os.environ.get(v, 'unset')}"
+                        for v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"))
     return (f"# thermocontact convergence benchmark; commit {commit}; "
             f"thermocontact {thermocontact.__version__}; "
             f"date {datetime.datetime.now().isoformat(timespec='seconds')}; "
             f"machine {proc}, {os.cpu_count()} cpus, {platform.system()}; "
             f"python {platform.python_version()}, numpy {np.__version__}; "
+            f"{threads}; "
             f"lam={LAM:g} fhpe={FHPE:g}; reference {REF_METHOD} n={REF_N} "
             f"(its row has no errors)")
 
@@ -373,7 +377,7 @@ def plot(rows, refinfo, path):
         row_ax[0].set_title(title, fontsize=9, loc="left")
         row_ax[0].set_ylabel("max rel. error")
         row_ax[0].set_xscale("log", base=2)
-    axes[0, 1].axvline(T3_SECONDS, color="grey", lw=0.7, ls="-.")
+        row_ax[1].axvline(T3_SECONDS, color="grey", lw=0.7, ls="-.")
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("n")
     axes[-1, 1].set_xlabel("total time per solve [s] (assembly + solve)")
