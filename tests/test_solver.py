@@ -229,3 +229,16 @@ def test_automatic_n_meets_tolerance():
 def test_bad_tolerance_refused():
     with pytest.raises(InputError, match="tol"):
         solve(5, 0.2, 10, lam=-1, tol=0)
+
+
+def test_approach_to_barber_with_equal_capacities_is_half_order():
+    """With k2/k1 = K2/K1 (the paper's choice) the cylinder's kernels sharpen as K2/K1
+    grows and its share of the heat falls only like (K1/K2)^{1/2}: at Pe = 5,
+    fHPe = 0.2 the distance to Barber's solution falls by 3.09 from K2/K1 = 100 to
+    1000 (sqrt(10) = 3.16; asserted within 5 %), with sqrt(K2/K1) times it 0.103,
+    0.106."""
+    from thermocontact.limits import barber_insulated
+
+    LB = barber_insulated(0.2).load_ratio
+    d = [solve(5, 0.2, rho, lam=-1, n=512).load_ratio - LB for rho in (100.0, 1000.0)]
+    assert abs(d[0] / d[1] / np.sqrt(10) - 1) < 0.05
