@@ -10,10 +10,11 @@ import json
 import sys
 
 import click
+import numpy as np
 
 from . import __version__
 from .assembly import METHODS
-from .parameters import InputError, SolveError
+from .parameters import InputError, SolveError, check_positive
 from .solver import DEFAULT_METHOD, DEFAULT_TOL, N_AUTO_MAX, solve
 
 __all__ = ["main", "solution_record"]
@@ -161,6 +162,125 @@ def reproduce_cmd(out_dir, only):
                    err=True)
         raise click.exceptions.Exit(130)
     click.echo(f"wrote {len(done)} files to {out_dir}/ in {time.perf_counter() - t0:.1f} s")
+
+
+def _branch_record(b) -> dict:
+    v = b.solution.validity
+    return {
+        "half_width": b.half_width, "offset": b.offset, "a": b.a, "b": b.b,
+        "peak_pressure": b.peak_pressure, "mean_pressure": b.mean_pressure,
+        "pe": b.pe, "fhpe": b.fhpe, "lam": b.lam, "load_ratio": b.load_ratio,
+        "valid": b.valid, "flash_temperature": b.flash_temperature,
+        "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
+        "temperature_mismatch": b.temperature_mismatch,
+        "n": b.solution.n, "error_estimate": b.solution.error_estimate,
+        "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
+    }
+
+
+def contact_record(res) -> dict:
+    """The JSON record of a :class:`~thermocontact.engineering.PhysicalContact` (SI units)."""
+    prob = res.problem
+    prim = res.primary
+    rec = {key: (getattr(prim, key) if prim is not None else None) for key in (
+        "half_width", "offset", "a", "b", "peak_pressure", "mean_pressure", "pe", "fhpe",
+        "flash_temperature", "heat_cylinder", "heat_half_plane")}
+    rec.update({
+        "hertz_half_width": prob.hertz_half_width,
+        "hertz_peak_pressure": prob.hertz_peak_pressure,
+        "lam": prob.lam,
+        "valid": bool(prim is not None and prim.valid),
+        "message": res.message,
+        "largest_valid_load": res.largest_valid_load,
+        "branches": [_branch_record(b) for b in res.branches],
+        "inputs": {
+            "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
+            "radius": prob.radius, "load": prob.load, "speed": prob.speed,
+            "friction": prob.friction, "lam": prob.lam,
+        },
+        "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
+                 "surface temperature), W/m",
+        "version": __version__,
+    })
+    if rec["largest_valid_load"] is not None and not np.isfinite(rec["largest_valid_load"]):
+        rec["largest_valid_load"] = "unbounded"
+    return rec
+
+
+def _contact_summary(res) -> str:
+    prob = res.problem
+    lines = [
+        f"thermocontact {__version__}: {prob.cylinder.name} cylinder (R = {prob.radius:g} m) "
+        f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}",
+        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}",
+        f"  Hertz: half-width {prob.hertz_half_width:.4g} m, peak pressure "
+        f"{prob.hertz_peak_pressure:.4g} Pa",
+    ]
+    for i, b in enumerate(res.branches):
+        tag = "valid" if b.valid else "INVALID"
+        star = "*" if b is res.primary else " "
+        lines += [
+            f" {star}branch {i + 1} ({tag}): half-width {b.half_width:.4g} m, offset "
+            f"{b.offset:.4g} m (a = {b.a:.4g}, b = {b.b:.4g})",
+            f"    peak pressure {b.peak_pressure:.4g} Pa, mean {b.mean_pressure:.4g} Pa; "
+            f"Pe {b.pe:.4g}, fHPe {b.fhpe:.4g}, P_H/P {b.load_ratio:.4g}",
+            f"    flash temperature {b.flash_temperature:.4g} K; heat into cylinder "
+            f"{b.heat_cylinder:.4g} W/m, half-plane {b.heat_half_plane:.4g} W/m",
+        ]
+    if res.message:
+        lines.append(f"  {res.message}")
+    return "\n".join(lines)
+
+
+@cli.command("contact")
+@click.option("--cylinder", required=True, help="Material of the sliding cylinder: a name or E=..,nu=..,alpha=..,K=..,k=..")
+@click.option("--half-plane", "half_plane", required=True, help="Material of the stationary half-plane.")
+@click.option("--materials", "materials_file", default=None, help="TOML file adding or overriding materials.")
+@click.option("--radius", required=True, help="Cylinder radius (m, or with units: 450mm).")
+@click.option("--load", required=True, help="Load per unit length (N/m, or 200kN/m).")
+@click.option("--speed", required=True, help="Sliding speed (m/s, or 72km/h).")
+@click.option("--friction", type=float, required=True, help="Coefficient of friction >= 0.")
+@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--tol", type=float, default=1e-6, show_default=True, help="Error target of P_H/P per branch.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+@click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
+@click.option("--plot", "plot_file", default=None, help="Write pressure and temperatures to this PNG.")
+def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, lam,
+                tol, as_json, csv_file, plot_file):
+    """Contact width, pressures and temperatures from materials, load and speed."""
+    from .engineering import PhysicalProblem, contact
+    from .materials import get_material
+    from .units import parse_quantity
+
+    prob = PhysicalProblem(
+        get_material(cylinder, materials_file), get_material(half_plane, materials_file),
+        parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
+        parse_quantity(speed, "m/s", "speed"), friction, lam)
+    res = contact(prob, tol=check_positive("tol", tol))
+    if csv_file:
+        _write_contact_csv(res, csv_file)
+    if plot_file:
+        from .plotting import contact_figure
+
+        contact_figure(res, plot_file)
+    if as_json:
+        click.echo(json.dumps(contact_record(res), allow_nan=False))
+    else:
+        click.echo(_contact_summary(res))
+
+
+def _write_contact_csv(res, path):
+    import csv
+
+    with open(path, "w", newline="") as fh:
+        fh.write(f"# thermocontact {__version__}; SI units; temperatures are rises above "
+                 f"the cylinder's incoming surface temperature\n")
+        w = csv.writer(fh)
+        w.writerow(["branch", "valid", "x", "pressure", "temperature_cylinder",
+                    "temperature_half_plane"])
+        for i, b in enumerate(res.branches):
+            for row in zip(b.x, b.pressure, b.temperature_cylinder, b.temperature_half_plane):
+                w.writerow([i + 1, int(b.valid)] + [f"{v:.10g}" for v in row])
 
 
 def main(argv=None) -> int:

@@ -126,3 +126,31 @@ def distributions_figure(sols, stem, title):
     for ext in (".png", ".svg"):
         fig.savefig(stem + ext, dpi=130)
     plt.close(fig)
+
+
+def contact_figure(res, path):
+    """Pressure (Hertz dashed) and surface temperatures against x for each branch."""
+    plt = _pyplot()
+    prob = res.problem
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
+    dh = prob.hertz_half_width
+    x = np.linspace(-dh, dh, 301)
+    ax1.plot(1e3 * x, 1e-6 * prob.hertz_peak_pressure * np.sqrt(np.clip(1 - (x / dh) ** 2, 0, None)),
+             "k--", lw=1, label="Hertz")
+    for i, b in enumerate(res.branches):
+        tag = f"branch {i + 1} ({'valid' if b.valid else 'invalid'})"
+        line, = ax1.plot(1e3 * b.x, 1e-6 * b.pressure, label=tag)
+        ax2.plot(1e3 * b.x, b.temperature_cylinder, color=line.get_color(),
+                 label=f"{tag}: cylinder = half-plane in contact")
+    ax1.set_ylabel("pressure, MPa")
+    ax2.set_ylabel("surface temperature rise, K")
+    ax2.set_xlabel("x, mm (cylinder surface moves toward -x)")
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"{prob.cylinder.name} on {prob.half_plane.name}: R = {prob.radius:g} m, "
+                 f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
+                 f"lambda = {prob.lam:g}", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)

@@ -123,6 +123,8 @@ class ContactSolution:
     @property
     def valid(self) -> bool:
         """Whether every contact inequality holds (see :class:`Validity`)."""
+        if self.validity is None:
+            raise ValueError("validity was not evaluated for this solution")
         return self.validity.valid
 
     def pressure_at(self, s):
@@ -161,7 +163,7 @@ def _factor(A):
 
 
 def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
-                 sigma_over_delta=None) -> ContactSolution:
+                 sigma_over_delta=None, check_validity=True) -> ContactSolution:
     """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
 
     Parameters
@@ -173,6 +175,9 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     method : str
     lam, sigma_over_delta : float
         Exactly one of them.
+    check_validity : bool, optional
+        Evaluate the contact inequalities (default); without, ``validity`` is
+        None (for scans that need only ``P_H/P``).
 
     Returns
     -------
@@ -243,7 +248,7 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
 
-    validity = assess(par, blocks, phi, psi, L, sigma, lam)
+    validity = assess(par, blocks, phi, psi, L, sigma, lam) if check_validity else None
     p_nodes = np.sqrt(1.0 - pr.nodes**2) * phi
     p_at_flux = np.sqrt(1.0 - fr.nodes**2) * u_series_value(
         u_series_coefficients(phi), fr.nodes

@@ -1,0 +1,333 @@
+"""The problem in physical units: materials, radius, load, speed and friction in;
+contact width, offset, pressures and temperatures out, for every solution branch.
+
+For a trial half-width ``Delta`` the dimensionless groups follow from the inputs
+(derivation section 5): ``Pe = v Delta / (2 k2)``, ``fHPe = f H Pe`` with
+``H = k2 delta2 / A``, and the solver gives ``P_H/P``; the load that half-width
+carries is ``P = P_H(Delta) / (P_H/P)`` with the Hertz load
+``P_H = pi Delta^2 / (2 A R)`` (D2).  The half-widths that carry the given load are
+the roots of ``h(Delta) = P_H(Delta) - P (P_H/P)(Delta)``, which, unlike
+``P(Delta)``, stays finite where ``P_H/P`` passes through zero.  ``h`` need not be
+monotone, so it is scanned on a geometric grid of ``Delta`` and every sign change
+is refined by Brent's method.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.optimize import brentq, root_scalar
+
+from .kernels import cylinder_temperature
+from .materials import Material
+from .parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
+from .solver import ContactSolution, _blocks, error_estimate, solve_blocks
+
+__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact"]
+
+#: Scan of the half-width: points, and the largest fHPe reached (beyond about 2
+#: the formal solution has poles and only meaningless branches).
+SCAN_POINTS = 48
+FHPE_MAX = 2.0
+SCAN_N = 32
+
+
+@dataclass(frozen=True)
+class PhysicalProblem:
+    """Inputs in SI units, validated on construction.
+
+    Attributes
+    ----------
+    cylinder, half_plane : Material
+        Body 1 (moving surface) and body 2 (stationary).
+    radius : float
+        Cylinder radius R, m.
+    load : float
+        Normal load per unit length P, N/m.
+    speed : float
+        Sliding speed v, m/s.
+    friction : float
+        Coulomb coefficient f >= 0.
+    lam : float
+        Heat partition (Q1 - Q2)/(Q1 + Q2).
+    """
+
+    cylinder: Material
+    half_plane: Material
+    radius: float
+    load: float
+    speed: float
+    friction: float
+    lam: float
+
+    def __post_init__(self):
+        for name in ("radius", "load", "speed"):
+            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
+        object.__setattr__(self, "lam", check_finite("lam", self.lam))
+
+    @property
+    def compliance(self) -> float:
+        """``A = (1 - nu1)/mu1 + (1 - nu2)/mu2``, 1/Pa."""
+        return self.cylinder.compliance + self.half_plane.compliance
+
+    @property
+    def H(self) -> float:
+        """``H = k2 delta2 / A``, dimensionless (the paper's eq. 10)."""
+        return self.half_plane.k * self.half_plane.distortivity / self.compliance
+
+    @property
+    def hertz_half_width(self) -> float:
+        """``Delta_H = sqrt(2 A R P / pi)`` (D2), m."""
+        return float(np.sqrt(2.0 * self.compliance * self.radius * self.load / np.pi))
+
+    @property
+    def hertz_peak_pressure(self) -> float:
+        """``p0 = 2 P / (pi Delta_H)``, Pa."""
+        return 2.0 * self.load / (np.pi * self.hertz_half_width)
+
+    def pe(self, half_width):
+        """``Pe = v Delta / (2 k2)``."""
+        return self.speed * half_width / (2.0 * self.half_plane.k)
+
+    def fhpe(self, half_width):
+        """``fHPe`` at half-width ``Delta``."""
+        return self.friction * self.H * self.pe(half_width)
+
+    def hertz_load(self, half_width):
+        """``P_H = pi Delta^2 / (2 A R)``, N/m."""
+        return np.pi * half_width**2 / (2.0 * self.compliance * self.radius)
+
+    def parameters(self, half_width) -> Parameters:
+        """Dimensionless parameters at half-width ``Delta``."""
+        c, h = self.cylinder, self.half_plane
+        return Parameters(self.pe(half_width), self.fhpe(half_width), h.K / c.K, h.k / c.k,
+                          c.distortivity / h.distortivity)
+
+    def to_dimensionless(self, half_width) -> dict:
+        """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
+        p = self.parameters(half_width)
+        return dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
+                    delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
+
+
+@dataclass(frozen=True)
+class Branch:
+    """One half-width that carries the load, with its physical fields.
+
+    Positions ``x`` are measured from the cylinder's initial point of contact,
+    positive toward the leading edge (where the cylinder's surface enters).
+    Temperatures are rises above the temperature of the cylinder's material as
+    it enters the contact; the half-plane's equals the cylinder's in the contact
+    (perfect thermal contact), its far-field level being set by the bodies'
+    boundary conditions outside this 2-D model.
+    """
+
+    half_width: float
+    offset: float
+    a: float
+    b: float
+    peak_pressure: float
+    mean_pressure: float
+    pe: float
+    fhpe: float
+    lam: float
+    load_ratio: float
+    valid: bool
+    flash_temperature: float
+    heat_cylinder: float
+    heat_half_plane: float
+    temperature_mismatch: float
+    x: np.ndarray = field(repr=False)
+    pressure: np.ndarray = field(repr=False)
+    temperature_cylinder: np.ndarray = field(repr=False)
+    temperature_half_plane: np.ndarray = field(repr=False)
+    solution: ContactSolution = field(repr=False)
+
+
+@dataclass(frozen=True)
+class PhysicalContact:
+    """All solution branches of one physical problem.
+
+    Attributes
+    ----------
+    problem : PhysicalProblem
+    branches : tuple of Branch
+        In order of increasing half-width.
+    primary : Branch or None
+        The first valid branch from small half-widths (the one reached by loading
+        from zero), else the first branch.
+    message : str
+        Why there is no valid branch, when there is none.
+    largest_valid_load : float or None
+        When no branch is valid: the largest load over the scanned half-widths
+        whose solution is valid, N/m (None if there is none; ``inf`` when valid
+        solutions reach the limiting width, where the load grows without bound).
+    """
+
+    problem: PhysicalProblem
+    branches: tuple
+    primary: Branch | None
+    message: str
+    largest_valid_load: float | None
+
+
+def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
+    par = prob.parameters(half_width)
+    return solve_blocks(par, _blocks(par, "product", n), "product", lam=prob.lam,
+                        check_validity=check_validity)
+
+
+def _h(prob, half_width, n):
+    """``P_H(Delta) - P (P_H/P)(Delta)`` scaled by ``P``."""
+    try:
+        L = _solve_at(prob, half_width, n).load_ratio
+    except SolveError:  # P_H/P = 0 exactly at this lam
+        L = 0.0
+    return prob.hertz_load(half_width) / prob.load - L
+
+
+def _scan_range(prob: PhysicalProblem):
+    dh = prob.hertz_half_width
+    beta = prob.fhpe(1.0)  # fHPe per metre of half-width
+    hi = min(4.0 * dh, FHPE_MAX / beta)
+    return 1e-3 * min(dh, hi), hi
+
+
+def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
+    """Surface temperature rises of both bodies over the contact (derivation D8, D12)."""
+    par = sol.parameters
+    blocks = sol.blocks
+    c = par.cylinder_scale
+    eta = par.eta
+    f, v, P = prob.friction, prob.speed, prob.load
+    # q1 = ((1 + eta) p + q')/2 and q2 = ((1 - eta) p - q')/2, in units f v P / Delta.
+    ib, iq = blocks.integrate(lambda u: cylinder_temperature(c * u), s)
+    t1 = f * v * P / (np.pi * prob.cylinder.K) * 0.5 * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi)
+    lb, lq = blocks.integrate(lambda u: np.log(np.abs(u)), s)
+    t2 = -f * v * P / (np.pi * prob.half_plane.K) * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi)
+    # The half-plane's level is fixed by continuity with the cylinder in the contact.
+    shift = np.mean(t1 - t2)
+    t2 = t2 + shift
+    return t1, t2, float(np.max(np.abs(t1 - t2)))
+
+
+def _branch(prob: PhysicalProblem, half_width, n) -> Branch:
+    levels = [_solve_at(prob, half_width, m, check_validity=(m == n))
+              for m in (n // 4, n // 2, n) if m >= 8]
+    est = error_estimate(levels) if len(levels) > 1 else float("inf")
+    levels[-1] = replace(levels[-1], error_estimate=est)
+    sol = levels[-1]
+    s = np.cos(np.linspace(np.pi, 0.0, 201))
+    p = prob.load / half_width * sol.pressure_at(s)
+    s_in = s[1:-1]
+    t1, t2, mismatch = _temperatures(prob, sol, half_width, s_in)
+    offset = sol.sigma_over_delta * half_width
+    lam = sol.lam
+    q = prob.friction * prob.speed * prob.load
+    return Branch(
+        half_width=float(half_width), offset=float(offset),
+        a=float(offset - half_width), b=float(offset + half_width),
+        peak_pressure=float(np.max(p)), mean_pressure=prob.load / (2.0 * half_width),
+        pe=float(sol.parameters.pe), fhpe=float(sol.parameters.fhpe), lam=float(lam),
+        load_ratio=float(sol.load_ratio), valid=bool(sol.valid),
+        flash_temperature=float(np.max(t1)) if t1.size else 0.0,
+        heat_cylinder=0.5 * q * (1.0 + lam), heat_half_plane=0.5 * q * (1.0 - lam),
+        temperature_mismatch=mismatch,
+        x=offset + half_width * s, pressure=p,
+        temperature_cylinder=np.concatenate([[np.nan], t1, [np.nan]]),
+        temperature_half_plane=np.concatenate([[np.nan], t2, [np.nan]]),
+        solution=sol,
+    )
+
+
+def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
+    """Find every half-width that carries the load, with validity and physical fields.
+
+    Parameters
+    ----------
+    problem : PhysicalProblem
+    tol : float
+        Error target of ``P_H/P`` in each branch's final solve (default 1e-6).
+
+    Returns
+    -------
+    PhysicalContact
+    """
+    prob = problem
+    if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0:
+        # No thermal coupling: the Hertz contact, exactly (P_H/P = 1 at any n).
+        roots = [(prob.hertz_half_width, 16)]
+        scan = None
+    else:
+        lo, hi = _scan_range(prob)
+        grid = np.geomspace(lo, hi, SCAN_POINTS)
+        h = np.array([_h(prob, d, SCAN_N) for d in grid])
+        roots = []
+        for i in np.flatnonzero(np.sign(h[:-1]) * np.sign(h[1:]) < 0):
+            root = brentq(lambda d: _h(prob, d, SCAN_N), grid[i], grid[i + 1], xtol=1e-12 * grid[i])
+            roots.append(_refine(prob, root, tol))
+        scan = (grid, h)
+    branches = tuple(_branch(prob, d, n) for d, n in roots)
+    valid = [b for b in branches if b.valid]
+    primary = valid[0] if valid else (branches[0] if branches else None)
+    largest = None
+    if not valid:
+        largest = _largest_valid_load(prob, scan) if scan is not None else float("inf")
+    message = ""
+    if not branches:
+        message = ("no half-width carries this load: it exceeds every load that a single "
+                   "contact patch can carry at this speed")
+    elif not valid:
+        message = ("every solution violates a contact inequality (tensile pressure, "
+                   "interpenetration or negative load): no single-patch contact exists")
+    if message and largest is not None and np.isfinite(largest):
+        message += f"; the largest load with a valid solution is {largest:.4g} N/m"
+    return PhysicalContact(prob, branches, primary, message, largest)
+
+
+def _refine(prob, root, tol):
+    """The root at the resolution whose estimated error in ``P_H/P`` is below ``tol``.
+
+    ``n`` doubles from 16 (to at most 512) until the Richardson estimate of the
+    load ratio's error is below ``tol``; the root is then refined by the secant
+    method from the scan's root.
+
+    Returns
+    -------
+    half_width, n
+    """
+    n, levels = 16, []
+    while True:
+        levels.append(_solve_at(prob, root, n))
+        if len(levels) >= 3:
+            d1 = abs(levels[-2].load_ratio - levels[-3].load_ratio)
+            d2 = abs(levels[-1].load_ratio - levels[-2].load_ratio)
+            p = np.clip(np.log2(d1 / d2), 1.0, 5.0) if d1 > 0 and d2 > 0 else 5.0
+            if d2 / (2**p - 1) <= tol * max(abs(levels[-1].load_ratio), 0.01) or n >= 512:
+                break
+        n *= 2
+    # Secant steps from the scan's root (each costs an assembly at this n).
+    sol = root_scalar(lambda d: _h(prob, d, n), method="secant", x0=root,
+                      x1=root * (1 + 1e-6), xtol=1e-14 * root, maxiter=20)
+    return (float(sol.root) if sol.converged else root), n
+
+
+def _largest_valid_load(prob, scan):
+    """Largest load over the scanned half-widths whose solution is valid."""
+    grid, _ = scan
+    best, smallest_ratio = None, np.inf
+    for d in grid:
+        try:
+            sol = _solve_at(prob, d, SCAN_N, check_validity=True)
+        except SolveError:
+            continue
+        if sol.valid and sol.load_ratio > 0:
+            load = prob.hertz_load(d) / sol.load_ratio
+            best = load if best is None else max(best, load)
+            smallest_ratio = min(smallest_ratio, sol.load_ratio)
+    # Valid within 1 % of the limiting width (P_H/P -> 0): no finite bound.
+    if best is not None and smallest_ratio < 0.01:
+        return float("inf")
+    return best
