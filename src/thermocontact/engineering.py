@@ -24,12 +24,15 @@ from .materials import Material
 from .parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
 from .solver import ContactSolution, _blocks, error_estimate, solve_blocks
 
-__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact"]
+__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
 
-#: Scan of the half-width: points, and the largest fHPe reached (beyond about 2
-#: the formal solution has poles and only meaningless branches).
-SCAN_POINTS = 48
-FHPE_MAX = 2.0
+#: Scan of the half-width: points, and the fHPe range covered.  Past fHPe ~ 0.6
+#: (Barber's limiting width) P_H/P is negative, and from about 2 the formal
+#: solution has poles between which P_H/P turns positive again: such branches
+#: exist formally and are reported, always invalid.
+SCAN_POINTS = 64
+FHPE_MIN = 0.05
+FHPE_MAX = 2.5
 SCAN_N = 32
 
 
@@ -192,7 +195,7 @@ def _scan_range(prob: PhysicalProblem):
     dh = prob.hertz_half_width
     beta = prob.fhpe(1.0)  # fHPe per metre of half-width
     hi = min(4.0 * dh, FHPE_MAX / beta)
-    return 1e-3 * min(dh, hi), hi
+    return 0.5 * min(dh, FHPE_MIN / beta), hi
 
 
 def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
@@ -262,13 +265,9 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
         scan = None
     else:
         lo, hi = _scan_range(prob)
-        grid = np.geomspace(lo, hi, SCAN_POINTS)
-        h = np.array([_h(prob, d, SCAN_N) for d in grid])
-        roots = []
-        for i in np.flatnonzero(np.sign(h[:-1]) * np.sign(h[1:]) < 0):
-            root = brentq(lambda d: _h(prob, d, SCAN_N), grid[i], grid[i + 1], xtol=1e-12 * grid[i])
-            roots.append(_refine(prob, root, tol))
-        scan = (grid, h)
+        found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi)
+        roots = [_refine(prob, r, tol) for r in found]
+        scan = (grid, None)
     branches = tuple(_branch(prob, d, n) for d, n in roots)
     valid = [b for b in branches if b.valid]
     primary = valid[0] if valid else (branches[0] if branches else None)
@@ -285,6 +284,30 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
     if message and largest is not None and np.isfinite(largest):
         message += f"; the largest load with a valid solution is {largest:.4g} N/m"
     return PhysicalContact(prob, branches, primary, message, largest)
+
+
+def find_roots(h, lo, hi, points=SCAN_POINTS, pole_tol=1e-6):
+    """Every root of ``h`` on ``[lo, hi]``: scan, bracket, Brent.
+
+    ``h`` is sampled at ``points`` geometrically spaced values; each sign change
+    is refined by Brent's method, and kept only if ``|h|`` there is below
+    ``pole_tol`` (a sign change across a pole is not a root).
+
+    Returns
+    -------
+    roots : list of float
+        Increasing.
+    grid : ndarray
+        The scan.
+    """
+    grid = np.geomspace(lo, hi, points)
+    values = np.array([h(x) for x in grid])
+    roots = []
+    for i in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0):
+        root = brentq(h, grid[i], grid[i + 1], xtol=1e-13 * grid[i])
+        if abs(h(root)) <= pole_tol:
+            roots.append(float(root))
+    return roots, grid
 
 
 def _refine(prob, root, tol):

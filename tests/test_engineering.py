@@ -1,0 +1,164 @@
+"""The physical front end: dimensional round trip, Hertz in SI units, the branch
+finder, units on the command line, temperatures by independent quadrature, and
+bad input."""
+
+import json
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import k0
+
+from thermocontact import InputError, solve
+from thermocontact.cli import main
+from thermocontact.engineering import PhysicalProblem, _temperatures, contact, find_roots
+from thermocontact.materials import MaterialError, get_material
+
+STEEL, IRON = get_material("steel"), get_material("cast-iron")
+
+
+def problem(**kw):
+    args = dict(cylinder=STEEL, half_plane=IRON, radius=0.45, load=2e5, speed=20.0,
+                friction=0.35, lam=-1.0)
+    args.update(kw)
+    return PhysicalProblem(**args)
+
+
+def test_dimensionless_groups_by_hand():
+    """Pe, fHPe and the ratios from their definitions (derivation D13), rel. 1e-14."""
+    p = problem()
+    d = 1e-5
+    A = 2 * (1 - STEEL.nu**2) / STEEL.E + 2 * (1 - IRON.nu**2) / IRON.E
+    delta2 = IRON.alpha * (1 + IRON.nu) / IRON.K
+    pe = 20.0 * d / (2 * IRON.k)
+    dim = p.to_dimensionless(d)
+    assert dim["pe"] == pytest.approx(pe, rel=1e-14)
+    assert dim["fhpe"] == pytest.approx(0.35 * IRON.k * delta2 / A * pe, rel=1e-14)
+    assert dim["K2_over_K1"] == pytest.approx(IRON.K / STEEL.K, rel=1e-14)
+    assert dim["k2_over_k1"] == pytest.approx(IRON.k / STEEL.k, rel=1e-14)
+    assert dim["delta1_over_delta2"] == pytest.approx(STEEL.distortivity / delta2, rel=1e-14)
+
+
+def test_round_trip_physical_dimensionless_physical():
+    """Pick a half-width, solve the dimensionless problem, turn P_H/P into the load it
+    carries; the physical solver given that load (error target 1e-10) returns the
+    half-width (rel. 1e-8) and the same offset (rel. 1e-5)."""
+    p = problem()
+    d0 = 1.2e-5
+    sol = solve(**p.to_dimensionless(d0), n=256)
+    load = p.hertz_load(d0) / sol.load_ratio
+    res = contact(problem(load=load), tol=1e-10)
+    b = res.primary
+    assert abs(b.half_width / d0 - 1) < 1e-8
+    assert abs(b.offset / (sol.sigma_over_delta * d0) - 1) < 1e-5
+
+
+def test_friction_zero_is_hertz_in_si():
+    """f = 0: the textbook plane-strain Hertz half-width b = sqrt(4 P R / (pi E*)) and
+    peak pressure 2P/(pi b), 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2, to 1e-10."""
+    P, R = 2e5, 0.45
+    res = contact(problem(friction=0.0, load=P, radius=R))
+    estar = 1 / ((1 - STEEL.nu**2) / STEEL.E + (1 - IRON.nu**2) / IRON.E)
+    b = np.sqrt(4 * P * R / (np.pi * estar))
+    assert len(res.branches) == 1
+    br = res.primary
+    assert abs(br.half_width / b - 1) < 1e-10
+    assert abs(br.peak_pressure / (2 * P / (np.pi * b)) - 1) < 1e-10
+    assert abs(br.offset) < 1e-10 * b and br.valid
+    assert br.flash_temperature == 0.0
+
+
+def test_branch_finder_finds_every_root_and_skips_poles():
+    """h with roots 1e-3, 2e-3, 3e-3 and a pole at 2.5e-3 between them: the three
+    roots to 1e-15 abs, the pole rejected."""
+    h = lambda x: (x - 1e-3) * (x - 2e-3) * (x - 3e-3) / (x - 2.5e-3) * 1e6
+    roots, _ = find_roots(h, 5e-4, 5e-3, points=40)
+    assert np.allclose(roots, [1e-3, 2e-3, 3e-3], rtol=0, atol=1e-15)
+
+
+def test_coupled_contact_has_branch_with_fields():
+    """Steel on cast iron, 200 kN/m, 20 m/s, f = 0.35: one valid branch far narrower
+    than Hertz; the surface temperatures of the two bodies agree in the contact to
+    1e-6 K (perfect thermal contact, from two different Green's functions); the heat
+    shares add up to f v P."""
+    res = contact(problem())
+    b = res.primary
+    assert b.valid and b.half_width < res.problem.hertz_half_width
+    assert b.temperature_mismatch < 1e-6
+    assert b.heat_cylinder + b.heat_half_plane == pytest.approx(0.35 * 20 * 2e5, rel=1e-14)
+    assert b.mean_pressure == pytest.approx(2e5 / (2 * b.half_width), rel=1e-14)
+
+
+def test_temperature_against_carslaw_jaeger_quadrature():
+    """The cylinder's surface temperature equals an independent adaptive quadrature of
+    the Carslaw-Jaeger moving line source, T1(x) = (1/(pi K1)) int q1(xi)
+    exp(-u) K0(|u|) dxi, u = v(x - xi)/(2 k1), over the solution's own q1 (to 1e-8
+    relative)."""
+    p = problem(load=5e4, speed=2.0)
+    d = 4e-5
+    sol = solve(**p.to_dimensionless(d), n=48)
+    s = np.array([-0.6, 0.1, 0.8])
+    t1, _, _ = _temperatures(p, sol, d, s)
+    from thermocontact.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+
+    a, bcoef = u_series_coefficients(sol.phi), t_series_coefficients(sol.psi)
+    eta, c = sol.eta, sol.parameters.cylinder_scale
+    scale = p.friction * p.speed * p.load / (np.pi * STEEL.K)
+    for si, ti in zip(s, t1):
+        kern = lambda r: np.exp(-c * (si - r)) * k0(abs(c * (si - r)))
+        # q1 = ((1 + eta) sqrt(1-r^2) phi + psi / sqrt(1-r^2)) / 2
+        f_b = lambda r: 0.5 * (1 + eta) * u_series_value(a, r) * kern(r)
+        f_s = lambda r: 0.5 * np.polynomial.chebyshev.chebval(r, bcoef) * kern(r)
+        opts = dict(limit=400, epsabs=1e-13, epsrel=1e-12)
+        ref = 0.0
+        for lo, hi in ((-1, si), (si, 1)):
+            ref += quad(lambda r: f_b(r) * np.sqrt(1 - r * r), lo, hi, **opts)[0]
+            ref += quad(lambda r: f_s(r) / np.sqrt(1 - r * r), lo, hi, **opts)[0]
+        assert abs(ti / (scale * ref) - 1) < 1e-8
+
+
+ARGS = ["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--friction", "0",
+        "--lam", "-1", "--json"]
+
+
+def test_units_on_command_line(capsys):
+    """450mm, 200kN/m and 72km/h give the same result as 0.45, 2e5 and 20 in SI."""
+    assert main(ARGS + ["--radius", "450mm", "--load", "200kN/m", "--speed", "72km/h"]) == 0
+    with_units = json.loads(capsys.readouterr().out)
+    assert main(ARGS + ["--radius", "0.45", "--load", "2e5", "--speed", "20"]) == 0
+    si = json.loads(capsys.readouterr().out)
+    assert with_units["half_width"] == pytest.approx(si["half_width"], rel=1e-14)
+    keys = {"half_width", "offset", "a", "b", "peak_pressure", "mean_pressure",
+            "hertz_half_width", "hertz_peak_pressure", "pe", "fhpe", "lam", "valid",
+            "flash_temperature", "branches"}
+    assert keys <= si.keys()
+
+
+@pytest.mark.parametrize("change,needle", [
+    (["--radius", "0"], "radius"),
+    (["--radius", "-1mm"], "radius"),
+    (["--load", "0"], "load"),
+    (["--speed", "-3"], "speed"),
+    (["--speed", "3 kg"], "speed"),
+    (["--friction", "-0.1"], "friction"),
+    (["--cylinder", "stel"], "did you mean"),
+    (["--cylinder", "E=0,nu=0.3,alpha=1e-5,K=50,k=1e-5"], "E"),
+    (["--cylinder", "E=2e11,nu=0.5,alpha=1e-5,K=50,k=1e-5"], "nu"),
+    (["--half-plane", "E=2e11,nu=-1,alpha=1e-5,K=50,k=1e-5"], "nu"),
+])
+def test_bad_physical_input(capsys, change, needle):
+    """Each bad input: exit 2, one line on stderr naming the parameter."""
+    base = {"--cylinder": "steel", "--half-plane": "cast-iron", "--radius": "0.45",
+            "--load": "2e5", "--speed": "20", "--friction": "0.3", "--lam": "-1"}
+    base.update(dict(zip(change[::2], change[1::2])))
+    argv = ["contact"] + [x for kv in base.items() for x in kv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle in err[0], err
+
+
+def test_python_api_validates():
+    with pytest.raises(InputError, match="radius"):
+        problem(radius=-1.0)
+    with pytest.raises(MaterialError, match="did you mean"):
+        get_material("copperr")
