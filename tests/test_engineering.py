@@ -41,16 +41,19 @@ def test_dimensionless_groups_by_hand():
 
 def test_round_trip_physical_dimensionless_physical():
     """Pick a half-width, solve the dimensionless problem, turn P_H/P into the load it
-    carries; the physical solver given that load (error target 1e-10) returns the
-    half-width (rel. 1e-8) and the same offset (rel. 1e-5)."""
+    carries; the physical solver given that load returns the half-width (rel. 1e-9)
+    and the offset (rel. 1e-7).  Both sides use n = 512 (the error target 1e-10 is
+    out of reach here, delta1 != delta2 converging at second order, so the solver
+    stops at its cap of 512), so the round trip tests the inversion itself."""
     p = problem()
     d0 = 1.2e-5
-    sol = solve(**p.to_dimensionless(d0), n=256)
+    sol = solve(**p.to_dimensionless(d0), n=512)
     load = p.hertz_load(d0) / sol.load_ratio
     res = contact(problem(load=load), tol=1e-10)
     b = res.primary
-    assert abs(b.half_width / d0 - 1) < 1e-8
-    assert abs(b.offset / (sol.sigma_over_delta * d0) - 1) < 1e-5
+    assert b.solution.n == 512
+    assert abs(b.half_width / d0 - 1) < 1e-9
+    assert abs(b.offset / (sol.sigma_over_delta * d0) - 1) < 1e-7
 
 
 def test_friction_zero_is_hertz_in_si():
