@@ -14,7 +14,6 @@ polynomials, whatever the Peclet number.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import eval_chebyt, eval_chebyu
 
 from .assembly import Blocks, register
 from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
@@ -68,7 +67,8 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
     j = np.arange(n)
 
     # Contact equation (D14) at s_k, on coefficients.
-    C = eval_chebyt(j[None, :] + 1, sk[:, None])
+    # T_{j+1}(cos t) = cos((j + 1) t) at the collocation angles.
+    C = np.cos((j[None, :] + 1) * np.arccos(sk)[:, None])
     sgn_b, sgn_s = sgn_moments(sk, n)
     if d:
         nh_b, nh_s = kernel_moments(lambda u: cylinder_slope(c * u), sk, n, scale=c)
@@ -79,7 +79,9 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
 
     # Heat equation (D18) at s'_k, divided by pi (1 + rho).
     mr_b, mr_s = kernel_moments(lambda u: cylinder_temperature_gradient_regular(u, c), sh, n)
-    cauchy_t = np.where(j[None, :] > 0, -eval_chebyu(np.maximum(j - 1, 0)[None, :], sh[:, None]), 0.0)
+    # -U_{j-1}(cos t) = -sin(j t)/sin t (0 for j = 0); sin t > 0 at every s'_k.
+    th = np.arccos(sh)[:, None]
+    cauchy_t = -np.sin(j[None, :] * th) / np.sin(th)
     Hq = cauchy_t + (rho / (1.0 + rho)) * mr_s / np.pi
     Hp = (2.0 * rho / (1.0 + rho) ** 2) * mr_b / np.pi
 
