@@ -58,15 +58,23 @@ def test_all_options(capsys):
                                    "--delta1-over-delta2", "0.5", "-n", "24", "--check"])
     assert rec["sigma_over_delta"] == 0.05 and rec["n"] == 24
     assert rec["k2_over_k1"] == 2 and rec["delta1_over_delta2"] == 0.5
-    assert rec["load_ratio_change"] > 0
+    from thermocontact import solve
+    kw = dict(sigma_over_delta=0.05, k2_over_k1=2, delta1_over_delta2=0.5)
+    a, b = solve(5, 0.2, 10, n=24, **kw), solve(5, 0.2, 10, n=48, **kw)
+    assert rec["load_ratio_change"] == pytest.approx(abs(b.load_ratio - a.load_ratio), rel=1e-9)
+    assert rec["edge_log_coefficients"] == pytest.approx(list(a.validity.edge_log_coefficients), rel=1e-9)
 
 
 def test_summary(capsys):
-    """Without --json a readable summary naming P_H/P, lambda, sigma and validity."""
-    assert main(BASE + ["--lam", "-1"]) == 0
+    """Without --json a readable summary whose P_H/P and sigma/Delta are the API's
+    values to the 10 digits printed."""
+    assert main(BASE + ["--lam", "-1", "-n", "32"]) == 0
     out = capsys.readouterr().out
-    for word in ("P_H/P", "lambda", "sigma/Delta", "valid", "min gap"):
-        assert word in out
+    from thermocontact import solve
+    sol = solve(5, 0.2, 10, lam=-1, n=32)
+    assert f"P_H/P         = {sol.load_ratio:.10g}" in out
+    assert f"sigma/Delta   = {sol.sigma_over_delta:.10g}" in out
+    assert "valid         = True" in out
 
 
 BAD = [
@@ -80,6 +88,9 @@ BAD = [
     (["--delta1-over-delta2", "-1"], "delta1_over_delta2"),
     (["-n", "2"], "n must be an integer in [4, 2048]"),
     (["-n", "100000"], "n must be an integer in [4, 2048]"),
+    (["--K2-over-K1", "1e300"], "pe * k2_over_k1"),
+    (["--pe", "1e308"], "pe * k2_over_k1"),
+    (["--lam", "1e300"], "lam must be in"),
     (["--lam", "nan"], "lam"),
     (["--pe", "abc"], "--pe"),
 ]

@@ -82,12 +82,14 @@ def test_branch_finder_finds_every_root_and_skips_poles():
 def test_coupled_contact_has_branch_with_fields():
     """Steel on cast iron, 200 kN/m, 20 m/s, f = 0.35: one valid branch far narrower
     than Hertz; the surface temperatures of the two bodies agree in the contact to
-    1e-6 K (perfect thermal contact, from two different Green's functions); the heat
+    1e-8 K (observed 1.1e-9 K; perfect thermal contact, from two different Green's
+    functions); the heat
     shares add up to f v P."""
     res = contact(problem())
+    assert len(res.branches) == 1
     b = res.primary
     assert b.valid and b.half_width < res.problem.hertz_half_width
-    assert b.temperature_mismatch < 1e-6
+    assert b.temperature_mismatch < 1e-8
     assert b.heat_cylinder + b.heat_half_plane == pytest.approx(0.35 * 20 * 2e5, rel=1e-14)
     assert b.mean_pressure == pytest.approx(2e5 / (2 * b.half_width), rel=1e-14)
 

@@ -67,12 +67,18 @@ def test_gradient_no_overflow_far_upstream_and_downstream():
     assert np.all(np.isfinite(cylinder_displacement(u)))
 
 
-def test_regular_part_scales():
-    """c M(c u) - 1/u depends on u and c as defined, for c = 50 (rel. 1e-12)."""
-    u = np.array([-0.3, -1e-4, 2e-5, 0.1])
+def test_regular_part_scales_on_series_branch():
+    """c M(c u) - 1/u for c = 50 at points where |c u| < 1e-3 (the ascending-series
+    branch) against 40-digit mpmath, rel. 1e-13."""
+    import mpmath as mp
+
+    mp.mp.dps = 40
     c = 50.0
-    ref = c * cylinder_temperature_gradient(c * u) - 1 / u
-    assert np.allclose(cylinder_temperature_gradient_regular(u, c), ref, rtol=1e-9)
+    for u in (-1.9e-5, -3e-9, 4e-12, 1.5e-5):
+        z = mp.mpf(c) * mp.mpf(u)
+        ref = mp.mpf(c) * mp.e**(-z) * (mp.besselk(0, abs(z)) + mp.sign(z) * mp.besselk(1, abs(z))) - 1 / mp.mpf(u)
+        val = cylinder_temperature_gradient_regular(np.array([u]), c)[0]
+        assert abs(val / float(ref) - 1) < 1e-13
 
 
 def test_half_plane_slope_odd():

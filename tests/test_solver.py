@@ -145,27 +145,6 @@ def test_approaches_barber_insulated_cylinder_at_first_order():
     assert np.all(np.abs(err[-2:] * rhos[-2:] - 0.0873) < 1e-4)
 
 
-def test_paper_scheme_approach_barber_is_slower():
-    """The paper's scheme at n = 512 carries a discretisation error of ~1e-6 on the
-    same cases, visible against the 1/(K2/K1) approach from K2/K1 = 1e4 on."""
-    from thermocontact.limits import barber_insulated
-
-    LB = barber_insulated(0.2).load_ratio
-    e4 = solve(5, 0.2, 1e4, k2_over_k1=1, lam=-1, n=512, method="paper").load_ratio - LB
-    exact_trend = 0.0873 / 1e4
-    assert abs(e4 - exact_trend) > 1e-7
-
-
-@lru_cache(maxsize=None)
-def _reference(items):
-    return solve(n=512, **dict(items))
-
-
-def reference(**case):
-    """Product-integration solution at n = 512, computed once per case."""
-    return _reference(tuple(sorted(case.items())))
-
-
 def rel_err(a, b):
     """The error measure of thermocontact.solver.error_estimate, of a against b."""
     return max(abs(a.load_ratio - b.load_ratio) / max(abs(b.load_ratio), 0.01),
@@ -190,13 +169,14 @@ def test_product_integration_converges_at_fourth_order():
 
 def test_methods_agree_as_n_grows():
     """The paper's scheme converges to the product-integration solution at its own
-    first-order rate: the difference halves with each doubling of n (ratios
-    1.9-2.1 for n = 128, 256, 512; Pe = 5, K2/K1 = 10, k2/k1 = 1)."""
+    first-order rate: the difference halves with each doubling of n (observed ratios
+    1.970 and 1.986 for n = 128, 256, 512; asserted 1.9-2.1; Pe = 5, K2/K1 = 10,
+    k2/k1 = 1)."""
     ref = solve(5, 0.2, 10, k2_over_k1=1, lam=-1, n=256).load_ratio
     diff = np.array([abs(solve(5, 0.2, 10, k2_over_k1=1, lam=-1, n=n, method="paper").load_ratio - ref)
                      for n in (128, 256, 512)])
     ratios = diff[:-1] / diff[1:]
-    assert np.all((ratios > 1.8) & (ratios < 2.2)), ratios
+    assert np.all((ratios > 1.9) & (ratios < 2.1)), ratios
 
 
 @pytest.mark.parametrize("case", [

@@ -50,6 +50,7 @@ def solution_record(sol) -> dict:
         "min_gap_at": v.min_gap_at,
         "gap_margin": v.gap_margin,
         "gap_margin_at": v.gap_margin_at,
+        "edge_log_coefficients": list(v.edge_log_coefficients),
         "edge_slope_residual": list(v.edge_slope_residual),
         "rcond": sol.rcond,
         "load_ratio_change": sol.load_ratio_change,
@@ -75,8 +76,9 @@ def _summary(sol) -> str:
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
         f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}",
-        f"  error estimate {sol.error_estimate:.1e} (target {sol.tol:.0e}, "
-        f"{'met' if sol.converged else 'NOT met'}; n {'chosen' if sol.auto_n else 'given'})",
+        (f"  error estimate {sol.error_estimate:.1e} (target {sol.tol:.0e}, "
+         f"{'met' if sol.converged else 'NOT met'}; n {'chosen' if sol.auto_n else 'given'})"
+         if sol.error_estimate is not None else "  error estimate: none (n < 8)"),
         f"  P_H/P         = {sol.load_ratio:.10g}",
         f"  lambda        = {sol.lam:.10g}",
         f"  sigma/Delta   = {sol.sigma_over_delta:.10g}",
@@ -173,7 +175,7 @@ def _branch_record(b) -> dict:
         "valid": b.valid, "flash_temperature": b.flash_temperature,
         "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
         "temperature_mismatch": b.temperature_mismatch,
-        "n": b.solution.n, "error_estimate": b.solution.error_estimate,
+        "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
     }
 
@@ -190,6 +192,8 @@ def contact_record(res) -> dict:
         "hertz_peak_pressure": prob.hertz_peak_pressure,
         "lam": prob.lam,
         "valid": bool(prim is not None and prim.valid),
+        "error_estimate": prim.error_estimate if prim is not None else None,
+        "converged": prim.converged if prim is not None else None,
         "message": res.message,
         "largest_valid_load": res.largest_valid_load,
         "branches": [_branch_record(b) for b in res.branches],
@@ -226,6 +230,8 @@ def _contact_summary(res) -> str:
             f"Pe {b.pe:.4g}, fHPe {b.fhpe:.4g}, P_H/P {b.load_ratio:.4g}",
             f"    flash temperature {b.flash_temperature:.4g} K; heat into cylinder "
             f"{b.heat_cylinder:.4g} W/m, half-plane {b.heat_half_plane:.4g} W/m",
+            f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
+            f"{'met' if b.converged else 'NOT met'})",
         ]
     if res.message:
         lines.append(f"  {res.message}")
@@ -291,7 +297,7 @@ def main(argv=None) -> int:
 
     try:
         with threadpool_limits(limits=1, user_api="blas"):
-            cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
+            rc = cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except click.ClickException as exc:
@@ -303,10 +309,11 @@ def main(argv=None) -> int:
     except click.exceptions.Abort:
         click.echo("error: aborted", err=True)
         return 130
-    except ValueError as exc:  # e.g. a non-finite number reaching json
+    except (ValueError, ArithmeticError) as exc:  # e.g. a non-finite number reaching json
         click.echo(f"error: {exc}", err=True)
         return 2
-    return 0
+    # Without standalone mode click returns, rather than raises, an Exit's code.
+    return rc if isinstance(rc, int) else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

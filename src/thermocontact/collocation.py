@@ -71,7 +71,7 @@ def assemble_paper(par: Parameters, n: int) -> Blocks:
         1.0 / vq + (rho / (1.0 + rho)) * cylinder_temperature_gradient_regular(vq, c)
     )
     Hp = (pr.weights[None, :] / np.pi) * (
-        2.0 * rho / (1.0 + rho) ** 2 * cylinder_temperature_gradient_regular(vp, c)
+        2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho)) * cylinder_temperature_gradient_regular(vp, c)
     )
 
     def integrate(kernel, s_pts, scale=None):

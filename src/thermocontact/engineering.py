@@ -65,6 +65,10 @@ class PhysicalProblem:
     lam: float
 
     def __post_init__(self):
+        for name in ("cylinder", "half_plane"):
+            if not isinstance(getattr(self, name), Material):
+                raise InputError(f"{name} must be a Material (see thermocontact.materials."
+                                 f"get_material), got {getattr(self, name)!r}")
         for name in ("radius", "load", "speed"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
@@ -77,7 +81,7 @@ class PhysicalProblem:
 
     @property
     def H(self) -> float:
-        """``H = k2 delta2 / A``, dimensionless (the paper's eq. 10)."""
+        """``H = k2 delta2 / A``, dimensionless (the paper's eq. 10, corrected; D13)."""
         return self.half_plane.k * self.half_plane.distortivity / self.compliance
 
     @property
@@ -142,6 +146,8 @@ class Branch:
     heat_cylinder: float
     heat_half_plane: float
     temperature_mismatch: float
+    error_estimate: float
+    converged: bool
     x: np.ndarray = field(repr=False)
     pressure: np.ndarray = field(repr=False)
     temperature_cylinder: np.ndarray = field(repr=False)
@@ -195,11 +201,16 @@ def _scan_range(prob: PhysicalProblem):
     dh = prob.hertz_half_width
     beta = prob.fhpe(1.0)  # fHPe per metre of half-width
     hi = min(4.0 * dh, FHPE_MAX / beta)
-    return 0.5 * min(dh, FHPE_MIN / beta), hi
+    lo = 0.5 * min(dh, FHPE_MIN / beta)
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 < lo < hi):
+        raise InputError(
+            f"the inputs put the contact scale out of range (Hertz half-width {dh:.3g} m, "
+            f"fHPe per metre {beta:.3g}): check radius, load, speed, friction and materials")
+    return lo, hi
 
 
 def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
-    """Surface temperature rises of both bodies over the contact (derivation D8, D12)."""
+    """Surface temperature rises of both bodies over the contact (derivation D24, D25)."""
     par = sol.parameters
     blocks = sol.blocks
     c = par.cylinder_scale
@@ -216,10 +227,12 @@ def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
     return t1, t2, float(np.max(np.abs(t1 - t2)))
 
 
-def _branch(prob: PhysicalProblem, half_width, n) -> Branch:
+def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
     levels = [_solve_at(prob, half_width, m, check_validity=(m == n))
               for m in (n // 4, n // 2, n) if m >= 8]
     est = error_estimate(levels) if len(levels) > 1 else float("inf")
+    # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
+    est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
     levels[-1] = replace(levels[-1], error_estimate=est)
     sol = levels[-1]
     s = np.cos(np.linspace(np.pi, 0.0, 201))
@@ -238,6 +251,8 @@ def _branch(prob: PhysicalProblem, half_width, n) -> Branch:
         flash_temperature=float(np.max(t1)) if t1.size else 0.0,
         heat_cylinder=0.5 * q * (1.0 + lam), heat_half_plane=0.5 * q * (1.0 - lam),
         temperature_mismatch=mismatch,
+        error_estimate=float(sol.error_estimate),
+        converged=bool(sol.error_estimate <= tol),
         x=offset + half_width * s, pressure=p,
         temperature_cylinder=np.concatenate([[np.nan], t1, [np.nan]]),
         temperature_half_plane=np.concatenate([[np.nan], t2, [np.nan]]),
@@ -259,6 +274,7 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
     PhysicalContact
     """
     prob = problem
+    tol = check_positive("tol", tol)
     if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0:
         # No thermal coupling: the Hertz contact, exactly (P_H/P = 1 at any n).
         roots = [(prob.hertz_half_width, 16)]
@@ -268,7 +284,7 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
         found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi)
         roots = [_refine(prob, r, tol) for r in found]
         scan = (grid, None)
-    branches = tuple(_branch(prob, d, n) for d, n in roots)
+    branches = tuple(_branch(prob, d, n, tol) for d, n in roots)
     valid = [b for b in branches if b.valid]
     primary = valid[0] if valid else (branches[0] if branches else None)
     largest = None

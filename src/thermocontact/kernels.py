@@ -99,7 +99,7 @@ def cylinder_temperature_gradient(u):
     """Kernel ``M(u)`` of the moving body's surface temperature gradient.
 
     ``M(u) = exp(-u) [K0(|u|) + sgn(u) K1(|u|)]`` so that
-    ``dT1/dx = -(v / (2 pi k1 K1)) * integral M(u) q1 dxi`` (derivation eq. D10).
+    ``dT1/dx = -(v / (2 pi k1 K1)) * integral M(u) q1 dxi`` (derivation eqs. D9, D10).
     The paper's ``M = exp(-u) [K0(u) + K1(u)]`` is not real for ``u < 0``; this is
     its continuation.  ``M(u) = 1/u - ln|u| + O(1)`` as ``u -> 0``.
 

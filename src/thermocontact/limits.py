@@ -11,7 +11,7 @@ with the pressure ``phat(s) >= 0`` (compressive) normalised to unit integral:
 
      \\frac{1}{\\pi}\\,\\mathrm{PV}\\!\\int_{-1}^{1}\\frac{\\hat p(r)}{s-r}\\,dr
      - F\\int_{-1}^{1}\\hat p(r)\\,\\mathrm{sgn}(s-r)\\,dr
-     = \\frac{2}{\\pi} L\\,(\\sigma + s), \\qquad |s| < 1,            (B1)
+     = \\frac{2}{\\pi} L\\,(\\sigma + s), \\qquad |s| < 1,            (B1 = D23)
 
   with ``integral phat = 1`` and ``phat`` bounded (square-root zero) at both
   ends.  ``F = fHPe``, ``L = P_H / P`` and ``sigma`` is the contact offset over

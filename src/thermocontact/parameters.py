@@ -8,6 +8,11 @@ from dataclasses import dataclass
 __all__ = ["InputError", "Parameters", "SolveError"]
 
 
+#: Largest Pe k2/k1: beyond it the cylinder's kernels are narrower than any
+#: discretisation here resolves.
+C_MAX = 1e9
+
+
 class InputError(ValueError):
     """A parameter outside its allowed range; the message names both."""
 
@@ -17,8 +22,10 @@ class SolveError(RuntimeError):
 
 
 def _real(name: str, value) -> float:
+    if isinstance(value, bool):
+        raise InputError(f"{name} must be a real number, got {value!r}")
     try:
-        x = float(value)
+        x = float(value) + 0.0  # + 0.0 turns -0.0 into 0.0
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a real number, got {value!r}") from None
     if not math.isfinite(x):
@@ -94,6 +101,11 @@ class Parameters:
             "delta1_over_delta2",
             check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
         )
+        if self.pe * self.k2_over_k1 > C_MAX:
+            raise InputError(
+                f"pe * k2_over_k1 must be <= {C_MAX:.0e} (the cylinder's kernels would be "
+                f"narrower than 1/{C_MAX:.0e} of the contact), got {self.pe * self.k2_over_k1:.3g}"
+            )
 
     @property
     def cylinder_scale(self) -> float:

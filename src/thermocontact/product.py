@@ -83,7 +83,8 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
     th = np.arccos(sh)[:, None]
     cauchy_t = -np.sin(j[None, :] * th) / np.sin(th)
     Hq = cauchy_t + (rho / (1.0 + rho)) * mr_s / np.pi
-    Hp = (2.0 * rho / (1.0 + rho) ** 2) * mr_b / np.pi
+    # 2 rho/(1 + rho)^2 written so that no power overflows for extreme ratios.
+    Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mr_b / np.pi
 
 
     def integrate(kernel, s_pts, scale=None):

@@ -1,6 +1,6 @@
 """Solve the coupled contact and heat equations for one set of parameters.
 
-Two ways to close the problem (derivation section 6):
+Two ways to close the problem (derivation section 5):
 
 * ``lam`` given: the unknowns are ``phi``, ``psi``, ``L sigma`` and ``L``.  The
   equations are linear in all of them, so the heat partition is met exactly in one
@@ -44,6 +44,8 @@ N_RANGE = (4, 2048)
 #: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX.
 N_AUTO_START = 16
 N_AUTO_MAX = 1024
+#: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
+LIMIT = 1e6
 #: Largest convergence order the error estimate believes.
 P_MAX = 5.0
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
@@ -204,9 +206,13 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
 
     if lam is not None:
         lam = check_finite("lam", lam)
+        if abs(lam) > LIMIT:
+            raise InputError(f"lam must be in [-{LIMIT:.0e}, {LIMIT:.0e}], got {lam!r}")
         size = 2 * n + 2
     else:
         sigma = check_finite("sigma_over_delta", sigma_over_delta)
+        if abs(sigma) > LIMIT:
+            raise InputError(f"sigma_over_delta must be in [-{LIMIT:.0e}, {LIMIT:.0e}], got {sigma!r}")
         if F == 0.0:
             raise InputError(
                 "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
@@ -340,10 +346,6 @@ def error_estimate(levels) -> float:
     return est
 
 
-def _with(sol: ContactSolution, **fields) -> ContactSolution:
-    return replace(sol, **fields)
-
-
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
           tol=DEFAULT_TOL, check_convergence=False) -> ContactSolution:
@@ -374,12 +376,14 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     tol : float, optional
         Target of the error estimate when ``n`` is chosen (default 1e-8).
     check_convergence : bool, optional
-        Also solve with ``2n`` and report ``|P_H/P(2n) - P_H/P(n)|``.
+        Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``) and
+        report the change in ``P_H/P``.
 
     Returns
     -------
     ContactSolution
-        With ``error_estimate`` from the solutions at ``n``, ``n/2`` and ``n/4``.
+        With ``error_estimate`` from the solutions at ``n``, ``n/2`` and ``n/4``
+        (None when ``n < 8`` leaves no coarser level).
 
     Raises
     ------
@@ -395,7 +399,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     1.0
     """
     par = Parameters(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2)
-    if method not in METHODS:
+    if not isinstance(method, str) or method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     if (lam is None) == (sigma_over_delta is None):
         raise InputError("give exactly one of lam and sigma_over_delta")
@@ -418,11 +422,11 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     else:
         coarse = [m for m in (n // 4, n // 2) if m >= N_RANGE[0]]
         levels = [at(m) for m in coarse] + [at(n)]
-        est = error_estimate(levels) if len(levels) > 1 else float("inf")
-    sol = _with(levels[-1], error_estimate=float(est), converged=bool(est <= tol),
-                auto_n=auto, tol=tol)
+        est = error_estimate(levels) if len(levels) > 1 else None
+    sol = replace(levels[-1], error_estimate=None if est is None else float(est),
+                  converged=None if est is None else bool(est <= tol), auto_n=auto, tol=tol)
     if check_convergence:
-        n2 = min(2 * sol.n, N_RANGE[1])
-        fine = at(n2)
-        sol = _with(sol, load_ratio_change=abs(fine.load_ratio - sol.load_ratio))
+        # Against 2n, or against n/2 when 2n is beyond the largest n.
+        other = at(2 * sol.n if 2 * sol.n <= N_RANGE[1] else sol.n // 2)
+        sol = replace(sol, load_ratio_change=abs(other.load_ratio - sol.load_ratio))
     return sol
