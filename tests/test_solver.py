@@ -145,6 +145,16 @@ def test_approaches_barber_insulated_cylinder_at_first_order():
     assert np.all(np.abs(err[-2:] * rhos[-2:] - 0.0873) < 1e-4)
 
 
+@lru_cache(maxsize=None)
+def _reference(items):
+    return solve(n=512, **dict(items))
+
+
+def reference(**case):
+    """Product-integration solution at n = 512, computed once per case."""
+    return _reference(tuple(sorted(case.items())))
+
+
 def rel_err(a, b):
     """The error measure of thermocontact.solver.error_estimate, of a against b."""
     return max(abs(a.load_ratio - b.load_ratio) / max(abs(b.load_ratio), 0.01),

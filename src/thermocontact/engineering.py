@@ -277,21 +277,36 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
     tol = check_positive("tol", tol)
     if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0:
         # No thermal coupling: the Hertz contact, exactly (P_H/P = 1 at any n).
-        roots = [(prob.hertz_half_width, 16)]
+        roots = [prob.hertz_half_width]
         scan = None
     else:
         lo, hi = _scan_range(prob)
         found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi)
-        roots = [_refine(prob, r, tol) for r in found]
+        roots = found
         scan = (grid, None)
-    branches = tuple(_branch(prob, d, n, tol) for d, n in roots)
+    branches, singular = [], 0
+    for d in roots:
+        try:
+            if scan is not None:
+                d, n = _refine(prob, d, tol)
+            else:
+                n = 16
+            branches.append(_branch(prob, d, n, tol))
+        except SolveError:
+            # Only at the limiting width, where P_H/P = 0 and the offset is infinite.
+            singular += 1
+    branches = tuple(branches)
     valid = [b for b in branches if b.valid]
     primary = valid[0] if valid else (branches[0] if branches else None)
     largest = None
     if not valid:
         largest = _largest_valid_load(prob, scan) if scan is not None else float("inf")
     message = ""
-    if not branches:
+    if not branches and singular:
+        message = ("the load is carried only at the limiting contact width, where P_H/P = 0 "
+                   "and the offset is infinite (P_H is negligible against the load: check "
+                   "the radius and the load)")
+    elif not branches:
         message = ("no half-width carries this load: it exceeds every load that a single "
                    "contact patch can carry at this speed")
     elif not valid:
