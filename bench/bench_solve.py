@@ -2,7 +2,9 @@
 
 Run: ``python bench/bench_solve.py``.  A benchmark, not a test: it prints a table
 and asserts nothing.  Times are the best of several repeats of one full
-``solve`` call (assembly, linear solve, validity checks).
+``solve`` call with the assembly cache cleared: assembly, linear solve and
+validity checks at n, and the solves at n/2 and n/4 of the error estimate.
+``bench/convergence.py`` times assembly and one solve separately.
 """
 
 from __future__ import annotations
