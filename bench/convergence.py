@@ -1,4 +1,4 @@
-"""Convergence and cost of the "paper" and "product" methods against a fine reference.
+"""Convergence and cost of the "paper", "product" and "galerkin" methods against a fine reference.
 
 Run: ``python bench/convergence.py [--out-dir DIR] [--paper-max-n N] [--no-plot]``.
 
@@ -60,7 +60,9 @@ CASES = [
     ("Pe=1000 K2/K1=100", 1000.0, 100.0, None),
     ("Pe=5 K2/K1=10 k2/k1=1", 5.0, 10.0, 1.0),
 ]
-METHOD_ORDER = ("paper", "product")
+METHOD_ORDER = ("paper", "product", "galerkin")
+#: The method the targets are judged on (the package default).
+DEFAULT = "galerkin"
 NS = [16, 32, 64, 128, 256, 512]
 REF_METHOD, REF_N = "product", 1024
 #: Reference considered converged only up to this Pe.
@@ -285,20 +287,20 @@ def print_summary(rows, refinfo):
         parts = []
         for tol in TARGETS:
             res = {m: time_to_reach(series(rows, label, m), tol) for m in METHOD_ORDER}
-            if res["paper"] and res["product"]:
-                ratio = f"{res['paper'][0] / res['product'][0]:.1f}"
-            elif res["product"]:
+            if res["paper"] and res[DEFAULT]:
+                ratio = f"{res['paper'][0] / res[DEFAULT][0]:.1f}"
+            elif res[DEFAULT]:
                 pts = series(rows, label, "paper")
                 tmax = max((p[2]["t_total_s"] for p in pts), default=math.nan)
-                ratio = f">{tmax / res['product'][0]:.1f}"
+                ratio = f">{tmax / res[DEFAULT][0]:.1f}"
             else:
                 ratio = "n/a"
             flag = " (below ref. error)" if tol <= info["conservative"] else ""
-            parts.append(f"{tol:.0e}{flag}: paper {fmt_time(res['paper'])}, product "
-                         f"{fmt_time(res['product'])}, paper/product {ratio}")
+            times = ", ".join(f"{m} {fmt_time(res[m])}" for m in METHOD_ORDER)
+            parts.append(f"{tol:.0e}{flag}: {times}, paper/{DEFAULT} {ratio}")
         print(f"  {label}:\n      " + "\n      ".join(parts))
 
-    print("\nTargets (for the default method, product; paper shown for comparison):")
+    print(f"\nTargets (for the default method, {DEFAULT}; paper shown for comparison):")
     all_ok = True
     for label, info in refinfo.items():
         pe, K = info["pe"], info["K"]
@@ -309,16 +311,16 @@ def print_summary(rows, refinfo):
             return None if i is None else pts[method][i][0]
 
         if pe <= T1["pe_max"] and K <= T1["K_max"]:
-            n_p, n_pp = n_reached("product", T1["tol"]), n_reached("paper", T1["tol"])
+            n_p, n_pp = n_reached(DEFAULT, T1["tol"]), n_reached("paper", T1["tol"])
             ok = n_p is not None and n_p <= T1["n_max"]
             all_ok &= ok
             print(f"  [{'PASS' if ok else 'FAIL'}] {label}: error < 1e-8 with n <= 256: "
-                  f"product n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})")
+                  f"{DEFAULT} n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})")
             if n_p is not None:
-                r = next(p[2] for p in pts["product"] if p[0] == n_p)
+                r = next(p[2] for p in pts[DEFAULT] if p[0] == n_p)
                 ok3 = r["t_total_s"] < T3_SECONDS
                 all_ok &= ok3
-                interp = time_to_reach(pts["product"], T1["tol"])
+                interp = time_to_reach(pts[DEFAULT], T1["tol"])
                 print(f"  [{'PASS' if ok3 else 'FAIL'}] {label}: 1e-8 solve under 20 ms: "
                       f"n = {n_p} takes {1e3 * r['t_total_s']:.1f} ms = "
                       f"{1e3 * r['t_assembly_s']:.1f} assembly + "
@@ -328,7 +330,7 @@ def print_summary(rows, refinfo):
                 all_ok = False
                 print(f"  [FAIL] {label}: 1e-8 solve under 20 ms: 1e-8 not reached")
         if pe <= T2["pe_max"]:
-            n_p, n_pp = n_reached("product", T2["tol"]), n_reached("paper", T2["tol"])
+            n_p, n_pp = n_reached(DEFAULT, T2["tol"]), n_reached("paper", T2["tol"])
             ok = n_p is not None and n_p <= T2["n_max"]
             all_ok &= ok
             extra = ""
@@ -337,7 +339,7 @@ def print_summary(rows, refinfo):
                          f" (|x(1024)-x(512)|), Richardson {info['richardson']:.1e}")
             ref_note = "" if info["converged"] else " [reference not converged]"
             print(f"  [{'PASS' if ok else 'FAIL'}] {label}: error < 1e-6 with n <= 1024: "
-                  f"product n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})"
+                  f"{DEFAULT} n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})"
                   f"{extra}{ref_note}")
     print(f"\nAll targets met: {'yes' if all_ok else 'NO'}")
 
@@ -353,7 +355,8 @@ def plot(rows, refinfo, path):
     fig, axes = plt.subplots(len(labels), 2, figsize=(10, 2.6 * len(labels)),
                              squeeze=False, sharex="col")
     style = {"paper": dict(color="tab:orange", marker="s"),
-             "product": dict(color="tab:blue", marker="o")}
+             "product": dict(color="tab:blue", marker="o"),
+             "galerkin": dict(color="tab:green", marker="^")}
     for row_ax, label in zip(axes, labels):
         info = refinfo[label]
         for method in METHOD_ORDER:

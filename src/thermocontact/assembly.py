@@ -67,6 +67,11 @@ class Blocks:
     Hp: np.ndarray
     Hq: np.ndarray
     integrate: Callable = field(repr=False, compare=False)
+    #: The contact equation's columns for ``L sigma`` and ``L`` (times -2/pi):
+    #: by default 1 and ``s_k`` at the collocation points; a projection method
+    #: gives their projections.
+    const_column: np.ndarray | None = field(default=None, repr=False, compare=False)
+    linear_column: np.ndarray | None = field(default=None, repr=False, compare=False)
     #: Row operators of the validity checks, which depend only on the blocks.
     cache: dict = field(default_factory=dict, repr=False, compare=False)
 

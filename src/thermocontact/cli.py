@@ -121,7 +121,8 @@ def cli():
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Target of the error estimate when n is chosen.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation: exact kernel moments, or the paper's.")
+              show_default=True, help="Discretisation: exact kernel moments projected (galerkin) "
+                   "or collocated (product), or the paper's collocation.")
 @click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,

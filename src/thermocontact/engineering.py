@@ -183,6 +183,8 @@ class PhysicalContact:
 
 
 def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
+    # Collocation: its assembly costs half the Galerkin projection's, and the scan
+    # and the root refinement assemble once per trial half-width.
     par = prob.parameters(half_width)
     return solve_blocks(par, _blocks(par, "product", n), "product", lam=prob.lam,
                         check_validity=check_validity)

@@ -38,7 +38,7 @@ __all__ = [
 ]
 
 #: Default method and error target.
-DEFAULT_METHOD = "product"
+DEFAULT_METHOD = "galerkin"
 DEFAULT_TOL = 1e-8
 N_RANGE = (4, 2048)
 #: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX.
@@ -200,7 +200,8 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     F = par.fhpe
     pr, fr = blocks.pressure_rule, blocks.flux_rule
     eta = par.eta
-    sk = blocks.contact_points
+    sk = blocks.contact_points if blocks.linear_column is None else blocks.linear_column
+    one = np.ones(n + 1) if blocks.const_column is None else blocks.const_column
     np1, nm1 = n + 1, n - 1
     two_pi = 2.0 / np.pi
 
@@ -232,10 +233,10 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     if lam is not None:
         A[2 * n + 1, n:2 * n] = fr.weights
         b[2 * n + 1] = lam - eta
-        A[:np1, 2 * n] = -two_pi
+        A[:np1, 2 * n] = -two_pi * one
         A[:np1, 2 * n + 1] = -two_pi * sk
     else:
-        A[:np1, 2 * n] = -two_pi * (sigma + sk)
+        A[:np1, 2 * n] = -two_pi * (sigma * one + sk)
 
     lu, rcond = _factor(A)
     x = lu_solve(lu, b)
@@ -371,8 +372,10 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         doubles from 16 until :func:`error_estimate` is below ``tol`` (or
         :data:`N_AUTO_MAX` is reached, reported by ``converged = False``).
     method : str, optional
-        A key of :data:`~thermocontact.assembly.METHODS`: ``"product"`` (default,
-        exact kernel moments) or ``"paper"`` (the paper's collocation).
+        A key of :data:`~thermocontact.assembly.METHODS`: ``"galerkin"`` (default:
+        exact kernel moments, each equation projected on its range space),
+        ``"product"`` (the same moments, collocated) or ``"paper"`` (the paper's
+        collocation, kernels sampled at nodes).
     tol : float, optional
         Target of the error estimate when ``n`` is chosen (default 1e-8).
     check_convergence : bool, optional
