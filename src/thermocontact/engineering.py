@@ -357,12 +357,8 @@ def _refine(prob, root, tol):
     n, levels = 16, []
     while True:
         levels.append(_solve_at(prob, root, n))
-        if len(levels) >= 3:
-            d1 = abs(levels[-2].load_ratio - levels[-3].load_ratio)
-            d2 = abs(levels[-1].load_ratio - levels[-2].load_ratio)
-            p = np.clip(np.log2(d1 / d2), 1.0, 5.0) if d1 > 0 and d2 > 0 else 5.0
-            if d2 / (2**p - 1) <= tol * max(abs(levels[-1].load_ratio), 0.01) or n >= 512:
-                break
+        if len(levels) >= 3 and (error_estimate(levels, ("load_ratio",)) <= tol or n >= 512):
+            break
         n *= 2
     # Secant steps from the scan's root (each costs an assembly at this n).
     sol = root_scalar(lambda d: _h(prob, d, n), method="secant", x0=root,

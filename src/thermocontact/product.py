@@ -19,7 +19,7 @@ from .assembly import Blocks, register
 from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
 from .moments import kernel_moments, sgn_moments
 from .parameters import Parameters
-from .quadrature import bounded_rule, singular_rule
+from .quadrature import bounded_rule, singular_rule, t_coefficient_matrix, u_coefficient_matrix
 
 __all__ = ["assemble_product", "coefficient_maps"]
 
@@ -31,13 +31,7 @@ def coefficient_maps(n: int):
     -------
     to_u, to_t : ndarray, shape (n, n)
     """
-    th_b = np.pi * np.arange(n, 0, -1) / (n + 1)
-    j = np.arange(n)[:, None]
-    to_u = (2.0 / (n + 1)) * np.sin((j + 1) * th_b[None, :]) * np.sin(th_b)[None, :]
-    th_s = np.pi * (2 * np.arange(n, 0, -1) - 1) / (2 * n)
-    to_t = (2.0 / n) * np.cos(j * th_s[None, :])
-    to_t[0] *= 0.5
-    return to_u, to_t
+    return u_coefficient_matrix(n), t_coefficient_matrix(n)
 
 
 def _coefficient_blocks(par: Parameters, n: int, sk, sh):

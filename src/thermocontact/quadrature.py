@@ -10,6 +10,7 @@ set of collocation points at which the Cauchy principal value of the rule is exa
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -20,7 +21,9 @@ __all__ = [
     "singular_rule",
     "u_series_coefficients",
     "u_series_value",
+    "t_coefficient_matrix",
     "t_series_coefficients",
+    "u_coefficient_matrix",
 ]
 
 
@@ -102,6 +105,32 @@ def singular_rule(n: int) -> SingularRule:
     return SingularRule(nodes, weights, colloc)
 
 
+@lru_cache(maxsize=32)
+def u_coefficient_matrix(n: int):
+    """Matrix taking ``phi`` at the U-nodes to its ``U``-coefficients (read-only).
+
+    ``M[j, i] = (2 / (n + 1)) sin(theta_i) sin((j + 1) theta_i)``.
+    """
+    theta = np.pi * np.arange(n, 0, -1) / (n + 1)
+    j = np.arange(1, n + 1)[:, None]
+    m = (2.0 / (n + 1)) * np.sin(j * theta[None, :]) * np.sin(theta)[None, :]
+    m.flags.writeable = False
+    return m
+
+
+@lru_cache(maxsize=32)
+def t_coefficient_matrix(n: int):
+    """Matrix taking ``psi`` at the T-nodes to its ``T``-coefficients (read-only).
+
+    ``M[j, i] = (2 - [j = 0]) / n * T_j(r_i)``.
+    """
+    theta = np.pi * (2 * np.arange(n, 0, -1) - 1) / (2 * n)
+    m = (2.0 / n) * np.cos(np.arange(n)[:, None] * theta[None, :])
+    m[0] *= 0.5
+    m.flags.writeable = False
+    return m
+
+
 def u_series_coefficients(values):
     """Coefficients ``a_j`` of ``phi = sum_j a_j U_j`` from values at the U-nodes.
 
@@ -118,11 +147,7 @@ def u_series_coefficients(values):
     ndarray, shape (n, ...)
     """
     values = np.asarray(values, dtype=float)
-    n = values.shape[0]
-    theta = np.pi * np.arange(n, 0, -1) / (n + 1)
-    j = np.arange(1, n + 1)[:, None]
-    basis = np.sin(j * theta[None, :]) * np.sin(theta)[None, :]
-    return (2.0 / (n + 1)) * np.tensordot(basis, values, axes=(1, 0))
+    return np.tensordot(u_coefficient_matrix(values.shape[0]), values, axes=(1, 0))
 
 
 def u_series_value(coefficients, s):
@@ -161,9 +186,4 @@ def t_series_coefficients(values):
     ndarray, shape (n, ...)
     """
     values = np.asarray(values, dtype=float)
-    n = values.shape[0]
-    theta = np.pi * (2 * np.arange(n, 0, -1) - 1) / (2 * n)
-    basis = np.cos(np.arange(n)[:, None] * theta[None, :])
-    coef = (2.0 / n) * np.tensordot(basis, values, axes=(1, 0))
-    coef[0] *= 0.5
-    return coef
+    return np.tensordot(t_coefficient_matrix(values.shape[0]), values, axes=(1, 0))

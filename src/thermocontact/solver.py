@@ -311,7 +311,7 @@ def _relative(x: float) -> float:
     return max(abs(x), 0.01)
 
 
-def error_estimate(levels) -> float:
+def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta")) -> float:
     """Richardson estimate of the error of the finest of successive solutions.
 
     For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
@@ -327,13 +327,15 @@ def error_estimate(levels) -> float:
     ----------
     levels : sequence of ContactSolution
         At least two, ``n`` doubling, coarsest first.
+    quantities : tuple of str
+        The result fields whose errors are estimated.
 
     Returns
     -------
     float
     """
     est = 0.0
-    for attr in ("load_ratio", "sigma_over_delta"):
+    for attr in quantities:
         v = [getattr(sol, attr) for sol in levels[-3:]]
         d2 = abs(v[-1] - v[-2])
         p = 1.0
