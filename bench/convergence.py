@@ -1,21 +1,22 @@
-"""Convergence and cost of the "paper", "product" and "galerkin" methods against a fine reference.
+"""Convergence and cost of the "paper", "product", "galerkin" and "graded" methods against a fine reference.
 
 Run: ``python bench/convergence.py [--out-dir DIR] [--paper-max-n N] [--no-plot]``.
 
-For a fixed set of cases (all ``lam = -1``, ``fhpe = 0.2``) it measures, for both
-discretisation methods and ``n = 16, 32, ..., 512`` (the paper method also 1024),
+For a fixed set of cases (all ``lam = -1``, ``fhpe = 0.2``) it measures, for each
+method and ``n = 16, 32, ..., 512`` (the paper method also 1024; the graded method
+``n = 8 ... 256``),
 
 * ``P_H/P`` and ``sigma/Delta`` and their relative errors against a reference
   solution, each relative to ``max(|reference|, 0.01)``;
 * wall times of the assembly (``METHODS[method](par, n)``) and of the linear solve
   with its validity post-processing (``solve_blocks``), separately.
 
-The reference is the product method at ``n = 1024``.  Its own error is estimated
-as ``|x(1024) - x(512)|`` (the larger of the two quantities, relative as above):
-conservative for a method of order about 4, and the only figure given when the
-reference is not converged (``Pe >= 100``).  The errors of the product method at
-``n = 512`` equal that estimate by construction; no error is given for the
-reference row itself.
+The reference is the graded method at ``n = 512``.  Its own error is estimated
+as ``|x(512) - x(256)|`` (the larger of the two quantities, relative as above),
+conservative for a method that converges faster than order 5, and it is checked
+against a second method, graded collocation at ``n = 512``.  No error is given for
+the reference row itself.  The default solve (automatic ``n``) is compared with the
+reference for every case.
 
 Times are the best of several repeats for small ``n`` (one for large ``n``), the
 minimum taken separately for assembly and solve; ``t_total_s`` is their sum.
@@ -58,15 +59,18 @@ CASES = [
     ("Pe=10 K2/K1=100", 10.0, 100.0, None),
     ("Pe=100 K2/K1=10", 100.0, 10.0, None),
     ("Pe=1000 K2/K1=100", 1000.0, 100.0, None),
+    ("Pe=1000 K2/K1=1000", 1000.0, 1000.0, None),
     ("Pe=5 K2/K1=10 k2/k1=1", 5.0, 10.0, 1.0),
 ]
-METHOD_ORDER = ("paper", "product", "galerkin")
+METHOD_ORDER = ("paper", "product", "galerkin", "graded")
 #: The method the targets are judged on (the package default).
-DEFAULT = "galerkin"
+DEFAULT = "graded"
 NS = [16, 32, 64, 128, 256, 512]
-REF_METHOD, REF_N = "product", 1024
-#: Reference considered converged only up to this Pe.
-PE_REF_CONVERGED = 10.0
+NS_GRADED = [8, 16, 32, 64, 128, 256]
+REF_METHOD, REF_N = "graded", 512
+CHECK_METHOD = "graded-collocation"
+#: Reference considered converged up to this Pe (all: see the reference check).
+PE_REF_CONVERGED = math.inf
 TARGETS = (1e-6, 1e-8)
 #: Target 1: error < 1e-8 with n <= 256 for Pe <= 10, K2/K1 <= 100.
 T1 = dict(tol=1e-8, n_max=256, pe_max=10.0, K_max=100.0)
@@ -140,12 +144,22 @@ def run_case(label, pe, K, k, paper_max_n, rows, refinfo):
     t_case = time.perf_counter()
     ref, ta, ts = timed_solve(par, REF_METHOD, REF_N, 1)
     ref_row = make_row(label, REF_METHOD, REF_N, ref, ta, ts, None)
+    check, _, _ = timed_solve(par, CHECK_METHOD, REF_N, 1)
+    check_diff = max(rel_err(check.load_ratio, ref.load_ratio),
+                     rel_err(check.sigma_over_delta, ref.sigma_over_delta))
     progress(f"{label}: reference {REF_METHOD} n={REF_N} "
-             f"({ta:.2f} s assembly, {ts:.2f} s solve)")
+             f"({ta:.2f} s assembly, {ts:.2f} s solve); {CHECK_METHOD} differs by "
+             f"{check_diff:.1e}")
+    t0 = time.perf_counter()
+    auto = thermocontact.solve(pe, FHPE, K, k2_over_k1=k, lam=LAM)
+    t_auto = time.perf_counter() - t0
+    auto_err = max(rel_err(auto.load_ratio, ref.load_ratio),
+                   rel_err(auto.sigma_over_delta, ref.sigma_over_delta))
     sols = {}
     for method in METHOD_ORDER:
         t_m = time.perf_counter()
-        ns = NS + ([n for n in (1024,) if n <= paper_max_n] if method == "paper" else [])
+        ns = NS_GRADED if method == "graded" else NS
+        ns = ns + ([n for n in (1024,) if n <= paper_max_n] if method == "paper" else [])
         for n in ns:
             try:
                 sol, ta_n, ts_n = timed_solve(par, method, n, repeats_for(n))
@@ -158,8 +172,8 @@ def run_case(label, pe, K, k, paper_max_n, rows, refinfo):
             rows.append(ref_row)
         progress(f"{label}: {method:7s} n={ns[0]}..{ns[-1]} done "
                  f"({time.perf_counter() - t_m:.1f} s)")
-    # Reference error: conservative |x(1024) - x(512)|, and the solver's own
-    # Richardson estimate from n = 256, 512, 1024.
+    # Reference error: conservative |x(512) - x(256)|, and the solver's own
+    # Richardson estimate from n = 128, 256, 512.
     fine = sols.get((REF_METHOD, REF_N // 2))
     conservative = richardson = math.nan
     if fine is not None:
@@ -169,7 +183,8 @@ def run_case(label, pe, K, k, paper_max_n, rows, refinfo):
         if all(lv is not None for lv in levels):
             richardson = error_estimate(levels)
     refinfo[label] = dict(pe=pe, K=K, k=k, sol=ref, conservative=conservative,
-                          richardson=richardson, converged=pe <= PE_REF_CONVERGED)
+                          richardson=richardson, converged=pe <= PE_REF_CONVERGED,
+                          check=check_diff, auto=auto, auto_err=auto_err, t_auto=t_auto)
     progress(f"{label}: done ({time.perf_counter() - t_case:.1f} s)")
 
 
@@ -200,9 +215,12 @@ def write_csv(path, rows, refinfo):
     with open(path, "w", newline="") as fh:
         fh.write(header_lines() + "\n")
         for label, info in refinfo.items():
-            fh.write(f"# reference error estimate {label}: |x(1024)-x(512)| "
-                     f"{info['conservative']:.2e}, Richardson {info['richardson']:.2e}"
-                     f"{'' if info['converged'] else ' (reference not converged)'}\n")
+            fh.write(f"# reference error estimate {label}: |x(512)-x(256)| "
+                     f"{info['conservative']:.2e}, Richardson {info['richardson']:.2e}, "
+                     f"{CHECK_METHOD} n={REF_N} differs by {info['check']:.2e}; default "
+                     f"solve n={info['auto'].n} error {info['auto_err']:.2e} "
+                     f"(estimate {info['auto'].error_estimate:.2e}, "
+                     f"{1e3 * info['t_auto']:.0f} ms)\n")
         writer = csv.DictWriter(fh, fieldnames=COLUMNS)
         writer.writeheader()
         for r in rows:
@@ -264,8 +282,11 @@ def print_table(rows, refinfo):
         note = "" if info["converged"] else "  NOT CONVERGED"
         print(f"\n{label}: reference P_H/P = {ref.load_ratio:.12f}, "
               f"sigma/Delta = {ref.sigma_over_delta:.12f}, valid = {ref.valid}; "
-              f"ref. error <= {info['conservative']:.1e} (|x(1024)-x(512)|), "
-              f"Richardson {info['richardson']:.1e}{note}")
+              f"ref. error <= {info['conservative']:.1e} (|x(512)-x(256)|), "
+              f"Richardson {info['richardson']:.1e}, {CHECK_METHOD} differs by "
+              f"{info['check']:.1e}{note}\n  default solve: n = {info['auto'].n}, error "
+              f"{info['auto_err']:.1e}, estimate {info['auto'].error_estimate:.1e}, "
+              f"{1e3 * info['t_auto']:.0f} ms (all levels, validity included)")
         for r in rows:
             if r["case"] != label:
                 continue
@@ -336,11 +357,17 @@ def print_summary(rows, refinfo):
             extra = ""
             if not ok:
                 extra = (f"; at n = {REF_N} only estimated: <= {info['conservative']:.1e}"
-                         f" (|x(1024)-x(512)|), Richardson {info['richardson']:.1e}")
+                         f" (|x(512)-x(256)|), Richardson {info['richardson']:.1e}")
             ref_note = "" if info["converged"] else " [reference not converged]"
             print(f"  [{'PASS' if ok else 'FAIL'}] {label}: error < 1e-6 with n <= 1024: "
                   f"{DEFAULT} n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})"
                   f"{extra}{ref_note}")
+        if pe <= T1["pe_max"]:
+            ok = info["auto_err"] < 1e-8
+            all_ok &= ok
+            print(f"  [{'PASS' if ok else 'FAIL'}] {label}: default solve (n = "
+                  f"{info['auto'].n}) agrees with the reference to 1e-8: "
+                  f"{info['auto_err']:.1e}")
     print(f"\nAll targets met: {'yes' if all_ok else 'NO'}")
 
 
@@ -356,7 +383,8 @@ def plot(rows, refinfo, path):
                              squeeze=False, sharex="col")
     style = {"paper": dict(color="tab:orange", marker="s"),
              "product": dict(color="tab:blue", marker="o"),
-             "galerkin": dict(color="tab:green", marker="^")}
+             "galerkin": dict(color="tab:green", marker="^"),
+             "graded": dict(color="tab:purple", marker="D")}
     for row_ax, label in zip(axes, labels):
         info = refinfo[label]
         for method in METHOD_ORDER:

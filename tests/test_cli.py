@@ -32,8 +32,9 @@ def test_json_record(capsys):
     assert abs(rec["lam"] + 1) < 1e-10
     s, p = np.array(rec["s"]), np.array(rec["pressure"])
     assert s[0] == -1 and s[-1] == 1 and np.all(np.diff(s) > 0)
-    # Trapezoid on Chebyshev nodes of a sqrt-vanishing profile: integral 1 to 1e-3.
-    assert abs(np.trapezoid(p, s) - 1) < 1e-3
+    # Trapezoid on the nodes (clustered at the edges; 32 here) of a sqrt-vanishing
+    # profile: integral 1 to 1e-2.
+    assert abs(np.trapezoid(p, s) - 1) < 1e-2
     from thermocontact import solve
     sol = solve(5, 0.2, 10, lam=-1)
     # The command runs BLAS on one thread: equal up to rounding.

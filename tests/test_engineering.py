@@ -104,16 +104,14 @@ def test_temperature_against_carslaw_jaeger_quadrature():
     sol = solve(**p.to_dimensionless(d), n=48)
     s = np.array([-0.6, 0.1, 0.8])
     t1, _, _ = _temperatures(p, sol, d, s)
-    from thermocontact.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
-
-    a, bcoef = u_series_coefficients(sol.phi), t_series_coefficients(sol.psi)
+    basis = sol.blocks.basis
     eta, c = sol.eta, sol.parameters.cylinder_scale
     scale = p.friction * p.speed * p.load / (np.pi * STEEL.K)
     for si, ti in zip(s, t1):
         kern = lambda r: np.exp(-c * (si - r)) * k0(abs(c * (si - r)))
         # q1 = ((1 + eta) sqrt(1-r^2) phi + psi / sqrt(1-r^2)) / 2
-        f_b = lambda r: 0.5 * (1 + eta) * u_series_value(a, r) * kern(r)
-        f_s = lambda r: 0.5 * np.polynomial.chebyshev.chebval(r, bcoef) * kern(r)
+        f_b = lambda r: 0.5 * (1 + eta) * basis.phi_at(sol.phi, r) * kern(r)
+        f_s = lambda r: 0.5 * basis.psi_at(sol.psi, r) * kern(r)
         opts = dict(limit=400, epsabs=1e-13, epsrel=1e-12)
         ref = 0.0
         for lo, hi in ((-1, si), (si, 1)):

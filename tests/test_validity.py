@@ -6,8 +6,9 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import solve
+from thermocontact.bases import GradedBasis
+from thermocontact.graded import cosine_value, stretch, stretch_derivative
 from thermocontact.kernels import cylinder_slope
-from thermocontact.quadrature import u_series_coefficients, u_series_value
 
 HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz
 
@@ -33,8 +34,9 @@ def test_hertz_gap_exact():
     assert abs(v.gap_margin - HERTZ_EDGE) < 1e-6
 
 
-def brute_force_slope_mismatch(sol, t):
-    """G(t) for |t| >= 1 by adaptive quadrature of the contact equation's terms (D14)."""
+def brute_force_slope_mismatch_chebyshev(sol, t):
+    """G(t) for |t| >= 1 by adaptive Gauss-Jacobi quadrature of the terms of (D14),
+    for the Chebyshev representation."""
     par = sol.parameters
     F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
     from thermocontact.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
@@ -60,6 +62,46 @@ def brute_force_slope_mismatch(sol, t):
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
 
 
+def brute_force_slope_mismatch(sol, t):
+    """G(t) for |t| >= 1 by adaptive quadrature of the contact equation's terms (D14).
+
+    For the graded representation the integrals are taken over r = cos T(tau) in
+    tau, with p dr = phi sin^2 T T' dtau and q' dr = psi T' dtau.
+    """
+    par = sol.parameters
+    F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
+    basis = sol.blocks.basis
+    if not isinstance(basis, GradedBasis):
+        return brute_force_slope_mismatch_chebyshev(sol, t)
+    a_cos, b_cos = basis.to_cos @ sol.phi, basis.to_cos @ sol.psi
+
+    def over_tau(f):
+        def g(tau):
+            tt = stretch(np.array([tau]))[0]
+            return f(np.cos(tt), tt, tau)
+        return quad(g, 0.0, np.pi, limit=400, epsabs=1e-14, epsrel=1e-13)[0]
+
+    def p_dr(r, tt, tau):
+        return cosine_value(a_cos, tau) * np.sin(tt) ** 2 * stretch_derivative(tau)
+
+    def q_dr(r, tt, tau):
+        return cosine_value(b_cos, tau) * stretch_derivative(tau)
+
+    nh = lambda r: d * cylinder_slope(c * (t - r))
+    sg = np.sign(t)
+    if abs(t) == 1.0:  # sin^2 T / (t - cos T) = t (1 + t cos T) at an edge
+        cauchy = over_tau(lambda r, tt, tau: cosine_value(a_cos, tau) * stretch_derivative(tau)
+                          * t * (1.0 + t * np.cos(tt))) / np.pi
+    else:
+        cauchy = over_tau(lambda r, tt, tau: p_dr(r, tt, tau) / (t - r)) / np.pi
+    kp = over_tau(lambda r, tt, tau: p_dr(r, tt, tau) * (nh(r) + 0.5 * sg))
+    # q = q' + eta p
+    kq = over_tau(lambda r, tt, tau: (q_dr(r, tt, tau) + sol.eta * p_dr(r, tt, tau))
+                  * (nh(r) - 0.5 * sg))
+    L, sig = sol.load_ratio, sol.sigma_over_delta
+    return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
+
+
 def brute_force_gap(sol, s):
     """Gap by quadrature of G - G(edge) from the edge to s (derivation D20-D21)."""
     L = sol.load_ratio
@@ -81,11 +123,13 @@ GAP_CASES = [
 ]
 
 
-@pytest.mark.parametrize("case,s", GAP_CASES)
-def test_gap_closed_form_matches_quadrature(case, s):
-    """Closed-form gap (Cauchy moments, E antiderivative, exact sgn) equals nested adaptive
-    quadrature of the slope mismatch to 1e-9 (abs, quadrature tolerance)."""
-    sol = solve(n=24, **case)
+@pytest.mark.parametrize("case,s,method", [c + ("product",) for c in GAP_CASES]
+                         + [c + ("graded",) for c in GAP_CASES[:2]])
+def test_gap_closed_form_matches_quadrature(case, s, method):
+    """The gap (Chebyshev: Cauchy moments in closed form; graded: logarithmic moments;
+    both: E antiderivative, exact sgn) equals nested adaptive quadrature of the slope
+    mismatch to 1e-9 (abs, quadrature tolerance)."""
+    sol = solve(n=24, method=method, **case)
     ref = brute_force_gap(sol, s)
     assert abs(sol.gap_at(s)[0] - ref) < 1e-9 * max(1.0, abs(ref))
 
@@ -99,7 +143,7 @@ def test_edge_gap_follows_edge_pressure(lam):
     for edge in (-1.0, 1.0):
         s = edge * (1 + 1e-10)
         margin = sol.gap_at(s)[0] / 1e-15
-        phi_edge = u_series_value(u_series_coefficients(sol.phi), edge)
+        phi_edge = sol.blocks.basis.phi_at(sol.phi, edge)
         expected = np.pi / (2 * sol.load_ratio) * HERTZ_EDGE * phi_edge
         assert abs(margin / expected - 1) < 1e-3
 
@@ -113,12 +157,12 @@ def test_edge_log_term_makes_contact_invalid():
     product integration the drifts for n = 128 ... 1024 are 0.9944, 0.9972 and
     0.9986 of the prediction (asserted within 1 %), and by n = 256 the discrete
     pressure itself is tensile at the edge."""
-    sols = [solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=0, lam=1, n=n)
+    sols = [solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=0, lam=1, n=n, method="product")
             for n in (128, 256, 512, 1024)]
     for sol in sols:
         k_minus, k_plus = sol.validity.edge_log_coefficients
         assert k_plus > 0 and not sol.valid and sol.load_ratio > 0
-    phi1 = np.array([u_series_value(u_series_coefficients(s.phi), 1.0) for s in sols])
+    phi1 = np.array([s.blocks.basis.phi_at(s.phi, 1.0) for s in sols])
     drift = np.diff(phi1)
     predicted = -np.sqrt(2) * sols[-1].validity.edge_log_coefficients[1] * np.log(2)
     ratio = drift / predicted

@@ -10,6 +10,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 from . import collocation as _collocation  # noqa: F401  (registers "paper")
 from . import product as _product  # noqa: F401  (registers "product")
+from . import graded_methods as _graded  # noqa: F401  (registers "graded")
 from .assembly import METHODS
 from .parameters import InputError, Parameters, SolveError
 from .solver import ContactSolution, solve

@@ -25,6 +25,7 @@ from typing import Callable
 
 import numpy as np
 
+from .bases import CHEBYSHEV
 from .parameters import Parameters
 from .quadrature import BoundedRule, SingularRule
 
@@ -74,6 +75,8 @@ class Blocks:
     linear_column: np.ndarray | None = field(default=None, repr=False, compare=False)
     #: Row operators of the validity checks, which depend only on the blocks.
     cache: dict = field(default_factory=dict, repr=False, compare=False)
+    #: Representation of ``phi`` and ``psi`` (:mod:`thermocontact.bases`).
+    basis: object = field(default=CHEBYSHEV, repr=False, compare=False)
 
 
 Assembler = Callable[[Parameters, int], Blocks]

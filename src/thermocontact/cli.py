@@ -116,13 +116,16 @@ def cli():
 @click.option("--sigma", type=float, default=None,
               help="Contact offset sigma/Delta; give this or --lam.")
 @click.option("-n", "n", type=int, default=None,
-              help=f"Unknowns per function [default: chosen, doubling from 16 to "
-                   f"{N_AUTO_MAX} until the error estimate is below --tol].")
+              help=f"Unknowns per function [default: chosen, doubling from 8 (graded) "
+                   f"or 16 to {N_AUTO_MAX} until the error estimate is below --tol].")
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Target of the error estimate when n is chosen.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation: exact kernel moments projected (galerkin) "
-                   "or collocated (product), or the paper's collocation.")
+              show_default=True,
+              help="Discretisation: edge-graded cosine series projected (graded) or "
+                   "collocated (graded-collocation); Chebyshev series with exact "
+                   "kernel moments projected (galerkin) or collocated (product); or "
+                   "the paper's collocation.")
 @click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,

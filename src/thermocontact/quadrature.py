@@ -47,6 +47,11 @@ class BoundedRule:
     weights: np.ndarray
     collocation: np.ndarray
 
+    @property
+    def edge_factor(self):
+        """``sqrt(1 - r_i^2)`` at the nodes."""
+        return np.sqrt(1.0 - self.nodes**2)
+
 
 @dataclass(frozen=True)
 class SingularRule:
@@ -66,6 +71,11 @@ class SingularRule:
     nodes: np.ndarray
     weights: np.ndarray
     collocation: np.ndarray
+
+    @property
+    def edge_factor(self):
+        """``sqrt(1 - r_i^2)`` at the nodes."""
+        return np.sqrt(1.0 - self.nodes**2)
 
 
 def bounded_rule(n: int) -> BoundedRule:

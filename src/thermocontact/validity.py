@@ -20,11 +20,6 @@ import numpy as np
 
 from .kernels import cylinder_displacement, cylinder_slope
 from .parameters import Parameters
-from .quadrature import (
-    t_series_coefficients,
-    u_series_coefficients,
-    u_series_value,
-)
 
 __all__ = ["Validity", "assess", "gap"]
 
@@ -81,31 +76,6 @@ class Validity:
     edge_slope_residual: tuple[float, float]
 
 
-def _cauchy_outside_integral(m, tt):
-    """``I_m = integral_1^{1+tt} w(y)^m dy`` with ``w = y - sqrt(y^2 - 1)``, ``tt >= 0``.
-
-    ``w^m = (1/pi) integral sqrt(1 - r^2) U_{m-1}(r) / (y - r) dr`` for ``y > 1``;
-    with ``y = cosh u``: ``I_m = (1/2) integral_0^U (e^{-(m-1)u} - e^{-(m+1)u}) du``.
-    The distance ``tt`` past the edge is the argument, not ``1 + tt``, so that
-    ``U = arccosh(1 + tt)`` keeps full relative accuracy next to the edge.
-
-    Parameters
-    ----------
-    m : ndarray of int, shape (k,)
-    tt : ndarray, shape (j,)
-
-    Returns
-    -------
-    ndarray, shape (j, k)
-    """
-    u = np.log1p(tt + np.sqrt(tt * (tt + 2.0)))[:, None]
-    m = np.asarray(m)[None, :]
-    mm1 = np.where(m > 1, m - 1, 1)
-    first = np.where(m > 1, -np.expm1(-mm1 * u) / mm1, u)
-    second = -np.expm1(-(m + 1) * u) / (m + 1)
-    return 0.5 * (first - second)
-
-
 def _displacement_drop(a, h):
     """``E(a) - E(a + h)`` elementwise for ``a, h >= 0``, to full relative accuracy.
 
@@ -157,9 +127,8 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     F = par.fhpe
     c = par.cylinder_scale
     d = par.delta1_over_delta2
-    a = u_series_coefficients(phi)
-    m = np.arange(1, a.size + 1)
-    sign_m = np.where(m % 2 == 1, -1.0, 1.0)  # (-1)^m
+    basis = blocks.basis
+    cauchy_left, cauchy_right = basis.cauchy_edges(blocks, phi)
     L = load_ratio
     eta = par.eta
 
@@ -175,8 +144,8 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).
     nh_edge = (against_p_plus_q("nh", lambda u: cylinder_slope(c * u), [1.0], c)[0]
                if d else 0.0)
-    g_right_edge = a.sum() - F * (d * nh_edge + 0.5 * (1.0 - lam)) - (2 / np.pi) * L * (sigma + 1.0)
-    g_left_edge = (sign_m * a).sum() + F * 0.5 * (1.0 - lam) - (2 / np.pi) * L * (sigma - 1.0)
+    g_right_edge = cauchy_right - F * (d * nh_edge + 0.5 * (1.0 - lam)) - (2 / np.pi) * L * (sigma + 1.0)
+    g_left_edge = cauchy_left + F * 0.5 * (1.0 - lam) - (2 / np.pi) * L * (sigma - 1.0)
 
     out = np.zeros_like(s)
     # Work with the distance tt = |s| - 1 past the edge (exact in floating point
@@ -184,7 +153,7 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     right = s > 1.0
     if np.any(right):
         tt = s[right] - 1.0
-        jc = _cauchy_outside_integral(m, tt) @ a
+        jc = basis.cauchy_outside(blocks, phi, tt, right=True)
         jt = 0.5 * (1.0 - lam) * tt
         if d:
             # E(c(1 - r)) - E(c(1 + tt - r)) as a kernel of u = s - r = 1 + tt - r.
@@ -196,7 +165,7 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     left = s < -1.0
     if np.any(left):
         tt = -1.0 - s[left]
-        jc = _cauchy_outside_integral(m, tt) @ (sign_m * a)
+        jc = basis.cauchy_outside(blocks, phi, tt, right=False)
         j = jc + F * 0.5 * (1.0 - lam) * tt - g_left_edge * tt
         out[left] = -sigma * tt + tt * (1.0 + 0.5 * tt) + np.pi / (2 * L) * j
     return out, (float(g_left_edge), float(g_right_edge))
@@ -230,9 +199,9 @@ def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validit
     -------
     Validity
     """
-    a = u_series_coefficients(phi)
+    basis = blocks.basis
     sp = np.cos(np.linspace(np.pi, 0.0, 2049))
-    phis = u_series_value(a, sp)
+    phis = basis.phi_at(phi, sp)
     p = np.sqrt(np.clip(1.0 - sp * sp, 0.0, None)) * phis
     ip = int(np.argmin(p))
     iphi = int(np.argmin(phis))
@@ -248,8 +217,7 @@ def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validit
     else:
         min_gap, min_gap_at = float(g[ig]), float(so[ig])
 
-    b = t_series_coefficients(psi)
-    psi_edges = np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])
+    psi_edges = basis.psi_edges(psi)
     k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
 
     positive = bool(load_ratio > 0.0)

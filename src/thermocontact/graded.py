@@ -1,0 +1,334 @@
+"""Representation of the unknowns graded toward the contact edges.
+
+With ``r = cos t`` and ``t = T(tau) = tau - sin(2 tau)/2`` (a map of ``[0, pi]``
+onto itself with ``T ~ (2/3) tau^3`` at both ends) the unknowns are expanded as
+
+    phi(r) = p(r) / sqrt(1 - r^2) = sum_j a_j cos(j tau),
+    psi(r) = q'(r) sqrt(1 - r^2) = sum_j b_j cos(j tau),
+
+and carried by their values at ``tau_i = pi (i - 1/2) / n``.  The edge terms of
+derivation section 8, ``|t|^3 ln|t|`` in ``phi`` and ``t^2 ln|t|`` in ``psi``,
+become ``tau^9 ln tau`` and ``tau^6 ln tau``, and a boundary layer of width ``w``
+in ``t`` one of width ``(3 w / 2)^(1/3)`` in ``tau``: where a Chebyshev series
+converges at order 4 and must resolve ``sqrt(2 / c)`` at the edges, the cosine
+series in ``tau`` converges much faster and resolves ``(2 / c)^(1/6)``
+(derivation section 12).
+
+No integral of these bases is known in closed form, the Cauchy ones included:
+every operator is a moment computed by :func:`moments`, the construction of
+:mod:`thermocontact.moments` carried over from ``t`` to ``tau``.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+from scipy.optimize import newton
+
+from .moments import _OUTER, _gauss_legendre, _inner_reference
+
+__all__ = [
+    "bounded_weight",
+    "coefficient_matrix",
+    "cosine_value",
+    "moments",
+    "nodes",
+    "singular_weight",
+    "stretch",
+    "stretch_inverse",
+    "tau_of",
+]
+
+_GL = 16
+
+
+def _x_minus_sin(x):
+    """``x - sin x``, by its Taylor series for ``|x| < 1/2`` (no cancellation)."""
+    x = np.asarray(x, dtype=float)
+    x2 = x * x
+    series = 1.0
+    for k in (7, 6, 5, 4, 3, 2):  # nested: 1 - x^2/((2k)(2k+1)) (...)
+        series = 1.0 - x2 / ((2 * k) * (2 * k + 1)) * series
+    series = x * x2 / 6.0 * series
+    return np.where(np.abs(x) < 0.5, series, x - np.sin(x))
+
+
+def stretch(tau):
+    """``t = T(tau) = tau - sin(2 tau)/2`` on ``[0, pi]`` (odd about 0 and pi)."""
+    tau = np.asarray(tau, dtype=float)
+    near = np.minimum(tau, np.pi - tau)
+    half = 0.5 * _x_minus_sin(2.0 * near)
+    return np.where(tau <= 0.5 * np.pi, half, np.pi - half)
+
+
+def stretch_derivative(tau):
+    """``T'(tau) = 2 sin^2 tau``."""
+    return 2.0 * np.sin(np.asarray(tau, dtype=float)) ** 2
+
+
+def stretch_increment(tau, d):
+    """``T(tau + d) - T(tau)`` without cancellation for small ``d``.
+
+    ``d - cos(2 tau + d) sin d = 2 d sin^2(tau + d/2) + cos(2 tau + d) (d - sin d)``.
+    """
+    return 2.0 * d * np.sin(tau + 0.5 * d) ** 2 + np.cos(2.0 * tau + d) * _x_minus_sin(d)
+
+
+def stretch_inverse(t):
+    """``tau`` with ``T(tau) = t``, ``t`` in ``[0, pi]``, by Newton's method."""
+    t = np.asarray(t, dtype=float)
+    near = np.minimum(t, np.pi - t)
+    out = np.zeros_like(near)
+    pos = near > 0.0
+    if np.any(pos):
+        x = near[pos]
+        # T <= (2/3) tau^3 gives a start at or below the root; T is increasing and
+        # convex on [0, pi/2], so the iterates converge from above after one step.
+        x0 = np.minimum(np.cbrt(1.5 * x), 0.5 * np.pi)
+        out[pos] = newton(lambda y: 0.5 * _x_minus_sin(2.0 * y) - x, x0,
+                          fprime=lambda y: 2.0 * np.sin(y) ** 2, tol=1e-15, maxiter=100)
+    return np.where(t <= 0.5 * np.pi, out, np.pi - out)
+
+
+def tau_of(s):
+    """``tau`` of points ``s`` (clipped to ``[-1, 1]``)."""
+    return stretch_inverse(np.arccos(np.clip(np.asarray(s, dtype=float), -1.0, 1.0)))
+
+
+def nodes(n: int):
+    """``tau_i = pi (i - 1/2) / n``, descending, so that ``r = cos T(tau)`` ascends."""
+    return np.pi * (np.arange(n, 0, -1) - 0.5) / n
+
+
+@lru_cache(maxsize=32)
+def coefficient_matrix(n: int):
+    """Matrix taking values at :func:`nodes` to cosine coefficients (read-only).
+
+    ``a_j = (2 - [j = 0]) / n * sum_i cos(j tau_i) f_i`` (discrete orthogonality).
+    """
+    tau = nodes(n)
+    m = (2.0 / n) * np.cos(np.arange(n)[:, None] * tau[None, :])
+    m[0] *= 0.5
+    m.flags.writeable = False
+    return m
+
+
+def cosine_value(coefficients, tau):
+    """``sum_j a_j cos(j tau)``, by Clenshaw's recurrence in ``cos tau``."""
+    return np.polynomial.chebyshev.chebval(np.cos(np.asarray(tau, dtype=float)), coefficients)
+
+
+def bounded_weight(tau):
+    """``sin^2 T(tau) T'(tau)``, so that ``p(r) dr = phi W dtau``."""
+    return np.sin(stretch(tau)) ** 2 * stretch_derivative(tau)
+
+
+def singular_weight(tau):
+    """``T'(tau)``, so that ``q'(r) dr = psi W dtau``."""
+    return stretch_derivative(tau)
+
+
+@lru_cache(maxsize=32)
+def weight_integrals(n: int):
+    """``integral_0^pi W(tau) cos(j tau) dtau`` for both weights, ``j < n``.
+
+    The weights are entire, even and ``pi``-periodic, so the midpoint rule on
+    ``max(256, 4n)`` points is exact to rounding.
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (n,)
+    """
+    m = max(256, 4 * n)
+    tq = np.pi * (np.arange(m) + 0.5) / m
+    basis = (np.pi / m) * np.cos(np.arange(n)[:, None] * tq[None, :])
+    return basis @ bounded_weight(tq), basis @ singular_weight(tq)
+
+
+@lru_cache(maxsize=16)
+def _common(n: int):
+    """Common panel rule in ``tau``, the bases and weights at its nodes."""
+    m = max(8, -(-n // 4) + 2)
+    h = np.pi / m
+    x, w = _gauss_legendre(_GL)
+    tau = (np.arange(m)[:, None] + x[None, :]).ravel() * h
+    wt = np.tile(w, m) * h
+    g = np.cos(np.arange(n)[None, :] * tau[:, None])
+    panel = np.repeat(np.arange(m), _GL)
+    r = np.cos(stretch(tau))
+    wts = np.stack([bounded_weight(tau), singular_weight(tau)]) * wt[None, :]
+    return m, h, r, g, panel, wts
+
+
+def _u(s, tau_s, t_s, d):
+    """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``.
+
+    Returns ``u`` and ``e = u - (s - clip(s))``, the part measured from the nearer
+    edge for points outside ``[-1, 1]`` (``u`` itself inside), formed separately.
+    """
+    dt = stretch_increment(tau_s[:, None], d)
+    e = 2.0 * np.sin(t_s[:, None] + 0.5 * dt) * np.sin(0.5 * dt)
+    return (s - np.clip(s, -1.0, 1.0))[:, None] + e, e
+
+
+class _Geometry:
+    """Everything about a set of points that does not depend on the kernel."""
+
+    def __init__(self, s, n, tau=None):
+        m, h, r, g, panel, wts = _common(n)
+        self.s, self.n = s, n
+        if tau is None:
+            self.t_s = np.arccos(np.clip(s, -1.0, 1.0))
+            self.tau_s = stretch_inverse(self.t_s)
+        else:
+            self.tau_s = tau
+            self.t_s = stretch(tau)
+        p0 = np.minimum((self.tau_s / h).astype(int), m - 1)
+        lo = np.maximum(p0 - 1, 0) * h
+        hi = np.minimum(p0 + 2, m) * h
+        self.near = (panel[None, :] >= (p0 - 1)[:, None]) & (panel[None, :] <= (p0 + 1)[:, None])
+        self.far_u = s[:, None] - r[None, :]
+        self.far_e = np.clip(s, -1.0, 1.0)[:, None] - r[None, :]
+        self.w_in = 6.0 / (n + 1)
+        self.sides = [(-1.0, self.tau_s - lo), (1.0, hi - self.tau_s)]
+        self.inner = [np.minimum(side, self.w_in) for _, side in self.sides]
+        self._inner_parts = {}
+        # Outer panels, geometric from the innermost interval to the side's end.
+        xg, wg = _gauss_legendre(_GL)
+        self.outer = []
+        for (sign, side), inner in zip(self.sides, self.inner):
+            ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
+            edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
+            a, b = edges[:, :-1], edges[:, 1:]
+            dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(len(s), -1)
+            wq = ((b - a)[:, :, None] * wg[None, None, :]).reshape(len(s), -1)
+            d = sign * dist
+            u, e = _u(s, self.tau_s, self.t_s, d)
+            tq = self.tau_s[:, None] + d
+            self.outer.append(((u, e), wq > 0.0,
+                               np.stack([bounded_weight(tq), singular_weight(tq)]) * wq, tq))
+
+    def inner_parts(self, levels):
+        """Graded innermost intervals: ``u``, weighted rule, Lagrange matrix, points."""
+        if levels not in self._inner_parts:
+            ref_tau, om, xp, lagr = _inner_reference(levels)
+            parts = []
+            for (sign, _), inner in zip(self.sides, self.inner):
+                d = sign * inner[:, None] * ref_tau[None, :]
+                wq = inner[:, None] * om[None, :]
+                u = _u(self.s, self.tau_s, self.t_s, d)
+                tq = self.tau_s[:, None] + d
+                wts = np.stack([bounded_weight(tq), singular_weight(tq)]) * wq
+                tp = self.tau_s[:, None] + sign * inner[:, None] * xp[None, :]
+                parts.append((u, wq > 0.0, wts, lagr, tp))
+            self._inner_parts[levels] = parts
+        return self._inner_parts[levels]
+
+
+@lru_cache(maxsize=8)
+def _geometry(key: bytes, n: int, tau_key: bytes | None) -> _Geometry:
+    tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
+    return _Geometry(np.frombuffer(key, dtype=float), n, tau)
+
+
+def _cos_sums(tau, kw, n):
+    """``sum_q kw[w, k, q] cos(j tau[k, q])`` for ``j < n``, by recurrence in ``j``."""
+    c = np.cos(tau)
+    two_c = 2.0 * c
+    out = np.empty(kw.shape[:2] + (n,))
+    cm, c0 = np.ones_like(tau), c
+    out[..., 0] = kw.sum(axis=-1)
+    for j in range(1, n):
+        out[..., j] = (kw * c0).sum(axis=-1)
+        cm, c0 = c0, two_c * c0 - cm
+    return out
+
+
+def levels_for(n: int, scale=None) -> int:
+    """Halvings of the graded innermost interval (see :func:`moments`)."""
+    if scale is None:
+        return 47
+    w_in = 6.0 / (n + 1)
+    return int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
+
+
+def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False):
+    """Moments of a convolution kernel against the graded bases.
+
+    ``B[k, j] = integral_0^pi K(s_k - cos T(tau)) sin^2 T(tau) T'(tau) cos(j tau) dtau``
+    and ``S[k, j] = integral_0^pi K(s_k - cos T(tau)) T'(tau) cos(j tau) dtau``: the
+    integrals of ``K(s_k - r)`` against the pressure and the heat-flux difference
+    whose factors ``phi``, ``psi`` are ``cos(j tau)``.
+
+    Parameters
+    ----------
+    kernel : callable
+        Vectorised ``K(u)``, ``u = s - r``, called with arrays whose rows belong to
+        the points; may jump, be logarithmically singular or vary on any scale at
+        ``u = 0``, or be ``1/u`` (``cauchy=True``).
+    s : array_like, shape (k,)
+        Points inside or outside ``[-1, 1]``.
+    n : int
+        Number of basis functions.
+    scale : float, optional
+        For a kernel smooth on either side of ``u = 0`` with structure on the
+        scale ``1/scale`` only: the grading toward ``tau_s`` stops at
+        ``1e-3/scale`` instead of ``2^-47`` of the interval (a logarithm needs the
+        latter).  ``scale=1`` suits a jump or a pole.
+    cauchy : bool
+        ``K`` has a simple pole at ``u = 0`` whose principal value is wanted.
+    tau : array_like, optional
+        ``tau`` of interior points ``s = cos T(tau)``: points within ``1e-16`` of
+        an edge keep their position, which ``s`` alone would round away.
+    from_edge : bool
+        Call the kernel with ``e = u - (s - clip(s))`` instead of ``u``: for points
+        outside ``[-1, 1]``, ``u`` less the distance past the edge, formed without
+        that subtraction (``1 - r`` right of the contact, ``-(1 + r)`` left of it).
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (k, n)
+
+    Notes
+    -----
+    The construction of :func:`thermocontact.moments.kernel_moments` in ``tau``:
+    a common 16-point Gauss–Legendre panel rule; around ``tau_s`` three panels
+    replaced by an innermost interval of width ``6/(n + 1)`` per side, graded
+    toward ``tau_s`` (bases interpolated on 20 points there), and three geometric
+    panels.  For a principal value, with ``1/u ~ 1/(D (tau - tau_s))``,
+    ``D = sin t_s T'(tau_s)``, the two graded sides of lengths ``a`` and ``b`` are
+    the same rule scaled, so their divergent parts cancel and the principal value
+    of the omitted central interval, ``W(tau_s) cos(j tau_s) ln(b/a) / D``, is
+    added (derivation section 12).
+    """
+    s = np.ascontiguousarray(np.atleast_1d(np.asarray(s, dtype=float)))
+    tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
+    geo = _geometry(s.tobytes(), n, tau_key)
+    m, h, r, g, panel, wts = _common(n)
+    pick = 1 if from_edge else 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        kf = kernel(geo.far_e if from_edge else geo.far_u)
+    kf[geo.near] = 0.0
+    out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
+    pts, vals = [], []
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # Rows of a side of zero length (points at or beyond an edge) hold dummies.
+        for u, live, wq, lagr, tp in geo.inner_parts(levels_for(n, scale)):
+            pts.append(tp)
+            vals.append((np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr)
+        for u, live, wq, tq in geo.outer:
+            pts.append(tq)
+            vals.append(np.where(live, kernel(u[pick]), 0.0)[None] * wq)
+    out += _cos_sums(np.concatenate(pts, axis=1), np.concatenate(vals, axis=2), n)
+    if cauchy:
+        a_in, b_in = geo.inner
+        interior = (a_in > 0.0) & (b_in > 0.0) & (geo.tau_s > 0.0) & (geo.tau_s < np.pi)
+        if np.any(interior):
+            ts = geo.tau_s[interior]
+            log_ratio = np.log(b_in[interior] / a_in[interior]) / (
+                np.sin(geo.t_s[interior]) * stretch_derivative(ts))
+            basis = np.cos(np.arange(n)[None, :] * ts[:, None])
+            out[0][interior] += (bounded_weight(ts) * log_ratio)[:, None] * basis
+            out[1][interior] += (singular_weight(ts) * log_ratio)[:, None] * basis
+    return out[0], out[1]
