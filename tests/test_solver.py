@@ -38,12 +38,15 @@ def test_no_coupling_is_hertz(pe, K, n, lam, method):
 
     With no thermal coupling the heat problem decouples from the contact problem;
     every representation holds the constant bounded factor of the Hertz pressure
-    exactly.
+    exactly.  The graded methods' Cauchy moments are numerical (1e-13), and at the
+    outermost nodes phi is 2/pi to 1e-11 (observed 1.4e-12); the Chebyshev methods'
+    are closed forms, 1e-12 everywhere.
     """
     sol = solve(pe, 0.0, K, lam=lam, n=n, method=method)
     assert abs(sol.load_ratio - 1.0) < 1e-12
     assert abs(sol.sigma_over_delta) < 1e-12
-    assert np.max(np.abs(sol.phi - 2.0 / np.pi)) < 1e-12
+    tol = 1e-11 if method.startswith("graded") else 1e-12
+    assert np.max(np.abs(sol.phi - 2.0 / np.pi)) < tol
     assert abs(sol.lam - lam) < 1e-12
     assert sol.valid
 
