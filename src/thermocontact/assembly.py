@@ -29,7 +29,7 @@ from .bases import CHEBYSHEV
 from .parameters import Parameters
 from .quadrature import BoundedRule, SingularRule
 
-__all__ = ["Blocks", "METHODS", "register"]
+__all__ = ["AUTO_RANGE", "Blocks", "METHODS", "register"]
 
 
 @dataclass(frozen=True)
@@ -82,13 +82,16 @@ class Blocks:
 Assembler = Callable[[Parameters, int], Blocks]
 
 METHODS: dict[str, Assembler] = {}
+#: Per method, the first and the largest ``n`` of the solver's automatic doubling.
+AUTO_RANGE: dict[str, tuple[int, int]] = {}
 
 
-def register(name: str):
-    """Add an assembler to :data:`METHODS` under ``name``."""
+def register(name: str, auto_range: tuple[int, int] = (16, 1024)):
+    """Add an assembler to :data:`METHODS` under ``name``, with its automatic ``n`` range."""
 
     def deco(func: Assembler) -> Assembler:
         METHODS[name] = func
+        AUTO_RANGE[name] = auto_range
         return func
 
     return deco

@@ -116,8 +116,9 @@ def cli():
 @click.option("--sigma", type=float, default=None,
               help="Contact offset sigma/Delta; give this or --lam.")
 @click.option("-n", "n", type=int, default=None,
-              help=f"Unknowns per function [default: chosen, doubling from 8 (graded) "
-                   f"or 16 to {N_AUTO_MAX} until the error estimate is below --tol].")
+              help=f"Unknowns per function [default: chosen, doubling from 8 to 256 "
+                   f"(graded methods) or from 16 to {N_AUTO_MAX} until the error "
+                   f"estimate is below --tol].")
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Target of the error estimate when n is chosen.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,

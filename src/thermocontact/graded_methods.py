@@ -102,7 +102,12 @@ def _points(m: int, shift: float):
     return tau, np.cos(graded.stretch(tau))
 
 
-@register("graded-collocation")
+#: Automatic n: from 8, and at most 256, beyond which the rounding of the edge values
+#: of phi (about n^7, derivation section 12) passes 1e-7.
+AUTO_RANGE = (8, 256)
+
+
+@register("graded-collocation", AUTO_RANGE)
 def assemble_graded_collocation(par: Parameters, n: int) -> Blocks:
     """Collocate (D14) at ``tau = pi (k - 1/2)/(n + 1)`` and (D18) at ``tau = pi k / n``.
 
@@ -125,7 +130,7 @@ def assemble_graded_collocation(par: Parameters, n: int) -> Blocks:
 OVERSAMPLING = 2
 
 
-@register("graded")
+@register("graded", AUTO_RANGE)
 def assemble_graded(par: Parameters, n: int) -> Blocks:
     """Project (D14) on ``cos(k tau)``, ``k <= n``, and (D18) on ``sin((k + 1) tau) sin tau``, ``k < n - 1``.
 

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.linalg import LinAlgError, lu_factor, lu_solve
 from scipy.linalg.lapack import dgecon
 
-from .assembly import METHODS, Blocks
+from .assembly import AUTO_RANGE, METHODS, Blocks
 from .parameters import InputError, Parameters, SolveError, check_finite, check_positive
 from .validity import Validity, assess, gap
 
@@ -40,7 +40,8 @@ __all__ = [
 DEFAULT_METHOD = "graded"
 DEFAULT_TOL = 1e-8
 N_RANGE = (4, 2048)
-#: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX.
+#: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX (the
+#: Chebyshev and paper methods; each method's range is in ``assembly.AUTO_RANGE``).
 N_AUTO_START = 16
 N_AUTO_MAX = 1024
 #: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
@@ -51,9 +52,6 @@ LIMIT = 1e6
 #: large, n small) a sudden drop of the differences must not be read as a high
 #: order: the same cap keeps their estimate an upper bound (section 12).
 P_MAX = 5.0
-#: Methods on the graded representation start the automatic doubling lower.
-GRADED_METHODS = ("graded", "graded-collocation")
-N_AUTO_START_GRADED = 8
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
 RCOND_MIN = 1e-12
 
@@ -321,7 +319,7 @@ def _relative(x: float) -> float:
     return max(abs(x), 0.01)
 
 
-def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta"), p_max=P_MAX) -> float:
+def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta")) -> float:
     """Richardson estimate of the error of the finest of successive solutions.
 
     For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
@@ -339,8 +337,6 @@ def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta"), p_max=
         At least two, ``n`` doubling, coarsest first.
     quantities : tuple of str
         The result fields whose errors are estimated.
-    p_max : float
-        Cap on the observed order (default :data:`P_MAX`).
 
     Returns
     -------
@@ -354,9 +350,9 @@ def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta"), p_max=
         if len(v) == 3:
             d1 = abs(v[1] - v[0])
             if d1 > 0.0 and d2 > 0.0:
-                p = float(np.clip(np.log2(d1 / d2), 1.0, p_max))
+                p = float(np.clip(np.log2(d1 / d2), 1.0, P_MAX))
             elif d2 == 0.0:
-                p = p_max
+                p = P_MAX
         est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))
     return est
 
@@ -383,9 +379,9 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         offset.
     n : int, optional
         Unknowns per function, in :data:`N_RANGE`.  By default it is chosen: ``n``
-        doubles from 8 (graded methods) or 16 until :func:`error_estimate` is
-        below ``tol`` (or :data:`N_AUTO_MAX` is reached, reported by
-        ``converged = False``).
+        doubles from 8 to at most 256 (graded methods) or from 16 to at most
+        :data:`N_AUTO_MAX` (the others) until :func:`error_estimate` is below ``tol``
+        (the largest ``n`` reached without it is reported by ``converged = False``).
     method : str, optional
         A key of :data:`~thermocontact.assembly.METHODS`: ``"graded"`` (default:
         cosine series in the edge-graded variable, every integral a moment, each
@@ -432,19 +428,18 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         return solve_blocks(par, _blocks(par, method, m), method, lam=lam,
                             sigma_over_delta=sigma_over_delta)
 
-    p_max = P_MAX
     if auto:
-        start = N_AUTO_START_GRADED if method in GRADED_METHODS else N_AUTO_START
+        start, n_max = AUTO_RANGE[method]
         levels = [at(start), at(2 * start)]
         while True:
-            est = error_estimate(levels, p_max=p_max)
-            if est <= tol or levels[-1].n >= N_AUTO_MAX:
+            est = error_estimate(levels)
+            if est <= tol or levels[-1].n >= n_max:
                 break
             levels.append(at(2 * levels[-1].n))
     else:
         coarse = [m for m in (n // 4, n // 2) if m >= N_RANGE[0]]
         levels = [at(m) for m in coarse] + [at(n)]
-        est = error_estimate(levels, p_max=p_max) if len(levels) > 1 else None
+        est = error_estimate(levels) if len(levels) > 1 else None
     sol = replace(levels[-1], error_estimate=None if est is None else float(est),
                   converged=None if est is None else bool(est <= tol), auto_n=auto, tol=tol)
     if check_convergence:
