@@ -26,7 +26,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.optimize import newton
 
-from .moments import _OUTER, _gauss_legendre, _inner_reference
+from .moments import _inner_reference, levels_for, near_field, outer_panels, panel_rule
 
 __all__ = [
     "bounded_weight",
@@ -39,9 +39,6 @@ __all__ = [
     "stretch_inverse",
     "tau_of",
 ]
-
-_GL = 16
-
 
 def _x_minus_sin(x):
     """``x - sin x``, by its Taylor series for ``|x| < 1/2`` (no cancellation)."""
@@ -149,13 +146,8 @@ def weight_integrals(n: int):
 @lru_cache(maxsize=16)
 def _common(n: int):
     """Common panel rule in ``tau``, the bases and weights at its nodes."""
-    m = max(8, -(-n // 4) + 2)
-    h = np.pi / m
-    x, w = _gauss_legendre(_GL)
-    tau = (np.arange(m)[:, None] + x[None, :]).ravel() * h
-    wt = np.tile(w, m) * h
+    m, h, tau, wt, panel = panel_rule(n)
     g = np.cos(np.arange(n)[None, :] * tau[:, None])
-    panel = np.repeat(np.arange(m), _GL)
     r = np.cos(stretch(tau))
     wts = np.stack([bounded_weight(tau), singular_weight(tau)]) * wt[None, :]
     return m, h, r, g, panel, wts
@@ -184,25 +176,16 @@ class _Geometry:
         else:
             self.tau_s = tau
             self.t_s = stretch(tau)
-        p0 = np.minimum((self.tau_s / h).astype(int), m - 1)
-        lo = np.maximum(p0 - 1, 0) * h
-        hi = np.minimum(p0 + 2, m) * h
-        self.near = (panel[None, :] >= (p0 - 1)[:, None]) & (panel[None, :] <= (p0 + 1)[:, None])
+        self.near, self.sides = near_field(self.tau_s, m, h, panel)
         self.far_u = s[:, None] - r[None, :]
         self.far_e = np.clip(s, -1.0, 1.0)[:, None] - r[None, :]
         self.w_in = 6.0 / (n + 1)
-        self.sides = [(-1.0, self.tau_s - lo), (1.0, hi - self.tau_s)]
         self.inner = [np.minimum(side, self.w_in) for _, side in self.sides]
         self._inner_parts = {}
         # Outer panels, geometric from the innermost interval to the side's end.
-        xg, wg = _gauss_legendre(_GL)
         self.outer = []
         for (sign, side), inner in zip(self.sides, self.inner):
-            ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
-            edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
-            a, b = edges[:, :-1], edges[:, 1:]
-            dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(len(s), -1)
-            wq = ((b - a)[:, :, None] * wg[None, None, :]).reshape(len(s), -1)
+            dist, wq = outer_panels(side, inner)
             d = sign * dist
             u, e = _u(s, self.tau_s, self.t_s, d)
             tq = self.tau_s[:, None] + d
@@ -243,14 +226,6 @@ def _cos_sums(tau, kw, n):
         out[..., j] = (kw * c0).sum(axis=-1)
         cm, c0 = c0, two_c * c0 - cm
     return out
-
-
-def levels_for(n: int, scale=None) -> int:
-    """Halvings of the graded innermost interval (see :func:`moments`)."""
-    if scale is None:
-        return 47
-    w_in = 6.0 / (n + 1)
-    return int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False):

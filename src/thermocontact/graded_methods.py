@@ -20,6 +20,7 @@ from .assembly import Blocks, register
 from .bases import GradedBasis
 from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
 from .parameters import Parameters
+from .product import range_projections
 
 __all__ = ["GradedRule", "assemble_graded", "assemble_graded_collocation", "graded_rules"]
 
@@ -126,16 +127,12 @@ def assemble_graded_collocation(par: Parameters, n: int) -> Blocks:
                   Hq @ to_cos, _integrator(n), basis=GradedBasis(n))
 
 
-#: Quadrature points per unknown of the projections.
-OVERSAMPLING = 2
-
-
 @register("graded", AUTO_RANGE)
 def assemble_graded(par: Parameters, n: int) -> Blocks:
     """Project (D14) on ``cos(k tau)``, ``k <= n``, and (D18) on ``sin((k + 1) tau) sin tau``, ``k < n - 1``.
 
-    By the midpoint rule on ``2n`` points in ``tau``: the analogue in ``tau`` of the
-    Chebyshev projections of :func:`thermocontact.product.assemble_galerkin`.
+    By the midpoint rule on ``2n`` points in ``tau``: the rows of
+    :func:`thermocontact.product.range_projections`, taken in ``tau``.
 
     Returns
     -------
@@ -143,12 +140,9 @@ def assemble_graded(par: Parameters, n: int) -> Blocks:
     """
     pr, fr = graded_rules(n)
     to_cos = graded.coefficient_matrix(n)
-    m = OVERSAMPLING * n
-    t, s = _points(m, 0.5)
+    t, p1, p2 = range_projections(n)
+    s = np.cos(graded.stretch(t))
     C, Tp, Tq, Hp, Hq = _operators(par, n, t, t)
-    w = np.pi / m
-    p1 = w * np.cos(np.arange(n + 1)[:, None] * t[None, :])
-    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * t[None, :]) * np.sin(t)[None, :]
     return Blocks(n, pr, fr, s, p1 @ C @ to_cos, p1 @ Tp @ to_cos, p1 @ Tq @ to_cos,
                   p2 @ Hp @ to_cos, p2 @ Hq @ to_cos, _integrator(n),
                   const_column=p1.sum(axis=1), linear_column=p1 @ s, basis=GradedBasis(n))

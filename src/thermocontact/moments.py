@@ -30,7 +30,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["kernel_moments", "sgn_moments"]
+__all__ = ["kernel_moments", "levels_for", "near_field", "outer_panels", "panel_rule",
+           "sgn_moments"]
 
 _GL = 16
 
@@ -60,17 +61,76 @@ def _graded_reference(levels: int = 47):
 
 
 @lru_cache(maxsize=16)
-def _common(n: int):
-    """Common panel rule on ``[0, pi]`` and the bases at its nodes."""
+def panel_rule(n: int):
+    """Common rule on ``[0, pi]`` for ``n`` basis functions: ``m`` equal panels, 16 points each.
+
+    Returns
+    -------
+    m, h : int, float
+        Number and length of the panels (``n/4 + 2``, at least 8: four panels
+        per period of the most oscillatory basis function).
+    x, w : ndarray
+        Nodes and weights.
+    panel : ndarray of int
+        Panel of each node.
+    """
     m = max(8, -(-n // 4) + 2)
     h = np.pi / m
     x, w = _gauss_legendre(_GL)
-    t = (np.arange(m)[:, None] + x[None, :]).ravel() * h
-    wt = np.tile(w, m) * h
+    nodes = (np.arange(m)[:, None] + x[None, :]).ravel() * h
+    return m, h, nodes, np.tile(w, m) * h, np.repeat(np.arange(m), _GL)
+
+
+def near_field(x_s, m, h, panel):
+    """The panel of each point ``x_s`` and its neighbours, replaced by the graded rule.
+
+    Returns
+    -------
+    near : ndarray of bool, shape (k, nodes)
+        Common-rule nodes to leave out.
+    sides : list of (sign, length)
+        Lengths of the replaced interval to the left and right of ``x_s``.
+    """
+    p0 = np.minimum((x_s / h).astype(int), m - 1)
+    lo = np.maximum(p0 - 1, 0) * h
+    hi = np.minimum(p0 + 2, m) * h
+    near = (panel[None, :] >= (p0 - 1)[:, None]) & (panel[None, :] <= (p0 + 1)[:, None])
+    return near, [(-1.0, x_s - lo), (1.0, hi - x_s)]
+
+
+def outer_panels(side, inner):
+    """``_OUTER`` geometric panels of 16 points from ``inner`` to ``side`` (distances).
+
+    Returns
+    -------
+    dist, wq : ndarray, shape (k, 16 _OUTER)
+        Distances from the point and weights (0 for a side of zero length).
+    """
+    xg, wg = _gauss_legendre(_GL)
+    ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
+    edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
+    a, b = edges[:, :-1], edges[:, 1:]
+    k = len(side)
+    dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(k, -1)
+    wq = ((b - a)[:, :, None] * wg[None, None, :]).reshape(k, -1)
+    return dist, wq
+
+
+def levels_for(n: int, scale=None) -> int:
+    """Halvings of the graded innermost interval (see :func:`kernel_moments`)."""
+    if scale is None:
+        return 47
+    w_in = 6.0 / (n + 1)
+    return int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
+
+
+@lru_cache(maxsize=16)
+def _common(n: int):
+    """Common panel rule in ``t`` and the bases at its nodes."""
+    m, h, t, wt, panel = panel_rule(n)
     j = np.arange(n)
     gb = np.sin(t)[:, None] * np.sin((j + 1)[None, :] * t[:, None])
     gs = np.cos(j[None, :] * t[:, None])
-    panel = np.repeat(np.arange(m), _GL)
     return m, h, t, wt, gb, gs, panel
 
 
@@ -168,24 +228,17 @@ def kernel_moments(kernel, s, n: int, scale=None):
     s = np.asarray(s, dtype=float)
     m, h, t, wt, gb, gs, panel = _common(n)
     ts = np.arccos(np.clip(s, -1.0, 1.0))
-    p0 = np.minimum((ts / h).astype(int), m - 1)
-    lo = np.maximum(p0 - 1, 0) * h
-    hi = np.minimum(p0 + 2, m) * h
+    near, sides = near_field(ts, m, h, panel)
 
     # Far field on the common rule, near panels masked out.
-    near = (panel[None, :] >= (p0 - 1)[:, None]) & (panel[None, :] <= (p0 + 1)[:, None])
     kf = kernel(s[:, None] - np.cos(t)[None, :]) * wt[None, :]
     kf[near] = 0.0
     bounded = kf @ gb
     singular = kf @ gs
 
-    xg, wg = _gauss_legendre(_GL)
     w_in = 6.0 / (n + 1)
-    levels = 47
-    if scale is not None:
-        levels = int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
-    tau, om, xp, lagr = _inner_reference(levels)
-    for sign, side in ((-1.0, ts - lo), (1.0, hi - ts)):
+    tau, om, xp, lagr = _inner_reference(levels_for(n, scale))
+    for sign, side in sides:
         inner = np.minimum(side, w_in)
         # Innermost interval: kernel moments against the Lagrange basis.
         d = sign * inner[:, None] * tau[None, :]
@@ -197,11 +250,7 @@ def kernel_moments(kernel, s, n: int, scale=None):
         bounded += b2
         singular += s2
         # Outer panels, geometric from the innermost interval to the side's end.
-        ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
-        edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
-        a, b = edges[:, :-1], edges[:, 1:]
-        dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(len(s), -1)
-        wq = ((b - a)[:, :, None] * wg[None, None, :]).reshape(len(s), -1)
+        dist, wq = outer_panels(side, inner)
         d = sign * dist
         u = np.where(wq > 0.0, _offsets_to_u(s, ts, d), 1.0)
         b3, s3 = _basis_sums(ts[:, None] + d, kernel(u) * wq, n)

@@ -21,7 +21,7 @@ from .moments import kernel_moments, sgn_moments
 from .parameters import Parameters
 from .quadrature import bounded_rule, singular_rule, t_coefficient_matrix, u_coefficient_matrix
 
-__all__ = ["assemble_product", "coefficient_maps"]
+__all__ = ["assemble_galerkin", "assemble_product", "coefficient_maps", "range_projections"]
 
 
 def coefficient_maps(n: int):
@@ -106,6 +106,30 @@ def assemble_product(par: Parameters, n: int) -> Blocks:
 OVERSAMPLING = 2
 
 
+def range_projections(n: int):
+    """Points and projections of the two equations on their range spaces.
+
+    On ``m = 2n`` midpoints ``t_k = pi (k - 1/2)/m`` (descending), the rows
+    ``(pi/m) cos(j t_k)``, ``j <= n``, project a function of ``t`` on ``cos(j t)``
+    (the contact equation, ``T_j`` with weight ``1/sqrt(1-s^2)`` when ``s = cos t``),
+    and ``(pi/m) sin((j + 1) t_k) sin t_k``, ``j <= n - 2``, on
+    ``sin((j + 1) t) sin t`` (the heat equation, ``U_j`` with weight
+    ``sqrt(1-s^2)``).  The graded methods use the same rows in ``tau``.
+
+    Returns
+    -------
+    t : ndarray, shape (m,)
+    p1 : ndarray, shape (n + 1, m)
+    p2 : ndarray, shape (n - 1, m)
+    """
+    m = OVERSAMPLING * n
+    t = np.pi * (np.arange(m, 0, -1) - 0.5) / m
+    w = np.pi / m
+    p1 = w * np.cos(np.arange(n + 1)[:, None] * t[None, :])
+    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * t[None, :]) * np.sin(t)[None, :]
+    return t, p1, p2
+
+
 @register("galerkin")
 def assemble_galerkin(par: Parameters, n: int) -> Blocks:
     """Product integration with each equation projected onto its own range space.
@@ -126,13 +150,9 @@ def assemble_galerkin(par: Parameters, n: int) -> Blocks:
     pr = bounded_rule(n)
     fr = singular_rule(n)
     to_u, to_t = coefficient_maps(n)
-    m = OVERSAMPLING * n
-    t = np.pi * (np.arange(m, 0, -1) - 0.5) / m
+    t, p1, p2 = range_projections(n)
     s = np.cos(t)
     C, Tp, Tq, Hp, Hq = _coefficient_blocks(par, n, s, s)
-    w = np.pi / m
-    p1 = w * np.cos(np.arange(n + 1)[:, None] * t[None, :])
-    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * t[None, :]) * np.sin(t)[None, :]
     return Blocks(n, pr, fr, s, p1 @ C @ to_u, p1 @ Tp @ to_u, p1 @ Tq @ to_t,
                   p2 @ Hp @ to_u, p2 @ Hq @ to_t, _integrator(n),
                   const_column=p1.sum(axis=1), linear_column=p1 @ s)
