@@ -50,6 +50,11 @@ class ChebyshevBasis:
         """``phi(s)``, ``-1 <= s <= 1``."""
         return u_series_value(u_series_coefficients(phi), np.asarray(s, dtype=float))
 
+    def phi_samples(self, phi, count):
+        """``count`` Chebyshev points ``s`` of ``[-1, 1]`` (edges included) and ``phi(s)``."""
+        s = np.cos(np.linspace(np.pi, 0.0, count))
+        return s, self.phi_at(phi, s)
+
     def psi_at(self, psi, s):
         """``psi(s)``, ``-1 <= s <= 1``."""
         return np.polynomial.chebyshev.chebval(np.asarray(s, dtype=float),
@@ -96,6 +101,14 @@ class GradedBasis:
     def phi_at(self, phi, s):
         return graded.cosine_value(self.to_cos @ phi, graded.tau_of(s))
 
+    def phi_samples(self, phi, count):
+        """``count`` points equally spaced in ``tau`` (edges included) and ``phi`` there.
+
+        Denser toward the edges than Chebyshev points, and no ``tau`` is inverted.
+        """
+        tau = np.linspace(np.pi, 0.0, count)
+        return np.cos(graded.stretch(tau)), graded.cosine_value(self.to_cos @ phi, tau)
+
     def psi_at(self, psi, s):
         return graded.cosine_value(self.to_cos @ psi, graded.tau_of(s))
 
@@ -121,11 +134,13 @@ class GradedBasis:
         # with the kernel of e = 1 - r (right) or -(1 + r) (left), never of u - tt.
         tt = np.asarray(tt, dtype=float)
         col = tt[:, None]
+        # In tau the kernels are smooth but at the edge itself, where the weight
+        # vanishes like tau^8: no grading beyond that of a unit scale is needed.
         if right:  # ln((1 - r + tt)/(1 - r))
             row = self._row(blocks, "right", lambda e: np.log1p(col / e), 1.0 + tt,
-                            from_edge=True)
+                            scale=1.0, from_edge=True)
             return row @ phi
         # -ln((1 + r + tt)/(1 + r))
         row = self._row(blocks, "left", lambda e: np.log1p(col / -e), -1.0 - tt,
-                        from_edge=True)
+                        scale=1.0, from_edge=True)
         return -(row @ phi)

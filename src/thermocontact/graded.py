@@ -24,9 +24,9 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import newton
 
-from .moments import _inner_reference, levels_for, near_field, outer_panels, panel_rule
+from .moments import (_gauss_legendre, _inner_reference, levels_for, near_field, outer_panels,
+                      panel_rule)
 
 __all__ = [
     "bounded_weight",
@@ -79,6 +79,8 @@ def stretch_inverse(t):
     out = np.zeros_like(near)
     pos = near > 0.0
     if np.any(pos):
+        from scipy.optimize import newton  # here: scipy.optimize is slow to import
+
         x = near[pos]
         # T <= (2/3) tau^3 gives a start at or below the root; T is increasing and
         # convex on [0, pi/2], so the iterates converge from above after one step.
@@ -164,6 +166,92 @@ def _u(s, tau_s, t_s, d):
     return (s - np.clip(s, -1.0, 1.0))[:, None] + e, e
 
 
+#: Geometric panels of 16 points between the innermost interval and ``h`` on a full side.
+_FIXED_OUTER = 2
+#: Geometric panels of 16 points from ``h`` to the end of a full side (at most ``2h``).
+_OWN = 2
+#: Interpolation points of the bases on ``[h, 2h]``: ``cos(j delta)``, ``j < n``, spans
+#: less than two periods there; 30 Chebyshev points interpolate it to rounding.
+_OWN_P = 30
+
+
+def _chebyshev_lagrange(x, points: int):
+    """``l_p(x)`` of the first-kind Chebyshev points on ``[0, 1]`` (barycentric).
+
+    Returns the points and an array of shape ``x.shape + (points,)``.
+    """
+    theta = np.pi * (np.arange(points) + 0.5) / points
+    xc = 0.5 * (1.0 - np.cos(theta))
+    lam = (-1.0) ** np.arange(points) * np.sin(theta)
+    diff = np.asarray(x)[..., None] - xc
+    exact = diff == 0.0
+    diff[exact] = 1.0
+    terms = lam / diff
+    out = terms / terms.sum(axis=-1, keepdims=True)
+    hit = exact.any(axis=-1)
+    out[hit] = exact[hit]
+    return xc, out
+
+
+class _Side:
+    """One side of the replaced interval around every point ``tau_s``.
+
+    A side at least one panel ``h`` long (``full``) is integrated by the innermost
+    interval ``[0, w]``, graded, with the bases interpolated on 20 points,
+    ``_FIXED_OUTER`` geometric panels from ``w`` to ``h`` and ``_OWN`` from ``h`` to
+    the side's end (at most ``2h``), whose bases are interpolated on ``_OWN_P``
+    Chebyshev points of ``[h, 2h]``.  All rows then carry the bases at the same
+    offsets ``delta`` from ``tau_s``, which enter as
+    ``cos(j (tau_s + delta)) = cos(j tau_s) cos(j delta) - sin(j tau_s) sin(j delta)``:
+    two matrix products for all rows.  A shorter side (next to an edge, or of
+    zero length at or beyond it) is graded and paneled row by row.
+    """
+
+    def __init__(self, geo, sign, side, n, h, w):
+        self.sign = sign
+        self.full = side >= h
+        # Sides of zero length (points at or beyond an edge) contribute nothing.
+        self.rows = np.flatnonzero(self.full), np.flatnonzero(~self.full & (side > 0.0))
+        self.inner = np.where(self.full, w, np.minimum(side, w))
+        xg, wg = _gauss_legendre(16)
+        # Offsets and weights of the outer panels: fixed ones then the row's own.
+        edges = w * (h / w) ** (np.arange(_FIXED_OUTER + 1) / _FIXED_OUTER)
+        fixed = (edges[:-1, None] + np.diff(edges)[:, None] * xg).ravel()
+        fixed_w = (np.diff(edges)[:, None] * wg).ravel()
+        k = len(side)
+        own, own_w = outer_panels(np.maximum(side, h), np.full(k, h), _OWN)
+        xc, self.own_lagrange = _chebyshev_lagrange((own[self.rows[0]] - h) / h, _OWN_P)
+        dist = np.concatenate([np.broadcast_to(fixed, (k, fixed.size)), own], axis=1)
+        wq = np.concatenate([np.broadcast_to(fixed_w, (k, fixed.size)), own_w], axis=1)
+        dist_s, wq_s = outer_panels(side, self.inner, _FIXED_OUTER + _OWN)
+        full = self.full[:, None]
+        dist, wq = np.where(full, dist, dist_s), np.where(full, wq, wq_s)
+        d = sign * dist
+        self.outer_tau = geo.tau_s[:, None] + d
+        self.outer_u = _u(geo.s, geo.tau_s, geo.t_s, d)
+        self.outer_live = wq > 0.0
+        self.outer_w = np.stack([bounded_weight(self.outer_tau), singular_weight(self.outer_tau)]) * wq
+        self.n_fixed = fixed.size
+        offsets = sign * np.concatenate([w * _inner_reference(47)[2], fixed, h * (1.0 + xc)])
+        j = np.arange(n)
+        self.fixed_cos = np.cos(np.outer(offsets, j))
+        self.fixed_sin = np.sin(np.outer(offsets, j))
+        self._inner = {}
+
+    def inner_parts(self, geo, levels):
+        """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix, points."""
+        if levels not in self._inner:
+            ref_tau, om, xp, lagr = _inner_reference(levels)
+            d = self.sign * self.inner[:, None] * ref_tau[None, :]
+            wq = self.inner[:, None] * om[None, :]
+            u = _u(geo.s, geo.tau_s, geo.t_s, d)
+            tq = geo.tau_s[:, None] + d
+            wts = np.stack([bounded_weight(tq), singular_weight(tq)]) * wq
+            tp = geo.tau_s[:, None] + self.sign * self.inner[:, None] * xp[None, :]
+            self._inner[levels] = (u, wq > 0.0, wts, lagr, tp)
+        return self._inner[levels]
+
+
 class _Geometry:
     """Everything about a set of points that does not depend on the kernel."""
 
@@ -176,37 +264,14 @@ class _Geometry:
         else:
             self.tau_s = tau
             self.t_s = stretch(tau)
-        self.near, self.sides = near_field(self.tau_s, m, h, panel)
+        self.near, sides = near_field(self.tau_s, m, h, panel)
         self.far_u = s[:, None] - r[None, :]
         self.far_e = np.clip(s, -1.0, 1.0)[:, None] - r[None, :]
-        self.w_in = 6.0 / (n + 1)
-        self.inner = [np.minimum(side, self.w_in) for _, side in self.sides]
-        self._inner_parts = {}
-        # Outer panels, geometric from the innermost interval to the side's end.
-        self.outer = []
-        for (sign, side), inner in zip(self.sides, self.inner):
-            dist, wq = outer_panels(side, inner)
-            d = sign * dist
-            u, e = _u(s, self.tau_s, self.t_s, d)
-            tq = self.tau_s[:, None] + d
-            self.outer.append(((u, e), wq > 0.0,
-                               np.stack([bounded_weight(tq), singular_weight(tq)]) * wq, tq))
-
-    def inner_parts(self, levels):
-        """Graded innermost intervals: ``u``, weighted rule, Lagrange matrix, points."""
-        if levels not in self._inner_parts:
-            ref_tau, om, xp, lagr = _inner_reference(levels)
-            parts = []
-            for (sign, _), inner in zip(self.sides, self.inner):
-                d = sign * inner[:, None] * ref_tau[None, :]
-                wq = inner[:, None] * om[None, :]
-                u = _u(self.s, self.tau_s, self.t_s, d)
-                tq = self.tau_s[:, None] + d
-                wts = np.stack([bounded_weight(tq), singular_weight(tq)]) * wq
-                tp = self.tau_s[:, None] + sign * inner[:, None] * xp[None, :]
-                parts.append((u, wq > 0.0, wts, lagr, tp))
-            self._inner_parts[levels] = parts
-        return self._inner_parts[levels]
+        j = np.arange(n)
+        self.cos_s = np.cos(np.outer(self.tau_s, j))
+        self.sin_s = np.sin(np.outer(self.tau_s, j))
+        w = min(6.0 / (n + 1), h)
+        self.sides = [_Side(self, sign, side, n, h, w) for sign, side in sides]
 
 
 @lru_cache(maxsize=8)
@@ -282,22 +347,29 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     geo = _geometry(s.tobytes(), n, tau_key)
     m, h, r, g, panel, wts = _common(n)
     pick = 1 if from_edge else 0
+    levels = levels_for(n, scale)
     with np.errstate(divide="ignore", invalid="ignore"):
         kf = kernel(geo.far_e if from_edge else geo.far_u)
     kf[geo.near] = 0.0
     out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
-    pts, vals = [], []
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # Rows of a side of zero length (points at or beyond an edge) hold dummies.
-        for u, live, wq, lagr, tp in geo.inner_parts(levels_for(n, scale)):
-            pts.append(tp)
-            vals.append((np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr)
-        for u, live, wq, tq in geo.outer:
-            pts.append(tq)
-            vals.append(np.where(live, kernel(u[pick]), 0.0)[None] * wq)
-    out += _cos_sums(np.concatenate(pts, axis=1), np.concatenate(vals, axis=2), n)
+    for side in geo.sides:
+        u, live, wq, lagr, tp = side.inner_parts(geo, levels)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # Rows of a side of zero length (points at or beyond an edge) hold dummies.
+            inner = (np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr
+            outer = np.where(side.outer_live, kernel(side.outer_u[pick]), 0.0)[None] * side.outer_w
+        full, short = side.rows
+        if full.size:
+            nf = side.n_fixed
+            own = np.matmul(outer[:, full, None, nf:], side.own_lagrange)[:, :, 0]
+            v = np.concatenate([inner[:, full], outer[:, full, :nf], own], axis=2)
+            out[:, full] += (geo.cos_s[full] * (v @ side.fixed_cos)
+                             - geo.sin_s[full] * (v @ side.fixed_sin))
+        if short.size:
+            out[:, short] += _cos_sums(np.concatenate([tp[short], side.outer_tau[short]], axis=1),
+                                       np.concatenate([inner[:, short], outer[:, short]], axis=2), n)
     if cauchy:
-        a_in, b_in = geo.inner
+        a_in, b_in = (side.inner for side in geo.sides)
         interior = (a_in > 0.0) & (b_in > 0.0) & (geo.tau_s > 0.0) & (geo.tau_s < np.pi)
         if np.any(interior):
             ts = geo.tau_s[interior]

@@ -45,7 +45,10 @@ def cylinder_displacement(u):
         ``E(u)``, in ``(0, 1]``.
     """
     u = np.asarray(u, dtype=float)
-    return np.where(u > 0.0, i0e(np.maximum(u, 0.0)), 1.0)
+    out = np.ones(u.shape)
+    up = u > 0.0
+    out[up] = i0e(u[up])
+    return out
 
 
 def cylinder_slope(u):
@@ -68,9 +71,11 @@ def cylinder_slope(u):
         far upstream.
     """
     u = np.asarray(u, dtype=float)
-    up = np.maximum(u, 0.0)
-    n = i0e(up) - i1e(up)
-    return np.where(u > 0.0, n, np.where(u == 0.0, 0.5, 0.0))
+    out = np.where(u == 0.0, 0.5, 0.0)
+    up = u > 0.0  # the Bessel functions only upstream, where they are needed
+    x = u[up]
+    out[up] = i0e(x) - i1e(x)
+    return out
 
 
 def cylinder_temperature(u):

@@ -98,17 +98,18 @@ def near_field(x_s, m, h, panel):
     return near, [(-1.0, x_s - lo), (1.0, hi - x_s)]
 
 
-def outer_panels(side, inner):
-    """``_OUTER`` geometric panels of 16 points from ``inner`` to ``side`` (distances).
+def outer_panels(side, inner, panels=None):
+    """``panels`` (default ``_OUTER``) geometric panels of 16 points from ``inner`` to ``side``.
 
     Returns
     -------
-    dist, wq : ndarray, shape (k, 16 _OUTER)
+    dist, wq : ndarray, shape (k, 16 panels)
         Distances from the point and weights (0 for a side of zero length).
     """
+    panels = _OUTER if panels is None else panels
     xg, wg = _gauss_legendre(_GL)
-    ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / _OUTER)
-    edges = inner[:, None] * ratio[:, None] ** np.arange(_OUTER + 1)[None, :]
+    ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / panels)
+    edges = inner[:, None] * ratio[:, None] ** np.arange(panels + 1)[None, :]
     a, b = edges[:, :-1], edges[:, 1:]
     k = len(side)
     dist = (a[:, :, None] + (b - a)[:, :, None] * xg[None, None, :]).reshape(k, -1)

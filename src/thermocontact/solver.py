@@ -425,8 +425,10 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         n = check_n(n)
 
     def at(m):
+        # Validity only for the solution returned: the coarser levels feed the
+        # error estimate alone.
         return solve_blocks(par, _blocks(par, method, m), method, lam=lam,
-                            sigma_over_delta=sigma_over_delta)
+                            sigma_over_delta=sigma_over_delta, check_validity=False)
 
     if auto:
         start, n_max = AUTO_RANGE[method]
@@ -440,7 +442,11 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         coarse = [m for m in (n // 4, n // 2) if m >= N_RANGE[0]]
         levels = [at(m) for m in coarse] + [at(n)]
         est = error_estimate(levels) if len(levels) > 1 else None
-    sol = replace(levels[-1], error_estimate=None if est is None else float(est),
+    fin = levels[-1]
+    validity = assess(par, fin.blocks, fin.phi, fin.psi, fin.load_ratio,
+                      fin.sigma_over_delta, fin.lam)
+    sol = replace(fin, validity=validity,
+                  error_estimate=None if est is None else float(est),
                   converged=None if est is None else bool(est <= tol), auto_n=auto, tol=tol)
     if check_convergence:
         # Against 2n, or against n/2 when 2n is beyond the largest n.
