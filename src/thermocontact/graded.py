@@ -293,7 +293,8 @@ def _cos_sums(tau, kw, n):
     return out
 
 
-def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False):
+def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
+            logarithmic=False):
     """Moments of a convolution kernel against the graded bases.
 
     ``B[k, j] = integral_0^pi K(s_k - cos T(tau)) sin^2 T(tau) T'(tau) cos(j tau) dtau``
@@ -316,6 +317,9 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
         scale ``1/scale`` only: the grading toward ``tau_s`` stops at
         ``1e-3/scale`` instead of ``2^-47`` of the interval (a logarithm needs the
         latter).  ``scale=1`` suits a jump or a pole.
+    logarithmic : bool
+        With ``scale``: the kernel is ``a(u) + b(u) ln|u|`` with ``a``, ``b``
+        smooth on that scale (grading at least ``LOG_LEVELS`` halvings deep).
     cauchy : bool
         ``K`` has a simple pole at ``u = 0`` whose principal value is wanted.
     tau : array_like, optional
@@ -347,7 +351,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     geo = _geometry(s.tobytes(), n, tau_key)
     m, h, r, g, panel, wts = _common(n)
     pick = 1 if from_edge else 0
-    levels = levels_for(n, scale)
+    levels = levels_for(n, scale, logarithmic)
     with np.errstate(divide="ignore", invalid="ignore"):
         kf = kernel(geo.far_e if from_edge else geo.far_u)
     kf[geo.near] = 0.0

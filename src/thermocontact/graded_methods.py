@@ -79,7 +79,7 @@ def _operators(par: Parameters, n: int, tk, th):
     Tq = d * nh_s - 0.5 * sg_s
     _, cs = graded.moments(cauchy, sh, n, scale=1.0, cauchy=True, tau=th)
     mr_b, mr_s = graded.moments(lambda u: cylinder_temperature_gradient_regular(u, c), sh, n,
-                                tau=th)
+                                scale=c, logarithmic=True, tau=th)
     Hq = (cs + (rho / (1.0 + rho)) * mr_s) / np.pi
     # 2 rho/(1 + rho)^2 written so that no power overflows for extreme ratios.
     Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mr_b / np.pi

@@ -50,14 +50,26 @@ def _graded_reference(levels: int = 47):
     as far from 0 as it is long, so a pole-like kernel (``c M(c u) - 1/u`` is ``-1/u`` beyond
     ``|u| ~ 1/c``) or a logarithm at 0 costs Gauss–Legendre nothing in accuracy.
     The two outer panels, where the bases may oscillate, get 16 points, the rest 10.
+    The last panel ``[0, e]``, ``e = 2^-levels``, is integrated after the
+    substitution ``x = e y^6`` by 16-point Gauss–Legendre in ``y``: a logarithm at 0
+    becomes ``y^5 ln y``, integrated to about ``3e-12`` of the panel's integral,
+    a part ``e |ln e|`` of the whole (section 12: below ``1e-16`` once
+    ``levels >= LOG_LEVELS``).
     """
-    bps = [0.5**i for i in range(levels + 1)] + [0.0]
+    bps = [0.5**i for i in range(levels + 1)]
     nodes, weights = [], []
     for i, (a, b) in enumerate(zip(bps[1:], bps[:-1])):
         x, w = _gauss_legendre(_GL if i < 2 else 10)
         nodes.append(a + (b - a) * x)
         weights.append((b - a) * w)
+    y, w = _gauss_legendre(_GL)
+    nodes.append(bps[-1] * y**6)
+    weights.append(bps[-1] * 6.0 * y**5 * w)
     return np.concatenate(nodes), np.concatenate(weights)
+
+
+#: Halvings after which the last panel's rule leaves a logarithm's error below 1e-16.
+LOG_LEVELS = 20
 
 
 @lru_cache(maxsize=16)
@@ -117,12 +129,17 @@ def outer_panels(side, inner, panels=None):
     return dist, wq
 
 
-def levels_for(n: int, scale=None) -> int:
-    """Halvings of the graded innermost interval (see :func:`kernel_moments`)."""
+def levels_for(n: int, scale=None, logarithmic=False) -> int:
+    """Halvings of the graded innermost interval (see :func:`kernel_moments`).
+
+    Down to ``1e-3/scale`` (47 without a scale); at least :data:`LOG_LEVELS` for a
+    kernel that is ``a + b ln|u|`` below that scale.
+    """
     if scale is None:
         return 47
     w_in = 6.0 / (n + 1)
-    return int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
+    levels = int(min(47, max(4, np.ceil(np.log2(max(scale * w_in, 1.0) / 1e-3)))))
+    return max(levels, LOG_LEVELS) if logarithmic else levels
 
 
 @lru_cache(maxsize=16)
@@ -194,7 +211,7 @@ def _offsets_to_u(s, ts, d):
     return (s - np.clip(s, -1.0, 1.0))[:, None] + 2.0 * np.sin(ts[:, None] + 0.5 * d) * np.sin(0.5 * d)
 
 
-def kernel_moments(kernel, s, n: int, scale=None):
+def kernel_moments(kernel, s, n: int, scale=None, logarithmic=False):
     """Moments of ``kernel(s - r)`` against ``sqrt(1-r^2) U_j`` and ``T_j/sqrt(1-r^2)``.
 
     Parameters
@@ -212,6 +229,9 @@ def kernel_moments(kernel, s, n: int, scale=None):
         and varies on the scale ``1/scale`` there, the grading toward ``t_s`` stops
         at ``1e-3/scale``; by default it goes to ``1e-14`` of the interval, as a
         logarithm needs.
+    logarithmic : bool
+        With ``scale``: the kernel is ``a(u) + b(u) ln|u|`` with ``a``, ``b`` smooth
+        on the scale ``1/scale`` (at least :data:`LOG_LEVELS` halvings).
 
     Returns
     -------
@@ -238,7 +258,7 @@ def kernel_moments(kernel, s, n: int, scale=None):
     singular = kf @ gs
 
     w_in = 6.0 / (n + 1)
-    tau, om, xp, lagr = _inner_reference(levels_for(n, scale))
+    tau, om, xp, lagr = _inner_reference(levels_for(n, scale, logarithmic))
     for sign, side in sides:
         inner = np.minimum(side, w_in)
         # Innermost interval: kernel moments against the Lagrange basis.

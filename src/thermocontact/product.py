@@ -59,7 +59,8 @@ def _coefficient_blocks(par: Parameters, n: int, sk, sh):
         nh_b = nh_s = 0.0
     Tp = d * (1.0 + eta) * nh_b + 0.5 * (1.0 - eta) * sgn_b
     Tq = d * nh_s - 0.5 * sgn_s
-    mr_b, mr_s = kernel_moments(lambda u: cylinder_temperature_gradient_regular(u, c), sh, n)
+    mr_b, mr_s = kernel_moments(lambda u: cylinder_temperature_gradient_regular(u, c), sh, n,
+                                scale=c, logarithmic=True)
     # -U_{j-1}(cos t) = -sin(j t)/sin t (0 for j = 0); sin t > 0 at every point.
     th = np.arccos(sh)[:, None]
     cauchy_t = -np.sin(j[None, :] * th) / np.sin(th)
