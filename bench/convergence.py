@@ -4,7 +4,7 @@ Run: ``python bench/convergence.py [--out-dir DIR] [--paper-max-n N] [--no-plot]
 
 For a fixed set of cases (all ``lam = -1``, ``fhpe = 0.2``) it measures, for each
 method and ``n = 16, 32, ..., 512`` (the paper method also 1024; the graded method
-``n = 8 ... 256``),
+``n = 8 ... 512``),
 
 * ``P_H/P`` and ``sigma/Delta`` and their relative errors against a reference
   solution, each relative to ``max(|reference|, 0.01)``;
@@ -12,8 +12,8 @@ method and ``n = 16, 32, ..., 512`` (the paper method also 1024; the graded meth
   (``solve_blocks`` without validity) and of the validity checks (``assess``),
   separately, and of a first assembly at ``n`` in the process (below).
 
-The reference is the graded method at ``n = 512``.  Its own error is estimated
-as ``|x(512) - x(256)|`` (the larger of the two quantities, relative as above),
+The reference is the graded method at ``n = 1024``.  Its own error is estimated
+as ``|x(1024) - x(512)|`` (the larger of the two quantities, relative as above),
 conservative for a method that converges faster than order 5, and it is checked
 against a second method, graded collocation at ``n = 512``.  No error is given for
 the reference row itself.  The default solve (automatic ``n``) is compared with the
@@ -72,9 +72,9 @@ METHOD_ORDER = ("paper", "product", "galerkin", "graded")
 #: The method the targets are judged on (the package default).
 DEFAULT = "graded"
 NS = [16, 32, 64, 128, 256, 512]
-NS_GRADED = [8, 16, 32, 64, 128, 256]
-REF_METHOD, REF_N = "graded", 512
-CHECK_METHOD = "graded-collocation"
+NS_GRADED = [8, 16, 32, 64, 128, 256, 512]
+REF_METHOD, REF_N = "graded", 1024
+CHECK_METHOD, CHECK_N = "graded-collocation", 512
 #: Reference considered converged up to this Pe (all: see the reference check).
 PE_REF_CONVERGED = math.inf
 TARGETS = (1e-6, 1e-8)
@@ -174,7 +174,7 @@ def run_case(label, pe, K, k, paper_max_n, rows, refinfo):
     t_case = time.perf_counter()
     ref, *ref_times = timed_solve(par, REF_METHOD, REF_N, 1)
     ref_row = make_row(label, REF_METHOD, REF_N, ref, ref_times, None)
-    check, *_ = timed_solve(par, CHECK_METHOD, REF_N, 1)
+    check, *_ = timed_solve(par, CHECK_METHOD, CHECK_N, 1)
     check_diff = max(rel_err(check.load_ratio, ref.load_ratio),
                      rel_err(check.sigma_over_delta, ref.sigma_over_delta))
     progress(f"{label}: reference {REF_METHOD} n={REF_N} "
@@ -202,8 +202,8 @@ def run_case(label, pe, K, k, paper_max_n, rows, refinfo):
             rows.append(ref_row)
         progress(f"{label}: {method:7s} n={ns[0]}..{ns[-1]} done "
                  f"({time.perf_counter() - t_m:.1f} s)")
-    # Reference error: conservative |x(512) - x(256)|, and the solver's own
-    # Richardson estimate from n = 128, 256, 512.
+    # Reference error: conservative |x(n_ref) - x(n_ref/2)|, and the solver's own
+    # Richardson estimate from n_ref/4, n_ref/2, n_ref.
     fine = sols.get((REF_METHOD, REF_N // 2))
     conservative = richardson = math.nan
     if fine is not None:
@@ -245,9 +245,9 @@ def write_csv(path, rows, refinfo):
     with open(path, "w", newline="") as fh:
         fh.write(header_lines() + "\n")
         for label, info in refinfo.items():
-            fh.write(f"# reference error estimate {label}: |x(512)-x(256)| "
+            fh.write(f"# reference error estimate {label}: |x({REF_N})-x({REF_N // 2})| "
                      f"{info['conservative']:.2e}, Richardson {info['richardson']:.2e}, "
-                     f"{CHECK_METHOD} n={REF_N} differs by {info['check']:.2e}; default "
+                     f"{CHECK_METHOD} n={CHECK_N} differs by {info['check']:.2e}; default "
                      f"solve n={info['auto'].n} error {info['auto_err']:.2e} "
                      f"(estimate {info['auto'].error_estimate:.2e}, "
                      f"{1e3 * info['t_auto']:.0f} ms)\n")
@@ -313,7 +313,7 @@ def print_table(rows, refinfo):
         note = "" if info["converged"] else "  NOT CONVERGED"
         print(f"\n{label}: reference P_H/P = {ref.load_ratio:.12f}, "
               f"sigma/Delta = {ref.sigma_over_delta:.12f}, valid = {ref.valid}; "
-              f"ref. error <= {info['conservative']:.1e} (|x(512)-x(256)|), "
+              f"ref. error <= {info['conservative']:.1e} (|x({REF_N})-x({REF_N // 2})|), "
               f"Richardson {info['richardson']:.1e}, {CHECK_METHOD} differs by "
               f"{info['check']:.1e}{note}\n  default solve: n = {info['auto'].n}, error "
               f"{info['auto_err']:.1e}, estimate {info['auto'].error_estimate:.1e}, "
@@ -391,7 +391,7 @@ def print_summary(rows, refinfo):
             extra = ""
             if not ok:
                 extra = (f"; at n = {REF_N} only estimated: <= {info['conservative']:.1e}"
-                         f" (|x(512)-x(256)|), Richardson {info['richardson']:.1e}")
+                         f" (|x({REF_N})-x({REF_N // 2})|), Richardson {info['richardson']:.1e}")
             ref_note = "" if info["converged"] else " [reference not converged]"
             print(f"  [{'PASS' if ok else 'FAIL'}] {label}: error < 1e-6 with n <= 1024: "
                   f"{DEFAULT} n = {n_p or 'not reached'} (paper: {n_pp or 'not reached'})"

@@ -43,7 +43,8 @@ def _mp_moment(kernel, s, j, weight, ts, c):
 def test_moments_against_mpmath(name):
     """Moments of sgn, N(cu)H(u) and c M(cu) - 1/u (c = 50) against the cosine bases,
     at points inside, next to and outside the contact, equal mpmath quadrature at 30
-    digits to 1e-12 relative (observed 1e-14)."""
+    digits to 1e-12 relative (observed 1e-14).  The logarithmic kernel is graded as the
+    methods grade it: 20 halvings below its scale, the last panel after x = e y^6."""
     mp.mp.dps = 30
     c = 50.0
     s = np.array([-0.999999, -0.3, 0.7, 0.9999, 1.3])
@@ -55,7 +56,7 @@ def test_moments_against_mpmath(name):
         "mr": (lambda u: cylinder_temperature_gradient_regular(u, c),
                lambda u: c * mp.exp(-c * u) * (mp.besselk(0, abs(c * u))
                                               + mp.sign(u) * mp.besselk(1, abs(c * u))) - 1 / u,
-               {}),
+               dict(scale=c, logarithmic=True)),
     }[name]
     if name == "mr":  # mpmath's K0, K1 are slow: fewer points and lower precision
         mp.mp.dps = 20
@@ -67,6 +68,39 @@ def test_moments_against_mpmath(name):
             for weight, mat in (("b", nb), ("s", ns)):
                 ref = _mp_moment(kern[1], mp.mpf(sk), j, weight, mp.mpf(tau_s[k]), c if name != "sgn" else 0)
                 assert abs(mat[k, j] - float(ref)) < 1e-12 * max(1.0, abs(float(ref))), (sk, j, weight)
+
+
+def test_moments_next_to_an_edge_at_large_scale():
+    """At c = Pe k2/k1 = 1e5 the kernel c M(cu) - 1/u varies, on the row of the
+    Galerkin points nearest an edge (n = 64, tau_s = 0.012), across the panels just
+    beyond the replaced interval.  Its moment against cos(63 tau) T' equals 20-digit
+    mpmath quadrature to 1e-14 of the row's largest entry (observed 4e-15; a
+    construction with three geometric panels up to the side's end was off by 3e-14)."""
+    from thermocontact.product import range_projections
+
+    mp.mp.dps = 20
+    c, n = 1e5, 64
+    tau, _, _ = range_projections(n)
+    k = int(np.argmin(tau))
+    s = np.cos(graded.stretch(tau))
+    kern = lambda u: cylinder_temperature_gradient_regular(u, c)  # noqa: E731
+    _, ms = graded.moments(kern, s[[k]], n, scale=c, logarithmic=True, tau=tau[[k]])
+    ts = mp.mpf(float(tau[k]))
+    T = lambda x: x - mp.sin(2 * x) / 2  # noqa: E731
+    sk = mp.cos(T(ts))
+
+    def mr(x):
+        u = sk - mp.cos(T(x))
+        a = abs(c * u)
+        return c * mp.exp(-c * u) * (mp.besselk(0, a) + mp.sign(u) * mp.besselk(1, a)) - 1 / u
+
+    pts = sorted({mp.mpf(0), ts, mp.pi} | {ts - ts * mp.mpf(2) ** -e for e in range(1, 50, 6)}
+                 | {ts + mp.mpf(2) ** -e for e in range(1, 50, 6)}
+                 | {mp.mpf(0.1) * i for i in range(1, 10)})
+    j = 63  # the entry the former construction missed most
+    ref = mp.quad(lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x) * mr(x), pts)
+    err = abs(ms[0, j] - float(ref)) / np.abs(ms[0]).max()
+    assert err < 1e-14, err
 
 
 def test_cauchy_moments_are_principal_values():
