@@ -40,15 +40,32 @@ __all__ = [
     "tau_of",
 ]
 
+#: ``(x - sin x)/x^3 = sum_k (-1)^k x^(2k) / (2k + 3)!``, ``k <= 6``: below 1e-18 relative
+#: truncation for ``|x| < 1/2``.
+_X_MINUS_SIN = [(-1.0) ** k / float(np.prod(np.arange(1, 2 * k + 4))) for k in range(7)]
+
+
 def _x_minus_sin(x):
     """``x - sin x``, by its Taylor series for ``|x| < 1/2`` (no cancellation)."""
     x = np.asarray(x, dtype=float)
-    x2 = x * x
-    series = 1.0
-    for k in (7, 6, 5, 4, 3, 2):  # nested: 1 - x^2/((2k)(2k+1)) (...)
-        series = 1.0 - x2 / ((2 * k) * (2 * k + 1)) * series
-    series = x * x2 / 6.0 * series
-    return np.where(np.abs(x) < 0.5, series, x - np.sin(x))
+    small = np.abs(x) < 0.5
+    if small.all():
+        xs, out = x, None
+    else:
+        out = x - np.sin(x)
+        if not small.any():
+            return out
+        xs = x[small]
+    x2 = xs * xs
+    series = np.full(xs.shape, _X_MINUS_SIN[-1])
+    for c in _X_MINUS_SIN[-2::-1]:  # Horner in x^2
+        series *= x2
+        series += c
+    series *= x2 * xs
+    if out is None:
+        return series
+    out[small] = series
+    return out
 
 
 def stretch(tau):
@@ -155,15 +172,21 @@ def _common(n: int):
     return m, h, r, g, panel, wts
 
 
-def _u(s, tau_s, t_s, d):
-    """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``.
+def _u(s, tau_s, t_s, d, wq):
+    """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``, and the weights.
 
-    Returns ``u`` and ``e = u - (s - clip(s))``, the part measured from the nearer
-    edge for points outside ``[-1, 1]`` (``u`` itself inside), formed separately.
+    Returns ``(u, e)`` with ``e = u - (s - clip(s))``, the part measured from the
+    nearer edge for points outside ``[-1, 1]`` (``u`` itself inside), formed
+    separately; and both weights at ``tau_s + d`` times ``wq``, shape
+    ``(2,) + d.shape``, with ``T(tau_s + d) = t_s + dT`` (an absolute error of
+    rounding, all a weight needs).
     """
     dt = stretch_increment(tau_s[:, None], d)
-    e = 2.0 * np.sin(t_s[:, None] + 0.5 * dt) * np.sin(0.5 * dt)
-    return (s - np.clip(s, -1.0, 1.0))[:, None] + e, e
+    half = t_s[:, None] + 0.5 * dt
+    e = 2.0 * np.sin(half) * np.sin(0.5 * dt)
+    singular = stretch_derivative(tau_s[:, None] + d) * wq
+    bounded = np.sin(half + 0.5 * dt) ** 2 * singular
+    return ((s - np.clip(s, -1.0, 1.0))[:, None] + e, e), np.stack([bounded, singular])
 
 
 #: Geometric panels of 16 points between the innermost interval and ``h`` on a full side.
@@ -228,9 +251,8 @@ class _Side:
         dist, wq = np.where(full, dist, dist_s), np.where(full, wq, wq_s)
         d = sign * dist
         self.outer_tau = geo.tau_s[:, None] + d
-        self.outer_u = _u(geo.s, geo.tau_s, geo.t_s, d)
+        self.outer_u, self.outer_w = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
         self.outer_live = wq > 0.0
-        self.outer_w = np.stack([bounded_weight(self.outer_tau), singular_weight(self.outer_tau)]) * wq
         self.n_fixed = fixed.size
         offsets = sign * np.concatenate([w * _inner_reference(47)[2], fixed, h * (1.0 + xc)])
         j = np.arange(n)
@@ -244,9 +266,7 @@ class _Side:
             ref_tau, om, xp, lagr = _inner_reference(levels)
             d = self.sign * self.inner[:, None] * ref_tau[None, :]
             wq = self.inner[:, None] * om[None, :]
-            u = _u(geo.s, geo.tau_s, geo.t_s, d)
-            tq = geo.tau_s[:, None] + d
-            wts = np.stack([bounded_weight(tq), singular_weight(tq)]) * wq
+            u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
             tp = geo.tau_s[:, None] + self.sign * self.inner[:, None] * xp[None, :]
             self._inner[levels] = (u, wq > 0.0, wts, lagr, tp)
         return self._inner[levels]
