@@ -11,6 +11,7 @@ import pytest
 from thermocontact import __version__, solve
 from thermocontact.cli import main
 from thermocontact.reproduce import FIGURES
+from thermocontact.solver import DEFAULT_METHOD
 from thermocontact.sweeps import _solver, validity_margins
 
 
@@ -41,12 +42,15 @@ def test_all_files_written(figs):
 
 
 def test_curve_headers_name_method_and_n(figs):
-    """Each curve's header line gives its parameters, the method and n."""
+    """Each curve's header line gives its parameters, the method (the default) and n;
+    the distributions' header names the method of their solutions."""
     header, _ = read(figs / "fig3.csv")
     curves = [h for h in header if h.startswith("curve ")]
     assert len(curves) == 4
     for h in curves:
-        assert "method product" in h and re.search(r"\bn \d+", h) and "K2_over_K1=10" in h
+        assert f"method {DEFAULT_METHOD}," in h and re.search(r"\bn \d+", h) and "K2_over_K1=10" in h
+    header, _ = read(figs / "distributions.csv")
+    assert any(h.endswith(f"method {DEFAULT_METHOD}") for h in header)
 
 
 def test_hertz_at_zero_coupling(figs):
@@ -106,7 +110,7 @@ def test_markers_at_margin_sign_change(figs, name):
     found = boundaries(figs, name)
     assert found, "expected at least one boundary"
     for (label, fixed, x_name, _), n, x, margin in found:
-        at = _solver(fixed, x_name, n, "product")
+        at = _solver(fixed, x_name, n, DEFAULT_METHOD)
         lo = validity_margins(at(x - 1e-6))[margin]
         hi = validity_margins(at(x + 1e-6))[margin]
         assert lo * hi < 0, (label, x, margin, lo, hi)

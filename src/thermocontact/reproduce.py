@@ -139,7 +139,8 @@ def run_figure(fig: Figure, out_dir: str) -> list[str]:
         sols = plotting.distribution_solutions(fig.distributions)
         with open(stem + ".csv", "w", newline="") as fh:
             fh.write(f"# thermocontact {__version__}, {datetime.date.today().isoformat()}\n")
-            fh.write(f"# {fig.title}; K2/K1 = 10, lambda = -1, method product\n")
+            methods = ", ".join(sorted({sol.method for sol in sols}))
+            fh.write(f"# {fig.title}; K2/K1 = 10, lambda = -1, method {methods}\n")
             w = csv.writer(fh)
             w.writerow(["pe", "fhpe", "n", "valid", "quantity", "s", "value"])
             for sol in sols:

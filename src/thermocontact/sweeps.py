@@ -14,7 +14,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .parameters import InputError, Parameters, SolveError
-from .solver import ContactSolution, _blocks, solve, solve_blocks
+from .solver import DEFAULT_METHOD, ContactSolution, _blocks, solve, solve_blocks
 
 __all__ = ["Boundary", "Curve", "choose_n", "sweep", "validity_margins"]
 
@@ -97,7 +97,7 @@ class Curve:
     solutions: tuple = ()
 
 
-def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method="product",
+def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
              n_max=None) -> tuple[int, float]:
     """Smallest ``n`` (doubling from 16) whose error estimate at the points
     ``x_end`` is below ``tol``, or ``n_max``.
@@ -182,7 +182,7 @@ def _boundaries(at, x, sols, xtol):
     return tuple(out)
 
 
-def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method="product",
+def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_METHOD,
           tol=1e-6, n_max=None, xtol=1e-9, keep_solutions=False) -> Curve:
     """Solve along ``x`` with one assembly and locate the validity boundaries.
 
