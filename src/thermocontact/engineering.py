@@ -22,7 +22,8 @@ from scipy.optimize import brentq, root_scalar
 from .kernels import cylinder_temperature
 from .materials import Material
 from .parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
-from .solver import ContactSolution, _blocks, error_estimate, solve_blocks
+from .assembly import AUTO_RANGE
+from .solver import DEFAULT_METHOD, ContactSolution, _blocks, error_estimate, solve_blocks
 
 __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
 
@@ -33,6 +34,9 @@ __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_root
 SCAN_POINTS = 64
 FHPE_MIN = 0.05
 FHPE_MAX = 2.5
+#: Method of every solve, and its n for the scan (enough to bracket the roots, which
+#: are then refined at the n that meets the error target).
+METHOD = DEFAULT_METHOD
 SCAN_N = 32
 
 
@@ -183,10 +187,9 @@ class PhysicalContact:
 
 
 def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
-    # Collocation: its assembly costs half the Galerkin projection's, and the scan
-    # and the root refinement assemble once per trial half-width.
+    # Each trial half-width is a new Pe and fHPe: one assembly per call.
     par = prob.parameters(half_width)
-    return solve_blocks(par, _blocks(par, "product", n), "product", lam=prob.lam,
+    return solve_blocks(par, _blocks(par, METHOD, n), METHOD, lam=prob.lam,
                         check_validity=check_validity)
 
 
@@ -344,20 +347,22 @@ def find_roots(h, lo, hi, points=SCAN_POINTS, pole_tol=1e-6):
 
 
 def _refine(prob, root, tol):
-    """The root at the resolution whose estimated error in ``P_H/P`` is below ``tol``.
+    """The root at the resolution whose estimated error (``P_H/P``, ``sigma/Delta``) is below ``tol``.
 
-    ``n`` doubles from 16 (to at most 512) until the Richardson estimate of the
-    load ratio's error is below ``tol``; the root is then refined by the secant
-    method from the scan's root.
+    ``n`` doubles over the method's automatic range (8 to 256) until the Richardson
+    estimate of the load ratio's error is below ``tol``; the root is then refined by
+    the secant method from the scan's root.
 
     Returns
     -------
     half_width, n
     """
-    n, levels = 16, []
+    n, n_max = AUTO_RANGE[METHOD]
+    levels = []
     while True:
         levels.append(_solve_at(prob, root, n))
-        if len(levels) >= 3 and (error_estimate(levels, ("load_ratio",)) <= tol or n >= 512):
+        # The estimate the branch reports (P_H/P and sigma/Delta), so that it is met.
+        if len(levels) >= 3 and (error_estimate(levels) <= tol or n >= n_max):
             break
         n *= 2
     # Secant steps from the scan's root (each costs an assembly at this n).
