@@ -6,8 +6,7 @@ contact's load ratio, offset, heat partition, pressure and heat-flux
 distributions and the validity of the single-patch solution.
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
+from ._version import __version__
 from . import collocation as _collocation  # noqa: F401  (registers "paper")
 from . import product as _product  # noqa: F401  (registers "product")
 from . import graded_methods as _graded  # noqa: F401  (registers "graded")
@@ -15,11 +14,6 @@ from .assembly import METHODS
 from .parameters import InputError, Parameters, SolveError
 from .solver import ContactSolution, solve
 from .validity import Validity
-
-try:
-    __version__ = version("thermocontact")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0+unknown"
 
 __all__ = [
     "METHODS",

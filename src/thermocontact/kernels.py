@@ -118,9 +118,14 @@ def cylinder_temperature_gradient(u):
     ndarray
     """
     u = np.asarray(u, dtype=float)
-    a = np.abs(u)
-    scale = np.exp(-u - a)  # exp(-2u) upstream, 1 in the wake
-    return scale * (k0e(a) + np.sign(u) * k1e(a))
+    out = np.zeros(u.shape)
+    # exp(-2u) upstream, 1 in the wake; the Bessel functions only where the scale
+    # does not underflow (exp(-745) is below the smallest subnormal).
+    live = u < 372.0
+    x = u[live]
+    a = np.abs(x)
+    out[live] = np.exp(-x - a) * (k0e(a) + np.sign(x) * k1e(a))
+    return out
 
 
 def cylinder_temperature_gradient_regular(u, scale):
