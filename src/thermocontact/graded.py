@@ -194,7 +194,7 @@ _FIXED_OUTER = 2
 #: Geometric panels of 16 points from ``h`` to the end of a full side (at most ``2h``).
 _OWN = 2
 #: Interpolation points of the bases on ``[h, 2h]``: ``cos(j delta)``, ``j < n``, spans
-#: less than two periods there; 30 Chebyshev points interpolate it to rounding.
+#: less than two periods there; 30 Chebyshev points interpolate it to 1e-14.
 _OWN_P = 30
 
 
