@@ -358,9 +358,11 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     -----
     The construction of :func:`thermocontact.moments.kernel_moments` in ``tau``:
     a common 16-point Gauss–Legendre panel rule; around ``tau_s`` three panels
-    replaced by an innermost interval of width ``6/(n + 1)`` per side, graded
-    toward ``tau_s`` (bases interpolated on 20 points there), and three geometric
-    panels.  For a principal value, with ``1/u ~ 1/(D (tau - tau_s))``,
+    replaced, per side, by an innermost interval of width ``w = min(6/(n + 1), h)``
+    graded toward ``tau_s`` (bases interpolated on 20 points there) and geometric
+    panels to the side's end (:class:`_Side`: at offsets shared by all rows where the
+    side is a panel ``h`` long or more).  For a principal value, with
+    ``1/u ~ 1/(D (tau - tau_s))``,
     ``D = sin t_s T'(tau_s)``, the two graded sides of lengths ``a`` and ``b`` are
     the same rule scaled, so their divergent parts cancel and the principal value
     of the omitted central interval, ``W(tau_s) cos(j tau_s) ln(b/a) / D``, is
