@@ -129,6 +129,41 @@ def test_moments_next_to_an_edge_at_large_scale():
     assert err < 1e-14, err
 
 
+def test_cauchy_moments_next_to_an_edge():
+    """On the row of the Galerkin points nearest an edge (n = 128, tau_s = 0.0061) the
+    principal value against the flux weight T' cos(127 tau) equals 30-digit quadrature
+    of the subtracted integrand to 1e-12 of the row's largest entry (observed 6e-14).
+    A recurrence in cos(tau) for that row's short side, whose phase error the
+    cancellation between the two sides amplifies, gave 2.5e-11."""
+    from thermocontact.product import range_projections
+
+    mp.mp.dps = 30
+    n, j = 128, 127
+    tau, _, _ = range_projections(n)
+    k = int(np.argmin(tau))
+    s = np.cos(graded.stretch(tau))
+    _, ms = graded.moments(lambda u: 1.0 / u, s[[k]], n, scale=1.0, cauchy=True, tau=tau[[k]])
+    ts = mp.mpf(float(tau[k]))
+    T = lambda x: x - mp.sin(2 * x) / 2  # noqa: E731
+    f = lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x)  # noqa: E731
+    D = mp.sin(T(ts)) * 2 * mp.sin(ts) ** 2
+    g0 = f(ts) / D
+
+    def subtracted(x):  # f/u - f(ts)/(D (x - ts)), u formed without cancellation
+        dx = x - ts
+        if dx == 0:
+            return mp.mpf(0)
+        dT = dx - mp.cos(x + ts) * mp.sin(dx)
+        return f(x) / (2 * mp.sin(T(ts) + dT / 2) * mp.sin(dT / 2)) - g0 / dx
+
+    pts = sorted({mp.mpf(0), ts, mp.pi} | {ts + g * mp.mpf(2) ** -e for e in range(1, 60, 3)
+                                           for g in (-1, 1) if 0 < ts + g * mp.mpf(2) ** -e < mp.pi}
+                 | {mp.pi * i / 32 for i in range(1, 32)})
+    ref = mp.quad(subtracted, pts) + g0 * mp.log((mp.pi - ts) / ts)
+    err = abs(ms[0, j] - float(ref)) / np.abs(ms[0]).max()
+    assert err < 1e-12, err
+
+
 def test_cauchy_moments_are_principal_values():
     """The principal values (1/pi) PV int p(r)/(s - r) dr of the graded bases equal
     QUADPACK's Cauchy-weight quadrature (in r) to 1e-11, also at points 1e-6 from an

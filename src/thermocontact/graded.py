@@ -250,10 +250,17 @@ class _Side:
         full = self.full[:, None]
         dist, wq = np.where(full, dist, dist_s), np.where(full, wq, wq_s)
         d = sign * dist
-        self.outer_tau = geo.tau_s[:, None] + d
         self.outer_u, self.outer_w = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
         self.outer_live = wq > 0.0
         self.n_fixed = fixed.size
+        # Rows paneled row by row: cosines and sines of their offsets, formed directly,
+        # so that, as on the full sides, both sides of a point share the factors
+        # cos(j tau_s), sin(j tau_s) and the principal value's cancellation between
+        # the sides is not disturbed by a recurrence's phase error next to an edge.
+        short = self.rows[1]
+        dp = self.inner[short, None] * _inner_reference(47)[2]
+        phase = np.concatenate([sign * dp, d[short]], axis=1)[..., None] * np.arange(n)
+        self.short_cos, self.short_sin = np.cos(phase), np.sin(phase)
         offsets = sign * np.concatenate([w * _inner_reference(47)[2], fixed, h * (1.0 + xc)])
         j = np.arange(n)
         self.fixed_cos = np.cos(np.outer(offsets, j))
@@ -261,14 +268,13 @@ class _Side:
         self._inner = {}
 
     def inner_parts(self, geo, levels):
-        """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix, points."""
+        """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix."""
         if levels not in self._inner:
-            ref_tau, om, xp, lagr = _inner_reference(levels)
+            ref_tau, om, _, lagr = _inner_reference(levels)
             d = self.sign * self.inner[:, None] * ref_tau[None, :]
             wq = self.inner[:, None] * om[None, :]
             u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
-            tp = geo.tau_s[:, None] + self.sign * self.inner[:, None] * xp[None, :]
-            self._inner[levels] = (u, wq > 0.0, wts, lagr, tp)
+            self._inner[levels] = (u, wq > 0.0, wts, lagr)
         return self._inner[levels]
 
 
@@ -298,19 +304,6 @@ class _Geometry:
 def _geometry(key: bytes, n: int, tau_key: bytes | None) -> _Geometry:
     tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
     return _Geometry(np.frombuffer(key, dtype=float), n, tau)
-
-
-def _cos_sums(tau, kw, n):
-    """``sum_q kw[w, k, q] cos(j tau[k, q])`` for ``j < n``, by recurrence in ``j``."""
-    c = np.cos(tau)
-    two_c = 2.0 * c
-    out = np.empty(kw.shape[:2] + (n,))
-    cm, c0 = np.ones_like(tau), c
-    out[..., 0] = kw.sum(axis=-1)
-    for j in range(1, n):
-        out[..., j] = (kw * c0).sum(axis=-1)
-        cm, c0 = c0, two_c * c0 - cm
-    return out
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
@@ -379,7 +372,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     kf[geo.near] = 0.0
     out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
     for side in geo.sides:
-        u, live, wq, lagr, tp = side.inner_parts(geo, levels)
+        u, live, wq, lagr = side.inner_parts(geo, levels)
         with np.errstate(divide="ignore", invalid="ignore"):
             # Rows of a side of zero length (points at or beyond an edge) hold dummies.
             inner = (np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr
@@ -392,8 +385,10 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
             out[:, full] += (geo.cos_s[full] * (v @ side.fixed_cos)
                              - geo.sin_s[full] * (v @ side.fixed_sin))
         if short.size:
-            out[:, short] += _cos_sums(np.concatenate([tp[short], side.outer_tau[short]], axis=1),
-                                       np.concatenate([inner[:, short], outer[:, short]], axis=2), n)
+            v = np.concatenate([inner[:, short], outer[:, short]], axis=2).transpose(1, 0, 2)
+            c = np.matmul(v, side.short_cos).transpose(1, 0, 2)
+            sn = np.matmul(v, side.short_sin).transpose(1, 0, 2)
+            out[:, short] += geo.cos_s[short] * c - geo.sin_s[short] * sn
     if cauchy:
         a_in, b_in = (side.inner for side in geo.sides)
         interior = (a_in > 0.0) & (b_in > 0.0) & (geo.tau_s > 0.0) & (geo.tau_s < np.pi)

@@ -120,12 +120,12 @@ def cylinder_temperature_gradient(u):
     u = np.asarray(u, dtype=float)
     out = np.zeros(u.shape)
     # exp(-2u) upstream, 1 in the wake; the Bessel functions only where the scale
-    # does not underflow (exp(-745) is below the smallest subnormal).
-    live = u < 372.0
+    # does not underflow (exp(-745) is below the smallest subnormal; NaN passes).
+    live = ~(u >= 372.0)
     x = u[live]
     a = np.abs(x)
     out[live] = np.exp(-x - a) * (k0e(a) + np.sign(x) * k1e(a))
-    return out
+    return out[()]
 
 
 def cylinder_temperature_gradient_regular(u, scale):
