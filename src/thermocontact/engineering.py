@@ -19,10 +19,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import brentq, root_scalar
 
+from .assembly import AUTO_RANGE
 from .kernels import cylinder_temperature
 from .materials import Material
 from .parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
-from .assembly import AUTO_RANGE
 from .solver import DEFAULT_METHOD, ContactSolution, _blocks, error_estimate, solve_blocks
 
 __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
@@ -347,11 +347,11 @@ def find_roots(h, lo, hi, points=SCAN_POINTS, pole_tol=1e-6):
 
 
 def _refine(prob, root, tol):
-    """The root at the resolution whose estimated error (``P_H/P``, ``sigma/Delta``) is below ``tol``.
+    """The root at the resolution whose estimated error is below ``tol``.
 
     ``n`` doubles over the method's automatic range (8 to 256) until the Richardson
-    estimate of the load ratio's error is below ``tol``; the root is then refined by
-    the secant method from the scan's root.
+    estimate of the errors of ``P_H/P`` and ``sigma/Delta`` is below ``tol``; the
+    root is then refined by the secant method from the scan's root.
 
     Returns
     -------
