@@ -8,6 +8,7 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import graded, solve
+from thermocontact.moments import chebyshev_lagrange
 from thermocontact.kernels import cylinder_slope, cylinder_temperature_gradient_regular
 
 
@@ -44,8 +45,8 @@ def test_chebyshev_lagrange_interpolates_exactly():
     n = 256, h = pi/66, the common rule's panel): the interpolation the full sides rely
     on."""
     x = np.linspace(0.0, 1.0, 101)
-    xc, lag = graded._chebyshev_lagrange(x, 30)
-    _, at_nodes = graded._chebyshev_lagrange(xc, 30)
+    xc, lag = chebyshev_lagrange(x, 30)
+    _, at_nodes = chebyshev_lagrange(xc, 30)
     assert np.array_equal(at_nodes, np.eye(30))
     poly = np.polynomial.chebyshev.Chebyshev(np.random.default_rng(1).normal(size=30), [0, 1])
     assert np.max(np.abs(lag @ poly(xc) - poly(x))) < 1e-13 * np.max(np.abs(poly(xc)))

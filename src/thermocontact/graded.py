@@ -25,8 +25,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from .moments import (_gauss_legendre, _inner_reference, levels_for, near_field, outer_panels,
-                      panel_rule)
+from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_lagrange,
+                      levels_for, near_field, outer_panels, panel_rule)
 
 __all__ = [
     "bounded_weight",
@@ -198,24 +198,6 @@ _OWN = 2
 _OWN_P = 30
 
 
-def _chebyshev_lagrange(x, points: int):
-    """``l_p(x)`` of the first-kind Chebyshev points on ``[0, 1]`` (barycentric).
-
-    Returns the points and an array of shape ``x.shape + (points,)``.
-    """
-    theta = np.pi * (np.arange(points) + 0.5) / points
-    xc = 0.5 * (1.0 - np.cos(theta))
-    lam = (-1.0) ** np.arange(points) * np.sin(theta)
-    diff = np.asarray(x)[..., None] - xc
-    exact = diff == 0.0
-    diff[exact] = 1.0
-    terms = lam / diff
-    out = terms / terms.sum(axis=-1, keepdims=True)
-    hit = exact.any(axis=-1)
-    out[hit] = exact[hit]
-    return xc, out
-
-
 class _Side:
     """One side of the replaced interval around every point ``tau_s``.
 
@@ -243,7 +225,7 @@ class _Side:
         fixed_w = (np.diff(edges)[:, None] * wg).ravel()
         k = len(side)
         own, own_w = outer_panels(np.maximum(side, h), np.full(k, h), _OWN)
-        xc, self.own_lagrange = _chebyshev_lagrange((own[self.rows[0]] - h) / h, _OWN_P)
+        xc, self.own_lagrange = chebyshev_lagrange((own[self.rows[0]] - h) / h, _OWN_P)
         dist = np.concatenate([np.broadcast_to(fixed, (k, fixed.size)), own], axis=1)
         wq = np.concatenate([np.broadcast_to(fixed_w, (k, fixed.size)), own_w], axis=1)
         dist_s, wq_s = outer_panels(side, self.inner, _FIXED_OUTER + _OWN)
@@ -258,10 +240,11 @@ class _Side:
         # cos(j tau_s), sin(j tau_s) and the principal value's cancellation between
         # the sides is not disturbed by a recurrence's phase error next to an edge.
         short = self.rows[1]
-        dp = self.inner[short, None] * _inner_reference(47)[2]
-        phase = np.concatenate([sign * dp, d[short]], axis=1)[..., None] * np.arange(n)
+        xp = _inner_reference(LOG_LEVELS)[2]  # the innermost interval's 20 points on [0, 1]
+        phase = np.concatenate([sign * self.inner[short, None] * xp, d[short]], axis=1)
+        phase = phase[..., None] * np.arange(n)
         self.short_cos, self.short_sin = np.cos(phase), np.sin(phase)
-        offsets = sign * np.concatenate([w * _inner_reference(47)[2], fixed, h * (1.0 + xc)])
+        offsets = sign * np.concatenate([w * xp, fixed, h * (1.0 + xc)])
         j = np.arange(n)
         self.fixed_cos = np.cos(np.outer(offsets, j))
         self.fixed_sin = np.sin(np.outer(offsets, j))

@@ -30,8 +30,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["kernel_moments", "levels_for", "near_field", "outer_panels", "panel_rule",
-           "sgn_moments"]
+__all__ = ["chebyshev_lagrange", "kernel_moments", "levels_for", "near_field", "outer_panels",
+           "panel_rule", "sgn_moments"]
 
 _GL = 16
 
@@ -186,6 +186,25 @@ _P = 20  # interpolation points of the bases across the innermost interval
 _OUTER = 3  # panels per side between the innermost interval and the common rule
 
 
+def chebyshev_lagrange(x, points: int):
+    """``l_p(x)`` of ``points`` first-kind Chebyshev points on ``[0, 1]`` (barycentric).
+
+    Returns the points and an array of shape ``x.shape + (points,)``; at a point
+    itself the basis is the unit vector.
+    """
+    theta = np.pi * (np.arange(points) + 0.5) / points
+    xc = 0.5 * (1.0 - np.cos(theta))
+    lam = (-1.0) ** np.arange(points) * np.sin(theta)
+    diff = np.asarray(x, dtype=float)[..., None] - xc
+    exact = diff == 0.0
+    diff[exact] = 1.0
+    terms = lam / diff
+    out = terms / terms.sum(axis=-1, keepdims=True)
+    hit = exact.any(axis=-1)
+    out[hit] = exact[hit]
+    return xc, out
+
+
 @lru_cache(maxsize=64)
 def _inner_reference(levels: int):
     """Graded rule on (0, 1] and the Lagrange basis of ``_P`` Chebyshev points there.
@@ -193,12 +212,7 @@ def _inner_reference(levels: int):
     Returns ``tau, omega, x, lagrange`` with ``lagrange[q, p] = l_p(tau_q)``.
     """
     tau, om = _graded_reference(levels)
-    x = 0.5 * (1.0 - np.cos(np.pi * (np.arange(_P) + 0.5) / _P))
-    # Barycentric weights of the first-kind Chebyshev points.
-    lam = (-1.0) ** np.arange(_P) * np.sin(np.pi * (np.arange(_P) + 0.5) / _P)
-    diff = tau[:, None] - x[None, :]
-    terms = lam[None, :] / diff
-    lagrange = terms / terms.sum(axis=1, keepdims=True)
+    x, lagrange = chebyshev_lagrange(tau, _P)
     return tau, om, x, lagrange
 
 
