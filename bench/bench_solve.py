@@ -23,7 +23,7 @@ NS = [16, 32, 64, 128, 256]
 
 
 def best_time(func, repeats=5):
-    from thermocontact.solver import _assembled
+    from thermocontact.solvers.single_patch import _assembled
 
     best = float("inf")
     for _ in range(repeats):

@@ -52,8 +52,8 @@ import numpy as np
 
 import thermocontact
 from thermocontact import METHODS, Parameters, SolveError
-from thermocontact.solver import error_estimate, solve_blocks
-from thermocontact.validity import assess
+from thermocontact.solvers.single_patch import error_estimate, solve_blocks
+from thermocontact.analysis.validity import assess
 
 LAM = -1.0
 FHPE = 0.2
@@ -102,7 +102,7 @@ def repeats_for(n):
 
 def clear_point_caches():
     """Forget the per-``n`` point geometry of the graded moments (a first call's cost)."""
-    from thermocontact import graded
+    from thermocontact.numerics import edge_graded as graded
 
     graded._geometry.cache_clear()
 

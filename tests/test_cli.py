@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from thermocontact.cli import main
-from thermocontact.limits import hertz_pressure
+from thermocontact.physics.reference_solutions import hertz_pressure
 
 BASE = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10"]
 REQUIRED = {

@@ -11,8 +11,8 @@ from scipy.special import k0
 
 from thermocontact import InputError, solve
 from thermocontact.cli import main
-from thermocontact.engineering import PhysicalProblem, _temperatures, contact, find_roots
-from thermocontact.materials import MaterialError, get_material
+from thermocontact.studies.physical_contact import PhysicalProblem, _temperatures, contact, find_roots
+from thermocontact.problem.materials import MaterialError, get_material
 
 STEEL, IRON = get_material("steel"), get_material("cast-iron")
 

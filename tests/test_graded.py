@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from thermocontact import graded, solve
-from thermocontact.moments import chebyshev_lagrange
-from thermocontact.kernels import cylinder_slope, cylinder_temperature_gradient_regular
+from thermocontact import solve
+from thermocontact.numerics import edge_graded as graded
+from thermocontact.numerics.moments import chebyshev_lagrange
+from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
 
 
 def test_stretch_and_inverse():
@@ -103,7 +104,7 @@ def test_moments_next_to_an_edge_at_large_scale():
     beyond the replaced interval.  Its moment against cos(63 tau) T' equals 20-digit
     mpmath quadrature to 1e-14 of the row's largest entry (observed 4e-15; a
     construction with three geometric panels up to the side's end was off by 3e-14)."""
-    from thermocontact.product import range_projections
+    from thermocontact.discretisation.product_integration import range_projections
 
     mp.mp.dps = 20
     c, n = 1e5, 64
@@ -136,7 +137,7 @@ def test_cauchy_moments_next_to_an_edge():
     of the subtracted integrand to 1e-12 of the row's largest entry (observed 6e-14).
     A recurrence in cos(tau) for that row's short side, whose phase error the
     cancellation between the two sides amplifies, gave 2.5e-11."""
-    from thermocontact.product import range_projections
+    from thermocontact.discretisation.product_integration import range_projections
 
     mp.mp.dps = 30
     n, j = 128, 127

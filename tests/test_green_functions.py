@@ -1,6 +1,6 @@
 """Independent verification of the Green's-function kernels from the field equations.
 
-The kernels in :mod:`thermocontact.kernels` are checked against reference values
+The kernels in :mod:`thermocontact.physics.green_functions` are checked against reference values
 built here from the underlying partial differential equations, without using the
 closed forms the kernels implement.
 
@@ -65,7 +65,7 @@ import pytest
 from scipy.integrate import IntegrationWarning, quad
 from scipy.special import k0, wofz
 
-from thermocontact import kernels
+from thermocontact.physics import green_functions as kernels
 
 pytestmark = pytest.mark.filterwarnings(
     f"error::{IntegrationWarning.__module__}.{IntegrationWarning.__name__}"

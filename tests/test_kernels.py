@@ -8,7 +8,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import k0, k1
 
-from thermocontact.kernels import (
+from thermocontact.physics.green_functions import (
     cylinder_displacement,
     cylinder_slope,
     cylinder_temperature,

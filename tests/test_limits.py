@@ -1,4 +1,4 @@
-"""Tests of the limiting-case solutions in :mod:`thermocontact.limits`.
+"""Tests of the limiting-case solutions in :mod:`thermocontact.physics.reference_solutions`.
 
 Barber's problem is checked against quantities computed without its Galerkin
 machinery: the integral equation (B1) is evaluated by adaptive quadrature
@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from thermocontact.limits import BarberSolution, barber_insulated, hertz_pressure
+from thermocontact.physics.reference_solutions import BarberSolution, barber_insulated, hertz_pressure
 
 # First-order load correction L = 1 + L1 F + O(F^2): with 2 C0 - 1 =
 # (2/pi)(s sqrt(1 - s^2) + arcsin s) for the Hertz pressure, the normalisation

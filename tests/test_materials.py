@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from thermocontact.materials import (
+from thermocontact.problem.materials import (
     Material,
     MaterialError,
     get_material,
@@ -13,7 +13,7 @@ from thermocontact.materials import (
     load_materials,
     material_aliases,
 )
-from thermocontact.parameters import InputError
+from thermocontact.problem.parameters import InputError
 
 BUILTIN = [
     "carbon-steel",

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-import thermocontact.moments as mm
-from thermocontact.kernels import cylinder_slope, cylinder_temperature_gradient_regular
-from thermocontact.moments import kernel_moments, sgn_moments
+import thermocontact.numerics.moments as mm
+from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from thermocontact.numerics.moments import kernel_moments, sgn_moments
 
 S = np.array([-0.999, -0.3, 0.0, 0.5, 0.99999, 1.0, 1.001, -1.2])
 

@@ -5,7 +5,7 @@ import pytest
 from numpy.polynomial import chebyshev as C
 from scipy.special import beta, eval_chebyt, eval_chebyu
 
-from thermocontact.quadrature import (
+from thermocontact.numerics.quadrature import (
     bounded_rule,
     singular_rule,
     t_series_coefficients,

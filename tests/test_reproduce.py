@@ -10,9 +10,9 @@ import pytest
 
 from thermocontact import __version__, solve
 from thermocontact.cli import main
-from thermocontact.reproduce import FIGURES
-from thermocontact.solver import DEFAULT_METHOD
-from thermocontact.sweeps import _solver, validity_margins
+from thermocontact.figures.paper_figures import FIGURES
+from thermocontact.solvers.single_patch import DEFAULT_METHOD
+from thermocontact.studies.sweeps import _solver, validity_margins
 
 
 @pytest.fixture(scope="module")

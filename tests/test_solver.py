@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import METHODS, InputError, SolveError, solve
-from thermocontact.graded import stretch, stretch_derivative
+from thermocontact.numerics.edge_graded import stretch, stretch_derivative
 
 
 def integral_over_contact(f, singular=False):
@@ -162,13 +162,13 @@ def test_convergence_check_reports_change():
 def test_approaches_barber_insulated_cylinder_at_first_order():
     """lam = -1, fHPe = 0.2, k2/k1 = 1: as K2/K1 grows the general solver approaches
     Barber's insulated, non-distorting cylinder (independent Galerkin solution in
-    thermocontact.limits, accurate to 1e-15) at first order in K1/K2: with product
+    thermocontact.physics.reference_solutions, accurate to 1e-15) at first order in K1/K2: with product
     integration (n = 128, discretisation error ~1e-10) the error falls by
     10.06, 10.06, 10.007, 10.004 per decade of K2/K1 = 10 ... 1e5 (asserted within
     0.1 of 10), and (K2/K1)(P_H/P - Barber) tends to 0.0873 (to 1e-4 at 1e4, 1e5).
     The heat left in the cylinder is q1 = p/(1 + K2/K1) + q'/2 with q' = O(K1/K2)
     (derivation section 9)."""
-    from thermocontact.limits import barber_insulated
+    from thermocontact.physics.reference_solutions import barber_insulated
 
     LB = barber_insulated(0.2).load_ratio
     rhos = np.array([10, 100, 1e3, 1e4, 1e5])
@@ -190,7 +190,7 @@ def reference(**case):
 
 
 def rel_err(a, b):
-    """The error measure of thermocontact.solver.error_estimate, of a against b."""
+    """The error measure of thermocontact.solvers.single_patch.error_estimate, of a against b."""
     return max(abs(a.load_ratio - b.load_ratio) / max(abs(b.load_ratio), 0.01),
                abs(a.sigma_over_delta - b.sigma_over_delta) / max(abs(b.sigma_over_delta), 0.01))
 
@@ -276,7 +276,7 @@ def test_approach_to_barber_with_equal_capacities_is_half_order():
     fHPe = 0.2 the distance to Barber's solution falls by 3.09 from K2/K1 = 100 to
     1000 (sqrt(10) = 3.16; asserted within 5 %), with sqrt(K2/K1) times it 0.103,
     0.106."""
-    from thermocontact.limits import barber_insulated
+    from thermocontact.physics.reference_solutions import barber_insulated
 
     LB = barber_insulated(0.2).load_ratio
     d = [solve(5, 0.2, rho, lam=-1, n=512).load_ratio - LB for rho in (100.0, 1000.0)]

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from thermocontact.parameters import InputError
-from thermocontact.units import parse_quantity
+from thermocontact.problem.parameters import InputError
+from thermocontact.problem.units import parse_quantity
 
 
 @pytest.mark.parametrize(

@@ -6,9 +6,9 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import solve
-from thermocontact.bases import GradedBasis
-from thermocontact.graded import cosine_value, stretch, stretch_derivative
-from thermocontact.kernels import cylinder_slope
+from thermocontact.discretisation.representations import GradedBasis
+from thermocontact.numerics.edge_graded import cosine_value, stretch, stretch_derivative
+from thermocontact.physics.green_functions import cylinder_slope
 
 HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz
 
@@ -39,7 +39,7 @@ def brute_force_slope_mismatch_chebyshev(sol, t):
     for the Chebyshev representation."""
     par = sol.parameters
     F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
-    from thermocontact.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+    from thermocontact.numerics.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
 
     a = u_series_coefficients(sol.phi)
     b = t_series_coefficients(sol.psi)

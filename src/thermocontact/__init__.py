@@ -7,13 +7,13 @@ distributions and the validity of the single-patch solution.
 """
 
 from ._version import __version__
-from . import collocation as _collocation  # noqa: F401  (registers "paper")
-from . import product as _product  # noqa: F401  (registers "product")
-from . import graded_methods as _graded  # noqa: F401  (registers "graded")
-from .assembly import METHODS
-from .parameters import InputError, Parameters, SolveError
-from .solver import ContactSolution, solve
-from .validity import Validity
+from .discretisation import paper_collocation as _collocation  # noqa: F401  (registers "paper")
+from .discretisation import product_integration as _product  # noqa: F401  (registers "product")
+from .discretisation import edge_graded_methods as _graded  # noqa: F401  (registers "graded")
+from .discretisation.system import METHODS
+from .problem.parameters import InputError, Parameters, SolveError
+from .solvers.single_patch import ContactSolution, solve
+from .analysis.validity import Validity
 
 __all__ = [
     "METHODS",

@@ -13,9 +13,9 @@ import click
 import numpy as np
 
 from . import __version__
-from .assembly import METHODS
-from .parameters import InputError, SolveError, check_positive
-from .solver import DEFAULT_METHOD, DEFAULT_TOL, N_AUTO_MAX, solve
+from .discretisation.system import METHODS
+from .problem.parameters import InputError, SolveError, check_positive
+from .solvers.single_patch import DEFAULT_METHOD, DEFAULT_TOL, N_AUTO_MAX, solve
 
 __all__ = ["main", "solution_record"]
 
@@ -152,7 +152,7 @@ def reproduce_cmd(out_dir, only):
     """Reproduce the paper's Figures 2-5 and extend them past the paper's range."""
     import time
 
-    from .reproduce import FIGURES, run_figure
+    from .figures.paper_figures import FIGURES, run_figure
 
     figs = [f for f in FIGURES if not only or f.name in only]
     if not figs:
@@ -259,9 +259,9 @@ def _contact_summary(res) -> str:
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, lam,
                 tol, as_json, csv_file, plot_file):
     """Contact width, pressures and temperatures from materials, load and speed."""
-    from .engineering import PhysicalProblem, contact
-    from .materials import get_material
-    from .units import parse_quantity
+    from .studies.physical_contact import PhysicalProblem, contact
+    from .problem.materials import get_material
+    from .problem.units import parse_quantity
 
     prob = PhysicalProblem(
         get_material(cylinder, materials_file), get_material(half_plane, materials_file),
@@ -271,7 +271,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     if csv_file:
         _write_contact_csv(res, csv_file)
     if plot_file:
-        from .plotting import contact_figure
+        from .plotting.curves import contact_figure
 
         contact_figure(res, plot_file)
     if as_json:

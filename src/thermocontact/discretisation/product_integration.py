@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .assembly import Blocks, register
-from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
-from .moments import kernel_moments, sgn_moments
-from .parameters import Parameters
-from .quadrature import bounded_rule, singular_rule, t_coefficient_matrix, u_coefficient_matrix
+from .system import Blocks, register
+from ..physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from ..numerics.moments import kernel_moments, sgn_moments
+from ..problem.parameters import Parameters
+from ..numerics.quadrature import bounded_rule, singular_rule, t_coefficient_matrix, u_coefficient_matrix
 
 __all__ = ["assemble_galerkin", "assemble_product", "coefficient_maps", "range_projections"]
 

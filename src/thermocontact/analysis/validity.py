@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels import cylinder_displacement, cylinder_slope
-from .parameters import Parameters
+from ..physics.green_functions import cylinder_displacement, cylinder_slope
+from ..problem.parameters import Parameters
 
 __all__ = ["Validity", "assess", "gap"]
 

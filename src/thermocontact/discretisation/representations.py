@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import graded
-from .quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+from ..numerics import edge_graded as graded
+from ..numerics.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
 
 __all__ = ["ChebyshevBasis", "GradedBasis", "CHEBYSHEV"]
 

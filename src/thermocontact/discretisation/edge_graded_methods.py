@@ -15,12 +15,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import graded
-from .assembly import Blocks, register
-from .bases import GradedBasis
-from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
-from .parameters import Parameters
-from .product import range_projections
+from ..numerics import edge_graded as graded
+from .system import Blocks, register
+from .representations import GradedBasis
+from ..physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from ..problem.parameters import Parameters
+from .product_integration import range_projections
 
 __all__ = ["GradedRule", "assemble_graded", "assemble_graded_collocation", "graded_rules"]
 

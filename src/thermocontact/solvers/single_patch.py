@@ -20,9 +20,9 @@ import numpy as np
 from scipy.linalg import LinAlgError, lu_factor, lu_solve
 from scipy.linalg.lapack import dgecon
 
-from .assembly import AUTO_RANGE, METHODS, Blocks
-from .parameters import InputError, Parameters, SolveError, check_finite, check_positive
-from .validity import Validity, assess, gap
+from ..discretisation.system import AUTO_RANGE, METHODS, Blocks
+from ..problem.parameters import InputError, Parameters, SolveError, check_finite, check_positive
+from ..analysis.validity import Validity, assess, gap
 
 __all__ = [
     "ContactSolution",

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .parameters import InputError, Parameters, SolveError
-from .solver import DEFAULT_METHOD, ContactSolution, _blocks, solve, solve_blocks
+from ..problem.parameters import InputError, Parameters, SolveError
+from ..solvers.single_patch import DEFAULT_METHOD, ContactSolution, _blocks, solve, solve_blocks
 
 __all__ = ["Boundary", "Curve", "choose_n", "sweep", "validity_margins"]
 

@@ -25,9 +25,9 @@ from typing import Callable
 
 import numpy as np
 
-from .bases import CHEBYSHEV
-from .parameters import Parameters
-from .quadrature import BoundedRule, SingularRule
+from .representations import CHEBYSHEV
+from ..problem.parameters import Parameters
+from ..numerics.quadrature import BoundedRule, SingularRule
 
 __all__ = ["AUTO_RANGE", "Blocks", "METHODS", "register"]
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .solver import solve
+from ..solvers.single_patch import solve
 
 __all__ = ["curves_figure", "distribution_solutions", "distributions_figure", "plot_curve"]
 

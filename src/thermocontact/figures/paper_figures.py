@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import __version__
-from .limits import barber_insulated
-from .sweeps import Curve, sweep
+from .._version import __version__
+from ..physics.reference_solutions import barber_insulated
+from ..studies.sweeps import Curve, sweep
 
 __all__ = ["FIGURES", "Figure", "run_figure"]
 
@@ -131,7 +131,7 @@ def run_figure(fig: Figure, out_dir: str) -> list[str]:
     list of str
         The files written.
     """
-    from . import plotting
+    from ..plotting import curves as plotting
 
     os.makedirs(out_dir, exist_ok=True)
     stem = os.path.join(out_dir, fig.name)

@@ -19,11 +19,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import brentq, root_scalar
 
-from .assembly import AUTO_RANGE
-from .kernels import cylinder_temperature
-from .materials import Material
-from .parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
-from .solver import DEFAULT_METHOD, ContactSolution, _blocks, error_estimate, solve_blocks
+from ..discretisation.system import AUTO_RANGE
+from ..physics.green_functions import cylinder_temperature
+from ..problem.materials import Material
+from ..problem.parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
+from ..solvers.single_patch import DEFAULT_METHOD, ContactSolution, _blocks, error_estimate, solve_blocks
 
 __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
 

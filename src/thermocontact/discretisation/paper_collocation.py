@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .assembly import Blocks, register
-from .kernels import cylinder_slope, cylinder_temperature_gradient_regular
-from .parameters import Parameters
-from .quadrature import bounded_rule, singular_rule
+from .system import Blocks, register
+from ..physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from ..problem.parameters import Parameters
+from ..numerics.quadrature import bounded_rule, singular_rule
 
 __all__ = ["assemble_paper"]
 
