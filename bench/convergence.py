@@ -8,8 +8,8 @@ method and ``n = 16, 32, ..., 512`` (the paper method also 1024; the graded meth
 
 * ``P_H/P`` and ``sigma/Delta`` and their relative errors against a reference
   solution, each relative to ``max(|reference|, 0.01)``;
-* wall times of the assembly (``METHODS[method](par, n)``), of the linear solve
-  (``solve_blocks`` without validity) and of the validity checks (``assess``),
+* wall times of the assembly (``METHODS[method].assemble(par, n)``), of the linear solve
+  (``solve_system`` without validity) and of the validity checks (``assess``),
   separately, and of a first assembly at ``n`` in the process (below).
 
 The reference is the graded method at ``n = 1024``.  Its own error is estimated
@@ -26,7 +26,7 @@ solve, the cost of one solve to the error shown.  Tables that depend on ``n`` on
 in a process and reused by every later solve at that ``n``: the repeats measure
 that steady state, and ``t_first_assembly_s`` the first repeat, started without
 the graded point geometry.  ``solve()`` is not timed: it also solves coarser levels for its
-error estimate, so a call of it costs more than one ``solve_blocks``.
+error estimate, so a call of it costs more than one ``solve_system``.
 
 Output: a table and a summary of the accuracy targets on stdout, progress on
 stderr, ``convergence.csv`` and ``convergence.png`` in ``--out-dir`` (default: the
@@ -52,8 +52,10 @@ import numpy as np
 
 import thermocontact
 from thermocontact import METHODS, Parameters, SolveError
-from thermocontact.solvers.single_patch import error_estimate, solve_blocks
+from thermocontact.solvers.refinement import error_estimate
+from thermocontact.solvers.single_patch import solve_system
 from thermocontact.analysis.validity import assess
+from thermocontact.discretisation.representations import ROWS
 
 LAM = -1.0
 FHPE = 0.2
@@ -104,7 +106,7 @@ def clear_point_caches():
     """Forget the per-``n`` point geometry of the graded moments (a first call's cost)."""
     from thermocontact.numerics import edge_graded as graded
 
-    graded._geometry.cache_clear()
+    graded.GEOMETRY.clear()
 
 
 def timed_solve(par, method, n, repeats):
@@ -125,12 +127,13 @@ def timed_solve(par, method, n, repeats):
     sol = None
     clear_point_caches()
     for i in range(repeats):
+        ROWS.clear()  # the validity checks' row operators, cached per process
         t0 = time.perf_counter()
-        blocks = METHODS[method](par, n)
+        blocks = METHODS[method].assemble(par, n)
         t1 = time.perf_counter()
-        sol = solve_blocks(par, blocks, method, lam=LAM, check_validity=False)
+        sol = solve_system(par, blocks, method, lam=LAM, check_validity=False)
         t2 = time.perf_counter()
-        validity = assess(par, blocks, sol.phi, sol.psi, sol.load_ratio,
+        validity = assess(par, blocks.representation, sol.phi, sol.psi, sol.load_ratio,
                           sol.sigma_over_delta, sol.lam)
         t3 = time.perf_counter()
         if i == 0:

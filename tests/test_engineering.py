@@ -120,7 +120,7 @@ def test_temperature_against_carslaw_jaeger_quadrature():
     sol = solve(**p.to_dimensionless(d), n=48)
     s = np.array([-0.6, 0.1, 0.8])
     t1, _, _ = _temperatures(p, sol, d, s)
-    basis = sol.blocks.basis
+    basis = sol.representation
     eta, c = sol.eta, sol.parameters.cylinder_scale
     scale = p.friction * p.speed * p.load / (np.pi * STEEL.K)
     for si, ti in zip(s, t1):

@@ -104,7 +104,7 @@ def test_moments_next_to_an_edge_at_large_scale():
     beyond the replaced interval.  Its moment against cos(63 tau) T' equals 20-digit
     mpmath quadrature to 1e-14 of the row's largest entry (observed 4e-15; a
     construction with three geometric panels up to the side's end was off by 3e-14)."""
-    from thermocontact.discretisation.product_integration import range_projections
+    from thermocontact.discretisation.representations import range_projections
 
     mp.mp.dps = 20
     c, n = 1e5, 64
@@ -137,7 +137,7 @@ def test_cauchy_moments_next_to_an_edge():
     of the subtracted integrand to 1e-12 of the row's largest entry (observed 6e-14).
     A recurrence in cos(tau) for that row's short side, whose phase error the
     cancellation between the two sides amplifies, gave 2.5e-11."""
-    from thermocontact.discretisation.product_integration import range_projections
+    from thermocontact.discretisation.representations import range_projections
 
     mp.mp.dps = 30
     n, j = 128, 127

@@ -46,7 +46,7 @@ def test_no_coupling_is_hertz(pe, K, n, lam, method):
     sol = solve(pe, 0.0, K, lam=lam, n=n, method=method)
     assert abs(sol.load_ratio - 1.0) < 1e-12
     assert abs(sol.sigma_over_delta) < 1e-12
-    ef = sol.blocks.pressure_rule.edge_factor
+    ef = sol.representation.pressure_rule.edge_factor
     assert np.max(np.abs(sol.pressure[1:-1] - (2.0 / np.pi) * ef)) < 1e-12
     assert abs(sol.lam - lam) < 1e-12
     assert sol.valid
@@ -62,7 +62,7 @@ def test_graded_edge_factor_rounding():
     n = 256, the largest n it takes (derivation section 12)."""
     for n, bound in ((32, 1e-10), (64, 1e-10), (256, 1e-6)):
         sol = solve(5, 0.0, 10, lam=-1.0, n=n)
-        edge = sol.blocks.basis.phi_at(sol.phi, np.array([-1.0, 1.0]))
+        edge = sol.representation.phi_at(sol.phi, np.array([-1.0, 1.0]))
         assert np.max(np.abs(edge - 2.0 / np.pi)) < bound, n
 
 
@@ -75,7 +75,7 @@ def test_heat_balance(case, lam, method):
     relative to max(1, |q1|))."""
     sol = solve(lam=lam, n=48, method=method, **case)
     # q sqrt(1 - s^2) = psi + eta p sqrt(1 - s^2)
-    basis = sol.blocks.basis
+    basis = sol.representation
     val = integral_over_contact(
         lambda s: basis.psi_at(sol.psi, s) + sol.eta * sol.pressure_at(s) * np.sqrt(1 - s * s),
         singular=True)

@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import solve
-from thermocontact.discretisation.representations import GradedBasis
+from thermocontact.discretisation.representations import EdgeGraded
 from thermocontact.numerics.edge_graded import cosine_value, stretch, stretch_derivative
 from thermocontact.physics.green_functions import cylinder_slope
 
@@ -70,8 +70,8 @@ def brute_force_slope_mismatch(sol, t):
     """
     par = sol.parameters
     F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
-    basis = sol.blocks.basis
-    if not isinstance(basis, GradedBasis):
+    basis = sol.representation
+    if not isinstance(basis, EdgeGraded):
         return brute_force_slope_mismatch_chebyshev(sol, t)
     a_cos, b_cos = basis.to_cos @ sol.phi, basis.to_cos @ sol.psi
 
@@ -143,7 +143,7 @@ def test_edge_gap_follows_edge_pressure(lam):
     for edge in (-1.0, 1.0):
         s = edge * (1 + 1e-10)
         margin = sol.gap_at(s)[0] / 1e-15
-        phi_edge = sol.blocks.basis.phi_at(sol.phi, edge)
+        phi_edge = sol.representation.phi_at(sol.phi, edge)
         expected = np.pi / (2 * sol.load_ratio) * HERTZ_EDGE * phi_edge
         assert abs(margin / expected - 1) < 1e-3
 
@@ -162,7 +162,7 @@ def test_edge_log_term_makes_contact_invalid():
     for sol in sols:
         k_minus, k_plus = sol.validity.edge_log_coefficients
         assert k_plus > 0 and not sol.valid and sol.load_ratio > 0
-    phi1 = np.array([s.blocks.basis.phi_at(s.phi, 1.0) for s in sols])
+    phi1 = np.array([s.representation.phi_at(s.phi, 1.0) for s in sols])
     drift = np.diff(phi1)
     predicted = -np.sqrt(2) * sols[-1].validity.edge_log_coefficients[1] * np.log(2)
     ratio = drift / predicted

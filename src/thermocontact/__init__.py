@@ -1,27 +1,32 @@
 """thermocontact: steady thermoelastic sliding contact with frictional heating.
 
 A heat-conducting elastic cylinder slides over a stationary heat-conducting elastic
-half-plane; frictional heat distorts both surfaces.  :func:`solve` returns the
-contact's load ratio, offset, heat partition, pressure and heat-flux
-distributions and the validity of the single-patch solution.
+half-plane; frictional heat distorts both surfaces.  :func:`solve` (or
+:class:`Model` for many solves that share an assembly) returns the contact's load
+ratio, offset, heat partition, pressure and heat-flux distributions and the
+validity of the single-patch solution.
 """
 
 from ._version import __version__
-from .discretisation import paper_collocation as _collocation  # noqa: F401  (registers "paper")
-from .discretisation import product_integration as _product  # noqa: F401  (registers "product")
-from .discretisation import edge_graded_methods as _graded  # noqa: F401  (registers "graded")
-from .discretisation.system import METHODS
-from .problem.parameters import InputError, Parameters, SolveError
-from .solvers.single_patch import ContactSolution, solve
 from .analysis.validity import Validity
+from .discretisation.methods import DEFAULT_METHOD, METHODS, Method
+from .numerics.cache import clear_caches
+from .problem.parameters import ConvergenceWarning, InputError, Parameters, SolveError
+from .solvers.result import ContactSolution
+from .solvers.single_patch import Model, solve
 
 __all__ = [
+    "DEFAULT_METHOD",
     "METHODS",
     "ContactSolution",
+    "ConvergenceWarning",
     "InputError",
+    "Method",
+    "Model",
     "Parameters",
     "SolveError",
     "Validity",
+    "clear_caches",
     "solve",
     "__version__",
 ]

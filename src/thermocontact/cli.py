@@ -13,60 +13,11 @@ import click
 import numpy as np
 
 from . import __version__
-from .discretisation.system import METHODS
+from .discretisation.methods import DEFAULT_METHOD, METHODS
 from .problem.parameters import InputError, SolveError, check_positive
-from .solvers.single_patch import DEFAULT_METHOD, DEFAULT_TOL, N_AUTO_MAX, solve
+from .solvers.single_patch import DEFAULT_TOL, solve
 
-__all__ = ["main", "solution_record"]
-
-
-def solution_record(sol) -> dict:
-    """The JSON record of a :class:`~thermocontact.solver.ContactSolution`.
-
-    Pressure profile ``s``/``pressure`` is normalised to unit integral (Hertz:
-    ``(2/pi) sqrt(1 - s^2)``); gaps are in units of ``Delta^2/R``; positions in
-    ``s = (x - sigma)/Delta``.
-    """
-    par = sol.parameters
-    v = sol.validity
-    rec = {
-        "load_ratio": sol.load_ratio,
-        "lam": sol.lam,
-        "sigma_over_delta": sol.sigma_over_delta,
-        "pe": par.pe,
-        "fhpe": par.fhpe,
-        "K2_over_K1": par.K2_over_K1,
-        "k2_over_k1": par.k2_over_k1,
-        "delta1_over_delta2": par.delta1_over_delta2,
-        "n": sol.n,
-        "method": sol.method,
-        "valid": v.valid,
-        "positive_load": v.positive_load,
-        "min_pressure": v.min_pressure,
-        "min_pressure_at": v.min_pressure_at,
-        "pressure_margin": v.pressure_margin,
-        "pressure_margin_at": v.pressure_margin_at,
-        "min_gap": v.min_gap,
-        "min_gap_at": v.min_gap_at,
-        "gap_margin": v.gap_margin,
-        "gap_margin_at": v.gap_margin_at,
-        "edge_log_coefficients": list(v.edge_log_coefficients),
-        "edge_slope_residual": list(v.edge_slope_residual),
-        "rcond": sol.rcond,
-        "load_ratio_change": sol.load_ratio_change,
-        "error_estimate": sol.error_estimate,
-        "converged": sol.converged,
-        "auto_n": sol.auto_n,
-        "tol": sol.tol,
-        "s": sol.s.tolist(),
-        "pressure": sol.pressure.tolist(),
-        "flux_s": sol.flux_s.tolist(),
-        "flux_difference": sol.flux_difference.tolist(),
-        "flux_cylinder": sol.flux_cylinder.tolist(),
-        "flux_half_plane": sol.flux_half_plane.tolist(),
-        "version": __version__,
-    }
-    return rec
+__all__ = ["main"]
 
 
 def _summary(sol) -> str:
@@ -86,7 +37,7 @@ def _summary(sol) -> str:
     if sol.load_ratio_change is not None:
         lines.append(f"  |P_H/P(2n) - P_H/P(n)| = {sol.load_ratio_change:.2e}")
     lines += [
-        f"  valid         = {v.valid}",
+        f"  valid         = {v.valid}" + ("" if v.valid else f"  ({v.reason})"),
         f"  min pressure  = {v.min_pressure:.4g} at s = {v.min_pressure_at:.4f}"
         f"  (margin p/sqrt(1-s^2) = {v.pressure_margin:.4g} at s = {v.pressure_margin_at:.4f})",
         f"  min gap       = {v.min_gap:.4g} Delta^2/R at s = {v.min_gap_at:.4f}"
@@ -116,17 +67,16 @@ def cli():
 @click.option("--sigma", type=float, default=None,
               help="Contact offset sigma/Delta; give this or --lam.")
 @click.option("-n", "n", type=int, default=None,
-              help=f"Unknowns per function [default: chosen, doubling from 8 to 256 "
-                   f"(graded methods) or from 16 to {N_AUTO_MAX} until the error "
-                   f"estimate is below --tol].")
+              help="Unknowns per function [default: chosen, doubling over the method's "
+                   "range (" + "; ".join(f"{m.name} {m.auto_range[0]}-{m.auto_range[1]}"
+                                         for m in METHODS.values()) +
+                   ") until the error estimate is below --tol].")
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Target of the error estimate when n is chosen.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
               show_default=True,
-              help="Discretisation: edge-graded cosine series projected (graded) or "
-                   "collocated (graded-collocation); Chebyshev series with exact "
-                   "kernel moments projected (galerkin) or collocated (product); or "
-                   "the paper's collocation.")
+              help="Discretisation: " + "; ".join(f"{m.name}: {m.summary}"
+                                                   for m in METHODS.values()) + ".")
 @click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,
@@ -139,7 +89,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
                 check_convergence=check)
     if as_json:
-        click.echo(json.dumps(solution_record(sol), allow_nan=False))
+        click.echo(json.dumps(sol.to_dict(), allow_nan=False))
     else:
         click.echo(_summary(sol))
 

@@ -75,6 +75,52 @@ class Validity:
     edge_log_coefficients: tuple[float, float]
     edge_slope_residual: tuple[float, float]
 
+    @property
+    def failures(self) -> tuple[str, ...]:
+        """The inequalities that fail, each with where: e.g. ``"gap margin -0.02 at s = 1.013"``."""
+        out = []
+        if not self.positive_load:
+            out.append("load ratio P_H/P <= 0")
+        if self.pressure_margin < 0.0:
+            out.append(f"pressure margin {self.pressure_margin:.3g} at s = "
+                       f"{self.pressure_margin_at:.4g} ({_edge_name(self.pressure_margin_at)})")
+        if self.gap_margin < 0.0:
+            out.append(f"gap margin {self.gap_margin:.3g} at s = {self.gap_margin_at:.4g} "
+                       f"({_edge_name(self.gap_margin_at)})")
+        for k, at in zip(self.edge_log_coefficients, (-1.0, 1.0)):
+            if k > 0.0:
+                out.append(f"edge log coefficient {k:.3g} > 0 at the {_edge_name(at)} "
+                           f"(tensile layer inside the edge, derivation section 8)")
+        return tuple(out)
+
+    @property
+    def reason(self) -> str:
+        """``"valid"``, or ``"invalid: "`` and the failing inequalities."""
+        return "valid" if self.valid else "invalid: " + "; ".join(self.failures)
+
+    def to_dict(self) -> dict:
+        """The margins as a JSON-ready record."""
+        return {
+            "valid": self.valid,
+            "reason": self.reason,
+            "positive_load": self.positive_load,
+            "min_pressure": self.min_pressure,
+            "min_pressure_at": self.min_pressure_at,
+            "pressure_margin": self.pressure_margin,
+            "pressure_margin_at": self.pressure_margin_at,
+            "min_gap": self.min_gap,
+            "min_gap_at": self.min_gap_at,
+            "gap_margin": self.gap_margin,
+            "gap_margin_at": self.gap_margin_at,
+            "edge_log_coefficients": list(self.edge_log_coefficients),
+            "edge_slope_residual": list(self.edge_slope_residual),
+        }
+
+
+def _edge_name(s: float) -> str:
+    """The edge nearer to ``s``: ``s > 0`` the leading edge."""
+    return "leading edge" if s > 0.0 else "trailing edge"
+
 
 def _displacement_drop(a, h):
     """``E(a) - E(a + h)`` elementwise for ``a, h >= 0``.
@@ -98,7 +144,7 @@ def _displacement_drop(a, h):
     return out
 
 
-def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
+def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
     """Gap ``g(s)`` outside the contact, in units of ``Delta^2 / R``.
 
     Implements derivation eqs. (D20)-(D21): for ``s > 1``
@@ -110,8 +156,8 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     Parameters
     ----------
     par : Parameters
-    blocks : Blocks
-        The assembled system; its ``integrate`` evaluates the cylinder's kernels
+    rep : Representation
+        The solution's representation; it integrates the cylinder's kernels
         against the solution the method's way.
     phi, psi : ndarray, shape (n,)
         Nodal values of the unknowns.
@@ -131,18 +177,16 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     F = par.fhpe
     c = par.cylinder_scale
     d = par.delta1_over_delta2
-    basis = blocks.basis
-    cauchy_left, cauchy_right = basis.cauchy_edges(blocks, phi)
+    cauchy_left, cauchy_right = rep.cauchy_edges(phi)
     L = load_ratio
     eta = par.eta
 
     def against_p_plus_q(key, kernel, points, scale=None):
         # integral K (p + q) dr with p + q = (1 + eta) p + q'; the row operators
-        # depend only on the blocks and the points, so sweeps reuse them.
-        key = (key, np.asarray(points, dtype=float).tobytes())
-        if key not in blocks.cache:
-            blocks.cache[key] = blocks.integrate(kernel, points, scale)
-        ib, iq = blocks.cache[key]
+        # depend only on the representation, c and the points, so sweeps reuse them.
+        points = np.asarray(points, dtype=float)
+        ib, iq = rep.rows((key, c, points.tobytes()),
+                          lambda: rep.integrate(kernel, points, scale=scale))
         return (1.0 + eta) * (ib @ phi) + iq @ psi
 
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).
@@ -157,7 +201,7 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     right = s > 1.0
     if np.any(right):
         tt = s[right] - 1.0
-        jc = basis.cauchy_outside(blocks, phi, tt, right=True)
+        jc = rep.cauchy_outside(phi, tt, right=True)
         jt = 0.5 * (1.0 - lam) * tt
         if d:
             # E(c(1 - r)) - E(c(1 + tt - r)) as a kernel of u = s - r = 1 + tt - r.
@@ -169,7 +213,7 @@ def gap(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam, s):
     left = s < -1.0
     if np.any(left):
         tt = -1.0 - s[left]
-        jc = basis.cauchy_outside(blocks, phi, tt, right=False)
+        jc = rep.cauchy_outside(phi, tt, right=False)
         j = jc + F * 0.5 * (1.0 - lam) * tt - g_left_edge * tt
         out[left] = -sigma * tt + tt * (1.0 + 0.5 * tt) + np.pi / (2 * L) * j
     return out, (float(g_left_edge), float(g_right_edge))
@@ -191,7 +235,7 @@ def _outside_grid(par: Parameters, sigma, lam, load_ratio):
     return np.concatenate([-1.0 - t[::-1], 1.0 + t])
 
 
-def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validity:
+def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
     """Evaluate every contact inequality of a discrete solution.
 
     The pressure is sampled at 2049 points of ``[-1, 1]`` (edges included), spaced
@@ -203,14 +247,13 @@ def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validit
     -------
     Validity
     """
-    basis = blocks.basis
-    sp, phis = basis.phi_samples(phi, 2049)
+    sp, phis = rep.phi_samples(phi, 2049)
     p = np.sqrt(np.clip(1.0 - sp * sp, 0.0, None)) * phis
     ip = int(np.argmin(p))
     iphi = int(np.argmin(phis))
 
     so = _outside_grid(par, sigma, lam, load_ratio)
-    g, residual = gap(par, blocks, phi, psi, load_ratio, sigma, lam, so)
+    g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
     ig = int(np.argmin(g))
     margin = g / (np.abs(so) - 1.0) ** 1.5
     im = int(np.argmin(margin))
@@ -220,7 +263,7 @@ def assess(par: Parameters, blocks, phi, psi, load_ratio, sigma, lam) -> Validit
     else:
         min_gap, min_gap_at = float(g[ig]), float(so[ig])
 
-    psi_edges = basis.psi_edges(psi)
+    psi_edges = rep.psi_edges(psi)
     k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
 
     positive = bool(load_ratio > 0.0)

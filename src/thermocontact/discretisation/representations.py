@@ -1,21 +1,109 @@
-"""How a method represents the unknowns: evaluation and the Cauchy integrals outside.
+"""How a method represents the unknowns and integrates kernels against them.
 
-The solver and the validity checks need, from a discrete solution ``phi, psi``
-(nodal values), the factors ``phi(s)``, ``psi(s)`` anywhere in ``[-1, 1]``, the
-Hilbert transform of the pressure at the edges and its integral beyond them (the
-Cauchy part of the gap, derivation D20-D21).  :class:`ChebyshevBasis` does this in
-closed form for the polynomial representation of derivation section 6;
-:class:`GradedBasis` by moments for the representation of section 12.
+The pressure is ``p(r) = sqrt(1 - r^2) phi(r)`` and the heat-flux difference's
+singular part ``q'(r) = psi(r) / sqrt(1 - r^2)`` (derivation section 6).  A
+representation carries ``phi`` and ``psi`` by their values at ``n`` nodes and
+provides
+
+* the rules ``integral p dr = w_p . phi`` and ``integral q' dr = w_q . psi``;
+* the row operators ``integral K(s - r) p(r) dr = I_p(s) . phi`` and
+  ``integral K(s - r) q'(r) dr = I_q(s) . psi`` for any kernel, the principal
+  value of ``1/u`` and the step ``sgn u`` (the moments every operator of the
+  contact and heat equations is made of, :mod:`.operator`);
+* the points where the equations are collocated, and the projections on the
+  equations' range spaces;
+* ``phi``, ``psi`` anywhere, and the Hilbert transform of the pressure at and
+  beyond the edges (the Cauchy part of the gap, derivation D20-D21).
+
+Three representations:
+
+* :class:`ChebyshevSampled`: the paper's, ``phi`` a ``U``-series and ``psi`` a
+  ``T``-series, every kernel sampled at the Gauss–Chebyshev nodes (section 6;
+  low algebraic order);
+* :class:`Chebyshev`: the same series, every kernel integrated exactly against
+  them (section 10: closed forms for ``1/u`` and ``sgn``, moments to rounding by
+  :func:`~thermocontact.numerics.moments.kernel_moments` otherwise);
+* :class:`EdgeGraded`: cosine series in the edge-graded variable ``tau`` (section
+  12), every integral a moment by
+  :func:`~thermocontact.numerics.edge_graded.moments`.
+
+A representation is identified by its class and ``n``: it pickles as that pair,
+and what it computes is kept in per-process caches bounded in bytes
+(:mod:`thermocontact.numerics.cache`).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from functools import cached_property, lru_cache
+
 import numpy as np
 
 from ..numerics import edge_graded as graded
-from ..numerics.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
+from ..numerics.cache import BoundedCache
+from ..numerics.moments import kernel_moments, sgn_moments
+from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_matrix,
+                                   t_series_coefficients, u_coefficient_matrix,
+                                   u_series_coefficients, u_series_value)
 
-__all__ = ["ChebyshevBasis", "GradedBasis", "CHEBYSHEV"]
+__all__ = ["Chebyshev", "ChebyshevSampled", "EdgeGraded", "NodeRule", "Representation",
+           "range_projections"]
+
+#: Row operators that depend only on a representation and a set of points (the
+#: validity checks and the temperatures evaluate the same points again and again).
+ROWS = BoundedCache("row operators", 128 * 2**20)
+
+
+@dataclass(frozen=True)
+class NodeRule:
+    """Nodes of one unknown and the weights of its integral over ``[-1, 1]``.
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (n,)
+        Ascending.
+    weights : ndarray, shape (n,)
+        ``integral p dr = weights @ phi`` (pressure) or
+        ``integral q' dr = weights @ psi`` (flux).
+    edge_factor : ndarray, shape (n,)
+        ``sqrt(1 - r_i^2)``, formed without cancellation next to an edge.
+    """
+
+    nodes: np.ndarray
+    weights: np.ndarray
+    edge_factor: np.ndarray
+
+
+#: Quadrature points per unknown of the Galerkin projections.
+OVERSAMPLING = 2
+
+
+@lru_cache(maxsize=16)
+def range_projections(n: int):
+    """Points and projections of the two equations on their range spaces.
+
+    On ``m = 2n`` midpoints ``x_k = pi (k - 1/2)/m`` (descending), the rows
+    ``(pi/m) cos(j x_k)``, ``j <= n``, project a function of ``x`` on ``cos(j x)``
+    (the contact equation: ``T_j`` with weight ``1/sqrt(1-s^2)`` when ``s = cos x``),
+    and ``(pi/m) sin((j + 1) x_k) sin x_k``, ``j <= n - 2``, on
+    ``sin((j + 1) x) sin x`` (the heat equation: ``U_j`` with weight
+    ``sqrt(1-s^2)``).  The Chebyshev representations take ``x = t = arccos s``,
+    the edge-graded one ``x = tau`` (derivation sections 10 and 12).
+
+    Returns
+    -------
+    x : ndarray, shape (m,)
+    p1 : ndarray, shape (n + 1, m)
+    p2 : ndarray, shape (n - 1, m)
+    """
+    m = OVERSAMPLING * n
+    x = np.pi * (np.arange(m, 0, -1) - 0.5) / m
+    w = np.pi / m
+    p1 = w * np.cos(np.arange(n + 1)[:, None] * x[None, :])
+    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * x[None, :]) * np.sin(x)[None, :]
+    for a in (x, p1, p2):
+        a.flags.writeable = False
+    return x, p1, p2
 
 
 def _cauchy_outside_integral(m, tt):
@@ -43,8 +131,75 @@ def _cauchy_outside_integral(m, tt):
     return 0.5 * (first - second)
 
 
-class ChebyshevBasis:
+def _key(points) -> bytes:
+    return np.ascontiguousarray(points, dtype=float).tobytes()
+
+
+class Representation:
+    """Interface and shared behaviour; see the module docstring.
+
+    Parameters
+    ----------
+    n : int
+        Unknowns per function.
+    """
+
+    #: Short name used in records.
+    name = ""
+
+    def __init__(self, n: int):
+        self.n = int(n)
+
+    # Identity: class and n.  Everything else is recomputed or cached per process.
+    def __reduce__(self):
+        return (type(self), (self.n,))
+
+    def __eq__(self, other):
+        return type(self) is type(other) and self.n == other.n
+
+    def __hash__(self):
+        return hash((type(self).__name__, self.n))
+
+    def __repr__(self):
+        return f"{type(self).__name__}(n={self.n})"
+
+    def rows(self, key, build):
+        """A row operator of this representation, cached under ``key``."""
+        return ROWS.get((type(self).__name__, self.n) + tuple(key), build)
+
+    # Quantities every representation derives the same way.
+    def pressure_at(self, phi, s):
+        """``p(s) = sqrt(1 - s^2) phi(s)`` on ``[-1, 1]``."""
+        s = np.asarray(s, dtype=float)
+        return np.sqrt(np.clip(1.0 - s * s, 0.0, None)) * self.phi_at(phi, s)
+
+
+class _ChebyshevSeries(Representation):
     """``phi`` as a ``U``-series, ``psi`` as a ``T``-series (derivation section 6)."""
+
+    @cached_property
+    def pressure_rule(self) -> NodeRule:
+        r = bounded_rule(self.n)
+        return NodeRule(r.nodes, r.weights, r.edge_factor)
+
+    @cached_property
+    def flux_rule(self) -> NodeRule:
+        r = singular_rule(self.n)
+        return NodeRule(r.nodes, r.weights, r.edge_factor)
+
+    def collocation_points(self):
+        """Contact equation at the zeros of ``T_{n+1}``, heat equation at those of
+        ``U_{n-1}``: where the Gauss rules' principal values are exact.
+
+        Returns
+        -------
+        (s_contact, aux_contact), (s_heat, aux_heat)
+        """
+        return (bounded_rule(self.n).collocation, None), (singular_rule(self.n).collocation, None)
+
+    def projection_points(self, x):
+        """``s = cos x`` of the projections' points ``x = t``."""
+        return np.cos(x), None
 
     def phi_at(self, phi, s):
         """``phi(s)``, ``-1 <= s <= 1``."""
@@ -65,7 +220,7 @@ class ChebyshevBasis:
         b = t_series_coefficients(psi)
         return np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])
 
-    def cauchy_edges(self, blocks, phi):
+    def cauchy_edges(self, phi):
         """``(1/pi) integral p(r)/(s - r) dr`` at ``s = -1`` and ``s = 1``.
 
         ``(1/pi) integral sqrt(1-r^2) U_j(r)/(s - r) dr = T_{j+1}(s)``: ``(-1)^{j+1}``
@@ -75,7 +230,7 @@ class ChebyshevBasis:
         sign = np.where(np.arange(a.size) % 2 == 0, -1.0, 1.0)
         return float((sign * a).sum()), float(a.sum())
 
-    def cauchy_outside(self, blocks, phi, tt, right: bool):
+    def cauchy_outside(self, phi, tt, right: bool):
         """``integral_1^{1+tt} H(y) dy`` (right) or ``integral_{-1-tt}^{-1} H(y) dy`` (left).
 
         ``H(y) = (1/pi) integral p(r)/(y - r) dr``, in closed form term by term.
@@ -88,15 +243,134 @@ class ChebyshevBasis:
         return _cauchy_outside_integral(m, tt) @ (sign_m * a)
 
 
-CHEBYSHEV = ChebyshevBasis()
+class Chebyshev(_ChebyshevSeries):
+    """Chebyshev series, every kernel integrated exactly against them (section 10)."""
+
+    name = "chebyshev"
+
+    def _maps(self):
+        return u_coefficient_matrix(self.n), t_coefficient_matrix(self.n)
+
+    def integrate(self, kernel, s, *, scale=None, logarithmic=False, aux=None):
+        """Row operators ``(I_p, I_q)`` of ``integral K(s - r) (p, q')(r) dr``.
+
+        By :func:`~thermocontact.numerics.moments.kernel_moments`; ``scale`` and
+        ``logarithmic`` describe the kernel as there.
+
+        Returns
+        -------
+        ndarray, shape (k, n), twice
+        """
+        b, t = kernel_moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
+                              logarithmic=logarithmic)
+        to_u, to_t = self._maps()
+        return b @ to_u, t @ to_t
+
+    def cauchy(self, s, aux=None):
+        """Principal values of ``integral (p, q')(r) / (s - r) dr``, ``|s| < 1``.
+
+        ``PV integral sqrt(1-r^2) U_j/(s - r) dr = pi T_{j+1}(s)`` and
+        ``PV integral T_j/(sqrt(1-r^2)(s - r)) dr = -pi U_{j-1}(s)``.
+        """
+        th = np.arccos(np.asarray(s, dtype=float))[:, None]
+        j = np.arange(self.n)[None, :]
+        cb = np.pi * np.cos((j + 1) * th)
+        cs = -np.pi * np.sin(j * th) / np.sin(th)
+        to_u, to_t = self._maps()
+        return cb @ to_u, cs @ to_t
+
+    def sign(self, s, aux=None):
+        """``integral sgn(s - r) (p, q')(r) dr`` in closed form (``sgn_moments``)."""
+        b, t = sgn_moments(np.asarray(s, dtype=float), self.n)
+        to_u, to_t = self._maps()
+        return b @ to_u, t @ to_t
 
 
-class GradedBasis:
-    """``phi`` and ``psi`` as cosine series in ``tau`` (derivation section 12)."""
+class ChebyshevSampled(_ChebyshevSeries):
+    """The paper's scheme: Chebyshev series, kernels sampled at the nodes (section 6).
 
-    def __init__(self, n: int):
-        self.n = n
-        self.to_cos = graded.coefficient_matrix(n)
+    The Cauchy kernel's Gauss sum is exact at the collocation points; the step
+    kernels and the logarithm of the cylinder's temperature gradient are not,
+    which limits the convergence to low algebraic order.
+    """
+
+    name = "chebyshev-sampled"
+
+    def integrate(self, kernel, s, *, scale=None, logarithmic=False, aux=None):
+        s = np.asarray(s, dtype=float)[:, None]
+        pr, fr = bounded_rule(self.n), singular_rule(self.n)
+        return (pr.weights[None, :] * kernel(s - pr.nodes[None, :]),
+                fr.weights[None, :] * kernel(s - fr.nodes[None, :]))
+
+    def cauchy(self, s, aux=None):
+        return self.integrate(lambda u: 1.0 / u, s)
+
+    def sign(self, s, aux=None):
+        return self.integrate(np.sign, s)
+
+
+class EdgeGraded(Representation):
+    """Cosine series in the edge-graded variable ``tau`` (derivation section 12).
+
+    ``r = cos T(tau)``, ``T(tau) = tau - sin(2 tau)/2``; the unknowns are carried by
+    their values at ``tau_i = pi (i - 1/2)/n``.  Every integral, the Cauchy ones
+    included, is a moment by :func:`~thermocontact.numerics.edge_graded.moments`.
+    """
+
+    name = "edge-graded"
+
+    @property
+    def to_cos(self):
+        """Matrix taking nodal values to cosine coefficients in ``tau`` (read-only)."""
+        return t_coefficient_matrix(self.n)
+
+    def _rule(self, which):
+        t = graded.stretch(graded.nodes(self.n))
+        r, sin_t = np.cos(t), np.sin(t)
+        wb, ws = graded.weight_integrals(self.n)
+        w = (wb if which == 0 else ws) @ self.to_cos
+        return NodeRule(r, w, sin_t)
+
+    @cached_property
+    def pressure_rule(self) -> NodeRule:
+        return self._rule(0)
+
+    @cached_property
+    def flux_rule(self) -> NodeRule:
+        return self._rule(1)
+
+    def collocation_points(self):
+        """Contact equation at ``tau = pi (k - 1/2)/(n + 1)``, heat equation at
+        ``tau = pi k / n``: the analogues in ``tau`` of the zeros of ``T_{n+1}`` and
+        ``U_{n-1}``.  Each point comes with its ``tau`` (``aux``)."""
+        def points(m, shift):
+            k = np.arange(m, 0, -1) if shift else np.arange(m - 1, 0, -1)
+            tau = np.pi * (k - shift) / m
+            return np.cos(graded.stretch(tau)), tau
+        return points(self.n + 1, 0.5), points(self.n, 0.0)
+
+    def projection_points(self, x):
+        """``s = cos T(x)`` of the projections' points ``x = tau``, and ``tau``."""
+        return np.cos(graded.stretch(x)), x
+
+    def integrate(self, kernel, s, *, scale=None, logarithmic=False, aux=None,
+                  from_edge=False):
+        """Row operators ``(I_p, I_q)``; ``aux`` is the points' ``tau`` (keeps points
+        within rounding of an edge apart from it), ``from_edge`` as in
+        :func:`~thermocontact.numerics.edge_graded.moments`."""
+        b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
+                              logarithmic=logarithmic, tau=aux, from_edge=from_edge)
+        to_cos = self.to_cos
+        return b @ to_cos, q @ to_cos
+
+    def cauchy(self, s, aux=None):
+        b, q = graded.moments(lambda u: 1.0 / u, np.asarray(s, dtype=float), self.n,
+                              scale=1.0, cauchy=True, tau=aux)
+        to_cos = self.to_cos
+        return b @ to_cos, q @ to_cos
+
+    def sign(self, s, aux=None):
+        return self.integrate(np.sign, s, scale=1.0, aux=aux)
 
     def phi_at(self, phi, s):
         return graded.cosine_value(self.to_cos @ phi, graded.tau_of(s))
@@ -116,31 +390,31 @@ class GradedBasis:
         b = self.to_cos @ psi
         return np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])
 
-    def _row(self, blocks, key, kernel, points, scale=None, from_edge=False):
-        key = ("graded", key, np.asarray(points, dtype=float).tobytes())
-        if key not in blocks.cache:
-            b, _ = graded.moments(kernel, points, self.n, scale=scale, from_edge=from_edge)
-            blocks.cache[key] = (b @ self.to_cos) / np.pi
-        return blocks.cache[key]
+    def _pressure_row(self, key, kernel, points, from_edge=False):
+        points = np.asarray(points, dtype=float)
 
-    def cauchy_edges(self, blocks, phi):
+        def build():
+            b, _ = self.integrate(kernel, points, scale=1.0, from_edge=from_edge)
+            return b / np.pi
+        return self.rows((key, _key(points)), build)
+
+    def cauchy_edges(self, phi):
         # p ~ sqrt(1 -+ r) at the edge, so p/(s - r) is integrable there.
-        row = self._row(blocks, "edges", lambda u: 1.0 / u, np.array([-1.0, 1.0]), scale=1.0)
-        v = row @ phi
+        v = self._pressure_row("edges", lambda u: 1.0 / u, [-1.0, 1.0]) @ phi
         return float(v[0]), float(v[1])
 
-    def cauchy_outside(self, blocks, phi, tt, right: bool):
+    def cauchy_outside(self, phi, tt, right: bool):
         # integral of (1/pi) p(r)/(y - r) over y: (1/pi) integral p(r) ln(...) dr,
         # with the kernel of e = 1 - r (right) or -(1 + r) (left), never of u - tt.
-        tt = np.asarray(tt, dtype=float)
-        col = tt[:, None]
         # In tau the kernels are smooth but at the edge itself, where the weight
         # vanishes like tau^8: no grading beyond that of a unit scale is needed.
+        tt = np.asarray(tt, dtype=float)
+        col = tt[:, None]
         if right:  # ln((1 - r + tt)/(1 - r))
-            row = self._row(blocks, "right", lambda e: np.log1p(col / e), 1.0 + tt,
-                            scale=1.0, from_edge=True)
+            row = self._pressure_row("right", lambda e: np.log1p(col / e), 1.0 + tt,
+                                     from_edge=True)
             return row @ phi
         # -ln((1 + r + tt)/(1 + r))
-        row = self._row(blocks, "left", lambda e: np.log1p(col / -e), -1.0 - tt,
-                        scale=1.0, from_edge=True)
+        row = self._pressure_row("left", lambda e: np.log1p(col / -e), -1.0 - tt,
+                                 from_edge=True)
         return -(row @ phi)

@@ -1,97 +1,105 @@
-"""The discrete system shared by every discretisation method, and their registry.
+"""The discrete system shared by every discretisation method.
 
-Unknowns (derivation section 6): the pressure's bounded factor ``phi`` at the
-nodes of a :class:`~thermocontact.quadrature.BoundedRule` and the heat-flux
-difference's factor ``psi`` at the nodes of a
-:class:`~thermocontact.quadrature.SingularRule`.  A method supplies the blocks of
+Unknowns (derivation section 6): the pressure's bounded factor ``phi`` and the
+heat-flux difference's factor ``psi`` at the nodes of a representation
+(:mod:`.representations`).  The blocks are
 
-* the contact equation (D14) at ``n + 1`` points ``s_k``::
+* the contact equation (D14), collocated at ``n + 1`` points ``s_k`` or
+  projected on ``n + 1`` functions::
 
-      (C - F Tp) phi - F Tq psi = (2/pi) (L sigma + L s_k)
+      (C - F Tp) phi - F Tq psi = (2/pi) (L sigma e_0 + L e_1)
 
-* the heat equation (D18) at ``n - 1`` points ``s'_k``::
+  where ``e_0``, ``e_1`` are ``1`` and ``s_k`` (collocation) or their projections;
+
+* the heat equation (D18) at ``n - 1`` points or projections::
 
       Hp phi + Hq psi = 0
 
 with the load and heat-partition rows ``w_p . phi = 1`` and
 ``w_q . psi = lam - eta``.  Nothing in the blocks depends on ``F = fHPe``,
-``lam`` or ``sigma``, so one assembly serves a whole sweep over them.
+``lam`` or ``sigma``, so one assembly serves a whole sweep over them.  The blocks
+are plain arrays and a representation (pickled as its class and ``n``), so an
+assembly can be sent to another process.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
-from .representations import CHEBYSHEV
 from ..problem.parameters import Parameters
-from ..numerics.quadrature import BoundedRule, SingularRule
+from .operator import contact_operators, heat_operators
+from .representations import Representation, range_projections
 
-__all__ = ["AUTO_RANGE", "Blocks", "METHODS", "register"]
+__all__ = ["Blocks", "assemble"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Blocks:
     """Assembled, ``F``-independent blocks of the discrete equations.
 
     Attributes
     ----------
-    n : int
-        Unknowns per function.
-    pressure_rule, flux_rule : BoundedRule, SingularRule
-        Node sets of ``phi`` and ``psi``.
-    contact_points : ndarray, shape (n + 1,)
-        Where the contact equation is enforced.
+    representation : Representation
+        How ``phi`` and ``psi`` are carried, evaluated and integrated.
     C, Tp : ndarray, shape (n + 1, n)
-        Cauchy and thermal-distortion operators on ``phi``.
+        Cauchy and thermal-distortion operators of (D14) on ``phi``.
     Tq : ndarray, shape (n + 1, n)
-        Thermal-distortion operator on ``psi``.
+        Thermal-distortion operator of (D14) on ``psi``.
     Hp, Hq : ndarray, shape (n - 1, n)
-        Heat-equation operators on ``phi`` and ``psi``.
-    integrate : callable
-        ``integrate(kernel, s, scale=None) -> (Ib, Is)``, row operators with
-        ``integral K(s - r) p(r) dr = Ib @ phi`` and
-        ``integral K(s - r) q'(r) dr = Is @ psi`` for any kernel, computed the
-        method's way (used by the validity checks); ``kernel`` receives arrays
-        whose rows belong to the points ``s``.
+        Operators of (D18) on ``phi`` and ``psi``.
+    const_column, linear_column : ndarray, shape (n + 1,)
+        The right side's ``e_0`` and ``e_1``.
     """
 
-    n: int
-    pressure_rule: BoundedRule
-    flux_rule: SingularRule
-    contact_points: np.ndarray
+    representation: Representation
     C: np.ndarray
     Tp: np.ndarray
     Tq: np.ndarray
     Hp: np.ndarray
     Hq: np.ndarray
-    integrate: Callable = field(repr=False, compare=False)
-    #: The contact equation's columns for ``L sigma`` and ``L`` (times -2/pi):
-    #: by default 1 and ``s_k`` at the collocation points; a projection method
-    #: gives their projections.
-    const_column: np.ndarray | None = field(default=None, repr=False, compare=False)
-    linear_column: np.ndarray | None = field(default=None, repr=False, compare=False)
-    #: Row operators of the validity checks, which depend only on the blocks.
-    cache: dict = field(default_factory=dict, repr=False, compare=False)
-    #: Representation of ``phi`` and ``psi`` (:mod:`thermocontact.bases`).
-    basis: object = field(default=CHEBYSHEV, repr=False, compare=False)
+    const_column: np.ndarray
+    linear_column: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return self.representation.n
+
+    def __repr__(self):
+        return f"Blocks({self.representation!r})"
 
 
-Assembler = Callable[[Parameters, int], Blocks]
+def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
+    """Assemble the blocks by collocation or by projection on the range spaces.
 
-METHODS: dict[str, Assembler] = {}
-#: Per method, the first and the largest ``n`` of the solver's automatic doubling.
-AUTO_RANGE: dict[str, tuple[int, int]] = {}
+    Parameters
+    ----------
+    par : Parameters
+        ``fhpe`` is not used.
+    rep : Representation
+    scheme : {"collocation", "projection"}
+        Collocation at the representation's points; or projection of (D14) on
+        ``cos(j x)``, ``j <= n``, and of (D18) on ``sin((j + 1) x) sin x``,
+        ``j < n - 1``, by the midpoint rule on ``2n`` points in the
+        representation's variable ``x`` (:func:`.representations.range_projections`;
+        the error is about that of collocation at ``2n``, derivation sections 10
+        and 12).
 
-
-def register(name: str, auto_range: tuple[int, int] = (16, 1024)):
-    """Add an assembler to :data:`METHODS` under ``name``, with its automatic ``n`` range."""
-
-    def deco(func: Assembler) -> Assembler:
-        METHODS[name] = func
-        AUTO_RANGE[name] = auto_range
-        return func
-
-    return deco
+    Returns
+    -------
+    Blocks
+    """
+    n = rep.n
+    if scheme == "collocation":
+        (sk, ak), (sh, ah) = rep.collocation_points()
+        C, Tp, Tq = contact_operators(par, rep, sk, ak)
+        Hp, Hq = heat_operators(par, rep, sh, ah)
+        return Blocks(rep, C, Tp, Tq, Hp, Hq, np.ones(n + 1), sk)
+    if scheme == "projection":
+        x, p1, p2 = range_projections(n)
+        s, aux = rep.projection_points(x)
+        C, Tp, Tq = contact_operators(par, rep, s, aux)
+        Hp, Hq = heat_operators(par, rep, s, aux)
+        return Blocks(rep, p1 @ C, p1 @ Tp, p1 @ Tq, p2 @ Hp, p2 @ Hq, p1.sum(axis=1), p1 @ s)
+    raise ValueError(f"scheme must be 'collocation' or 'projection', got {scheme!r}")

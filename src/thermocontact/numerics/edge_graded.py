@@ -25,12 +25,12 @@ from functools import lru_cache
 
 import numpy as np
 
+from .cache import BoundedCache
 from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_lagrange,
                       levels_for, near_field, outer_panels, panel_rule)
 
 __all__ = [
     "bounded_weight",
-    "coefficient_matrix",
     "cosine_value",
     "moments",
     "nodes",
@@ -115,19 +115,6 @@ def tau_of(s):
 def nodes(n: int):
     """``tau_i = pi (i - 1/2) / n``, descending, so that ``r = cos T(tau)`` ascends."""
     return np.pi * (np.arange(n, 0, -1) - 0.5) / n
-
-
-@lru_cache(maxsize=32)
-def coefficient_matrix(n: int):
-    """Matrix taking values at :func:`nodes` to cosine coefficients (read-only).
-
-    ``a_j = (2 - [j = 0]) / n * sum_i cos(j tau_i) f_i`` (discrete orthogonality).
-    """
-    tau = nodes(n)
-    m = (2.0 / n) * np.cos(np.arange(n)[:, None] * tau[None, :])
-    m[0] *= 0.5
-    m.flags.writeable = False
-    return m
 
 
 def cosine_value(coefficients, tau):
@@ -283,10 +270,15 @@ class _Geometry:
         self.sides = [_Side(self, sign, side, n, h, w) for sign, side in sides]
 
 
-@lru_cache(maxsize=8)
+#: The point geometry of the moments, shared by the kernels of one assembly.
+GEOMETRY = BoundedCache("graded geometry", 512 * 2**20)
+
+
 def _geometry(key: bytes, n: int, tau_key: bytes | None) -> _Geometry:
-    tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
-    return _Geometry(np.frombuffer(key, dtype=float), n, tau)
+    def build():
+        tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
+        return _Geometry(np.frombuffer(key, dtype=float), n, tau)
+    return GEOMETRY.get((key, n, tau_key), build)
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,

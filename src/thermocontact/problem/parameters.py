@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["InputError", "Parameters", "SolveError"]
+__all__ = ["ConvergenceWarning", "InputError", "Parameters", "SolveError"]
 
 
 #: Largest Pe k2/k1: beyond it the cylinder's kernels are narrower than any
@@ -19,6 +19,10 @@ class InputError(ValueError):
 
 class SolveError(RuntimeError):
     """The discrete problem has no (unique, well-conditioned) solution."""
+
+
+class ConvergenceWarning(UserWarning):
+    """A result whose error estimate misses its target."""
 
 
 def _real(name: str, value) -> float:

@@ -13,142 +13,44 @@ Two ways to close the problem (derivation section 5):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from functools import lru_cache
+import logging
+import warnings
 
 import numpy as np
 from scipy.linalg import LinAlgError, lu_factor, lu_solve
 from scipy.linalg.lapack import dgecon
 
-from ..discretisation.system import AUTO_RANGE, METHODS, Blocks
-from ..problem.parameters import InputError, Parameters, SolveError, check_finite, check_positive
-from ..analysis.validity import Validity, assess, gap
+from ..analysis.validity import assess
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..discretisation.system import Blocks
+from ..numerics.cache import BoundedCache
+from ..problem.parameters import (ConvergenceWarning, InputError, Parameters, SolveError,
+                                  check_finite, check_positive)
+from .refinement import N_RANGE, refine
+from .result import ContactSolution
 
 __all__ = [
-    "ContactSolution",
     "DEFAULT_METHOD",
     "DEFAULT_TOL",
-    "N_AUTO_MAX",
-    "N_RANGE",
+    "LIMIT",
+    "Model",
     "RCOND_MIN",
-    "error_estimate",
+    "check_n",
     "solve",
-    "solve_blocks",
+    "solve_system",
 ]
 
-#: Default method and error target.
-DEFAULT_METHOD = "graded"
+log = logging.getLogger("thermocontact")
+
+#: Default error target.
 DEFAULT_TOL = 1e-8
-N_RANGE = (4, 2048)
-#: Automatic choice of n doubles from N_AUTO_START up to N_AUTO_MAX (the
-#: Chebyshev and paper methods; each method's range is in ``assembly.AUTO_RANGE``).
-N_AUTO_START = 16
-N_AUTO_MAX = 1024
 #: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
 LIMIT = 1e6
-#: Largest convergence order the error estimate believes: just above the
-#: asymptotic order 4 of the Chebyshev methods (derivation section 10).  The graded
-#: methods converge faster once they resolve the edges, but before that (Pe k2/k1
-#: large, n small) a sudden drop of the differences must not be read as a high
-#: order: the same cap keeps their estimate an upper bound (section 12).
-P_MAX = 5.0
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
 RCOND_MIN = 1e-12
 
-
-@dataclass(frozen=True)
-class ContactSolution:
-    """One solution of the sliding-contact problem, in dimensionless form.
-
-    Attributes
-    ----------
-    parameters : Parameters
-    method : str
-        Discretisation method, a key of :data:`~thermocontact.assembly.METHODS`.
-    n : int
-        Unknowns per function.
-    load_ratio : float
-        ``P_H/P``: the Hertz load for the same half-width over the actual load.
-    lam : float
-        Heat partition ``(Q1 - Q2)/(Q1 + Q2)``.
-    sigma_over_delta : float
-        Offset of the contact centre from the cylinder's initial point of contact,
-        in half-widths, positive toward the leading edge (``+x``).
-    eta : float
-        ``(1 - K2/K1)/(1 + K2/K1)``.
-    s, pressure : ndarray
-        Nodes in ``[-1, 1]`` (edges included) and the contact pressure there,
-        normalised to unit integral and positive in compression.
-    flux_s : ndarray
-        Nodes of the heat-flux distributions (interior; they are singular at the
-        edges).
-    flux_difference, flux_cylinder, flux_half_plane : ndarray
-        ``q = q1 - q2``, ``q1`` and ``q2`` at ``flux_s``, in units of
-        ``f v P / Delta`` so that ``q1 + q2`` is the pressure and the integral of
-        ``q`` is ``lam``.
-    validity : Validity
-    rcond : float
-        Reciprocal condition number (1-norm) of the linear system.
-    load_ratio_change : float or None
-        ``|P_H/P(2n) - P_H/P(n)|`` when a convergence check was asked for.
-    error_estimate : float or None
-        Estimated relative error of ``P_H/P`` and ``sigma/Delta`` (the larger),
-        see :func:`error_estimate`.
-    converged : bool or None
-        ``error_estimate <= tol``.
-    auto_n : bool
-        Whether ``n`` was chosen automatically.
-    tol : float or None
-        The error target.
-    """
-
-    parameters: Parameters
-    method: str
-    n: int
-    load_ratio: float
-    lam: float
-    sigma_over_delta: float
-    eta: float
-    s: np.ndarray
-    pressure: np.ndarray
-    flux_s: np.ndarray
-    flux_difference: np.ndarray
-    flux_cylinder: np.ndarray
-    flux_half_plane: np.ndarray
-    validity: Validity
-    rcond: float
-    load_ratio_change: float | None = None
-    error_estimate: float | None = None
-    converged: bool | None = None
-    auto_n: bool = False
-    tol: float | None = None
-    blocks: Blocks = field(default=None, repr=False, compare=False)
-    phi: np.ndarray = field(default=None, repr=False, compare=False)
-    psi: np.ndarray = field(default=None, repr=False, compare=False)
-
-    @property
-    def valid(self) -> bool:
-        """Whether every contact inequality holds (see :class:`Validity`)."""
-        if self.validity is None:
-            raise ValueError("validity was not evaluated for this solution")
-        return self.validity.valid
-
-    def pressure_at(self, s):
-        """Pressure at ``s`` in ``[-1, 1]`` from the ``U``-series of ``phi``."""
-        s = np.asarray(s, dtype=float)
-        return np.sqrt(np.clip(1.0 - s * s, 0.0, None)) * self.blocks.basis.phi_at(self.phi, s)
-
-    def flux_difference_at(self, s):
-        """Heat-flux difference ``q = q' + eta p`` at ``s`` in ``(-1, 1)``."""
-        s = np.asarray(s, dtype=float)
-        psi = self.blocks.basis.psi_at(self.psi, s)
-        return psi / np.sqrt(1.0 - s * s) + self.eta * self.pressure_at(s)
-
-    def gap_at(self, s):
-        """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D20-D21)."""
-        g, _ = gap(self.parameters, self.blocks, self.phi, self.psi, self.load_ratio,
-                   self.sigma_over_delta, self.lam, s)
-        return g
+#: Assemblies by method, parameters and n, for every Model of this process.
+ASSEMBLIES = BoundedCache("assemblies", 512 * 2**20)
 
 
 def _factor(A):
@@ -166,7 +68,7 @@ def _factor(A):
     return lu, float(rcond)
 
 
-def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
+def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
                  sigma_over_delta=None, check_validity=True) -> ContactSolution:
     """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
 
@@ -200,10 +102,10 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
         raise InputError("give exactly one of lam and sigma_over_delta")
     n = blocks.n
     F = par.fhpe
-    pr, fr = blocks.pressure_rule, blocks.flux_rule
+    rep = blocks.representation
+    pr, fr = rep.pressure_rule, rep.flux_rule
     eta = par.eta
-    sk = blocks.contact_points if blocks.linear_column is None else blocks.linear_column
-    one = np.ones(n + 1) if blocks.const_column is None else blocks.const_column
+    sk, one = blocks.linear_column, blocks.const_column
     np1, nm1 = n + 1, n - 1
     two_pi = 2.0 / np.pi
 
@@ -262,33 +164,11 @@ def solve_blocks(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
 
-    validity = assess(par, blocks, phi, psi, L, sigma, lam) if check_validity else None
-    p_nodes = pr.edge_factor * phi
-    if fr.nodes is pr.nodes:
-        p_at_flux = p_nodes
-    else:
-        p_at_flux = fr.edge_factor * blocks.basis.phi_at(phi, fr.nodes)
-    q = psi / fr.edge_factor + eta * p_at_flux
+    validity = assess(par, rep, phi, psi, L, sigma, lam) if check_validity else None
     return ContactSolution(
-        parameters=par,
-        method=method,
-        n=n,
-        load_ratio=float(L),
-        lam=float(lam),
-        sigma_over_delta=float(sigma),
-        eta=eta,
-        s=np.concatenate([[-1.0], pr.nodes, [1.0]]),
-        pressure=np.concatenate([[0.0], p_nodes, [0.0]]),
-        flux_s=fr.nodes.copy(),
-        flux_difference=q,
-        flux_cylinder=0.5 * (p_at_flux + q),
-        flux_half_plane=0.5 * (p_at_flux - q),
-        validity=validity,
-        rcond=rcond,
-        blocks=blocks,
-        phi=phi,
-        psi=psi,
-    )
+        parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
+        sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
+        validity=validity, rcond=rcond)
 
 
 def check_n(n) -> int:
@@ -304,57 +184,153 @@ def check_n(n) -> int:
     return int(n)
 
 
-@lru_cache(maxsize=8)
-def _assembled(method: str, pe: float, K: float, k: float, d: float, n: int) -> Blocks:
-    """Assembly depends on neither fHPe, lam nor sigma: keep the last few for sweeps."""
-    return METHODS[method](Parameters(pe, 0.0, K, k, d), n)
+def check_method(method) -> str:
+    """Return ``method``, or raise :class:`InputError` unless it names a registered method."""
+    if not isinstance(method, str) or method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    return method
 
 
-def _blocks(par: Parameters, method: str, n: int) -> Blocks:
-    return _assembled(method, par.pe, par.K2_over_K1, par.k2_over_k1,
-                      par.delta1_over_delta2, n)
+class Model:
+    """The problem with everything fixed but ``fhpe`` and the closure: solve it many times.
 
-
-def _relative(x: float) -> float:
-    return max(abs(x), 0.01)
-
-
-def error_estimate(levels, quantities=("load_ratio", "sigma_over_delta")) -> float:
-    """Richardson estimate of the error of the finest of successive solutions.
-
-    For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
-    in ``sigma/Delta``), the observed order is ``p = log2(d1/d2)``, clamped to
-    ``[1, 5]`` (1 also when fewer than three levels are given), and the error of
-    the finest is ``d2 / (2^p - 1)``.  The cap 5 is just above the product
-    method's asymptotic order (about 4, set by the edge terms of derivation
-    section 8): a sudden drop of ``d2`` while the discretisation first resolves
-    the cylinder's kernels must not be read as a higher order.  The estimate is the larger of the two
-    quantities' errors, each relative to ``max(|value|, 0.01)``.
+    The assembly depends on ``Pe``, the ratios, the method and ``n`` only
+    (derivation section 5), so each :meth:`solve` costs a linear solve once the
+    blocks at its ``n`` exist.  Blocks are kept by the model while it lives and
+    in a per-process cache bounded in bytes
+    (:func:`thermocontact.numerics.cache.clear_caches` empties it); a pickled
+    model carries its inputs only.
 
     Parameters
     ----------
-    levels : sequence of ContactSolution
-        At least two, ``n`` doubling, coarsest first.
-    quantities : tuple of str
-        The result fields whose errors are estimated.
+    pe : float
+        ``Pe = v Delta / (2 k2) > 0``.
+    K2_over_K1 : float
+        Conductivity ratio ``> 0``.
+    k2_over_k1 : float, optional
+        Diffusivity ratio ``> 0``; defaults to ``K2_over_K1``.
+    delta1_over_delta2 : float, optional
+        Distortivity ratio ``>= 0`` (default 1).
+    method : str, optional
+        A key of :data:`~thermocontact.discretisation.methods.METHODS`.
+    n : int, optional
+        Unknowns per function, in :data:`~thermocontact.solvers.refinement.N_RANGE`.
+        By default ``n`` doubles over the method's automatic range until the
+        error estimate is below ``tol``.
+    tol : float, optional
+        Target of the error estimate (default 1e-8).
 
-    Returns
-    -------
-    float
+    Examples
+    --------
+    >>> from thermocontact import Model
+    >>> model = Model(5, 10)
+    >>> [round(model.solve(f, lam=-1).load_ratio, 6) for f in (0.0, 0.2)]
+    [1.0, 0.686714]
     """
-    est = 0.0
-    for attr in quantities:
-        v = [getattr(sol, attr) for sol in levels[-3:]]
-        d2 = abs(v[-1] - v[-2])
-        p = 1.0
-        if len(v) == 3:
-            d1 = abs(v[1] - v[0])
-            if d1 > 0.0 and d2 > 0.0:
-                p = float(np.clip(np.log2(d1 / d2), 1.0, P_MAX))
-            elif d2 == 0.0:
-                p = P_MAX
-        est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))
-    return est
+
+    def __init__(self, pe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
+                 method=DEFAULT_METHOD, n=None, tol=DEFAULT_TOL):
+        self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2)
+        self.method = check_method(method)
+        self.n = None if n is None else check_n(n)
+        self.tol = check_positive("tol", tol)
+        self._blocks = {}
+
+    def __getstate__(self):
+        return {"parameters": self.parameters, "method": self.method, "n": self.n,
+                "tol": self.tol}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._blocks = {}
+
+    def __repr__(self):
+        p = self.parameters
+        return (f"Model(pe={p.pe:g}, K2_over_K1={p.K2_over_K1:g}, k2_over_k1={p.k2_over_k1:g}, "
+                f"delta1_over_delta2={p.delta1_over_delta2:g}, method={self.method!r}, "
+                f"n={self.n}, tol={self.tol:g})")
+
+    def __eq__(self, other):
+        if not isinstance(other, Model):
+            return NotImplemented
+        return self.__getstate__() == other.__getstate__()
+
+    __hash__ = None
+
+    def blocks(self, n: int) -> Blocks:
+        """The assembled blocks at ``n``."""
+        if n not in self._blocks:
+            p = self.parameters
+            key = (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2, n)
+            self._blocks[n] = ASSEMBLIES.get(key, lambda: METHODS[self.method].assemble(p, n))
+        return self._blocks[n]
+
+    def parameters_at(self, fhpe) -> Parameters:
+        """The full parameters at ``fhpe``."""
+        p = self.parameters
+        return Parameters(p.pe, fhpe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2)
+
+    def solve_at(self, n: int, fhpe, *, lam=None, sigma_over_delta=None,
+                 check_validity=True) -> ContactSolution:
+        """One solve at ``n`` without error estimate."""
+        return solve_system(self.parameters_at(fhpe), self.blocks(n), self.method, lam=lam,
+                            sigma_over_delta=sigma_over_delta, check_validity=check_validity)
+
+    def sizes(self):
+        """The first levels of the refinement and the largest ``n``."""
+        if self.n is None:
+            start, n_max = METHODS[self.method].auto_range
+            return [start, 2 * start], n_max
+        coarse = [m for m in (self.n // 4, self.n // 2) if m >= N_RANGE[0]]
+        return coarse + [self.n], self.n
+
+    def solve(self, fhpe, *, lam=None, sigma_over_delta=None, check_convergence=False,
+              _stacklevel=2) -> ContactSolution:
+        """Solve at ``fhpe`` with the heat partition or the offset given.
+
+        Parameters
+        ----------
+        fhpe : float
+            ``f H Pe >= 0``.
+        lam, sigma_over_delta : float
+            Exactly one: the heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the offset.
+        check_convergence : bool, optional
+            Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``)
+            and report the change in ``P_H/P``.
+
+        Returns
+        -------
+        ContactSolution
+            With the error estimate from the solutions at ``n``, ``n/2`` and
+            ``n/4`` (None when ``n < 8`` leaves no coarser level).  A solution whose
+            estimate misses ``tol`` with ``n`` chosen automatically also issues a
+            :class:`ConvergenceWarning`.
+        """
+        par = self.parameters_at(fhpe)
+        if (lam is None) == (sigma_over_delta is None):
+            raise InputError("give exactly one of lam and sigma_over_delta")
+
+        def at(m):
+            # Validity only for the solution returned: the coarser levels feed the
+            # error estimate alone.
+            return (solve_system(par, self.blocks(m), self.method, lam=lam,
+                                 sigma_over_delta=sigma_over_delta, check_validity=False),)
+
+        sizes, n_max = self.sizes()
+        levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max)
+        fin = levels[-1][0]
+        validity = assess(par, fin.representation, fin.phi, fin.psi, fin.load_ratio,
+                          fin.sigma_over_delta, fin.lam)
+        sol = fin.replace(validity=validity, error_estimate=None if est is None else float(est),
+                          auto_n=self.n is None, tol=self.tol)
+        if sol.converged is False and self.n is None:
+            warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
+                          stacklevel=_stacklevel)
+        if check_convergence:
+            other = at(2 * sol.n if 2 * sol.n <= N_RANGE[1] else sol.n // 2)[0]
+            sol = sol.replace(load_ratio_change=abs(other.load_ratio - sol.load_ratio))
+        log.debug("solved: %r", sol)
+        return sol
 
 
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
@@ -362,44 +338,30 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           tol=DEFAULT_TOL, check_convergence=False) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
+    ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
+    parameters.
+
     Parameters
     ----------
-    pe : float
-        ``Pe = v Delta / (2 k2) > 0``.
-    fhpe : float
-        ``f H Pe >= 0``.
-    K2_over_K1 : float
-        Conductivity ratio ``> 0``.
-    k2_over_k1 : float, optional
-        Diffusivity ratio ``> 0``; defaults to ``K2_over_K1``.
-    delta1_over_delta2 : float, optional
-        Distortivity ratio ``>= 0`` (default 1).
+    pe, fhpe, K2_over_K1 : float
+        ``Pe > 0``, ``f H Pe >= 0`` and the conductivity ratio ``> 0``.
+    k2_over_k1, delta1_over_delta2 : float, optional
+        Diffusivity (default ``K2_over_K1``) and distortivity (default 1) ratios.
     lam, sigma_over_delta : float
-        Exactly one: the heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the contact
-        offset.
+        Exactly one: the heat partition or the contact offset.
     n : int, optional
-        Unknowns per function, in :data:`N_RANGE`.  By default it is chosen: ``n``
-        doubles from 8 to at most 256 (graded methods) or from 16 to at most
-        :data:`N_AUTO_MAX` (the others) until :func:`error_estimate` is below ``tol``
-        (the largest ``n`` reached without it is reported by ``converged = False``).
+        Unknowns per function; by default chosen until the estimate meets ``tol``.
     method : str, optional
-        A key of :data:`~thermocontact.assembly.METHODS`: ``"graded"`` (default:
-        cosine series in the edge-graded variable, every integral a moment, each
-        equation projected), ``"graded-collocation"`` (the same, collocated),
-        ``"galerkin"`` and ``"product"`` (Chebyshev series with exact kernel
-        moments, projected or collocated) or ``"paper"`` (the paper's
-        collocation, kernels sampled at nodes).
+        A key of :data:`~thermocontact.discretisation.methods.METHODS`; default
+        ``"graded"``.
     tol : float, optional
-        Target of the error estimate when ``n`` is chosen (default 1e-8).
+        Target of the error estimate (default 1e-8).
     check_convergence : bool, optional
-        Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``) and
-        report the change in ``P_H/P``.
+        Also solve with ``2n`` and report the change in ``P_H/P``.
 
     Returns
     -------
     ContactSolution
-        With ``error_estimate`` from the solutions at ``n``, ``n/2`` and ``n/4``
-        (None when ``n < 8`` leaves no coarser level).
 
     Raises
     ------
@@ -414,42 +376,9 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     >>> round(solve(5, 0.0, 10, lam=-1).load_ratio, 12)
     1.0
     """
-    par = Parameters(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2)
-    if not isinstance(method, str) or method not in METHODS:
-        raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     if (lam is None) == (sigma_over_delta is None):
         raise InputError("give exactly one of lam and sigma_over_delta")
-    tol = check_positive("tol", tol)
-    auto = n is None
-    if not auto:
-        n = check_n(n)
-
-    def at(m):
-        # Validity only for the solution returned: the coarser levels feed the
-        # error estimate alone.
-        return solve_blocks(par, _blocks(par, method, m), method, lam=lam,
-                            sigma_over_delta=sigma_over_delta, check_validity=False)
-
-    if auto:
-        start, n_max = AUTO_RANGE[method]
-        levels = [at(start), at(2 * start)]
-        while True:
-            est = error_estimate(levels)
-            if est <= tol or levels[-1].n >= n_max:
-                break
-            levels.append(at(2 * levels[-1].n))
-    else:
-        coarse = [m for m in (n // 4, n // 2) if m >= N_RANGE[0]]
-        levels = [at(m) for m in coarse] + [at(n)]
-        est = error_estimate(levels) if len(levels) > 1 else None
-    fin = levels[-1]
-    validity = assess(par, fin.blocks, fin.phi, fin.psi, fin.load_ratio,
-                      fin.sigma_over_delta, fin.lam)
-    sol = replace(fin, validity=validity,
-                  error_estimate=None if est is None else float(est),
-                  converged=None if est is None else bool(est <= tol), auto_n=auto, tol=tol)
-    if check_convergence:
-        # Against 2n, or against n/2 when 2n is beyond the largest n.
-        other = at(2 * sol.n if 2 * sol.n <= N_RANGE[1] else sol.n // 2)
-        sol = replace(sol, load_ratio_change=abs(other.load_ratio - sol.load_ratio))
-    return sol
+    model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
+                  delta1_over_delta2=delta1_over_delta2, method=method, n=n, tol=tol)
+    return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
+                       check_convergence=check_convergence, _stacklevel=3)

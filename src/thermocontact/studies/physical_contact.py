@@ -14,16 +14,19 @@ is refined by Brent's method.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import brentq, root_scalar
 
-from ..discretisation.system import AUTO_RANGE
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material
-from ..problem.parameters import InputError, Parameters, SolveError, check_finite, check_nonnegative, check_positive
-from ..solvers.single_patch import DEFAULT_METHOD, ContactSolution, _blocks, error_estimate, solve_blocks
+from ..problem.parameters import (InputError, Parameters, SolveError, check_finite,
+                                  check_nonnegative, check_positive)
+from ..solvers.refinement import refine
+from ..solvers.result import ContactSolution
+from ..solvers.single_patch import Model
 
 __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
 
@@ -189,8 +192,9 @@ class PhysicalContact:
 def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
     # Each trial half-width is a new Pe and fHPe: one assembly per call.
     par = prob.parameters(half_width)
-    return solve_blocks(par, _blocks(par, METHOD, n), METHOD, lam=prob.lam,
-                        check_validity=check_validity)
+    model = Model(par.pe, par.K2_over_K1, k2_over_k1=par.k2_over_k1,
+                  delta1_over_delta2=par.delta1_over_delta2, method=METHOD)
+    return model.solve_at(n, par.fhpe, lam=prob.lam, check_validity=check_validity)
 
 
 def _h(prob, half_width, n):
@@ -217,14 +221,14 @@ def _scan_range(prob: PhysicalProblem):
 def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
     """Surface temperature rises of both bodies over the contact (derivation D24, D25)."""
     par = sol.parameters
-    blocks = sol.blocks
+    rep = sol.representation
     c = par.cylinder_scale
     eta = par.eta
     f, v, P = prob.friction, prob.speed, prob.load
     # q1 = ((1 + eta) p + q')/2 and q2 = ((1 - eta) p - q')/2, in units f v P / Delta.
-    ib, iq = blocks.integrate(lambda u: cylinder_temperature(c * u), s)
+    ib, iq = rep.integrate(lambda u: cylinder_temperature(c * u), s)
     t1 = f * v * P / (np.pi * prob.cylinder.K) * 0.5 * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi)
-    lb, lq = blocks.integrate(lambda u: np.log(np.abs(u)), s)
+    lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s)
     t2 = -f * v * P / (np.pi * prob.half_plane.K) * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi)
     # The half-plane's level is fixed by continuity with the cylinder in the contact.
     shift = np.mean(t1 - t2)
@@ -233,13 +237,12 @@ def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
 
 
 def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
-    levels = [_solve_at(prob, half_width, m, check_validity=(m == n))
-              for m in (n // 4, n // 2, n) if m >= 8]
-    est = error_estimate(levels) if len(levels) > 1 else float("inf")
+    levels, est = refine(lambda m: (_solve_at(prob, half_width, m, check_validity=(m == n)),),
+                         [m for m in (n // 4, n // 2, n) if m >= 8])
+    est = float("inf") if est is None else est
     # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
     est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
-    levels[-1] = replace(levels[-1], error_estimate=est)
-    sol = levels[-1]
+    sol = levels[-1][0].replace(error_estimate=est, tol=tol)
     s = np.cos(np.linspace(np.pi, 0.0, 201))
     p = prob.load / half_width * sol.pressure_at(s)
     s_in = s[1:-1]
@@ -357,14 +360,11 @@ def _refine(prob, root, tol):
     -------
     half_width, n
     """
-    n, n_max = AUTO_RANGE[METHOD]
-    levels = []
-    while True:
-        levels.append(_solve_at(prob, root, n))
-        # The estimate the branch reports (P_H/P and sigma/Delta), so that it is met.
-        if len(levels) >= 3 and (error_estimate(levels) <= tol or n >= n_max):
-            break
-        n *= 2
+    start, n_max = METHODS[METHOD].auto_range
+    # The estimate the branch reports (P_H/P and sigma/Delta), so that it is met.
+    levels, _ = refine(lambda m: (_solve_at(prob, root, m),), [start, 2 * start, 4 * start],
+                       tol=tol, n_max=n_max)
+    n = levels[-1][0].n
     # Secant steps from the scan's root (each costs an assembly at this n).
     sol = root_scalar(lambda d: _h(prob, d, n), method="secant", x0=root,
                       x1=root * (1 + 1e-6), xtol=1e-14 * root, maxiter=20)

@@ -13,8 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..problem.parameters import InputError, Parameters, SolveError
-from ..solvers.single_patch import DEFAULT_METHOD, ContactSolution, _blocks, solve, solve_blocks
+from ..problem.parameters import InputError, SolveError
+from ..discretisation.methods import DEFAULT_METHOD
+from ..solvers.refinement import refine
+from ..solvers.result import ContactSolution
+from ..solvers.single_patch import Model
 
 __all__ = ["Boundary", "Curve", "choose_n", "sweep", "validity_margins"]
 
@@ -97,41 +100,51 @@ class Curve:
     solutions: tuple = ()
 
 
+def _model(fixed: dict, method: str, n=None) -> Model:
+    return Model(fixed["pe"], fixed["K2_over_K1"], k2_over_k1=fixed.get("k2_over_k1"),
+                 delta1_over_delta2=fixed.get("delta1_over_delta2", 1.0), method=method, n=n)
+
+
+def _closure(kw: dict) -> dict:
+    return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
+
+
 def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
              n_max=None) -> tuple[int, float]:
     """Smallest ``n`` (doubling from 16) whose error estimate at the points
     ``x_end`` is below ``tol``, or ``n_max``.
 
+    The points are refined together (:func:`~thermocontact.solvers.refinement.refine`
+    from the levels 4, 8, 16); a point without a solution at some ``n`` is left out
+    of the estimate there.
+
     Returns
     -------
     n, error_estimate
     """
-    n = 16
-    while True:
-        est = 0.0
-        for x in np.atleast_1d(x_end):
+    model = _model(fixed, method)
+    points = [{**fixed, x_name: float(x)} for x in np.atleast_1d(x_end)]
+
+    def at(m):
+        out = []
+        for kw in points:
             try:
-                est = max(est, solve(**{**fixed, x_name: float(x)}, method=method,
-                                     n=n).error_estimate)
+                out.append(model.solve_at(m, kw["fhpe"], check_validity=False, **_closure(kw)))
             except SolveError:
-                continue
-        if est <= tol or (n_max is not None and 2 * n > n_max):
-            return n, est
-        n *= 2
+                out.append(None)
+        return tuple(out)
+
+    levels, est = refine(at, [4, 8, 16], tol=tol, n_max=2**30 if n_max is None else n_max)
+    n = 16 * 2 ** (len(levels) - 3)
+    return n, est
 
 
 def _solver(fixed: dict, x_name: str, n: int, method: str):
-    par0 = Parameters(fixed["pe"], fixed.get("fhpe", 0.0), fixed["K2_over_K1"],
-                      fixed.get("k2_over_k1"), fixed.get("delta1_over_delta2", 1.0))
-    blocks = _blocks(par0, method, n)
+    model = _model(fixed, method)
 
     def at(x):
-        kw = dict(fixed)
-        kw[x_name] = x
-        par = Parameters(kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
-                         kw.get("delta1_over_delta2", 1.0))
-        close = {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
-        return solve_blocks(par, blocks, method, **close)
+        kw = {**fixed, x_name: x}
+        return model.solve_at(n, kw["fhpe"], **_closure(kw))
 
     return at
 

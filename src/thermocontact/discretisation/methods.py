@@ -1,0 +1,70 @@
+"""The registry of discretisation methods: a representation and a scheme each.
+
+A :class:`Method` is a record: its name, how it represents the unknowns, whether
+it collocates or projects the equations, the range of its automatic ``n`` and a
+one-line summary (from which the command line's help is made).  Tests and
+benchmarks are parametrised over :data:`METHODS`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..problem.parameters import Parameters
+from .representations import Chebyshev, ChebyshevSampled, EdgeGraded
+from .system import Blocks, assemble
+
+__all__ = ["DEFAULT_METHOD", "METHODS", "Method"]
+
+
+@dataclass(frozen=True)
+class Method:
+    """One discretisation method.
+
+    Attributes
+    ----------
+    name : str
+    representation : type
+        A :class:`~.representations.Representation` subclass.
+    scheme : {"collocation", "projection"}
+    auto_range : tuple of int
+        First and largest ``n`` of the automatic doubling.
+    summary : str
+        One line for the documentation and the command line's help.
+    """
+
+    name: str
+    representation: type
+    scheme: str
+    auto_range: tuple
+    summary: str
+
+    def assemble(self, par: Parameters, n: int) -> Blocks:
+        """The method's blocks for ``par`` (``fhpe`` not used) with ``n`` unknowns per function."""
+        return assemble(par, self.representation(n), self.scheme)
+
+    __call__ = assemble
+
+
+#: Automatic n of the graded methods: from 8, and at most 256, beyond which the
+#: rounding of the edge values of phi (about n^7, derivation section 12) passes 1e-7.
+_GRADED_RANGE = (8, 256)
+_CHEBYSHEV_RANGE = (16, 1024)
+
+METHODS: dict[str, Method] = {m.name: m for m in (
+    Method("graded", EdgeGraded, "projection", _GRADED_RANGE,
+           "edge-graded cosine series, every integral a moment, equations projected "
+           "(the default; derivation section 12)"),
+    Method("graded-collocation", EdgeGraded, "collocation", _GRADED_RANGE,
+           "the same representation, equations collocated"),
+    Method("galerkin", Chebyshev, "projection", _CHEBYSHEV_RANGE,
+           "Chebyshev series with exact kernel moments, equations projected "
+           "(order 4; section 10)"),
+    Method("product", Chebyshev, "collocation", _CHEBYSHEV_RANGE,
+           "Chebyshev series with exact kernel moments, collocated (product integration)"),
+    Method("paper", ChebyshevSampled, "collocation", _CHEBYSHEV_RANGE,
+           "the paper's scheme: kernels sampled at Gauss-Chebyshev nodes (first order; "
+           "section 6)"),
+)}
+
+DEFAULT_METHOD = "graded"

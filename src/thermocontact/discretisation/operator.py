@@ -1,0 +1,84 @@
+"""The operators of the contact equation (D14) and the heat equation (D18), once.
+
+Every discretisation method builds its blocks here; the methods differ only in
+how a :class:`~.representations.Representation` integrates a kernel and at which
+points (or by which projections) the equations are enforced.  Nothing here
+depends on ``F = fHPe``, ``lam`` or ``sigma``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from ..problem.parameters import Parameters
+
+__all__ = ["contact_operators", "heat_operators"]
+
+
+def contact_operators(par: Parameters, rep, s, aux=None):
+    """Operators of the contact equation (D14) at points ``s``.
+
+    ``(C - F Tp) phi - F Tq psi = (2/pi) (L sigma + L s)`` with
+
+    * ``C = (1/pi) PV integral p(r)/(s - r) dr`` on ``phi``;
+    * ``Tp``, ``Tq``: the thermal distortion, ``F`` times
+      ``integral K_p(s - r) p(r) dr + integral K_q(s - r) q(r) dr`` with
+      ``K_p = d N(c u) H(u) + sgn(u)/2`` and ``K_q = d N(c u) H(u) - sgn(u)/2``;
+      with ``q = q' + eta p``:
+      ``Tp = d (1 + eta) NH_p + (1 - eta) sgn_p / 2`` and ``Tq = d NH_q - sgn_q / 2``,
+      where ``d = delta1/delta2`` and ``c = Pe k2/k1``.
+
+    Parameters
+    ----------
+    par : Parameters
+        Only ``pe``, the ratios and ``eta`` are used.
+    rep : Representation
+    s : ndarray, shape (k,)
+    aux : ndarray, optional
+        The representation's own coordinate of the points (``tau``).
+
+    Returns
+    -------
+    C, Tp : ndarray, shape (k, n)
+        On ``phi``.
+    Tq : ndarray, shape (k, n)
+        On ``psi``.
+    """
+    eta = par.eta
+    c = par.cylinder_scale
+    d = par.delta1_over_delta2
+    cb, _ = rep.cauchy(s, aux)
+    sg_b, sg_s = rep.sign(s, aux)
+    if d:
+        nh_b, nh_s = rep.integrate(lambda u: cylinder_slope(c * u), s, scale=c, aux=aux)
+    else:
+        nh_b = nh_s = 0.0
+    C = cb / np.pi
+    Tp = d * (1.0 + eta) * nh_b + 0.5 * (1.0 - eta) * sg_b
+    Tq = d * nh_s - 0.5 * sg_s
+    return C, Tp, Tq
+
+
+def heat_operators(par: Parameters, rep, s, aux=None):
+    """Operators of the heat equation (D18), divided by ``pi (1 + rho)``, at points ``s``.
+
+    ``Hp phi + Hq psi = 0`` with
+    ``Hq = (PV integral q'/(s - r) + rho/(1 + rho) integral q' M_c) / pi`` and
+    ``Hp = 2 rho/(1 + rho)^2 integral p M_c / pi``, where
+    ``M_c(u) = c M(c u) - 1/u`` is the regular part of the cylinder's temperature
+    gradient (a logarithm at ``u = 0``) and ``rho = K2/K1``.
+
+    Returns
+    -------
+    Hp, Hq : ndarray, shape (k, n)
+    """
+    rho = par.K2_over_K1
+    c = par.cylinder_scale
+    _, cs = rep.cauchy(s, aux)
+    mr_b, mr_s = rep.integrate(lambda u: cylinder_temperature_gradient_regular(u, c), s,
+                               scale=c, logarithmic=True, aux=aux)
+    Hq = (cs + (rho / (1.0 + rho)) * mr_s) / np.pi
+    # 2 rho/(1 + rho)^2 written so that no power overflows for extreme ratios.
+    Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mr_b / np.pi
+    return Hp, Hq

@@ -1,0 +1,100 @@
+"""Per-process caches bounded in bytes, which can be listed and cleared.
+
+Assemblies, the geometry of the moment rules and the validity checks' row
+operators depend only on the discretisation and a few parameters, so sweeps and
+repeated solves reuse them.  Each is kept in a :class:`BoundedCache`: least
+recently used entries are dropped once the arrays held exceed the cache's budget,
+and :func:`clear_caches` empties all of them.  A worker process of a pool starts
+with empty caches and fills its own.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from threading import RLock
+
+import numpy as np
+
+__all__ = ["BoundedCache", "cache_info", "clear_caches"]
+
+_ALL: dict[str, "BoundedCache"] = {}
+
+
+def nbytes(value) -> int:
+    """Bytes of the arrays held by ``value`` (arrays, tuples, lists, dicts, objects' dicts)."""
+    if isinstance(value, np.ndarray):
+        return value.nbytes
+    if isinstance(value, (tuple, list)):
+        return sum(nbytes(v) for v in value)
+    if isinstance(value, dict):
+        return sum(nbytes(v) for v in value.values())
+    if hasattr(value, "__dict__"):
+        return sum(nbytes(v) for v in vars(value).values())
+    return 0
+
+
+class BoundedCache:
+    """A least-recently-used mapping whose arrays stay below ``max_bytes``.
+
+    Parameters
+    ----------
+    name : str
+        Listed by :func:`cache_info`; unique per process.
+    max_bytes : int
+        Budget.  An entry larger than the budget is computed but not kept.
+    """
+
+    def __init__(self, name: str, max_bytes: int):
+        self.name = name
+        self.max_bytes = int(max_bytes)
+        self._data: OrderedDict = OrderedDict()
+        self._sizes: dict = {}
+        self._bytes = 0
+        self._lock = RLock()
+        _ALL[name] = self
+
+    def get(self, key, build):
+        """The value under ``key``, computed by ``build()`` when absent."""
+        with self._lock:
+            if key in self._data:
+                self._data.move_to_end(key)
+                return self._data[key]
+        value = build()
+        size = nbytes(value)
+        with self._lock:
+            if size <= self.max_bytes and key not in self._data:
+                self._data[key] = value
+                self._sizes[key] = size
+                self._bytes += size
+                while self._bytes > self.max_bytes:
+                    old, _ = self._data.popitem(last=False)
+                    self._bytes -= self._sizes.pop(old)
+        return value
+
+    def clear(self):
+        with self._lock:
+            self._data.clear()
+            self._sizes.clear()
+            self._bytes = 0
+
+    @property
+    def bytes(self) -> int:
+        return self._bytes
+
+    def __len__(self):
+        return len(self._data)
+
+    def __repr__(self):
+        return (f"BoundedCache({self.name!r}: {len(self)} entries, "
+                f"{self._bytes / 2**20:.1f} of {self.max_bytes / 2**20:.0f} MiB)")
+
+
+def clear_caches():
+    """Empty every cache of this process."""
+    for cache in _ALL.values():
+        cache.clear()
+
+
+def cache_info() -> dict[str, tuple[int, int, int]]:
+    """Per cache: entries, bytes held and budget."""
+    return {name: (len(c), c.bytes, c.max_bytes) for name, c in _ALL.items()}

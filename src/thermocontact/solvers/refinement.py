@@ -1,0 +1,112 @@
+"""Refinement in ``n`` and its error estimate: one driver for every caller.
+
+A solve, a sweep's choice of ``n`` and the physical front end's roots all solve at
+successive ``n`` (doubling) and estimate the error of the finest solution from
+the last three by Richardson's extrapolation with the observed order.
+"""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+__all__ = ["N_RANGE", "P_MAX", "error_estimate", "refine"]
+
+log = logging.getLogger("thermocontact")
+
+#: Unknowns per function accepted anywhere.
+N_RANGE = (4, 2048)
+#: Largest convergence order the error estimate believes: just above the
+#: asymptotic order 4 of the Chebyshev methods (derivation section 10).  The graded
+#: methods converge faster once they resolve the edges, but before that (Pe k2/k1
+#: large, n small) a sudden drop of the differences must not be read as a high
+#: order: the same cap keeps their estimate an upper bound (section 12).
+P_MAX = 5.0
+#: The quantities whose errors are estimated.
+QUANTITIES = ("load_ratio", "sigma_over_delta")
+
+
+def _relative(x: float) -> float:
+    return max(abs(x), 0.01)
+
+
+def error_estimate(levels, quantities=QUANTITIES) -> float:
+    """Richardson estimate of the error of the finest of successive solutions.
+
+    For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
+    in ``sigma/Delta``), the observed order is ``p = log2(d1/d2)``, clamped to
+    ``[1, 5]`` (1 also when fewer than three levels are given), and the error of
+    the finest is ``d2 / (2^p - 1)``.  The cap 5 is just above the product
+    method's asymptotic order (about 4, set by the edge terms of derivation
+    section 8): a sudden drop of ``d2`` while the discretisation first resolves
+    the cylinder's kernels must not be read as a higher order.  The estimate is
+    the larger of the quantities' errors, each relative to ``max(|value|, 0.01)``.
+
+    Parameters
+    ----------
+    levels : sequence of results
+        At least two, ``n`` doubling, coarsest first.
+    quantities : tuple of str
+        The result fields whose errors are estimated.
+
+    Returns
+    -------
+    float
+    """
+    est = 0.0
+    for attr in quantities:
+        v = [getattr(sol, attr) for sol in levels[-3:]]
+        d2 = abs(v[-1] - v[-2])
+        p = 1.0
+        if len(v) == 3:
+            d1 = abs(v[1] - v[0])
+            if d1 > 0.0 and d2 > 0.0:
+                p = float(np.clip(np.log2(d1 / d2), 1.0, P_MAX))
+            elif d2 == 0.0:
+                p = P_MAX
+        est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))
+    return est
+
+
+def refine(at, sizes, *, tol=None, n_max=None):
+    """Solve at ``sizes``, then at doubled ``n`` until the estimate meets ``tol``.
+
+    Parameters
+    ----------
+    at : callable
+        ``at(n)`` returns a tuple of results, one per case refined together (a
+        sweep refines its probe points together); an entry may be None where
+        that case has no solution at this ``n``.
+    sizes : sequence of int
+        The first levels, increasing by factors of 2.
+    tol : float, optional
+        Target of the estimate; without it only ``sizes`` are solved.
+    n_max : int, optional
+        The largest ``n`` (default: the last of ``sizes``).
+
+    Returns
+    -------
+    levels : list of tuple
+        The results per level, coarsest first.
+    estimate : float or None
+        The largest :func:`error_estimate` over the cases (None with one level).
+    """
+    sizes = [int(m) for m in sizes]
+    n = sizes[-1]
+    n_max = n if n_max is None else int(n_max)
+
+    levels = [at(m) for m in sizes]
+    while True:
+        est = None
+        if len(levels) > 1:
+            est = 0.0
+            for case in zip(*levels):
+                sols = [s for s in case[-3:] if s is not None]
+                if len(sols) > 1 and case[-1] is not None:
+                    est = max(est, error_estimate(sols))
+        log.debug("refinement: n = %d, error estimate %s", n, est)
+        if tol is None or (est is not None and est <= tol) or 2 * n > n_max:
+            return levels, est
+        n *= 2
+        levels.append(at(n))

@@ -1,0 +1,288 @@
+"""The result of one solve: small, frozen, picklable, comparable."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+from .._version import __version__
+from ..analysis.validity import Validity, gap
+from ..problem.parameters import Parameters
+
+__all__ = ["ContactSolution"]
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ContactSolution:
+    """One solution of the sliding-contact problem, in dimensionless form.
+
+    Positions are ``s = (x - sigma)/Delta``: ``s = +1`` is the leading edge, where
+    the cylinder's surface enters the contact.  Pressures are normalised to unit
+    integral over the contact and positive in compression; heat fluxes are in
+    units of ``f v P / Delta``, so that ``q1 + q2`` is the pressure and the
+    integral of ``q = q1 - q2`` is ``lam``.
+
+    Attributes
+    ----------
+    parameters : Parameters
+    method : str
+        Discretisation method, a key of
+        :data:`~thermocontact.discretisation.methods.METHODS`.
+    n : int
+        Unknowns per function.
+    load_ratio : float
+        ``P_H/P``: the Hertz load for the same half-width over the actual load.
+    lam : float
+        Heat partition ``(Q1 - Q2)/(Q1 + Q2)``.
+    sigma_over_delta : float
+        Offset of the contact centre from the cylinder's initial point of contact,
+        in half-widths, positive toward the leading edge (``+x``).
+    phi, psi : ndarray, shape (n,)
+        The unknowns at the representation's nodes: ``p/sqrt(1 - s^2)`` and
+        ``q' sqrt(1 - s^2)``.
+    representation : Representation
+        How ``phi`` and ``psi`` are carried and integrated (pickled as its class
+        and ``n``).
+    validity : Validity or None
+        The contact inequalities (None when not evaluated).
+    rcond : float
+        Reciprocal condition number (1-norm) of the equilibrated linear system.
+    error_estimate : float or None
+        Estimated relative error of ``P_H/P`` and ``sigma/Delta`` (the larger;
+        :func:`~thermocontact.solvers.refinement.error_estimate`).
+    tol : float or None
+        The error target.
+    auto_n : bool
+        Whether ``n`` was chosen automatically.
+    load_ratio_change : float or None
+        ``|P_H/P(2n) - P_H/P(n)|`` when a convergence check was asked for.
+    """
+
+    parameters: Parameters
+    method: str
+    n: int
+    load_ratio: float
+    lam: float
+    sigma_over_delta: float
+    phi: np.ndarray
+    psi: np.ndarray
+    representation: object
+    validity: Validity | None = None
+    rcond: float = float("nan")
+    error_estimate: float | None = None
+    tol: float | None = None
+    auto_n: bool = False
+    load_ratio_change: float | None = None
+
+    # Status, in the manner of scipy's OptimizeResult.
+    @property
+    def converged(self) -> bool | None:
+        """``error_estimate <= tol`` (None without an estimate)."""
+        if self.error_estimate is None or self.tol is None:
+            return None
+        return bool(self.error_estimate <= self.tol)
+
+    @property
+    def status(self) -> str:
+        """``"converged"``, ``"not converged"`` or ``"no estimate"`` (``n < 8`` given)."""
+        c = self.converged
+        return "no estimate" if c is None else ("converged" if c else "not converged")
+
+    @property
+    def success(self) -> bool:
+        """Converged and valid."""
+        return bool(self.converged) and self.validity is not None and self.validity.valid
+
+    @property
+    def message(self) -> str:
+        """One line: the error estimate against its target, and the verdict of validity."""
+        if self.error_estimate is None:
+            head = f"no error estimate (n = {self.n} leaves no coarser level)"
+        else:
+            head = (f"error estimate {self.error_estimate:.1e} "
+                    f"{'<=' if self.converged else '>'} target {self.tol:.0e} at n = {self.n}")
+        if self.validity is None:
+            return head + "; validity not evaluated"
+        return f"{head}; {self.validity.reason}"
+
+    @property
+    def valid(self) -> bool:
+        """Whether every contact inequality holds (see :class:`Validity`)."""
+        if self.validity is None:
+            raise ValueError("validity was not evaluated for this solution")
+        return self.validity.valid
+
+    # Profiles, from the unknowns.
+    @property
+    def eta(self) -> float:
+        """``(1 - K2/K1)/(1 + K2/K1)``."""
+        return self.parameters.eta
+
+    @property
+    def s(self):
+        """Nodes of the pressure in ``[-1, 1]``, edges included."""
+        return np.concatenate([[-1.0], self.representation.pressure_rule.nodes, [1.0]])
+
+    @property
+    def pressure(self):
+        """The pressure at :attr:`s` (zero at the edges)."""
+        pr = self.representation.pressure_rule
+        return np.concatenate([[0.0], pr.edge_factor * self.phi, [0.0]])
+
+    @property
+    def flux_s(self):
+        """Nodes of the heat fluxes (interior: they are singular at the edges)."""
+        return self.representation.flux_rule.nodes.copy()
+
+    def _pressure_at_flux_nodes(self):
+        pr, fr = self.representation.pressure_rule, self.representation.flux_rule
+        if np.array_equal(fr.nodes, pr.nodes):
+            return pr.edge_factor * self.phi
+        return fr.edge_factor * self.representation.phi_at(self.phi, fr.nodes)
+
+    @property
+    def flux_difference(self):
+        """``q = q1 - q2 = q' + eta p`` at :attr:`flux_s`."""
+        fr = self.representation.flux_rule
+        return self.psi / fr.edge_factor + self.eta * self._pressure_at_flux_nodes()
+
+    @property
+    def flux_cylinder(self):
+        """``q1 = (p + q)/2`` at :attr:`flux_s`."""
+        return 0.5 * (self._pressure_at_flux_nodes() + self.flux_difference)
+
+    @property
+    def flux_half_plane(self):
+        """``q2 = (p - q)/2`` at :attr:`flux_s`."""
+        return 0.5 * (self._pressure_at_flux_nodes() - self.flux_difference)
+
+    def pressure_at(self, s):
+        """Pressure at ``s`` in ``[-1, 1]``."""
+        return self.representation.pressure_at(self.phi, s)
+
+    def flux_difference_at(self, s):
+        """Heat-flux difference ``q = q' + eta p`` at ``s`` in ``(-1, 1)``."""
+        s = np.asarray(s, dtype=float)
+        psi = self.representation.psi_at(self.psi, s)
+        return psi / np.sqrt(1.0 - s * s) + self.eta * self.pressure_at(s)
+
+    def gap_at(self, s):
+        """Gap at ``|s| >= 1`` in units of ``Delta^2/R`` (derivation D20-D21)."""
+        g, _ = gap(self.parameters, self.representation, self.phi, self.psi,
+                   self.load_ratio, self.sigma_over_delta, self.lam, s)
+        return g
+
+    # Comparison, display, records.
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        for f in fields(self):
+            a, b = getattr(self, f.name), getattr(other, f.name)
+            if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+                if not np.array_equal(a, b):
+                    return False
+            elif a != b and not (a is None and b is None):
+                if not (isinstance(a, float) and isinstance(b, float)
+                        and np.isnan(a) and np.isnan(b)):
+                    return False
+        return True
+
+    __hash__ = None
+
+    def __repr__(self):
+        p = self.parameters
+        v = "?" if self.validity is None else self.validity.valid
+        est = "None" if self.error_estimate is None else f"{self.error_estimate:.1e}"
+        return (f"ContactSolution(pe={p.pe:g}, fhpe={p.fhpe:g}, K2_over_K1={p.K2_over_K1:g}, "
+                f"k2_over_k1={p.k2_over_k1:g}, delta1_over_delta2={p.delta1_over_delta2:g}, "
+                f"method={self.method!r}, n={self.n}, load_ratio={self.load_ratio:.10g}, "
+                f"lam={self.lam:.10g}, sigma_over_delta={self.sigma_over_delta:.10g}, "
+                f"valid={v}, error_estimate={est}, status={self.status!r})")
+
+    def replace(self, **changes) -> "ContactSolution":
+        """A copy with some fields changed."""
+        return replace(self, **changes)
+
+    def to_dict(self) -> dict:
+        """A JSON-ready record: scalars, validity margins and profiles (the CLI's ``--json``).
+
+        Pressure profile ``s``/``pressure`` is normalised to unit integral (Hertz:
+        ``(2/pi) sqrt(1 - s^2)``); gaps are in units of ``Delta^2/R``; positions in
+        ``s = (x - sigma)/Delta``.
+        """
+        par = self.parameters
+        rec = {
+            "load_ratio": self.load_ratio,
+            "lam": self.lam,
+            "sigma_over_delta": self.sigma_over_delta,
+            "pe": par.pe,
+            "fhpe": par.fhpe,
+            "K2_over_K1": par.K2_over_K1,
+            "k2_over_k1": par.k2_over_k1,
+            "delta1_over_delta2": par.delta1_over_delta2,
+            "n": self.n,
+            "method": self.method,
+            "status": self.status,
+            "message": self.message,
+        }
+        if self.validity is not None:
+            rec.update(self.validity.to_dict())
+        rec.update({
+            "rcond": self.rcond,
+            "load_ratio_change": self.load_ratio_change,
+            "error_estimate": self.error_estimate,
+            "converged": self.converged,
+            "auto_n": self.auto_n,
+            "tol": self.tol,
+            "s": self.s.tolist(),
+            "pressure": self.pressure.tolist(),
+            "flux_s": self.flux_s.tolist(),
+            "flux_difference": self.flux_difference.tolist(),
+            "flux_cylinder": self.flux_cylinder.tolist(),
+            "flux_half_plane": self.flux_half_plane.tolist(),
+            "version": __version__,
+        })
+        return rec
+
+    def to_dataset(self):
+        """An :class:`xarray.Dataset`: profiles on their coordinates, the rest as attributes.
+
+        Variables ``pressure(s)``, ``flux_difference(flux_s)``, ``flux_cylinder(flux_s)``
+        and ``flux_half_plane(flux_s)``; attributes: the inputs, ``load_ratio``,
+        ``lam``, ``sigma_over_delta``, the validity margins, the error estimate,
+        ``status``, ``message``, the method, ``n`` and the package version.
+        """
+        import xarray as xr
+
+        rec = self.to_dict()
+        profiles = ("s", "pressure", "flux_s", "flux_difference", "flux_cylinder",
+                    "flux_half_plane")
+        attrs = {}
+        for key, value in rec.items():
+            if key in profiles:
+                continue
+            if value is None:
+                value = "none"
+            elif isinstance(value, bool):
+                value = int(value)
+            elif isinstance(value, (list, tuple)):
+                value = np.asarray(value, dtype=float)
+            attrs[key] = value
+        return xr.Dataset(
+            {
+                "pressure": ("s", self.pressure, {"long_name": "contact pressure",
+                                                  "units": "P/Delta"}),
+                "flux_difference": ("flux_s", self.flux_difference,
+                                    {"long_name": "q1 - q2", "units": "f v P/Delta"}),
+                "flux_cylinder": ("flux_s", self.flux_cylinder,
+                                  {"long_name": "heat flux into the cylinder",
+                                   "units": "f v P/Delta"}),
+                "flux_half_plane": ("flux_s", self.flux_half_plane,
+                                    {"long_name": "heat flux into the half-plane",
+                                     "units": "f v P/Delta"}),
+            },
+            coords={"s": ("s", self.s, {"long_name": "(x - sigma)/Delta"}),
+                    "flux_s": ("flux_s", self.flux_s, {"long_name": "(x - sigma)/Delta"})},
+            attrs=attrs,
+        )
