@@ -12,7 +12,7 @@ import sys
 import click
 import numpy as np
 
-from . import __version__
+from ._version import __version__
 from .discretisation.methods import DEFAULT_METHOD, METHODS
 from .problem.parameters import InputError, SolveError, check_positive
 from .solvers.single_patch import DEFAULT_TOL, solve

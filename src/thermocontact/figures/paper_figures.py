@@ -17,6 +17,7 @@ import numpy as np
 
 from .._version import __version__
 from ..physics.reference_solutions import barber_insulated
+from ..solvers.single_patch import solve
 from ..studies.sweeps import Curve, sweep
 
 __all__ = ["FIGURES", "Figure", "run_figure"]
@@ -136,7 +137,7 @@ def run_figure(fig: Figure, out_dir: str) -> list[str]:
     os.makedirs(out_dir, exist_ok=True)
     stem = os.path.join(out_dir, fig.name)
     if fig.distributions:
-        sols = plotting.distribution_solutions(fig.distributions)
+        sols = [solve(pe, f, 10.0, lam=-1.0, tol=1e-6) for pe, f in fig.distributions]
         with open(stem + ".csv", "w", newline="") as fh:
             fh.write(f"# thermocontact {__version__}, {datetime.date.today().isoformat()}\n")
             methods = ", ".join(sorted({sol.method for sol in sols}))

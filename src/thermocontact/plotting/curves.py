@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..solvers.single_patch import solve
-
-__all__ = ["curves_figure", "distribution_solutions", "distributions_figure", "plot_curve"]
+__all__ = ["contact_figure", "curves_figure", "distributions_figure", "plot_curve"]
 
 _YLABEL = {
     "load_ratio": "$P_H/P$",
@@ -16,9 +14,7 @@ _YLABEL = {
 
 
 def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
+    # No backend is chosen here: without a display matplotlib falls back to Agg.
     import matplotlib.pyplot as plt
 
     return plt
@@ -95,11 +91,6 @@ def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None):
     for ext in (".png", ".svg"):
         fig.savefig(stem + ext, dpi=130)
     plt.close(fig)
-
-
-def distribution_solutions(points, K=10.0, lam=-1.0):
-    """Solutions at ``(pe, fhpe)`` points of Fig. 3 (error target 1e-6)."""
-    return [solve(pe, f, K, lam=lam, tol=1e-6) for pe, f in points]
 
 
 def distributions_figure(sols, stem, title):
