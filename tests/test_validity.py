@@ -195,3 +195,26 @@ def test_negative_load_is_invalid():
     sol = solve(5, 1.0, 10, k2_over_k1=1, lam=-1, n=32)
     assert sol.load_ratio < 0
     assert not sol.validity.positive_load and not sol.valid
+
+
+def test_boundary_is_the_zero_of_the_exact_gap_margin():
+    """The Fig. 4 boundary (Pe = 5, K2/K1 = 10, lam = 1, along fHPe), located by the
+    sweep's Brent iteration on the margins, equals bisection to 1e-13 of the gap
+    margin of plain solves to 1e-9 (observed 8e-14), and there the gap margin
+    sampled independently at 20001 points of 1e-4 <= s - 1 <= 0.1 is zero to 1e-8
+    (observed 7e-11; the sampled margin of 160 points had put the boundary 7.5e-5
+    higher in fHPe)."""
+    from scipy.optimize import bisect
+
+    from thermocontact.studies.sweeps import sweep
+
+    curve = sweep("fig4", dict(pe=5, K2_over_K1=10, lam=1.0), "fhpe",
+                  np.linspace(0.6, 0.7, 3), n=64, xtol=1e-12)
+    (b,) = curve.boundaries
+    assert b.margin == "gap" and not b.becomes_valid and 1.0 < b.at < 1.02
+    root = bisect(lambda f: solve(5, f, 10, lam=1.0, n=64).validity.gap_margin, 0.6, 0.7,
+                  xtol=1e-13)
+    assert abs(root - b.x) < 1e-9
+    sol = solve(5, root, 10, lam=1.0, n=64)
+    tt = np.geomspace(1e-4, 1e-1, 20001)
+    assert abs(np.min(sol.gap_at(1.0 + tt) / tt**1.5)) < 1e-8

@@ -235,13 +235,40 @@ def _outside_grid(par: Parameters, sigma, lam, load_ratio):
     return np.concatenate([-1.0 - t[::-1], 1.0 + t])
 
 
+def _polish_minimum(f, x, values, i):
+    """The least value of ``f`` near the sampled minimum ``values[i]`` at ``x[i]``.
+
+    Brent's bounded minimisation between the neighbouring samples (to ``1e-12`` in
+    ``x``), so that a margin is the minimum of the closed form, not of its
+    samples: a boundary located where a margin vanishes is then located to the
+    root finder's tolerance.
+
+    Returns
+    -------
+    x_min, f_min : float
+    """
+    from scipy.optimize import minimize_scalar  # here: scipy.optimize is slow to import
+
+    lo, hi = x[max(i - 1, 0)], x[min(i + 1, len(x) - 1)]
+    best = (float(x[i]), float(values[i]))
+    if hi > lo:
+        res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-12, "maxiter": 200})
+        if np.isfinite(res.fun) and res.fun < best[1]:
+            best = (float(res.x), float(res.fun))
+    return best
+
+
 def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
     """Evaluate every contact inequality of a discrete solution.
 
-    The pressure is sampled at 2049 points of ``[-1, 1]`` (edges included), spaced
-    as the method's representation suggests (its ``phi_samples``); the gap at 160
-    points on each side, spaced geometrically from ``1e-8`` to ``1e3`` (further
-    when the ``s^2/2`` term does not yet dominate there).
+    The pressure margin ``phi = p/sqrt(1 - s^2)`` is sampled at 2049 points of
+    ``[-1, 1]`` (edges included), spaced as the method's representation suggests
+    (its ``phi_samples``); the gap margin ``g/(|s| - 1)^{3/2}`` at 160 points on
+    each side, spaced geometrically from ``1e-8`` to ``1e3`` past the edge (further
+    when the ``s^2/2`` term does not yet dominate there).  Each least sample is
+    then polished by Brent's method on the closed forms between its neighbours
+    (:func:`_polish_minimum`; the gap's in ``ln(|s| - 1)``).
 
     Returns
     -------
@@ -251,6 +278,8 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
     p = np.sqrt(np.clip(1.0 - sp * sp, 0.0, None)) * phis
     ip = int(np.argmin(p))
     iphi = int(np.argmin(phis))
+    phi_min_at, phi_min = _polish_minimum(lambda x: float(rep.phi_at(phi, np.array([x]))[0]),
+                                          sp, phis, iphi)
 
     so = _outside_grid(par, sigma, lam, load_ratio)
     g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
@@ -262,24 +291,37 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
         min_gap, min_gap_at = 0.0, float(np.sign(so[im]))
     else:
         min_gap, min_gap_at = float(g[ig]), float(so[ig])
+    # Polish the gap margin in y = ln(|s| - 1) on the side of its least sample.
+    side = np.sign(so[im])
+    on_side = np.flatnonzero(np.sign(so) == side)
+    y = np.log(np.abs(so[on_side]) - 1.0)
+    order = np.argsort(y)
+    y, ms = y[order], margin[on_side][order]
+
+    def gap_margin(yy):
+        tt = np.exp(yy)
+        gg, _ = gap(par, rep, phi, psi, load_ratio, sigma, lam, np.array([side * (1.0 + tt)]))
+        return float(gg[0] / tt**1.5)
+
+    y_min, gap_min = _polish_minimum(gap_margin, y, ms, int(np.argmin(ms)))
+    gap_min_at = float(side * (1.0 + np.exp(y_min)))
 
     psi_edges = rep.psi_edges(psi)
     k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
 
     positive = bool(load_ratio > 0.0)
-    valid = (positive and phis[iphi] >= 0.0 and margin[im] >= 0.0
-             and np.all(k_log <= 0.0))
+    valid = positive and phi_min >= 0.0 and gap_min >= 0.0 and np.all(k_log <= 0.0)
     return Validity(
         valid=bool(valid),
         positive_load=positive,
         min_pressure=float(p[ip]),
         min_pressure_at=float(sp[ip]),
-        pressure_margin=float(phis[iphi]),
-        pressure_margin_at=float(sp[iphi]),
+        pressure_margin=phi_min,
+        pressure_margin_at=phi_min_at,
         min_gap=min_gap,
         min_gap_at=min_gap_at,
-        gap_margin=float(margin[im]),
-        gap_margin_at=float(so[im]),
+        gap_margin=gap_min,
+        gap_margin_at=gap_min_at,
         edge_log_coefficients=(float(k_log[0]), float(k_log[1])),
         edge_slope_residual=residual,
     )
