@@ -60,6 +60,9 @@ class Validity:
     edge_slope_residual : tuple of float
         Slope mismatch ``G`` of the discrete solution at ``s = -1`` and ``+1``
         (zero for the exact solution; a measure of discretisation error).
+    margin_change : float or None
+        The largest change of the three margins from the solution at ``n/2``: an
+        estimate of their error (None when not compared).
     """
 
     valid: bool
@@ -74,6 +77,24 @@ class Validity:
     gap_margin_at: float
     edge_log_coefficients: tuple[float, float]
     edge_slope_residual: tuple[float, float]
+    margin_change: float | None = None
+
+    def margins(self) -> dict[str, float]:
+        """The signed margins, each >= 0 exactly when its inequality holds.
+
+        ``pressure``: least ``p/sqrt(1 - s^2)``; ``gap``: least ``g/(|s| - 1)^{3/2}``;
+        ``edge``: minus the larger edge logarithm coefficient (section 8).
+        """
+        return {"pressure": self.pressure_margin, "gap": self.gap_margin,
+                "edge": -max(self.edge_log_coefficients)}
+
+    def certain(self) -> bool:
+        """Whether every margin's sign is beyond its change since the coarser level."""
+        if self.margin_change is None:
+            return True
+        # A margin of exactly zero is so by construction (no edge term when
+        # delta1 = delta2 or fHPe = 0): its sign is not in doubt.
+        return all(abs(m) > self.margin_change or m == 0.0 for m in self.margins().values())
 
     @property
     def failures(self) -> tuple[str, ...]:
@@ -114,6 +135,7 @@ class Validity:
             "gap_margin_at": self.gap_margin_at,
             "edge_log_coefficients": list(self.edge_log_coefficients),
             "edge_slope_residual": list(self.edge_slope_residual),
+            "margin_change": self.margin_change,
         }
 
 

@@ -104,7 +104,11 @@ class ContactSolution:
                     f"{'<=' if self.converged else '>'} target {self.tol:.0e} at n = {self.n}")
         if self.validity is None:
             return head + "; validity not evaluated"
-        return f"{head}; {self.validity.reason}"
+        tail = ""
+        if not self.validity.certain():
+            tail = (f" (a margin is within its change since n/2, "
+                    f"{self.validity.margin_change:.1e}: its sign is not certain)")
+        return f"{head}; {self.validity.reason}{tail}"
 
     @property
     def valid(self) -> bool:

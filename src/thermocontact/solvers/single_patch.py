@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 import warnings
+from dataclasses import replace
 
 import numpy as np
 from scipy.linalg import LinAlgError, lu_factor, lu_solve
@@ -26,7 +27,7 @@ from ..discretisation.system import Blocks
 from ..numerics.cache import BoundedCache
 from ..problem.parameters import (ConvergenceWarning, InputError, Parameters, SolveError,
                                   check_finite, check_positive)
-from .refinement import N_RANGE, refine
+from .refinement import N_RANGE, error_estimate, refine
 from .result import ContactSolution
 
 __all__ = [
@@ -316,11 +317,27 @@ class Model:
             return (solve_system(par, self.blocks(m), self.method, lam=lam,
                                  sigma_over_delta=sigma_over_delta, check_validity=False),)
 
+        def validity_of(sol):
+            return assess(par, sol.representation, sol.phi, sol.psi, sol.load_ratio,
+                          sol.sigma_over_delta, sol.lam)
+
         sizes, n_max = self.sizes()
         levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max)
         fin = levels[-1][0]
-        validity = assess(par, fin.representation, fin.phi, fin.psi, fin.load_ratio,
-                          fin.sigma_over_delta, fin.lam)
+        validity = validity_of(fin)
+        if len(levels) > 1:
+            # The margins' error: their change since n/2.  With n chosen, refine on
+            # until every margin's sign is beyond it (or n reaches its largest).
+            while True:
+                coarse = validity_of(levels[-2][0]).margins()
+                change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
+                validity = replace(validity, margin_change=float(change))
+                if self.n is not None or validity.certain() or 2 * fin.n > n_max:
+                    break
+                levels.append(at(2 * fin.n))
+                fin = levels[-1][0]
+                est = error_estimate([lv[0] for lv in levels])
+                validity = validity_of(fin)
         sol = fin.replace(validity=validity, error_estimate=None if est is None else float(est),
                           auto_n=self.n is None, tol=self.tol)
         if sol.converged is False and self.n is None:
