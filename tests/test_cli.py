@@ -1,6 +1,7 @@
 """The command line: JSON record, summary, and one-line errors for every bad input."""
 
 import json
+import pathlib
 import subprocess
 import sys
 
@@ -139,9 +140,11 @@ def test_unreachable_lam(capsys):
 
 
 def test_installed_command_subprocess():
-    """The installed entry point (as a module) prints the JSON record and exits 0;
-    a bad input exits non-zero with one stderr line and no traceback."""
-    cmd = [sys.executable, "-m", "thermocontact.cli"]
+    """The installed console script prints the JSON record and exits 0; a bad input
+    exits non-zero with one stderr line and no traceback."""
+    script = pathlib.Path(sys.executable).with_name("thermocontact")
+    assert script.exists(), "the console script is installed beside the interpreter"
+    cmd = [str(script)]
     ok = subprocess.run(cmd + BASE + ["--lam", "-1", "--json"], capture_output=True, text=True)
     assert ok.returncode == 0 and REQUIRED <= json.loads(ok.stdout).keys()
     bad = subprocess.run(cmd + ["solve", "--pe", "-1", "--fhpe", "0", "--K2-over-K1", "1",

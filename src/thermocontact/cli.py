@@ -136,7 +136,7 @@ def _branch_record(b) -> dict:
 
 
 def contact_record(res) -> dict:
-    """The JSON record of a :class:`~thermocontact.engineering.PhysicalContact` (SI units)."""
+    """The JSON record of a :class:`~thermocontact.studies.physical_contact.PhysicalContact` (SI units)."""
     prob = res.problem
     prim = res.primary
     rec = {key: (getattr(prim, key) if prim is not None else None) for key in (

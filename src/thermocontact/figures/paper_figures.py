@@ -1,6 +1,6 @@
 """The paper's Figures 2-5, and the same figures past the paper's range.
 
-Each figure is a list of sweeps (:mod:`thermocontact.sweeps`); its data go to a CSV
+Each figure is a list of sweeps (:mod:`thermocontact.studies.sweeps`); its data go to a CSV
 whose header records the parameters, the method, ``n`` and the package version,
 and its picture to a PNG and an SVG.  Where the paper is silent the choices are
 ours and are listed in ``docs/reproduction.md``.

@@ -16,7 +16,7 @@ series in ``tau`` converges much faster and resolves ``(2 / c)^(1/6)``
 
 No integral of these bases is known in closed form, the Cauchy ones included:
 every operator is a moment computed by :func:`moments`, the construction of
-:mod:`thermocontact.moments` carried over from ``t`` to ``tau``.
+:mod:`thermocontact.numerics.moments` carried over from ``t`` to ``tau``.
 """
 
 from __future__ import annotations
@@ -324,7 +324,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
 
     Notes
     -----
-    The construction of :func:`thermocontact.moments.kernel_moments` in ``tau``:
+    The construction of :func:`thermocontact.numerics.moments.kernel_moments` in ``tau``:
     a common 16-point Gauss–Legendre panel rule; around ``tau_s`` three panels
     replaced, per side, by an innermost interval of width ``w = min(6/(n + 1), h)``
     graded toward ``tau_s`` (bases interpolated on 20 points there) and geometric

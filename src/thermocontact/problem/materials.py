@@ -17,12 +17,12 @@ File layout: one table per material, named in lower case with hyphens, with keys
 ``E`` (Pa), ``nu``, ``alpha`` (1/K), ``K`` (W/m/K) and either ``k`` (m^2/s) or
 ``rho`` (kg/m^3) and ``c`` (J/kg/K), plus optional ``source`` and ``note`` strings.
 Numbers are SI; strings with units (``E = "210 GPa"``) are converted with
-:func:`thermocontact.units.parse_quantity`.  An ``[aliases]`` table maps extra names
+:func:`thermocontact.problem.units.parse_quantity`.  An ``[aliases]`` table maps extra names
 to material names, e.g. ``steel = "carbon-steel"``.
 
 Examples
 --------
->>> from thermocontact.materials import get_material
+>>> from thermocontact.problem.materials import get_material
 >>> get_material("steel").name
 'carbon-steel'
 >>> round(get_material("E=210 GPa, nu=0.3, alpha=12e-6, K=50, k=1.4e-5").mu / 1e9, 2)

@@ -74,7 +74,7 @@ class PhysicalProblem:
     def __post_init__(self):
         for name in ("cylinder", "half_plane"):
             if not isinstance(getattr(self, name), Material):
-                raise InputError(f"{name} must be a Material (see thermocontact.materials."
+                raise InputError(f"{name} must be a Material (see thermocontact.problem.materials."
                                  f"get_material), got {getattr(self, name)!r}")
         for name in ("radius", "load", "speed"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))

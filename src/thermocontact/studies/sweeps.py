@@ -71,7 +71,7 @@ class Curve:
     ----------
     label : str
     fixed : dict
-        The fixed inputs of :func:`~thermocontact.solver.solve`.
+        The fixed inputs of :func:`~thermocontact.solvers.single_patch.solve`.
     x_name : str
         ``"fhpe"`` or ``"lam"``.
     x, load_ratio, sigma_over_delta, lam, valid, pressure_margin, gap_margin : ndarray
@@ -203,7 +203,7 @@ def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_MET
     ----------
     label : str
     fixed : dict
-        Inputs of :func:`~thermocontact.solver.solve` other than ``x_name``
+        Inputs of :func:`~thermocontact.solvers.single_patch.solve` other than ``x_name``
         (``pe``, ``K2_over_K1``, optionally ``k2_over_k1``, ``delta1_over_delta2``,
         and ``lam`` or ``fhpe``).
     x_name : {"fhpe", "lam"}
