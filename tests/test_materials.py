@@ -13,7 +13,7 @@ from thermocontact.problem.materials import (
     load_materials,
     material_aliases,
 )
-from thermocontact.problem.parameters import InputError
+from thermocontact.problem.validation import InputError
 
 BUILTIN = [
     "carbon-steel",
@@ -208,7 +208,7 @@ def test_inline_name():
     [
         ("E=0,nu=0.3,alpha=12e-6,K=50,k=1.4e-5", "E must be > 0"),
         ("E=-210e9,nu=0.3,alpha=12e-6,K=50,k=1.4e-5", "E must be > 0"),
-        ("E=inf,nu=0.3,alpha=12e-6,K=50,k=1.4e-5", "E must be finite"),
+        ("E=inf,nu=0.3,alpha=12e-6,K=50,k=1.4e-5", "E must be a finite real number"),
         ("E=210e9,nu=0.5,alpha=12e-6,K=50,k=1.4e-5", "nu must be in (-1, 0.5)"),
         ("E=210e9,nu=-1,alpha=12e-6,K=50,k=1.4e-5", "nu must be in (-1, 0.5)"),
         ("E=210e9,nu=0.3,alpha=-12e-6,K=50,k=1.4e-5", "alpha must be > 0"),
@@ -230,8 +230,8 @@ def test_inline_out_of_range(spec, param):
     ("kwargs", "param"),
     [
         ({"E": 0.0}, "E must be > 0"),
-        ({"E": math.nan}, "E must be finite"),
-        ({"E": "abc"}, "E must be a real number"),
+        ({"E": math.nan}, "E must be > 0 (finite)"),
+        ({"E": "abc"}, "E must be > 0 (finite)"),
         ({"nu": 0.5}, "nu must be in (-1, 0.5)"),
         ({"nu": -1.0}, "nu must be in (-1, 0.5)"),
         ({"alpha": -1e-6}, "alpha must be > 0"),

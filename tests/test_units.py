@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from thermocontact.problem.parameters import InputError
+from thermocontact.problem.validation import InputError
 from thermocontact.problem.units import parse_quantity
 
 

@@ -11,7 +11,8 @@ from ._version import __version__
 from .analysis.validity import Validity
 from .discretisation.methods import DEFAULT_METHOD, METHODS, Method
 from .numerics.cache import clear_caches
-from .problem.parameters import ConvergenceWarning, InputError, Parameters, SolveError
+from .problem.parameters import ConvergenceWarning, Parameters, SolveError
+from .problem.validation import InputError
 from .solvers.result import ContactSolution
 from .solvers.single_patch import Model, solve
 

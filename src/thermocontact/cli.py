@@ -7,6 +7,7 @@ exit status 2; nothing here raises a traceback for bad input.
 from __future__ import annotations
 
 import json
+import os
 import sys
 
 import click
@@ -14,7 +15,8 @@ import numpy as np
 
 from ._version import __version__
 from .discretisation.methods import DEFAULT_METHOD, METHODS
-from .problem.parameters import InputError, SolveError, check_positive
+from .problem.parameters import SolveError
+from .problem.validation import InputError, check_positive
 from .solvers.single_patch import DEFAULT_TOL, solve
 
 __all__ = ["main"]
@@ -96,27 +98,31 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
 
 @cli.command("reproduce")
 @click.option("--out", "out_dir", default="figures", show_default=True,
-              type=click.Path(file_okay=False), help="Folder for the PNG, SVG and CSV files.")
+              help="Folder for the PNG, SVG and CSV files (created if missing).")
 @click.option("--only", multiple=True, help="Only these figures (e.g. fig2); repeatable.")
 def reproduce_cmd(out_dir, only):
     """Reproduce the paper's Figures 2-5 and extend them past the paper's range."""
     import time
 
     from .figures.paper_figures import FIGURES, run_figure
+    from .io.files import check_output_dir
 
+    names = [f.name for f in FIGURES]
+    unknown = [name for name in only if name not in names]
+    if unknown:
+        raise InputError(f"--only must name figures among {names}, got {unknown[0]!r}")
+    out_dir = check_output_dir("--out", out_dir)
     figs = [f for f in FIGURES if not only or f.name in only]
-    if not figs:
-        raise InputError(f"--only must name figures among {[f.name for f in FIGURES]}")
     t0 = time.perf_counter()
     done = []
     try:
         with click.progressbar(figs, label="figures", file=sys.stderr,
                                item_show_func=lambda f: f.name if f else "") as bar:
             for fig in bar:
-                done.extend(run_figure(fig, out_dir))
+                run_figure(fig, out_dir, written=done)
     except KeyboardInterrupt:
-        click.echo(f"interrupted: {len(done)} files written to {out_dir}/ are complete",
-                   err=True)
+        # Every file is written whole (renamed when complete): those counted are.
+        click.echo(f"interrupted: {len(done)} complete files written to {out_dir}/", err=True)
         raise click.exceptions.Exit(130)
     click.echo(f"wrote {len(done)} files to {out_dir}/ in {time.perf_counter() - t0:.1f} s")
 
@@ -205,22 +211,34 @@ def _contact_summary(res) -> str:
 @click.option("--tol", type=float, default=1e-6, show_default=True, help="Error target of P_H/P per branch.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
-@click.option("--plot", "plot_file", default=None, help="Write pressure and temperatures to this PNG.")
+@click.option("--plot", "plot_file", default=None,
+              help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, lam,
                 tol, as_json, csv_file, plot_file):
     """Contact width, pressures and temperatures from materials, load and speed."""
-    from .studies.physical_contact import PhysicalProblem, contact
-    from .problem.materials import get_material
+    from .io.files import check_output_file
+    from .problem.materials import get_material, load_materials
     from .problem.units import parse_quantity
+    from .studies.physical_contact import PhysicalProblem, contact
 
+    # Output paths are checked before the computation, whose result would be lost.
+    if csv_file is not None:
+        csv_file = check_output_file("--csv", csv_file)
+    if plot_file is not None:
+        plot_file = check_output_file("--plot", plot_file, suffixes=(".png", ".svg", ".pdf"))
+    if (csv_file is not None and plot_file is not None
+            and os.path.realpath(csv_file) == os.path.realpath(plot_file)):
+        raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
+    if materials_file is not None:
+        load_materials(materials_file)  # read and checked even when both materials are inline
     prob = PhysicalProblem(
         get_material(cylinder, materials_file), get_material(half_plane, materials_file),
         parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
         parse_quantity(speed, "m/s", "speed"), friction, lam)
     res = contact(prob, tol=check_positive("tol", tol))
-    if csv_file:
+    if csv_file is not None:
         _write_contact_csv(res, csv_file)
-    if plot_file:
+    if plot_file is not None:
         from .plotting.curves import contact_figure
 
         contact_figure(res, plot_file)
@@ -231,17 +249,40 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
 
 
 def _write_contact_csv(res, path):
-    import csv
+    from .io.tables import write_table
 
-    with open(path, "w", newline="") as fh:
-        fh.write(f"# thermocontact {__version__}; SI units; temperatures are rises above "
-                 f"the cylinder's incoming surface temperature\n")
-        w = csv.writer(fh)
-        w.writerow(["branch", "valid", "x", "pressure", "temperature_cylinder",
-                    "temperature_half_plane"])
-        for i, b in enumerate(res.branches):
-            for row in zip(b.x, b.pressure, b.temperature_cylinder, b.temperature_half_plane):
-                w.writerow([i + 1, int(b.valid)] + [f"{v:.10g}" for v in row])
+    rows = ([i + 1, int(b.valid)] + [float(v) for v in row]
+            for i, b in enumerate(res.branches)
+            for row in zip(b.x, b.pressure, b.temperature_cylinder, b.temperature_half_plane))
+    write_table(path, ["SI units; temperatures are rises above the cylinder's incoming "
+                       "surface temperature"],
+                ["branch", "valid", "x", "pressure", "temperature_cylinder",
+                 "temperature_half_plane"], rows)
+
+
+def _refuse_repeated_options(args):
+    """An option given twice (``--lam -1 ... --lam 1``) is refused, not silently the last.
+
+    Options declared ``multiple`` (``--only``) may repeat.
+    """
+    if len(args) < 1 or args[0] not in cli.commands:
+        return
+    command = cli.commands[args[0]]
+    names = {}
+    for param in command.params:
+        if isinstance(param, click.Option) and not param.multiple:
+            for opt in param.opts + param.secondary_opts:
+                names[opt] = param.name
+    seen = {}
+    for token in args[1:]:
+        if token == "--":
+            break
+        opt = token.split("=", 1)[0]
+        if opt in names:
+            if names[opt] in seen:
+                raise InputError(f"{opt} must be given at most once, got it twice "
+                                 f"({seen[names[opt]]} and {opt})")
+            seen[names[opt]] = opt
 
 
 def main(argv=None) -> int:
@@ -251,6 +292,7 @@ def main(argv=None) -> int:
     from threadpoolctl import threadpool_limits
 
     try:
+        _refuse_repeated_options(sys.argv[1:] if argv is None else list(argv))
         with threadpool_limits(limits=1, user_api="blas"):
             rc = cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
     except click.exceptions.Exit as exc:

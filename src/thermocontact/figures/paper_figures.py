@@ -8,14 +8,12 @@ ours and are listed in ``docs/reproduction.md``.
 
 from __future__ import annotations
 
-import csv
-import datetime
 import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._version import __version__
+from ..io.tables import write_table
 from ..physics.reference_solutions import barber_insulated
 from ..solvers.single_patch import solve
 from ..studies.sweeps import Curve, sweep
@@ -84,10 +82,7 @@ FIGURES = (
 
 
 def _header(fig: Figure, curves, extra=()) -> list[str]:
-    lines = [
-        f"thermocontact {__version__}, {datetime.date.today().isoformat()}",
-        fig.title,
-    ]
+    lines = [fig.title]
     for c in curves:
         fixed = ", ".join(f"{k}={v:g}" for k, v in c.fixed.items())
         lines.append(f"curve '{c.label}': {fixed}; sweep {c.x_name}; method {c.method}, "
@@ -100,60 +95,66 @@ def _header(fig: Figure, curves, extra=()) -> list[str]:
     return lines
 
 
-def _write_curves_csv(path, fig: Figure, curves, barber=None):
-    with open(path, "w", newline="") as fh:
-        for line in _header(fig, curves):
-            fh.write(f"# {line}\n")
-        w = csv.writer(fh)
-        w.writerow(["curve", "pe", "K2_over_K1", "k2_over_k1", "delta1_over_delta2", "fhpe",
-                    "lam", "load_ratio", "load_over_hertz", "sigma_over_delta", "valid",
-                    "pressure_margin", "gap_margin", "n"])
-        for c in curves:
-            for i in range(c.x.size):
-                f = c.x[i] if c.x_name == "fhpe" else c.fixed["fhpe"]
-                L = c.load_ratio[i]
-                w.writerow([c.label, c.fixed["pe"], c.fixed["K2_over_K1"],
-                            c.fixed.get("k2_over_k1", c.fixed["K2_over_K1"]),
-                            c.fixed.get("delta1_over_delta2", 1.0), f"{f:.10g}",
-                            f"{c.lam[i]:.10g}", f"{L:.12g}", f"{1 / L:.12g}" if L else "inf",
-                            f"{c.sigma_over_delta[i]:.12g}", int(c.valid[i]),
-                            f"{c.pressure_margin[i]:.6g}", f"{c.gap_margin[i]:.6g}", c.n])
-        if barber is not None:
-            for f, L in zip(*barber):
-                w.writerow(["Barber (insulated cylinder)", "", "", "", 0, f"{f:.10g}", -1,
-                            f"{L:.12g}", f"{1 / L:.12g}" if L else "inf", 0, "", "", "", ""])
+CURVE_COLUMNS = ["curve", "pe", "K2_over_K1", "k2_over_k1", "delta1_over_delta2", "fhpe",
+                 "lam", "load_ratio", "load_over_hertz", "sigma_over_delta", "valid",
+                 "pressure_margin", "gap_margin", "n"]
 
 
-def run_figure(fig: Figure, out_dir: str) -> list[str]:
+def _curve_rows(curves, barber=None):
+    for c in curves:
+        for i in range(c.x.size):
+            f = c.x[i] if c.x_name == "fhpe" else c.fixed["fhpe"]
+            L = c.load_ratio[i]
+            yield [c.label, c.fixed["pe"], c.fixed["K2_over_K1"],
+                   c.fixed.get("k2_over_k1", c.fixed["K2_over_K1"]),
+                   c.fixed.get("delta1_over_delta2", 1.0), float(f), float(c.lam[i]),
+                   float(L), float(1 / L) if L else "inf", float(c.sigma_over_delta[i]),
+                   int(c.valid[i]), float(c.pressure_margin[i]), float(c.gap_margin[i]), c.n]
+    if barber is not None:
+        for f, L in zip(*barber):
+            yield ["Barber (insulated cylinder)", "", "", "", 0, float(f), -1, float(L),
+                   float(1 / L) if L else "inf", 0, "", "", "", ""]
+
+
+def _distribution_rows(sols):
+    for sol in sols:
+        p = sol.parameters
+        head = [p.pe, p.fhpe, sol.n, int(sol.valid)]
+        for s_, v in zip(sol.s, sol.pressure):
+            yield head + ["pressure", float(s_), float(v)]
+        for name, arr in (("flux_cylinder", sol.flux_cylinder),
+                          ("flux_half_plane", sol.flux_half_plane)):
+            for s_, v in zip(sol.flux_s, arr):
+                yield head + [name, float(s_), float(v)]
+
+
+def run_figure(fig: Figure, out_dir: str, written: list | None = None) -> list[str]:
     """Compute one figure and write its CSV, PNG and SVG into ``out_dir``.
+
+    Each file is written whole (a temporary name, then a rename) and appended to
+    ``written`` as soon as it is complete, so that an interrupted caller knows
+    which files are.
 
     Returns
     -------
     list of str
         The files written.
     """
+    written = [] if written is None else written
+    start = len(written)
     from ..plotting import curves as plotting
 
     os.makedirs(out_dir, exist_ok=True)
     stem = os.path.join(out_dir, fig.name)
     if fig.distributions:
         sols = [solve(pe, f, 10.0, lam=-1.0, tol=1e-6) for pe, f in fig.distributions]
-        with open(stem + ".csv", "w", newline="") as fh:
-            fh.write(f"# thermocontact {__version__}, {datetime.date.today().isoformat()}\n")
-            methods = ", ".join(sorted({sol.method for sol in sols}))
-            fh.write(f"# {fig.title}; K2/K1 = 10, lambda = -1, method {methods}\n")
-            w = csv.writer(fh)
-            w.writerow(["pe", "fhpe", "n", "valid", "quantity", "s", "value"])
-            for sol in sols:
-                p = sol.parameters
-                for s_, v in zip(sol.s, sol.pressure):
-                    w.writerow([p.pe, p.fhpe, sol.n, int(sol.valid), "pressure", f"{s_:.12g}", f"{v:.12g}"])
-                for name, arr in (("flux_cylinder", sol.flux_cylinder),
-                                  ("flux_half_plane", sol.flux_half_plane)):
-                    for s_, v in zip(sol.flux_s, arr):
-                        w.writerow([p.pe, p.fhpe, sol.n, int(sol.valid), name, f"{s_:.12g}", f"{v:.12g}"])
-        plotting.distributions_figure(sols, stem, fig.title)
-        return [stem + ext for ext in (".csv", ".png", ".svg")]
+        methods = ", ".join(sorted({sol.method for sol in sols}))
+        write_table(stem + ".csv", [f"{fig.title}; K2/K1 = 10, lambda = -1, method {methods}"],
+                    ["pe", "fhpe", "n", "valid", "quantity", "s", "value"],
+                    _distribution_rows(sols))
+        written.append(stem + ".csv")
+        plotting.distributions_figure(sols, stem, fig.title, written=written)
+        return written[start:]
 
     curves: list[Curve] = [sweep(label, fixed, x_name, x, tol=TOL, n_max=N_MAX)
                            for label, fixed, x_name, x in fig.curves]
@@ -161,6 +162,7 @@ def run_figure(fig: Figure, out_dir: str) -> list[str]:
     if fig.barber:
         f = FHPE
         barber = (f, np.array([barber_insulated(x, n=256).load_ratio for x in f]))
-    _write_curves_csv(stem + ".csv", fig, curves, barber)
-    plotting.curves_figure(curves, stem, fig.title, fig.y, barber)
-    return [stem + ext for ext in (".csv", ".png", ".svg")]
+    write_table(stem + ".csv", _header(fig, curves), CURVE_COLUMNS, _curve_rows(curves, barber))
+    written.append(stem + ".csv")
+    plotting.curves_figure(curves, stem, fig.title, fig.y, barber, written=written)
+    return written[start:]

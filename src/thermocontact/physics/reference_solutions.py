@@ -29,10 +29,11 @@ contact of that width (``L = P_H / P`` would be negative).
 from __future__ import annotations
 
 import math
-import operator
 from dataclasses import dataclass
 
 import numpy as np
+
+from ..problem.validation import check_integer, check_nonnegative
 
 __all__ = ["BarberSolution", "barber_insulated", "hertz_pressure"]
 
@@ -222,18 +223,8 @@ def barber_insulated(fhpe, n=DEFAULT_TERMS):
         If ``fhpe`` is not finite and ``>= 0``, or ``n`` is not an integer
         ``>= 1``.
     """
-    try:
-        F = float(fhpe)
-    except (TypeError, ValueError):
-        raise ValueError(f"fhpe must be a finite number >= 0, got {fhpe!r}") from None
-    if not math.isfinite(F) or F < 0.0:
-        raise ValueError(f"fhpe must be a finite number >= 0, got {fhpe!r}")
-    try:
-        n = operator.index(n)
-    except TypeError:
-        raise ValueError(f"n must be an integer >= 1, got {n!r}") from None
-    if n < 1:
-        raise ValueError(f"n must be an integer >= 1, got {n!r}")
+    F = check_nonnegative("fhpe", fhpe)
+    n = check_integer("n", n, 1)
 
     b_even, load_ratio = _parity_block(F, n, 1)
     b_odd, l_sigma = _parity_block(F, n, 0)

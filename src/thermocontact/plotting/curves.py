@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
+
+from ..io.files import atomic_write
 
 __all__ = ["contact_figure", "curves_figure", "distributions_figure", "plot_curve"]
 
@@ -18,6 +22,15 @@ def _pyplot():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def _save(fig, path, written=None):
+    """Save ``fig`` whole (a temporary file, renamed when complete); note it in ``written``."""
+    fmt = os.path.splitext(path)[1].lstrip(".").lower()
+    with atomic_write(path, "wb") as fh:
+        fig.savefig(fh, format=fmt, dpi=130)
+    if written is not None:
+        written.append(path)
 
 
 def _values(curve, y):
@@ -66,7 +79,7 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
     return ax
 
 
-def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None):
+def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None, written=None):
     """Write ``stem.png`` and ``stem.svg``: one panel per quantity in ``ys``."""
     plt = _pyplot()
     fig, axes = plt.subplots(1, len(ys), figsize=(5.5 * len(ys), 4.2), squeeze=False)
@@ -89,11 +102,11 @@ def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None):
     fig.suptitle(title + "\n(solid: valid; dashed: invalid; x: where validity changes)", fontsize=9)
     fig.tight_layout()
     for ext in (".png", ".svg"):
-        fig.savefig(stem + ext, dpi=130)
+        _save(fig, stem + ext, written)
     plt.close(fig)
 
 
-def distributions_figure(sols, stem, title):
+def distributions_figure(sols, stem, title, written=None):
     """Write ``stem.png``/``.svg``: pressures (top) and heat fluxes (bottom)."""
     plt = _pyplot()
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
@@ -115,7 +128,7 @@ def distributions_figure(sols, stem, title):
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     for ext in (".png", ".svg"):
-        fig.savefig(stem + ext, dpi=130)
+        _save(fig, stem + ext, written)
     plt.close(fig)
 
 
@@ -143,5 +156,5 @@ def contact_figure(res, path):
                  f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
                  f"lambda = {prob.lam:g}", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    _save(fig, path)
     plt.close(fig)

@@ -32,7 +32,6 @@ Examples
 from __future__ import annotations
 
 import difflib
-import math
 import os
 import re
 import sys
@@ -42,7 +41,7 @@ from functools import lru_cache
 from importlib.resources import files
 from pathlib import Path
 
-from .parameters import InputError
+from .validation import InputError, check_finite, check_positive, check_range
 from .units import parse_quantity
 
 if sys.version_info >= (3, 11):
@@ -81,28 +80,19 @@ _INLINE_EXAMPLE = "E=210e9,nu=0.3,alpha=12e-6,K=50,k=1.4e-5"
 
 
 def _number(material: str, param: str, value) -> float:
-    if isinstance(value, bool):
-        raise MaterialError(
-            f"material '{material}': {param} must be a real number, got {value!r}"
-        )
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise MaterialError(
-            f"material '{material}': {param} must be a real number, got {value!r}"
-        ) from None
-    if not math.isfinite(x):
-        raise MaterialError(f"material '{material}': {param} must be finite, got {value!r}")
-    return x
+    return _checked(material, check_finite, param, value)
 
 
 def _positive(material: str, param: str, value) -> float:
-    x = _number(material, param, value)
-    if x <= 0.0:
-        raise MaterialError(
-            f"material '{material}': {param} must be > 0 (finite), got {value!r}"
-        )
-    return x
+    return _checked(material, check_positive, param, value)
+
+
+def _checked(material, check, param, value) -> float:
+    """The one wording of :mod:`.validation`, prefixed with the material's name."""
+    try:
+        return check(param, value)
+    except InputError as exc:
+        raise MaterialError(f"material '{material}': {exc}") from None
 
 
 @dataclass(frozen=True)
@@ -148,11 +138,8 @@ class Material:
         name = str(self.name)
         object.__setattr__(self, "name", name)
         object.__setattr__(self, "E", _positive(name, "E", self.E))
-        nu = _number(name, "nu", self.nu)
-        if not -1.0 < nu < 0.5:
-            raise MaterialError(
-                f"material '{name}': nu must be in (-1, 0.5), got {self.nu!r}"
-            )
+        nu = _checked(name, lambda p, v: check_range(p, v, -1.0, 0.5, open_low=True,
+                                                     open_high=True), "nu", self.nu)
         object.__setattr__(self, "nu", nu)
         object.__setattr__(self, "alpha", _positive(name, "alpha", self.alpha))
         object.__setattr__(self, "K", _positive(name, "K", self.K))

@@ -2,19 +2,16 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-__all__ = ["ConvergenceWarning", "InputError", "Parameters", "SolveError"]
+from .validation import InputError, check_nonnegative, check_positive
+
+__all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
 
 
 #: Largest Pe k2/k1: beyond it the cylinder's kernels are narrower than any
 #: discretisation here resolves.
 C_MAX = 1e9
-
-
-class InputError(ValueError):
-    """A parameter outside its allowed range; the message names both."""
 
 
 class SolveError(RuntimeError):
@@ -23,39 +20,6 @@ class SolveError(RuntimeError):
 
 class ConvergenceWarning(UserWarning):
     """A result whose error estimate misses its target."""
-
-
-def _real(name: str, value) -> float:
-    if isinstance(value, bool):
-        raise InputError(f"{name} must be a real number, got {value!r}")
-    try:
-        x = float(value) + 0.0  # + 0.0 turns -0.0 into 0.0
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InputError(f"{name} must be finite, got {value!r}")
-    return x
-
-
-def check_positive(name: str, value) -> float:
-    """Return ``value`` as a float, or raise :class:`InputError` unless finite and > 0."""
-    x = _real(name, value)
-    if x <= 0.0:
-        raise InputError(f"{name} must be > 0 (finite), got {value!r}")
-    return x
-
-
-def check_nonnegative(name: str, value) -> float:
-    """Return ``value`` as a float, or raise :class:`InputError` unless finite and >= 0."""
-    x = _real(name, value)
-    if x < 0.0:
-        raise InputError(f"{name} must be >= 0 (finite), got {value!r}")
-    return x
-
-
-def check_finite(name: str, value) -> float:
-    """Return ``value`` as a float, or raise :class:`InputError` unless finite."""
-    return _real(name, value)
 
 
 @dataclass(frozen=True)

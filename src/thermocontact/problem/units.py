@@ -12,11 +12,10 @@ noticeable fraction of a second.
 
 from __future__ import annotations
 
-import math
 import numbers
 from functools import lru_cache
 
-from .parameters import InputError
+from .validation import InputError, check_finite
 
 __all__ = ["parse_quantity"]
 
@@ -30,9 +29,11 @@ def _registry():
 
 
 def _finite(name: str, x: float, value) -> float:
-    if not math.isfinite(x):
-        raise InputError(f"{name} must be finite, got {value!r}")
-    return x
+    # The message shows the value as the user wrote it, not as converted.
+    try:
+        return check_finite(name, x)
+    except InputError:
+        raise InputError(f"{name} must be a finite real number, got {value!r}") from None
 
 
 def parse_quantity(value, unit: str, name: str) -> float:

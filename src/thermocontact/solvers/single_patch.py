@@ -25,8 +25,9 @@ from ..analysis.validity import assess
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..discretisation.system import Blocks
 from ..numerics.cache import BoundedCache
-from ..problem.parameters import (ConvergenceWarning, InputError, Parameters, SolveError,
-                                  check_finite, check_positive)
+from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
+from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
+                                  check_positive, check_range)
 from .refinement import N_RANGE, error_estimate, refine
 from .result import ContactSolution
 
@@ -99,8 +100,7 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
         A singular or ill-conditioned system, or a ``lam`` that no finite
         ``sigma`` reaches.
     """
-    if (lam is None) == (sigma_over_delta is None):
-        raise InputError("give exactly one of lam and sigma_over_delta")
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
     n = blocks.n
     F = par.fhpe
     rep = blocks.representation
@@ -111,14 +111,10 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     two_pi = 2.0 / np.pi
 
     if lam is not None:
-        lam = check_finite("lam", lam)
-        if abs(lam) > LIMIT:
-            raise InputError(f"lam must be in [-{LIMIT:.0e}, {LIMIT:.0e}], got {lam!r}")
+        lam = check_range("lam", lam, -LIMIT, LIMIT)
         size = 2 * n + 2
     else:
-        sigma = check_finite("sigma_over_delta", sigma_over_delta)
-        if abs(sigma) > LIMIT:
-            raise InputError(f"sigma_over_delta must be in [-{LIMIT:.0e}, {LIMIT:.0e}], got {sigma!r}")
+        sigma = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
         if F == 0.0:
             raise InputError(
                 "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
@@ -173,23 +169,13 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
 
 
 def check_n(n) -> int:
-    """Return ``n`` as an int, or raise :class:`InputError` outside :data:`N_RANGE`."""
-    lo, hi = N_RANGE
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        if isinstance(n, float) and n.is_integer():
-            n = int(n)
-        else:
-            raise InputError(f"n must be an integer in [{lo}, {hi}], got {n!r}")
-    if not lo <= n <= hi:
-        raise InputError(f"n must be an integer in [{lo}, {hi}], got {n!r}")
-    return int(n)
+    """``n`` as an int in :data:`~thermocontact.solvers.refinement.N_RANGE`."""
+    return check_integer("n", n, *N_RANGE)
 
 
 def check_method(method) -> str:
-    """Return ``method``, or raise :class:`InputError` unless it names a registered method."""
-    if not isinstance(method, str) or method not in METHODS:
-        raise InputError(f"method must be one of {sorted(METHODS)}, got {method!r}")
-    return method
+    """``method`` if it names a registered method."""
+    return check_choice("method", method, METHODS)
 
 
 class Model:
@@ -308,8 +294,7 @@ class Model:
             :class:`ConvergenceWarning`.
         """
         par = self.parameters_at(fhpe)
-        if (lam is None) == (sigma_over_delta is None):
-            raise InputError("give exactly one of lam and sigma_over_delta")
+        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
 
         def at(m):
             # Validity only for the solution returned: the coarser levels feed the
@@ -393,8 +378,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     >>> round(solve(5, 0.0, 10, lam=-1).load_ratio, 12)
     1.0
     """
-    if (lam is None) == (sigma_over_delta is None):
-        raise InputError("give exactly one of lam and sigma_over_delta")
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, method=method, n=n, tol=tol)
     return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,

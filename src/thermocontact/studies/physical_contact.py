@@ -22,8 +22,8 @@ from scipy.optimize import brentq, root_scalar
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material
-from ..problem.parameters import (InputError, Parameters, SolveError, check_finite,
-                                  check_nonnegative, check_positive)
+from ..problem.parameters import Parameters, SolveError
+from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..solvers.refinement import refine
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import Model

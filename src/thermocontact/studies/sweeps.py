@@ -13,8 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..problem.parameters import InputError, SolveError
 from ..discretisation.methods import DEFAULT_METHOD
+from ..problem.parameters import SolveError
+from ..problem.validation import InputError
 from ..solvers.refinement import refine
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import Model

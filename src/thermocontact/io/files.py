@@ -1,0 +1,112 @@
+"""Files written whole, and output paths checked before any work is done.
+
+Every file the package writes goes through :func:`atomic_write`: the content is
+written to a temporary file in the destination's folder and renamed over the
+destination only when complete, so an interrupted run leaves either the old file
+or the new one, never a truncated one.  :func:`check_output_file` and
+:func:`check_output_dir` refuse, in one line, a path that could not be written,
+before the computation whose result would otherwise be lost.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+
+from ..problem.validation import InputError
+
+__all__ = ["atomic_write", "check_output_dir", "check_output_file"]
+
+#: Longest file name most file systems accept.
+NAME_MAX = 255
+
+
+@contextlib.contextmanager
+def atomic_write(path, mode="w", **kwargs):
+    """Open a temporary file beside ``path``; on success rename it to ``path``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    mode : {"w", "wb"}
+    **kwargs
+        Passed to :func:`open` (e.g. ``newline=""``).
+
+    Yields
+    ------
+    file object
+        The temporary file; on an exception (or an interrupt) it is removed and
+        ``path`` is left as it was.
+    """
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix="-" + os.path.basename(path)[:64],
+                               dir=folder)
+    try:
+        with os.fdopen(fd, mode, **kwargs) as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _check_name(option: str, path: str):
+    if not path:
+        raise InputError(f"{option} must be a path, got ''")
+    for part in path.replace(os.sep, "/").split("/"):
+        if len(part.encode()) > NAME_MAX:
+            raise InputError(f"{option} must have names of at most {NAME_MAX} bytes, "
+                             f"got one of {len(part.encode())}")
+
+
+def _check_folder(option: str, folder: str, path: str):
+    folder = folder or "."
+    if not os.path.exists(folder):
+        raise InputError(f"{option} must be in an existing folder, got {path!r} "
+                         f"({folder!r} does not exist)")
+    if not os.path.isdir(folder):
+        raise InputError(f"{option} must be in a folder, got {path!r} ({folder!r} is a file)")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputError(f"{option} must be in a writable folder, got {path!r}")
+
+
+def check_output_file(option: str, path, suffixes=None) -> str:
+    """``path`` if a file can be written there (``suffixes``: the allowed extensions).
+
+    Raises
+    ------
+    InputError
+        Empty, a folder, in a missing or read-only folder or under a file, a name
+        too long, or an extension not in ``suffixes``.
+    """
+    path = os.fspath(path) if path is not None else ""
+    _check_name(option, path)
+    if os.path.isdir(path):
+        raise InputError(f"{option} must be a file, got the folder {path!r}")
+    if suffixes is not None:
+        ext = os.path.splitext(path)[1].lower()
+        if ext not in suffixes:
+            raise InputError(f"{option} must end in one of {', '.join(suffixes)}, got {path!r}")
+    _check_folder(option, os.path.dirname(path), path)
+    if os.path.exists(path) and not os.access(path, os.W_OK):
+        raise InputError(f"{option} must be a writable file, got {path!r}")
+    return path
+
+
+def check_output_dir(option: str, path) -> str:
+    """``path`` if it is, or can be created as, a writable folder (its parent must exist)."""
+    path = os.fspath(path) if path is not None else ""
+    _check_name(option, path)
+    if os.path.exists(path):
+        if not os.path.isdir(path):
+            raise InputError(f"{option} must be a folder, got the file {path!r}")
+        if not os.access(path, os.W_OK | os.X_OK):
+            raise InputError(f"{option} must be a writable folder, got {path!r}")
+        return path
+    _check_folder(option, os.path.dirname(os.path.normpath(path)), path)
+    return path

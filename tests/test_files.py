@@ -1,0 +1,118 @@
+"""Output files: paths refused before any computation, files written whole, interrupts
+that leave only complete files, and repeated or ignored options refused."""
+
+import os
+
+import pytest
+
+from thermocontact.cli import main
+from thermocontact.io.files import atomic_write
+
+CONTACT = ["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius", "450mm",
+           "--load", "200kN/m", "--speed", "72km/h", "--friction", "0.35", "--lam", "-1"]
+
+
+def _error(capsys, args):
+    """Run the command; it must exit 2 with one line on standard error."""
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "Traceback" not in err[0]
+    return err[0]
+
+
+@pytest.fixture
+def no_solve(monkeypatch):
+    """Any attempt to compute fails the test: paths must be refused before."""
+    import thermocontact.studies.physical_contact as pc
+
+    def boom(*a, **k):
+        raise AssertionError("computed before the output path was checked")
+    monkeypatch.setattr(pc, "contact", boom)
+
+
+@pytest.mark.parametrize("option", ["--csv", "--plot"])
+def test_bad_output_paths_refused_before_computing(tmp_path, capsys, no_solve, option):
+    afile = tmp_path / "a.png"
+    afile.write_text("x")
+    readonly = tmp_path / "ro"
+    readonly.mkdir()
+    readonly.chmod(0o500)
+    bad = {
+        "folder": str(tmp_path),
+        "under a file": str(afile / "x.png"),
+        "missing folder": str(tmp_path / "missing" / "x.png"),
+        "too long": str(tmp_path / ("x" * 300 + ".png")),
+        "empty": "",
+    }
+    if os.geteuid() != 0:  # root may write anywhere
+        bad["read-only folder"] = str(readonly / "x.png")
+    for what, path in bad.items():
+        msg = _error(capsys, CONTACT + [option, path])
+        assert msg.startswith(f"error: {option} must"), (what, msg)
+
+
+def test_plot_needs_a_picture_extension_and_csv_plot_differ(tmp_path, capsys, no_solve):
+    assert "must end in one of .png" in _error(capsys, CONTACT + ["--plot", str(tmp_path / "x")])
+    same = str(tmp_path / "x.png")
+    assert "must be different files" in _error(capsys, CONTACT + ["--csv", same, "--plot", same])
+
+
+def test_reproduce_out_refused(tmp_path, capsys):
+    afile = tmp_path / "f"
+    afile.write_text("x")
+    for path in ("", str(afile), str(afile / "sub"), str(tmp_path / "a" / "b")):
+        assert "--out must" in _error(capsys, ["reproduce", "--out", path, "--only", "fig5"])
+
+
+def test_repeated_options_and_unknown_figures_refused(capsys):
+    msg = _error(capsys, ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10",
+                          "--lam", "-1", "--lam", "1"])
+    assert "--lam must be given at most once" in msg
+    assert "got 'bogus'" in _error(capsys, ["reproduce", "--only", "fig2", "--only", "bogus"])
+
+
+def test_materials_file_read_even_with_inline_materials(tmp_path, capsys):
+    inline = "E=210e9,nu=0.3,alpha=12e-6,K=50,k=1.4e-5"
+    args = ["contact", "--cylinder", inline, "--half-plane", inline, "--radius", "10mm",
+            "--load", "1e4", "--speed", "1", "--friction", "0.1", "--lam", "-1"]
+    assert "not found" in _error(capsys, args + ["--materials", str(tmp_path / "none.toml")])
+    broken = tmp_path / "broken.toml"
+    broken.write_text("[x\n")
+    assert "invalid TOML" in _error(capsys, args + ["--materials", str(broken)])
+
+
+def test_atomic_write_leaves_old_file_on_interrupt(tmp_path):
+    path = tmp_path / "table.csv"
+    path.write_text("complete old content\n")
+    with pytest.raises(KeyboardInterrupt):
+        with atomic_write(path) as fh:
+            fh.write("half of the new")
+            raise KeyboardInterrupt
+    assert path.read_text() == "complete old content\n"
+    assert os.listdir(tmp_path) == ["table.csv"]  # no temporary file left
+    with atomic_write(path) as fh:
+        fh.write("new\n")
+    assert path.read_text() == "new\n"
+
+
+def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, capsys,
+                                                                     monkeypatch):
+    """Interrupted while saving the second picture of fig5: the CSV and PNG written
+    before are complete and counted, the SVG is absent (not truncated)."""
+    import thermocontact.plotting.curves as curves
+
+    real = curves._save
+    calls = []
+
+    def interrupted(fig, path, written=None):
+        calls.append(path)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        real(fig, path, written)
+    monkeypatch.setattr(curves, "_save", interrupted)
+    assert main(["reproduce", "--out", str(tmp_path), "--only", "fig5"]) == 130
+    err = capsys.readouterr().err
+    assert "interrupted: 2 complete files" in err
+    assert sorted(os.listdir(tmp_path)) == ["fig5.csv", "fig5.png"]
+    assert (tmp_path / "fig5.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (tmp_path / "fig5.csv").read_text().rstrip().count("\n") > 10
