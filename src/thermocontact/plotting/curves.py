@@ -1,4 +1,10 @@
-"""Pictures.  Matplotlib is imported here only, inside the functions."""
+"""Pictures.  Matplotlib is imported here only, inside the functions.
+
+The ``plot_*`` functions draw one result on an Axes (``ax=None``: the current
+one) and return it; they neither solve nor choose a backend.  The ``*_figure``
+functions compose them on a :class:`matplotlib.figure.Figure` (no pyplot state)
+and save it whole to a file.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +14,8 @@ import numpy as np
 
 from ..io.files import atomic_write
 
-__all__ = ["contact_figure", "curves_figure", "distributions_figure", "plot_curve"]
+__all__ = ["contact_figure", "curves_figure", "distributions_figure", "plot_branch",
+           "plot_curve", "plot_distributions"]
 
 _YLABEL = {
     "load_ratio": "$P_H/P$",
@@ -17,11 +24,19 @@ _YLABEL = {
 }
 
 
-def _pyplot():
-    # No backend is chosen here: without a display matplotlib falls back to Agg.
-    import matplotlib.pyplot as plt
+def _axes(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
 
-    return plt
+        ax = plt.gca()
+    return ax
+
+
+def _figure(**kwargs):
+    # A Figure of its own, outside pyplot: no backend, nothing left open.
+    from matplotlib.figure import Figure
+
+    return Figure(**kwargs)
 
 
 def _save(fig, path, written=None):
@@ -56,9 +71,7 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
     -------
     matplotlib Axes
     """
-    plt = _pyplot()
-    if ax is None:
-        ax = plt.gca()
+    ax = _axes(ax)
     x = curve.x
     v = _values(curve, y)
     # Insert the boundary points so that the solid and dashed parts meet there.
@@ -81,8 +94,8 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
 
 def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None, written=None):
     """Write ``stem.png`` and ``stem.svg``: one panel per quantity in ``ys``."""
-    plt = _pyplot()
-    fig, axes = plt.subplots(1, len(ys), figsize=(5.5 * len(ys), 4.2), squeeze=False)
+    fig = _figure(figsize=(5.5 * len(ys), 4.2))
+    axes = fig.subplots(1, len(ys), squeeze=False)
     for ax, y in zip(axes[0], ys):
         for c in curves:
             plot_curve(c, y, ax)
@@ -103,58 +116,111 @@ def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None, written=
     fig.tight_layout()
     for ext in (".png", ".svg"):
         _save(fig, stem + ext, written)
-    plt.close(fig)
+
+
+def plot_distributions(sol, axes=None):
+    """Pressure (top) and heat fluxes (bottom) of one solution against ``s``.
+
+    Parameters
+    ----------
+    sol : ContactSolution
+    axes : pair of Axes, optional
+        Default: two new stacked Axes of the current figure.
+
+    Returns
+    -------
+    (Axes, Axes)
+    """
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        axes = plt.gcf().subplots(2, 1, sharex=True)
+    ax1, ax2 = axes
+    p = sol.parameters
+    tag = f"Pe = {p.pe:g}, fHPe = {p.fhpe:g} ({'valid' if sol.valid else 'invalid'})"
+    style = "-" if sol.valid else "--"
+    line, = ax1.plot(sol.s, sol.pressure, style, label=tag)
+    ax2.plot(sol.flux_s, sol.flux_half_plane, style, color=line.get_color())
+    ax2.plot(sol.flux_s, sol.flux_cylinder, ":", color=line.get_color())
+    ax1.set_ylabel("pressure $p\\Delta/P$")
+    ax2.set_xlabel("$s = (x - \\sigma)/\\Delta$  (leading edge at +1)")
+    ax2.set_ylabel("heat flux, units $fvP/\\Delta$\n(solid: half-plane, dotted: cylinder)")
+    return ax1, ax2
 
 
 def distributions_figure(sols, stem, title, written=None):
     """Write ``stem.png``/``.svg``: pressures (top) and heat fluxes (bottom)."""
-    plt = _pyplot()
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+    fig = _figure(figsize=(7, 7))
+    axes = fig.subplots(2, 1, sharex=True)
     for sol in sols:
-        p = sol.parameters
-        tag = f"Pe = {p.pe:g}, fHPe = {p.fhpe:g} ({'valid' if sol.valid else 'invalid'})"
-        line, = ax1.plot(sol.s, sol.pressure, "-" if sol.valid else "--", label=tag)
-        ax2.plot(sol.flux_s, sol.flux_half_plane, "-" if sol.valid else "--", color=line.get_color())
-        ax2.plot(sol.flux_s, sol.flux_cylinder, ":", color=line.get_color())
+        plot_distributions(sol, axes)
+    ax1, ax2 = axes
     s = np.linspace(-1, 1, 201)
     ax1.plot(s, 2 / np.pi * np.sqrt(1 - s * s), "k--", lw=0.8, label="Hertz")
-    ax1.set_ylabel("pressure $p\\Delta/P$")
     ax1.legend(fontsize=7)
     ax2.set_ylim(-1.5, 2.5)
-    ax2.set_xlabel("$s = (x - \\sigma)/\\Delta$  (leading edge at +1)")
-    ax2.set_ylabel("heat flux, units $fvP/\\Delta$\n(solid: half-plane, dotted: cylinder)")
-    for ax in (ax1, ax2):
+    for ax in axes:
         ax.grid(alpha=0.3)
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     for ext in (".png", ".svg"):
         _save(fig, stem + ext, written)
-    plt.close(fig)
+
+
+def plot_branch(branch, problem, axes=None, label=None):
+    """Pressure and surface temperatures of one branch in its own coordinates.
+
+    The abscissa is ``s = (x - offset)/Delta`` of the branch, so a branch far
+    narrower than Hertz's is drawn as clearly as a wide one; the pressure is in
+    units of the Hertz peak pressure ``p0`` of the load.
+
+    Parameters
+    ----------
+    branch : Branch
+    problem : PhysicalProblem
+    axes : pair of Axes, optional
+    label : str, optional
+
+    Returns
+    -------
+    (Axes, Axes)
+    """
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        axes = plt.gcf().subplots(2, 1, sharex=True)
+    ax1, ax2 = axes
+    s = (branch.x - branch.offset) / branch.half_width
+    tag = label or (f"half-width {branch.half_width:.3g} m, offset {branch.offset:.3g} m "
+                    f"({'valid' if branch.valid else 'invalid'})")
+    line, = ax1.plot(s, branch.pressure / problem.hertz_peak_pressure,
+                     "-" if branch.valid else "--", label=tag)
+    ax2.plot(s, branch.temperature_cylinder, color=line.get_color())
+    ax1.set_ylabel("pressure / Hertz peak $p_0$")
+    ax2.set_ylabel("surface temperature rise, K\n(cylinder = half-plane in contact)")
+    ax2.set_xlabel("$(x - \\mathrm{offset})/\\Delta$ of each branch "
+                   "(cylinder surface moves toward -x)")
+    return ax1, ax2
 
 
 def contact_figure(res, path):
-    """Pressure (Hertz dashed) and surface temperatures against x for each branch."""
-    plt = _pyplot()
+    """Write every branch of a physical contact, each in its own coordinates, to ``path``."""
     prob = res.problem
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
-    dh = prob.hertz_half_width
-    x = np.linspace(-dh, dh, 301)
-    ax1.plot(1e3 * x, 1e-6 * prob.hertz_peak_pressure * np.sqrt(np.clip(1 - (x / dh) ** 2, 0, None)),
-             "k--", lw=1, label="Hertz")
+    fig = _figure(figsize=(7, 6.5))
+    axes = fig.subplots(2, 1, sharex=True)
     for i, b in enumerate(res.branches):
-        tag = f"branch {i + 1} ({'valid' if b.valid else 'invalid'})"
-        line, = ax1.plot(1e3 * b.x, 1e-6 * b.pressure, label=tag)
-        ax2.plot(1e3 * b.x, b.temperature_cylinder, color=line.get_color(),
-                 label=f"{tag}: cylinder = half-plane in contact")
-    ax1.set_ylabel("pressure, MPa")
-    ax2.set_ylabel("surface temperature rise, K")
-    ax2.set_xlabel("x, mm (cylinder surface moves toward -x)")
-    for ax in (ax1, ax2):
+        plot_branch(b, prob, axes, label=f"branch {i + 1}: half-width {b.half_width:.3g} m "
+                                         f"({'valid' if b.valid else 'invalid'})")
+    if res.branches:
+        axes[0].legend(fontsize=7)
+    else:
+        axes[0].text(0.5, 0.5, "no half-width carries this load", ha="center",
+                     transform=axes[0].transAxes)
+    for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
     fig.suptitle(f"{prob.cylinder.name} on {prob.half_plane.name}: R = {prob.radius:g} m, "
                  f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
-                 f"lambda = {prob.lam:g}", fontsize=8)
+                 f"lambda = {prob.lam:g}\nHertz: half-width {prob.hertz_half_width:.3g} m, "
+                 f"p0 = {prob.hertz_peak_pressure:.3g} Pa", fontsize=8)
     fig.tight_layout()
     _save(fig, path)
-    plt.close(fig)

@@ -1,0 +1,35 @@
+"""Plot functions draw a result on the Axes they are given and return it; figure
+writers leave no pyplot figure open."""
+
+import matplotlib
+
+matplotlib.use("Agg")  # the tests' choice; the package never chooses a backend
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from thermocontact import solve  # noqa: E402
+from thermocontact.plotting.curves import plot_curve, plot_distributions  # noqa: E402
+from thermocontact.studies.sweeps import sweep  # noqa: E402
+
+
+def test_plot_functions_use_and_return_the_given_axes():
+    fig, (a1, a2) = plt.subplots(2, 1)
+    sol = solve(5, 0.2, 10, lam=-1)
+    got = plot_distributions(sol, (a1, a2))
+    assert got == (a1, a2)
+    line = a1.get_lines()[0]
+    assert np.array_equal(line.get_xdata(), sol.s) and np.array_equal(line.get_ydata(), sol.pressure)
+    curve = sweep("c", dict(pe=5, K2_over_K1=10, lam=-1.0), "fhpe", np.linspace(0, 0.3, 4), n=16)
+    _, ax = plt.subplots()
+    assert plot_curve(curve, "load_ratio", ax=ax) is ax
+    plt.close("all")
+
+
+def test_figure_writers_leave_no_pyplot_figure(tmp_path):
+    from thermocontact.plotting.curves import distributions_figure
+
+    plt.close("all")
+    distributions_figure([solve(5, 0.2, 10, lam=-1)], str(tmp_path / "d"), "t")
+    assert plt.get_fignums() == []
+    assert (tmp_path / "d.png").read_bytes()[:4] == b"\x89PNG"
