@@ -181,3 +181,22 @@ def test_python_api_validates():
         problem(radius=-1.0)
     with pytest.raises(MaterialError, match="did you mean"):
         get_material("copperr")
+
+
+@pytest.mark.parametrize("lam, width, valid", [(0.5, 69.39e-6, True), (0.9, 349.4e-6, False)])
+def test_roots_beyond_fhpe_2_5_are_found(lam, width, valid):
+    """Steel on cast iron, 200 kN/m at 72 km/h, f = 0.35: the half-widths that carry
+    the load lie at fHPe = 2.85 (lam = 0.5, valid) and 14.2 (lam = 0.9, invalid),
+    beyond the fHPe = 2.5 where the scan used to stop; each is returned with its
+    validity, and a plain solve at that half-width gives P_H/P = (Delta/Delta_H)^2
+    to 1e-6 (the branch's error target)."""
+    p = PhysicalProblem(get_material("steel"), get_material("cast-iron"), 0.45, 2e5, 20.0,
+                        0.35, lam)
+    res = contact(p)
+    (b,) = [b for b in res.branches if abs(b.half_width / width - 1) < 1e-3]
+    assert b.valid is valid and res.primary is b
+    sol = solve(**p.to_dimensionless(b.half_width))
+    assert abs(sol.load_ratio / (b.half_width / p.hertz_half_width) ** 2 - 1) < 1e-6
+    assert res.searched[3] > 14.2
+    if not valid:
+        assert "half-widths searched" in res.message and b.solution.validity.failures

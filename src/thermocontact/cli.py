@@ -138,6 +138,7 @@ def _branch_record(b) -> dict:
         "temperature_mismatch": b.temperature_mismatch,
         "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
+        "reason": v.reason,
     }
 
 
@@ -157,6 +158,8 @@ def contact_record(res) -> dict:
         "converged": prim.converged if prim is not None else None,
         "message": res.message,
         "largest_valid_load": res.largest_valid_load,
+        "searched": (None if res.searched is None else dict(zip(
+            ("half_width_min", "half_width_max", "fhpe_min", "fhpe_max"), res.searched))),
         "branches": [_branch_record(b) for b in res.branches],
         "inputs": {
             "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
@@ -194,6 +197,8 @@ def _contact_summary(res) -> str:
             f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
             f"{'met' if b.converged else 'NOT met'})",
         ]
+        if not b.valid:
+            lines.append(f"    {b.solution.validity.reason}")
     if res.message:
         lines.append(f"  {res.message}")
     return "\n".join(lines)

@@ -30,13 +30,16 @@ from ..solvers.single_patch import Model
 
 __all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
 
-#: Scan of the half-width: points, and the fHPe range covered.  Past fHPe ~ 0.6
-#: (Barber's limiting width) P_H/P is negative, and from about 2 the formal
-#: solution has poles between which P_H/P turns positive again: such branches
-#: exist formally and are reported, always invalid.
+#: Scan of the half-width: points per decade, from below fHPe = FHPE_MIN (or half
+#: the Hertz half-width) up to MAX_WIDTH Hertz half-widths, whatever fHPe that
+#: reaches.  Past fHPe ~ 0.6 (Barber's limiting width) P_H/P is negative, and from
+#: about 2 the formal solution has poles between which P_H/P turns positive again:
+#: such branches exist formally and are reported with their validity (roots were
+#: found at fHPe = 2.8 and 14 for steel on cast iron).
+SCAN_PER_DECADE = 32
 SCAN_POINTS = 64
 FHPE_MIN = 0.05
-FHPE_MAX = 2.5
+MAX_WIDTH = 4.0
 #: Method of every solve, and its n for the scan (enough to bracket the roots, which
 #: are then refined at the n that meets the error target).
 METHOD = DEFAULT_METHOD
@@ -180,6 +183,9 @@ class PhysicalContact:
         When no branch is valid: the largest load over the scanned half-widths
         whose solution is valid, N/m (None if there is none; ``inf`` when valid
         solutions reach the limiting width, where the load grows without bound).
+    searched : tuple of float or None
+        The half-widths searched for roots, m, and the fHPe they span:
+        ``(Delta_lo, Delta_hi, fhpe_lo, fhpe_hi)`` (None without thermal coupling).
     """
 
     problem: PhysicalProblem
@@ -187,6 +193,7 @@ class PhysicalContact:
     primary: Branch | None
     message: str
     largest_valid_load: float | None
+    searched: tuple | None = None
 
 
 def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
@@ -209,7 +216,7 @@ def _h(prob, half_width, n):
 def _scan_range(prob: PhysicalProblem):
     dh = prob.hertz_half_width
     beta = prob.fhpe(1.0)  # fHPe per metre of half-width
-    hi = min(4.0 * dh, FHPE_MAX / beta)
+    hi = MAX_WIDTH * dh
     lo = 0.5 * min(dh, FHPE_MIN / beta)
     if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 < lo < hi):
         raise InputError(
@@ -289,7 +296,8 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
         scan = None
     else:
         lo, hi = _scan_range(prob)
-        found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi)
+        points = max(SCAN_POINTS, int(np.ceil(SCAN_PER_DECADE * np.log10(hi / lo))))
+        found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi, points=points)
         roots = found
         scan = (grid, None)
     branches, singular = [], 0
@@ -322,7 +330,15 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
                    "interpenetration or negative load): no single-patch contact exists")
     if message and largest is not None and np.isfinite(largest):
         message += f"; the largest load with a valid solution is {largest:.4g} N/m"
-    return PhysicalContact(prob, branches, primary, message, largest)
+    searched = None
+    if scan is not None:
+        grid = scan[0]
+        searched = (float(grid[0]), float(grid[-1]), float(prob.fhpe(grid[0])),
+                    float(prob.fhpe(grid[-1])))
+        if message:
+            message += (f" (half-widths searched: {searched[0]:.3g} to {searched[1]:.3g} m, "
+                        f"fHPe {searched[2]:.3g} to {searched[3]:.3g})")
+    return PhysicalContact(prob, branches, primary, message, largest, searched)
 
 
 def find_roots(h, lo, hi, points=SCAN_POINTS, pole_tol=1e-6):
