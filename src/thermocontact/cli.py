@@ -39,7 +39,7 @@ def _summary(sol) -> str:
     if sol.load_ratio_change is not None:
         lines.append(f"  |P_H/P(2n) - P_H/P(n)| = {sol.load_ratio_change:.2e}")
     lines += [
-        f"  valid         = {v.valid}" + ("" if v.valid else f"  ({v.reason})"),
+        f"  valid         = {v.valid}" + ("" if v.reason == "valid" else f"  ({v.reason})"),
         f"  min pressure  = {v.min_pressure:.4g} at s = {v.min_pressure_at:.4f}"
         f"  (margin p/sqrt(1-s^2) = {v.pressure_margin:.4g} at s = {v.pressure_margin_at:.4f})",
         f"  min gap       = {v.min_gap:.4g} Delta^2/R at s = {v.min_gap_at:.4f}"

@@ -29,17 +29,11 @@ MARGINS = ("load", "pressure", "gap", "edge")
 def validity_margins(sol: ContactSolution) -> dict[str, float]:
     """The signed margins of the contact inequalities of one solution.
 
-    ``load``: ``P_H/P``; ``pressure``: least ``p/sqrt(1 - s^2)``; ``gap``: least
-    ``g/(|s| - 1)^{3/2}``; ``edge``: minus the larger edge logarithm coefficient
-    (derivation section 8).  ``sol.valid`` holds exactly when all are >= 0.
+    ``load``: ``P_H/P``, and those of :meth:`Validity.margins
+    <thermocontact.analysis.validity.Validity.margins>`.  ``sol.valid`` holds
+    exactly when all are >= 0.
     """
-    v = sol.validity
-    return {
-        "load": sol.load_ratio,
-        "pressure": v.pressure_margin,
-        "gap": v.gap_margin,
-        "edge": -max(v.edge_log_coefficients),
-    }
+    return {"load": sol.load_ratio, **sol.validity.margins()}
 
 
 @dataclass(frozen=True)
@@ -190,7 +184,7 @@ def _boundaries(at, x, sols, xtol):
                   max(root - 10 * xtol, x[i]))
         v = past.validity
         where = {"load": 0.0, "pressure": v.pressure_margin_at, "gap": v.gap_margin_at,
-                 "edge": 1.0 if v.edge_log_coefficients[1] >= v.edge_log_coefficients[0] else -1.0}
+                 "edge": 1.0 if v.edge_margins[1] <= v.edge_margins[0] else -1.0}
         out.append(Boundary(float(root), name, float(where[name]),
                             becomes_valid=bool(sols[i + 1].valid)))
     return tuple(out)
