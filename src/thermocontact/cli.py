@@ -22,6 +22,27 @@ from .solvers.single_patch import DEFAULT_TOL, solve
 __all__ = ["main"]
 
 
+class _Progress:
+    """Refinement progress on standard error, a line per level once a solve has run 2 s."""
+
+    AFTER = 2.0
+    #: A level this large takes seconds by itself: announced at once.
+    LARGE_N = 512
+
+    def __init__(self):
+        import time
+
+        self._clock = time.perf_counter
+        self._start = self._clock()
+
+    def __call__(self, n, estimate):
+        elapsed = self._clock() - self._start
+        if elapsed < self.AFTER and n < self.LARGE_N:
+            return
+        est = "" if estimate is None else f", error estimate so far {estimate:.1e}"
+        click.echo(f"solving at n = {n}{est} ({elapsed:.0f} s elapsed)", err=True)
+
+
 def _summary(sol) -> str:
     par = sol.parameters
     v = sol.validity
@@ -29,9 +50,7 @@ def _summary(sol) -> str:
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
         f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}",
-        (f"  error estimate {sol.error_estimate:.1e} (target {sol.tol:.0e}, "
-         f"{'met' if sol.converged else 'NOT met'}; n {'chosen' if sol.auto_n else 'given'})"
-         if sol.error_estimate is not None else "  error estimate: none (n < 8)"),
+        f"  {sol.status}: {sol.estimate_message} (n {'chosen' if sol.auto_n else 'given'})",
         f"  P_H/P         = {sol.load_ratio:.10g}",
         f"  lambda        = {sol.lam:.10g}",
         f"  sigma/Delta   = {sol.sigma_over_delta:.10g}",
@@ -89,7 +108,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=delta1_over_delta2, lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
-                check_convergence=check)
+                check_convergence=check, progress=_Progress())
     if as_json:
         click.echo(json.dumps(sol.to_dict(), allow_nan=False))
     else:
@@ -296,9 +315,15 @@ def main(argv=None) -> int:
     # competing for two cores (measured: 3x on the benchmark).
     from threadpoolctl import threadpool_limits
 
+    import warnings
+
+    def one_line(message, category, *args, **kwargs):
+        click.echo(f"warning: {message}", err=True)
+
     try:
         _refuse_repeated_options(sys.argv[1:] if argv is None else list(argv))
-        with threadpool_limits(limits=1, user_api="blas"):
+        with threadpool_limits(limits=1, user_api="blas"), warnings.catch_warnings():
+            warnings.showwarning = one_line
             rc = cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return exc.exit_code

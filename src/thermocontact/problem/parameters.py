@@ -9,9 +9,12 @@ from .validation import InputError, check_nonnegative, check_positive
 __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
 
 
-#: Largest Pe k2/k1: beyond it the cylinder's kernels are narrower than any
-#: discretisation here resolves.
+#: Range of c = Pe k2/k1.  Above C_MAX the cylinder's kernels are narrower than any
+#: discretisation here resolves; below C_MIN they are constant to rounding (the
+#: problem is its limit c -> 0, reached to 1e-16 by c = 1e-16) and products with c
+#: would underflow.
 C_MAX = 1e9
+C_MIN = 1e-100
 
 
 class SolveError(RuntimeError):
@@ -69,11 +72,12 @@ class Parameters:
             "delta1_over_delta2",
             check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
         )
-        if self.pe * self.k2_over_k1 > C_MAX:
+        c = self.pe * self.k2_over_k1
+        if not C_MIN <= c <= C_MAX:
             raise InputError(
-                f"pe * k2_over_k1 must be <= {C_MAX:.0e} (the cylinder's kernels would be "
-                f"narrower than 1/{C_MAX:.0e} of the contact), got {self.pe * self.k2_over_k1:.3g}"
-            )
+                f"pe * k2_over_k1 (the cylinder's kernel scale c) must be in "
+                f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c:.3g} (pe = {self.pe:.3g}, "
+                f"k2_over_k1 = {self.k2_over_k1:.3g})")
 
     @property
     def cylinder_scale(self) -> float:

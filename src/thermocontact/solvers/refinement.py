@@ -15,8 +15,9 @@ __all__ = ["N_RANGE", "P_MAX", "error_estimate", "refine"]
 
 log = logging.getLogger("thermocontact")
 
-#: Unknowns per function accepted anywhere.
-N_RANGE = (4, 2048)
+#: Unknowns per function accepted anywhere: at n = 1024 a graded solve takes about a
+#: minute and its operators about a gigabyte, beyond which nothing runs in seconds.
+N_RANGE = (4, 1024)
 #: Largest convergence order the error estimate believes: just above the
 #: asymptotic order 4 of the Chebyshev methods (derivation section 10).  The graded
 #: methods converge faster once they resolve the edges, but before that (Pe k2/k1
@@ -31,7 +32,7 @@ def _relative(x: float) -> float:
     return max(abs(x), 0.01)
 
 
-def error_estimate(levels, quantities=QUANTITIES) -> float:
+def error_estimate(levels, quantities=QUANTITIES, p_max=P_MAX) -> float:
     """Richardson estimate of the error of the finest of successive solutions.
 
     For solutions at ``n/4, n/2, n`` with differences ``d1, d2`` in ``P_H/P`` (and
@@ -49,6 +50,9 @@ def error_estimate(levels, quantities=QUANTITIES) -> float:
         At least two, ``n`` doubling, coarsest first.
     quantities : tuple of str
         The result fields whose errors are estimated.
+    p_max : float
+        The largest order believed (the method's, :class:`~thermocontact.
+        discretisation.methods.Method`).
 
     Returns
     -------
@@ -62,14 +66,14 @@ def error_estimate(levels, quantities=QUANTITIES) -> float:
         if len(v) == 3:
             d1 = abs(v[1] - v[0])
             if d1 > 0.0 and d2 > 0.0:
-                p = float(np.clip(np.log2(d1 / d2), 1.0, P_MAX))
+                p = float(np.clip(np.log2(d1 / d2), 1.0, p_max))
             elif d2 == 0.0:
-                p = P_MAX
+                p = p_max
         est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))
     return est
 
 
-def refine(at, sizes, *, tol=None, n_max=None):
+def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None):
     """Solve at ``sizes``, then at doubled ``n`` until the estimate meets ``tol``.
 
     Parameters
@@ -84,6 +88,11 @@ def refine(at, sizes, *, tol=None, n_max=None):
         Target of the estimate; without it only ``sizes`` are solved.
     n_max : int, optional
         The largest ``n`` (default: the last of ``sizes``).
+    p_max : float
+        Passed to :func:`error_estimate`.
+    progress : callable, optional
+        Called as ``progress(n, estimate)`` before each level is solved (``estimate``
+        None before the first two), for a caller that shows progress.
 
     Returns
     -------
@@ -96,7 +105,11 @@ def refine(at, sizes, *, tol=None, n_max=None):
     n = sizes[-1]
     n_max = n if n_max is None else int(n_max)
 
-    levels = [at(m) for m in sizes]
+    levels = []
+    for m in sizes:
+        if progress is not None:
+            progress(m, None)
+        levels.append(at(m))
     while True:
         est = None
         if len(levels) > 1:
@@ -104,9 +117,11 @@ def refine(at, sizes, *, tol=None, n_max=None):
             for case in zip(*levels):
                 sols = [s for s in case[-3:] if s is not None]
                 if len(sols) > 1 and case[-1] is not None:
-                    est = max(est, error_estimate(sols))
+                    est = max(est, error_estimate(sols, p_max=p_max))
         log.debug("refinement: n = %d, error estimate %s", n, est)
         if tol is None or (est is not None and est <= tol) or 2 * n > n_max:
             return levels, est
         n *= 2
+        if progress is not None:
+            progress(n, est)
         levels.append(at(n))

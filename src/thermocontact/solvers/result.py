@@ -57,6 +57,9 @@ class ContactSolution:
         Whether ``n`` was chosen automatically.
     load_ratio_change : float or None
         ``|P_H/P(2n) - P_H/P(n)|`` when a convergence check was asked for.
+    estimate_is_bound : bool
+        False for a method whose error estimate does not bound its error (the
+        paper's scheme): such a result is never ``converged``.
     """
 
     parameters: Parameters
@@ -74,6 +77,7 @@ class ContactSolution:
     tol: float | None = None
     auto_n: bool = False
     load_ratio_change: float | None = None
+    estimate_is_bound: bool = True
 
     # Status, in the manner of scipy's OptimizeResult.
     @property
@@ -81,13 +85,18 @@ class ContactSolution:
         """``error_estimate <= tol`` (None without an estimate)."""
         if self.error_estimate is None or self.tol is None:
             return None
-        return bool(self.error_estimate <= self.tol)
+        return bool(self.estimate_is_bound and self.error_estimate <= self.tol)
 
     @property
     def status(self) -> str:
-        """``"converged"``, ``"not converged"`` or ``"no estimate"`` (``n < 8`` given)."""
+        """``"converged"``, ``"not converged"``, ``"unreliable estimate"`` (a method whose
+        estimate is no bound) or ``"no estimate"`` (``n < 8`` given)."""
         c = self.converged
-        return "no estimate" if c is None else ("converged" if c else "not converged")
+        if c is None:
+            return "no estimate"
+        if not self.estimate_is_bound:
+            return "unreliable estimate"
+        return "converged" if c else "not converged"
 
     @property
     def success(self) -> bool:
@@ -95,13 +104,20 @@ class ContactSolution:
         return bool(self.converged) and self.validity is not None and self.validity.valid
 
     @property
+    def estimate_message(self) -> str:
+        """One line on the error estimate against its target."""
+        if self.error_estimate is None:
+            return f"no error estimate (n = {self.n} leaves no coarser level)"
+        if not self.estimate_is_bound:
+            return (f"error estimate {self.error_estimate:.1e} at n = {self.n} is no bound for "
+                    f"method {self.method!r}: not claimed converged")
+        return (f"error estimate {self.error_estimate:.1e} "
+                f"{'<=' if self.converged else '>'} target {self.tol:.0e} at n = {self.n}")
+
+    @property
     def message(self) -> str:
         """One line: the error estimate against its target, and the verdict of validity."""
-        if self.error_estimate is None:
-            head = f"no error estimate (n = {self.n} leaves no coarser level)"
-        else:
-            head = (f"error estimate {self.error_estimate:.1e} "
-                    f"{'<=' if self.converged else '>'} target {self.tol:.0e} at n = {self.n}")
+        head = self.estimate_message
         if self.validity is None:
             return head + "; validity not evaluated"
         tail = ""

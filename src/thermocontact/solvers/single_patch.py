@@ -272,7 +272,7 @@ class Model:
         return coarse + [self.n], self.n
 
     def solve(self, fhpe, *, lam=None, sigma_over_delta=None, check_convergence=False,
-              _stacklevel=2) -> ContactSolution:
+              progress=None, _stacklevel=2) -> ContactSolution:
         """Solve at ``fhpe`` with the heat partition or the offset given.
 
         Parameters
@@ -284,6 +284,9 @@ class Model:
         check_convergence : bool, optional
             Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``)
             and report the change in ``P_H/P``.
+        progress : callable, optional
+            ``progress(n, estimate)`` before each level
+            (:func:`~thermocontact.solvers.refinement.refine`).
 
         Returns
         -------
@@ -307,7 +310,9 @@ class Model:
                           sol.sigma_over_delta, sol.lam)
 
         sizes, n_max = self.sizes()
-        levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max)
+        method = METHODS[self.method]
+        levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max,
+                             p_max=method.order_cap, progress=progress)
         fin = levels[-1][0]
         validity = validity_of(fin)
         if len(levels) > 1:
@@ -319,12 +324,15 @@ class Model:
                 validity = replace(validity, margin_change=float(change))
                 if self.n is not None or validity.certain() or 2 * fin.n > n_max:
                     break
+                if progress is not None:
+                    progress(2 * fin.n, est)
                 levels.append(at(2 * fin.n))
                 fin = levels[-1][0]
-                est = error_estimate([lv[0] for lv in levels])
+                est = error_estimate([lv[0] for lv in levels], p_max=method.order_cap)
                 validity = validity_of(fin)
         sol = fin.replace(validity=validity, error_estimate=None if est is None else float(est),
-                          auto_n=self.n is None, tol=self.tol)
+                          auto_n=self.n is None, tol=self.tol,
+                          estimate_is_bound=method.estimate_is_bound)
         if sol.converged is False and self.n is None:
             warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
                           stacklevel=_stacklevel)
@@ -337,7 +345,7 @@ class Model:
 
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
-          tol=DEFAULT_TOL, check_convergence=False) -> ContactSolution:
+          tol=DEFAULT_TOL, check_convergence=False, progress=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
@@ -360,6 +368,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         Target of the error estimate (default 1e-8).
     check_convergence : bool, optional
         Also solve with ``2n`` and report the change in ``P_H/P``.
+    progress : callable, optional
+        ``progress(n, estimate)`` before each level of the refinement.
 
     Returns
     -------
@@ -382,4 +392,4 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, method=method, n=n, tol=tol)
     return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
-                       check_convergence=check_convergence, _stacklevel=3)
+                       check_convergence=check_convergence, progress=progress, _stacklevel=3)

@@ -83,6 +83,22 @@ class PhysicalProblem:
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
         object.__setattr__(self, "lam", check_finite("lam", self.lam))
+        # A derived group out of the solver's range is reported with the inputs it
+        # comes from, not only as the dimensionless group.
+        dh = self.hertz_half_width
+        try:
+            if not (np.isfinite(dh) and dh > 0.0):
+                raise InputError(f"the Hertz half-width sqrt(2 A R P / pi) is {dh:.3g} m")
+            self.parameters(dh)
+        except InputError as exc:
+            raise InputError(
+                f"the inputs are out of the solver's range at the Hertz half-width "
+                f"{dh:.3g} m: {exc}; it follows from radius {self.radius:.3g} m, load "
+                f"{self.load:.3g} N/m, speed {self.speed:.3g} m/s, friction {self.friction:g} "
+                f"and the materials' E, nu, K and k ({self.cylinder.name}: E = "
+                f"{self.cylinder.E:.3g} Pa, k = {self.cylinder.k:.3g} m^2/s; "
+                f"{self.half_plane.name}: E = {self.half_plane.E:.3g} Pa, "
+                f"k = {self.half_plane.k:.3g} m^2/s)") from None
 
     @property
     def compliance(self) -> float:
