@@ -116,3 +116,26 @@ def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, c
     assert sorted(os.listdir(tmp_path)) == ["fig5.csv", "fig5.png"]
     assert (tmp_path / "fig5.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (tmp_path / "fig5.csv").read_text().rstrip().count("\n") > 10
+
+
+def test_interrupt_while_importing_prints_no_traceback():
+    """SIGINT 0.1-0.3 s after start (NumPy and SciPy loading, or the first solve) ends
+    the installed command with status 130 and one line, never a traceback."""
+    import pathlib
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    script = pathlib.Path(sys.executable).with_name("thermocontact")
+    for delay in (0.1, 0.3):
+        proc = subprocess.Popen([str(script), "solve", "--pe", "5", "--fhpe", "0.2",
+                                 "--K2-over-K1", "10", "--lam", "-1"],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=60)
+        if proc.returncode == 0:  # finished before the signal: nothing to check
+            continue
+        assert proc.returncode == 130 and "Traceback" not in err, err
+        assert len(err.strip().splitlines()) == 1

@@ -5,29 +5,41 @@ half-plane; frictional heat distorts both surfaces.  :func:`solve` (or
 :class:`Model` for many solves that share an assembly) returns the contact's load
 ratio, offset, heat partition, pressure and heat-flux distributions and the
 validity of the single-patch solution.
+
+The names below are imported on first use, so that ``import thermocontact`` (and
+the command line's start) costs nothing until NumPy and SciPy are needed.
 """
 
-from ._version import __version__
-from .analysis.validity import Validity
-from .discretisation.methods import DEFAULT_METHOD, METHODS, Method
-from .numerics.cache import clear_caches
-from .problem.parameters import ConvergenceWarning, Parameters, SolveError
-from .problem.validation import InputError
-from .solvers.result import ContactSolution
-from .solvers.single_patch import Model, solve
+from importlib import import_module
 
-__all__ = [
-    "DEFAULT_METHOD",
-    "METHODS",
-    "ContactSolution",
-    "ConvergenceWarning",
-    "InputError",
-    "Method",
-    "Model",
-    "Parameters",
-    "SolveError",
-    "Validity",
-    "clear_caches",
-    "solve",
-    "__version__",
-]
+from ._version import __version__
+
+#: Public name -> module that defines it.
+_EXPORTS = {
+    "Validity": ".analysis.validity",
+    "DEFAULT_METHOD": ".discretisation.methods",
+    "METHODS": ".discretisation.methods",
+    "Method": ".discretisation.methods",
+    "clear_caches": ".numerics.cache",
+    "ConvergenceWarning": ".problem.parameters",
+    "Parameters": ".problem.parameters",
+    "SolveError": ".problem.parameters",
+    "InputError": ".problem.validation",
+    "ContactSolution": ".solvers.result",
+    "Model": ".solvers.single_patch",
+    "solve": ".solvers.single_patch",
+}
+
+__all__ = sorted(_EXPORTS) + ["__version__"]
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        value = getattr(import_module(_EXPORTS[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'thermocontact' has no attribute {name!r}")
+
+
+def __dir__():
+    return __all__
