@@ -203,3 +203,18 @@ def test_roots_beyond_fhpe_2_5_are_found(lam, width, strict):
     assert res.searched[3] > 14.2
     if not strict:
         assert "strictly invalid" in v.reason and v.edge_layer_log_widths[1] < -1000
+
+
+def test_flash_temperature_and_peak_pressure_are_true_maxima():
+    """Steel on cast iron (lam = -1): the flash temperature and the peak pressure are the
+    maxima of the closed forms, not of 199 samples: no value on a 4001-point grid of
+    the contact exceeds them (to 1e-12 relative), and they exceed the grid's maximum
+    by less than the grid can miss (observed: equal to 1e-7)."""
+    p = PhysicalProblem(get_material("steel"), get_material("cast-iron"), 0.45, 2e5, 20.0,
+                        0.35, -1.0)
+    b = contact(p).primary
+    s = np.linspace(-1.0, 1.0, 4001)
+    t1 = _temperatures(p, b.solution, b.half_width, s)[0]
+    pr = p.load / b.half_width * b.solution.pressure_at(s)
+    for top, dense in ((b.flash_temperature, t1.max()), (b.peak_pressure, pr.max())):
+        assert dense <= top * (1 + 1e-12) and top - dense < 1e-6 * abs(top)

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..numerics.extrema import polish_minimum
 from ..physics.green_functions import cylinder_displacement, cylinder_slope
 from ..problem.parameters import Parameters
 
@@ -314,54 +315,6 @@ def _outside_grid(par: Parameters, sigma, lam, load_ratio):
     return np.concatenate([-1.0 - t[::-1], 1.0 + t])
 
 
-#: Chebyshev points on which a margin is interpolated between the neighbours of its
-#: least sample: the margins are analytic there, and 17 points interpolate them over
-#: two sample spacings to about 1e-13 (checked against Brent's method on the closed
-#: forms in tests/test_validity.py).
-_POLISH_POINTS = 17
-
-
-def _polish_minimum(f, x, values, i):
-    """The least value of ``f`` near the sampled minimum ``values[i]`` at ``x[i]``.
-
-    ``f`` is interpolated on Chebyshev points between the neighbouring samples
-    (one vectorised call), the interpolant's least value is found from the roots of
-    its derivative, and ``f`` is evaluated there: a margin is the minimum of the
-    closed form, not of its samples, so a boundary located where a margin vanishes
-    is located to the root finder's tolerance.
-
-    Parameters
-    ----------
-    f : callable
-        Vectorised: ``f(ndarray) -> ndarray``.
-    x, values : ndarray
-        Increasing samples and ``f`` there.
-    i : int
-        Index of the least sample.
-
-    Returns
-    -------
-    x_min, f_min : float
-    """
-    lo, hi = x[max(i - 1, 0)], x[min(i + 1, len(x) - 1)]
-    best = (float(x[i]), float(values[i]))
-    if not hi > lo:
-        return best
-    cheb = np.polynomial.chebyshev.Chebyshev
-    k = np.arange(_POLISH_POINTS)
-    pts = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(np.pi * (k + 0.5) / _POLISH_POINTS)
-    fit = cheb.fit(pts, f(pts), _POLISH_POINTS - 1, domain=[lo, hi])
-    crit = fit.deriv().roots()
-    crit = crit[np.isreal(crit)].real
-    crit = crit[(crit > lo) & (crit < hi)]
-    cand = np.concatenate([crit, pts])
-    at = cand[np.argmin(fit(cand))]
-    value = float(f(np.array([at]))[0])
-    if np.isfinite(value) and value < best[1]:
-        best = (float(at), value)
-    return best
-
-
 def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
     """Evaluate every contact inequality of a discrete solution.
 
@@ -393,7 +346,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
         keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
     sp_in, phis_in = sp[keep], phis[keep]
     iphi = int(np.argmin(phis_in))
-    phi_min_at, phi_min = _polish_minimum(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi)
+    phi_min_at, phi_min = polish_minimum(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi)
 
     so = _outside_grid(par, sigma, lam, load_ratio)
     g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
@@ -417,7 +370,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
         gg, _ = gap(par, rep, phi, psi, load_ratio, sigma, lam, side * (1.0 + tt))
         return gg / tt**1.5
 
-    y_min, gap_min = _polish_minimum(gap_margin, y, ms, int(np.argmin(ms)))
+    y_min, gap_min = polish_minimum(gap_margin, y, ms, int(np.argmin(ms)))
     gap_min_at = float(side * (1.0 + np.exp(y_min)))
 
     # The bracket a + k ln e of (D22) at e = _EDGE_DEPTH from each edge, carried to

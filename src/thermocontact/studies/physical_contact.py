@@ -24,6 +24,7 @@ from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
+from ..numerics.extrema import polish_minimum
 from ..solvers.refinement import refine
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import Model
@@ -270,16 +271,26 @@ def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
     p = prob.load / half_width * sol.pressure_at(s)
     s_in = s[1:-1]
     t1, t2, mismatch = _temperatures(prob, sol, half_width, s_in)
+    # Peak pressure and flash temperature: the maxima of the closed forms, not of
+    # the samples (edges included for the temperature, which is finite there).
+    ip = int(np.argmax(p))
+    _, neg_peak = polish_minimum(lambda x: -prob.load / half_width * sol.pressure_at(x), s, -p, ip)
+    s_t = np.concatenate([[-1.0], s_in, [1.0]])
+    t_all = np.concatenate([_temperatures(prob, sol, half_width, [-1.0])[0], t1,
+                            _temperatures(prob, sol, half_width, [1.0])[0]])
+    it = int(np.argmax(t_all))
+    _, neg_flash = polish_minimum(lambda x: -_temperatures(prob, sol, half_width, x)[0],
+                                  s_t, -t_all, it)
     offset = sol.sigma_over_delta * half_width
     lam = sol.lam
     q = prob.friction * prob.speed * prob.load
     return Branch(
         half_width=float(half_width), offset=float(offset),
         a=float(offset - half_width), b=float(offset + half_width),
-        peak_pressure=float(np.max(p)), mean_pressure=prob.load / (2.0 * half_width),
+        peak_pressure=float(-neg_peak), mean_pressure=prob.load / (2.0 * half_width),
         pe=float(sol.parameters.pe), fhpe=float(sol.parameters.fhpe), lam=float(lam),
         load_ratio=float(sol.load_ratio), valid=bool(sol.valid),
-        flash_temperature=float(np.max(t1)) if t1.size else 0.0,
+        flash_temperature=float(-neg_flash),
         heat_cylinder=0.5 * q * (1.0 + lam), heat_half_plane=0.5 * q * (1.0 - lam),
         temperature_mismatch=mismatch,
         error_estimate=float(sol.error_estimate),
