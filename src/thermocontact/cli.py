@@ -99,9 +99,12 @@ def cli():
               help="Discretisation: " + "; ".join(f"{m.name}: {m.summary}"
                                                    for m in METHODS.values()) + ".")
 @click.option("--check", is_flag=True, help="Also solve with 2n and report the change in P_H/P.")
+@click.option("--delta-over-r", "delta_over_r", type=float, default=None,
+              help="Half-width over cylinder radius, > 0: also say whether the theory applies "
+                   "(small contact, slopes and strains).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,
-              tol, method, check, as_json):
+              tol, method, check, delta_over_r, as_json):
     """Solve one case in dimensionless form."""
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
@@ -109,10 +112,22 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
                 delta1_over_delta2=delta1_over_delta2, lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
                 check_convergence=check, progress=_Progress())
+    app = None
+    if delta_over_r is not None:
+        from .analysis.applicability import applicability
+
+        app = applicability(sol, check_positive("delta_over_r", delta_over_r))
     if as_json:
-        click.echo(json.dumps(sol.to_dict(), allow_nan=False))
+        rec = sol.to_dict()
+        if app is not None:
+            rec.update(app.to_dict())
+        click.echo(json.dumps(rec, allow_nan=False))
     else:
-        click.echo(_summary(sol))
+        text = _summary(sol)
+        if app is not None:
+            text += ("\n  theory applicable: yes" if app.applicable else
+                     "\n  theory NOT applicable: " + "; ".join(app.reasons))
+        click.echo(text)
 
 
 @cli.command("reproduce")
@@ -158,6 +173,8 @@ def _branch_record(b) -> dict:
         "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
         "reason": v.reason,
+        "applicable": b.applicable,
+        "applicability_reasons": list(b.applicability.reasons),
     }
 
 
@@ -173,6 +190,9 @@ def contact_record(res) -> dict:
         "hertz_peak_pressure": prob.hertz_peak_pressure,
         "lam": prob.lam,
         "valid": bool(prim is not None and prim.valid),
+        "applicable": bool(prim is not None and prim.applicable),
+        "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
+                                  else []),
         "error_estimate": prim.error_estimate if prim is not None else None,
         "converged": prim.converged if prim is not None else None,
         "message": res.message,
@@ -218,6 +238,10 @@ def _contact_summary(res) -> str:
         ]
         if not b.valid:
             lines.append(f"    {b.solution.validity.reason}")
+        if b.applicable:
+            lines.append("    theory applicable: yes")
+        else:
+            lines.append("    theory NOT applicable: " + "; ".join(b.applicability.reasons))
     if res.message:
         lines.append(f"  {res.message}")
     return "\n".join(lines)

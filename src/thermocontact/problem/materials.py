@@ -72,8 +72,9 @@ _UNITS = {
     "k": "m^2/s",
     "rho": "kg/m^3",
     "c": "J/kg/K",
+    "max_temperature": "K",
 }
-_TEXT_KEYS = ("source", "note")
+_TEXT_KEYS = ("source", "note", "max_temperature_source")
 _REQUIRED = ("E", "nu", "alpha", "K")
 _NEED = "need E, nu, alpha, K and either k or rho and c"
 _INLINE_EXAMPLE = "E=210e9,nu=0.3,alpha=12e-6,K=50,k=1.4e-5"
@@ -117,6 +118,11 @@ class Material:
         Where the values come from.
     note : str, optional
         Caveats, e.g. the scatter of a class of materials.
+    max_temperature : float, optional
+        Highest surface temperature the material survives as the material it is
+        (melting, decomposition, oxidation or a phase change), K; None if unknown.
+    max_temperature_source : str, optional
+        Where that limit comes from.
 
     Raises
     ------
@@ -133,6 +139,8 @@ class Material:
     k: float
     source: str = field(default="", repr=False)
     note: str = field(default="", repr=False)
+    max_temperature: float | None = field(default=None, repr=False)
+    max_temperature_source: str = field(default="", repr=False)
 
     def __post_init__(self):
         name = str(self.name)
@@ -146,6 +154,10 @@ class Material:
         object.__setattr__(self, "k", _positive(name, "k", self.k))
         object.__setattr__(self, "source", str(self.source))
         object.__setattr__(self, "note", str(self.note))
+        if self.max_temperature is not None:
+            object.__setattr__(self, "max_temperature",
+                               _positive(name, "max_temperature", self.max_temperature))
+        object.__setattr__(self, "max_temperature_source", str(self.max_temperature_source))
 
     @property
     def mu(self) -> float:
@@ -220,6 +232,7 @@ def _build(name: str, table: Mapping, where: str) -> Material:
         alpha=values["alpha"],
         K=values["K"],
         k=values["k"],
+        max_temperature=values.get("max_temperature"),
         **text,
     )
 

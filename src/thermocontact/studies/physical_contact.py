@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq, root_scalar
 
+from ..analysis.applicability import Applicability, applicability
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material
@@ -180,6 +181,12 @@ class Branch:
     temperature_cylinder: np.ndarray = field(repr=False)
     temperature_half_plane: np.ndarray = field(repr=False)
     solution: ContactSolution = field(repr=False)
+    applicability: Applicability | None = field(default=None, repr=False)
+
+    @property
+    def applicable(self) -> bool:
+        """Whether the theory applies (:mod:`thermocontact.analysis.applicability`)."""
+        return bool(self.applicability is not None and self.applicability.applicable)
 
 
 @dataclass(frozen=True)
@@ -299,6 +306,12 @@ def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
         temperature_cylinder=np.concatenate([[np.nan], t1, [np.nan]]),
         temperature_half_plane=np.concatenate([[np.nan], t2, [np.nan]]),
         solution=sol,
+        applicability=applicability(
+            sol, half_width / prob.radius,
+            compliance_fractions=(prob.cylinder.compliance / prob.compliance,
+                                  prob.half_plane.compliance / prob.compliance),
+            temperature_rises=np.concatenate([t_all, t2]),
+            max_temperature=(prob.cylinder.max_temperature, prob.half_plane.max_temperature)),
     )
 
 

@@ -1,0 +1,188 @@
+"""Whether the theory behind a solution applies: small contact, slopes and strains,
+temperatures the materials survive.
+
+``valid`` (:mod:`.validity`) says whether a solution satisfies the contact
+inequalities of the model.  The model itself (derivation sections 1-5) rests on
+half-plane theory: linear elasticity with small strains, surfaces whose slopes are
+small, a contact much narrower than the cylinder's radius, and material constants
+that hold at the temperatures reached.  This module measures each of those and
+says, with the numbers, which assumption a solution violates.
+
+Slopes (derivation D14 in physical units).  The contact equation balances, at
+``x = sigma + Delta s``, the surfaces' displacement slopes against the rigid
+profile's ``x/R``; multiplied by ``(Delta/R) pi/(2L)`` its terms are slopes:
+
+* elastic, both bodies: ``(1/pi) PV integral p(r)/(s - r) dr``, shared in the
+  ratio of the bodies' compliances ``(1 - nu_i)/mu_i`` over their sum ``A``;
+* thermal, cylinder: ``F d integral N(c(s - r)) H(s - r) (p + q)(r) dr``;
+* thermal, half-plane: ``F integral sgn(s - r) q2(r) dr``, ``q2 = ((1 - eta) p - q')/2``;
+
+and the rigid profile's own slope over the contact is at most
+``(|sigma| + Delta)/R``.  Each body's surface slope is bounded by the sum of the
+magnitudes of its parts; without the compliances (a dimensionless solve) the
+whole elastic part is charged to each body.
+
+Strains.  The peak pressure times each body's compliance ``(1 - nu_i)/mu_i``; in
+dimensionless form ``A p_max = p_max pi/(2L) Delta/R`` (with ``p`` in units of
+``P/Delta``), charged to each body when the compliances are not known.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.green_functions import cylinder_slope
+
+__all__ = ["AMBIENT_TEMPERATURE", "Applicability", "MAX_HALF_WIDTH_OVER_RADIUS",
+           "MAX_SLOPE", "MAX_STRAIN", "applicability", "surface_slopes"]
+
+#: Half-plane theory replaces the cylinder by a half-plane: the contact must be small
+#: against the radius (the curvature's error in the Hertz load is O((Delta/R)^2)).
+MAX_HALF_WIDTH_OVER_RADIUS = 0.1
+#: Small-slope theory linearises the surfaces' geometry: sin, tan and the slope agree
+#: to 0.5 % at 0.1.
+MAX_SLOPE = 0.1
+#: Linear elasticity with constant moduli: 1 % strain is beyond the elastic limit of
+#: every material in the built-in list except elastomers.
+MAX_STRAIN = 0.01
+#: The temperature that the computed rises (above the cylinder's incoming surface
+#: temperature) are added to when compared with a material's limit, K (20 C).
+AMBIENT_TEMPERATURE = 293.15
+
+
+@dataclass(frozen=True)
+class Applicability:
+    """Whether the assumptions of the theory hold for one solution.
+
+    Attributes
+    ----------
+    applicable : bool
+        Every measured quantity within its threshold.
+    reasons : tuple of str
+        One sentence per violated assumption, with the numbers.
+    half_width_over_radius : float
+    max_slope : tuple of float
+        Bound on the largest surface slope of the cylinder and of the half-plane
+        over the contact.
+    max_strain : tuple of float
+        Peak pressure times each body's compliance (the same bound for both when
+        the compliances are not known).
+    temperature_range : tuple of float or None
+        Least and greatest surface temperature over the contact, K (physical
+        units only; ambient :data:`AMBIENT_TEMPERATURE` plus the computed rises).
+    max_temperature : tuple of float or None
+        The materials' limits, K (None where unknown).
+    """
+
+    applicable: bool
+    reasons: tuple
+    half_width_over_radius: float
+    max_slope: tuple
+    max_strain: tuple
+    temperature_range: tuple | None = None
+    max_temperature: tuple | None = None
+
+    def to_dict(self) -> dict:
+        return {
+            "applicable": self.applicable,
+            "applicability_reasons": list(self.reasons),
+            "half_width_over_radius": self.half_width_over_radius,
+            "max_slope": list(self.max_slope),
+            "max_strain": list(self.max_strain),
+            "temperature_range": (None if self.temperature_range is None
+                                  else list(self.temperature_range)),
+            "max_temperature": (None if self.max_temperature is None
+                                else list(self.max_temperature)),
+        }
+
+
+def surface_slopes(sol, points=201):
+    """The slope terms of (D14) over the contact, dimensionless (see the module notes).
+
+    Returns
+    -------
+    s : ndarray
+        Interior points.
+    elastic, thermal_cylinder, thermal_half_plane : ndarray
+        The terms at ``s`` in the units of (D14); times ``(Delta/R) pi/(2L)`` they
+        are slopes.
+    """
+    par, rep = sol.parameters, sol.representation
+    s = np.cos(np.pi * (np.arange(points, 0, -1) - 0.5) / points)
+    eta, c, d, F = par.eta, par.cylinder_scale, par.delta1_over_delta2, par.fhpe
+    cb, _ = rep.cauchy(s)
+    elastic = (cb @ sol.phi) / np.pi
+    thermal_1 = np.zeros_like(s)
+    if d and F:
+        nh_b, nh_s = rep.integrate(lambda u: cylinder_slope(c * u), s, scale=c)
+        thermal_1 = F * d * ((1.0 + eta) * (nh_b @ sol.phi) + nh_s @ sol.psi)
+    sg_b, sg_s = rep.sign(s)
+    thermal_2 = F * 0.5 * ((1.0 - eta) * (sg_b @ sol.phi) - sg_s @ sol.psi)
+    return s, elastic, thermal_1, thermal_2
+
+
+def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
+                  temperature_rises=None, max_temperature=None) -> Applicability:
+    """Measure the theory's assumptions for one solution.
+
+    Parameters
+    ----------
+    sol : ContactSolution
+    half_width_over_radius : float
+        ``Delta/R``.
+    compliance_fractions : pair of float, optional
+        ``((1 - nu_1)/mu_1, (1 - nu_2)/mu_2)`` over their sum ``A``; without them
+        each body is charged with the whole elastic slope and strain (a bound).
+    temperature_rises : array_like, optional
+        Surface temperature rises over the contact, K (physical units only).
+    max_temperature : pair of float or None, optional
+        The cylinder's and the half-plane's limits, K.
+
+    Returns
+    -------
+    Applicability
+    """
+    ratio = float(half_width_over_radius)
+    L = sol.load_ratio
+    scale = ratio * np.pi / (2.0 * abs(L)) if L != 0.0 else np.inf
+    frac = (1.0, 1.0) if compliance_fractions is None else tuple(compliance_fractions)
+    s, elastic, t1, t2 = surface_slopes(sol)
+    rigid = (abs(sol.sigma_over_delta) + 1.0) * ratio
+    slope = (float(rigid + scale * np.max(frac[0] * np.abs(elastic) + np.abs(t1))),
+             float(rigid + scale * np.max(frac[1] * np.abs(elastic) + np.abs(t2))))
+    p_max = float(np.max(sol.pressure_at(s)))
+    strain = (float(frac[0] * p_max * scale), float(frac[1] * p_max * scale))
+
+    reasons = []
+    if ratio > MAX_HALF_WIDTH_OVER_RADIUS:
+        reasons.append(f"half-width/radius {ratio:.3g} > {MAX_HALF_WIDTH_OVER_RADIUS:g}: "
+                       f"not a small contact (half-plane theory)")
+    for body, value in zip(("cylinder", "half-plane"), slope):
+        if not value <= MAX_SLOPE:
+            reasons.append(f"{body} surface slope up to {value:.3g} > {MAX_SLOPE:g}: "
+                           f"not small slopes")
+    for body, value in zip(("cylinder", "half-plane"), strain):
+        if not value <= MAX_STRAIN:
+            reasons.append(f"{body} strain (peak pressure x compliance) {value:.3g} > "
+                           f"{MAX_STRAIN:g}: not small strains")
+    t_range = limits = None
+    if temperature_rises is not None:
+        rises = np.asarray(temperature_rises, dtype=float)
+        rises = rises[np.isfinite(rises)]
+        t_range = (float(AMBIENT_TEMPERATURE + rises.min()),
+                   float(AMBIENT_TEMPERATURE + rises.max()))
+        if t_range[0] <= 0.0:
+            reasons.append(f"surface temperature down to {t_range[0]:.4g} K (a fall of "
+                           f"{-rises.min():.4g} K below {AMBIENT_TEMPERATURE:g} K): below "
+                           f"absolute zero, the linear heat conduction model does not hold")
+        if max_temperature is not None:
+            limits = tuple(max_temperature)
+            for body, limit in zip(("cylinder", "half-plane"), limits):
+                if limit is not None and t_range[1] > limit:
+                    reasons.append(f"surface temperature up to {t_range[1]:.4g} K > the "
+                                   f"{body} material's limit {limit:.4g} K")
+    return Applicability(applicable=not reasons, reasons=tuple(reasons),
+                         half_width_over_radius=ratio, max_slope=slope, max_strain=strain,
+                         temperature_range=t_range, max_temperature=limits)
