@@ -5,8 +5,8 @@ from functools import lru_cache
 import mpmath as mp
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
+from conftest import references
 from thermocontact import solve
 from thermocontact.numerics import edge_graded as graded
 from thermocontact.numerics.moments import chebyshev_lagrange
@@ -22,21 +22,21 @@ def test_stretch_and_inverse():
     t = graded.stretch(tau)
     assert np.max(np.abs(graded.stretch_inverse(t) / tau - 1)) < 1e-14
     assert abs(graded.stretch(np.array([1e-6]))[0] / (2 / 3 * 1e-18) - 1) < 1e-11
-    mp.mp.dps = 40
-    d = np.array([1e-12, 1e-6, 0.3])
-    exact = np.array([float(mp.mpf(0.7) + x - mp.sin(2 * (mp.mpf(0.7) + x)) / 2
-                            - (mp.mpf(0.7) - mp.sin(mp.mpf(1.4)) / 2)) for x in d])
-    assert np.max(np.abs(graded.stretch_increment(0.7, d) / exact - 1)) < 1e-12
+    with mp.workdps(40):
+        d = np.array([1e-12, 1e-6, 0.3])
+        exact = np.array([float(mp.mpf(0.7) + x - mp.sin(2 * (mp.mpf(0.7) + x)) / 2
+                                - (mp.mpf(0.7) - mp.sin(mp.mpf(1.4)) / 2)) for x in d])
+        assert np.max(np.abs(graded.stretch_increment(0.7, d) / exact - 1)) < 1e-12
 
 
 def test_x_minus_sin_has_full_relative_accuracy():
     """x - sin x (Taylor series by Horner's rule below |x| = 1/2, the difference above)
     equals 40-digit mpmath to 2e-15 relative (observed 6e-16), from 1e-8 to 3 and at
     both signs."""
-    mp.mp.dps = 40
-    x = np.concatenate([-np.geomspace(1e-8, 3, 40), np.geomspace(1e-8, 3, 40), [0.4999, 0.5]])
-    exact = np.array([float(mp.mpf(v) - mp.sin(mp.mpf(v))) for v in x])
-    assert np.max(np.abs(graded._x_minus_sin(x) / exact - 1)) < 2e-15
+    with mp.workdps(40):
+        x = np.concatenate([-np.geomspace(1e-8, 3, 40), np.geomspace(1e-8, 3, 40), [0.4999, 0.5]])
+        exact = np.array([float(mp.mpf(v) - mp.sin(mp.mpf(v))) for v in x])
+        assert np.max(np.abs(graded._x_minus_sin(x) / exact - 1)) < 2e-15
 
 
 def test_chebyshev_lagrange_interpolates_exactly():
@@ -55,134 +55,84 @@ def test_chebyshev_lagrange_interpolates_exactly():
     assert np.max(np.abs(lag @ np.cos(np.outer(h * (1 + xc), j)) - np.cos(np.outer(h * (1 + x), j)))) < 2e-14
 
 
-def _mp_moment(kernel, s, j, weight, ts, c):
-    T = lambda x: x - mp.sin(2 * x) / 2
-    w = (lambda x: mp.sin(T(x)) ** 2 * 2 * mp.sin(x) ** 2) if weight == "b" else (
-        lambda x: 2 * mp.sin(x) ** 2)
-    f = lambda x: kernel(s - mp.cos(T(x))) * w(x) * mp.cos(j * x)
-    pts = [0, ts, mp.pi] if 0 < ts < mp.pi else [0, mp.mpf("1e-3"), mp.mpf("0.1"), mp.pi]
-    if c and 0 < ts < mp.pi:  # the kernels' structure on the scale 1/c around ts
-        pts = sorted(set([0, ts, mp.pi] + [ts + k * 10.0 ** -e for k in (-1, 1) for e in (1, 2, 3)
-                                          if 0 < ts + k * 10.0 ** -e < mp.pi]))
-    return mp.quad(f, pts)
-
-
 @pytest.mark.parametrize("name", ["sgn", "NH", "mr"])
 def test_moments_against_mpmath(name):
     """Moments of sgn, N(cu)H(u) and c M(cu) - 1/u (c = 50) against the cosine bases,
     at points inside, next to and outside the contact, equal mpmath quadrature at 30
-    digits to 1e-12 relative (observed 1e-14).  The logarithmic kernel is graded as the
-    methods grade it: 20 halvings below its scale, the last panel after x = e y^6."""
-    mp.mp.dps = 30
-    c = 50.0
-    s = np.array([-0.999999, -0.3, 0.7, 0.9999, 1.3])
+    digits (20 for the Bessel-K kernel; tests/data/make_references.py) to 1e-12
+    relative (observed 1e-14).  The logarithmic kernel is graded as the methods grade
+    it: 20 halvings below its scale, the last panel after x = e y^6."""
+    ref = references()["graded_moments"][name]
+    c = ref["c"]
     kern = {
-        "sgn": (np.sign, mp.sign, dict(scale=1.0)),
-        "NH": (lambda u: cylinder_slope(c * u),
-               lambda u: (mp.exp(-c * u) * (mp.besseli(0, c * u) - mp.besseli(1, c * u))
-                          if u > 0 else mp.mpf(0)), dict(scale=c)),
+        "sgn": (np.sign, dict(scale=1.0)),
+        "NH": (lambda u: cylinder_slope(c * u), dict(scale=c)),
         "mr": (lambda u: cylinder_temperature_gradient_regular(u, c),
-               lambda u: c * mp.exp(-c * u) * (mp.besselk(0, abs(c * u))
-                                              + mp.sign(u) * mp.besselk(1, abs(c * u))) - 1 / u,
                dict(scale=c, logarithmic=True)),
     }[name]
-    if name == "mr":  # mpmath's K0, K1 are slow: fewer points and lower precision
-        mp.mp.dps = 20
-        s = np.array([-0.3, 0.9999])
-    nb, ns = graded.moments(kern[0], s, 12, **kern[2])
-    tau_s = graded.tau_of(s)
-    for k, sk in enumerate(s):
-        for j in ((0, 11) if name == "mr" else (0, 5, 11)):
-            for weight, mat in (("b", nb), ("s", ns)):
-                ref = _mp_moment(kern[1], mp.mpf(sk), j, weight, mp.mpf(tau_s[k]), c if name != "sgn" else 0)
-                assert abs(mat[k, j] - float(ref)) < 1e-12 * max(1.0, abs(float(ref))), (sk, j, weight)
+    s = np.array(ref["s"])
+    assert np.array_equal(graded.tau_of(s), np.array(ref["tau_s"]))  # the stored inputs
+    nb, ns = graded.moments(kern[0], s, 12, **kern[1])
+    index = {v: k for k, v in enumerate(ref["s"])}
+    for sk, j, weight, value in ref["values"]:
+        got = (nb if weight == "b" else ns)[index[sk], j]
+        assert abs(got - value) < 1e-12 * max(1.0, abs(value)), (sk, j, weight)
 
 
 def test_moments_next_to_an_edge_at_large_scale():
     """At c = Pe k2/k1 = 1e5 the kernel c M(cu) - 1/u varies, on the row of the
     Galerkin points nearest an edge (n = 64, tau_s = 0.012), across the panels just
     beyond the replaced interval.  Its moment against cos(63 tau) T' equals 20-digit
-    mpmath quadrature to 1e-14 of the row's largest entry (observed 4e-15; a
-    construction with three geometric panels up to the side's end was off by 3e-14)."""
+    mpmath quadrature (tests/data/make_references.py) to 1e-14 of the row's largest
+    entry (observed 4e-15; a construction with three geometric panels up to the
+    side's end was off by 3e-14)."""
     from thermocontact.discretisation.representations import range_projections
 
-    mp.mp.dps = 20
-    c, n = 1e5, 64
+    ref = references()["graded_edge_row"]
+    c, n, j = ref["c"], ref["n"], ref["j"]
     tau, _, _ = range_projections(n)
     k = int(np.argmin(tau))
+    assert tau[k] == ref["tau_s"]
     s = np.cos(graded.stretch(tau))
     kern = lambda u: cylinder_temperature_gradient_regular(u, c)  # noqa: E731
     _, ms = graded.moments(kern, s[[k]], n, scale=c, logarithmic=True, tau=tau[[k]])
-    ts = mp.mpf(float(tau[k]))
-    T = lambda x: x - mp.sin(2 * x) / 2  # noqa: E731
-    sk = mp.cos(T(ts))
-
-    def mr(x):
-        u = sk - mp.cos(T(x))
-        a = abs(c * u)
-        return c * mp.exp(-c * u) * (mp.besselk(0, a) + mp.sign(u) * mp.besselk(1, a)) - 1 / u
-
-    pts = sorted({mp.mpf(0), ts, mp.pi} | {ts - ts * mp.mpf(2) ** -e for e in range(1, 50, 6)}
-                 | {ts + mp.mpf(2) ** -e for e in range(1, 50, 6)}
-                 | {mp.mpf(0.1) * i for i in range(1, 10)})
-    j = 63  # the entry the former construction missed most
-    ref = mp.quad(lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x) * mr(x), pts)
-    err = abs(ms[0, j] - float(ref)) / np.abs(ms[0]).max()
+    err = abs(ms[0, j] - ref["value"]) / np.abs(ms[0]).max()
     assert err < 1e-14, err
 
 
 def test_cauchy_moments_next_to_an_edge():
     """On the row of the Galerkin points nearest an edge (n = 128, tau_s = 0.0061) the
     principal value against the flux weight T' cos(127 tau) equals 30-digit quadrature
-    of the subtracted integrand to 1e-12 of the row's largest entry (observed 6e-14).
-    A recurrence in cos(tau) for that row's short side, whose phase error the
-    cancellation between the two sides amplifies, gave 2.5e-11."""
+    of the subtracted integrand (tests/data/make_references.py) to 1e-12 of the row's
+    largest entry (observed 6e-14).  A recurrence in cos(tau) for that row's short
+    side, whose phase error the cancellation between the two sides amplifies, gave
+    2.5e-11."""
     from thermocontact.discretisation.representations import range_projections
 
-    mp.mp.dps = 30
-    n, j = 128, 127
+    ref = references()["graded_cauchy_edge_row"]
+    n, j = ref["n"], ref["j"]
     tau, _, _ = range_projections(n)
     k = int(np.argmin(tau))
+    assert tau[k] == ref["tau_s"]
     s = np.cos(graded.stretch(tau))
     _, ms = graded.moments(lambda u: 1.0 / u, s[[k]], n, scale=1.0, cauchy=True, tau=tau[[k]])
-    ts = mp.mpf(float(tau[k]))
-    T = lambda x: x - mp.sin(2 * x) / 2  # noqa: E731
-    f = lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x)  # noqa: E731
-    D = mp.sin(T(ts)) * 2 * mp.sin(ts) ** 2
-    g0 = f(ts) / D
-
-    def subtracted(x):  # f/u - f(ts)/(D (x - ts)), u formed without cancellation
-        dx = x - ts
-        if dx == 0:
-            return mp.mpf(0)
-        dT = dx - mp.cos(x + ts) * mp.sin(dx)
-        return f(x) / (2 * mp.sin(T(ts) + dT / 2) * mp.sin(dT / 2)) - g0 / dx
-
-    pts = sorted({mp.mpf(0), ts, mp.pi} | {ts + g * mp.mpf(2) ** -e for e in range(1, 60, 3)
-                                           for g in (-1, 1) if 0 < ts + g * mp.mpf(2) ** -e < mp.pi}
-                 | {mp.pi * i / 32 for i in range(1, 32)})
-    ref = mp.quad(subtracted, pts) + g0 * mp.log((mp.pi - ts) / ts)
-    err = abs(ms[0, j] - float(ref)) / np.abs(ms[0]).max()
+    err = abs(ms[0, j] - ref["value"]) / np.abs(ms[0]).max()
     assert err < 1e-12, err
 
 
 def test_cauchy_moments_are_principal_values():
     """The principal values (1/pi) PV int p(r)/(s - r) dr of the graded bases equal
-    QUADPACK's Cauchy-weight quadrature (in r) to 1e-11, also at points 1e-6 from an
-    edge, where the graded interval is strongly asymmetric."""
-    s = np.array([-0.999999, -0.4, 0.1, 0.95, 0.999999])
-    n = 10
-    b, _ = graded.moments(lambda u: 1.0 / u, s, n, scale=1.0, cauchy=True)
-    for k, sk in enumerate(s):
-        for j in (0, 3, 9):
-            def f(r):
-                t = np.arccos(r)
-                tau = graded.stretch_inverse(np.array([t]))[0]
-                # p(r) = sin t cos(j tau): the weights of dtau divided out again
-                return np.sin(t) * np.cos(j * tau)
-            pv = -quad(f, -1, 1, weight="cauchy", wvar=sk, limit=400, epsabs=1e-14,
-                       epsrel=1e-13)[0]
-            assert abs(b[k, j] - pv) < 1e-11 * max(1, abs(pv)), (sk, j)
+    30-digit quadrature with the pole subtracted (tests/data/make_references.py) to
+    1e-11, also at points 1e-6 from an edge, where the graded interval is strongly
+    asymmetric."""
+    ref = references()["graded_cauchy"]
+    s = np.array(ref["s"])
+    assert np.array_equal(graded.tau_of(s), np.array(ref["tau_s"]))
+    b, _ = graded.moments(lambda u: 1.0 / u, s, 10, scale=1.0, cauchy=True)
+    index = {v: k for k, v in enumerate(ref["s"])}
+    for sk, j, value in ref["values"]:
+        got = b[index[sk], j] / np.pi
+        assert abs(got - value) < 1e-11 * max(1, abs(value)), (sk, j)
 
 
 @lru_cache(maxsize=None)

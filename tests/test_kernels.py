@@ -72,13 +72,13 @@ def test_regular_part_scales_on_series_branch():
     branch) against 40-digit mpmath, rel. 1e-13."""
     import mpmath as mp
 
-    mp.mp.dps = 40
-    c = 50.0
-    for u in (-1.9e-5, -3e-9, 4e-12, 1.5e-5):
-        z = mp.mpf(c) * mp.mpf(u)
-        ref = mp.mpf(c) * mp.e**(-z) * (mp.besselk(0, abs(z)) + mp.sign(z) * mp.besselk(1, abs(z))) - 1 / mp.mpf(u)
-        val = cylinder_temperature_gradient_regular(np.array([u]), c)[0]
-        assert abs(val / float(ref) - 1) < 1e-13
+    with mp.workdps(40):
+        c = 50.0
+        for u in (-1.9e-5, -3e-9, 4e-12, 1.5e-5):
+            z = mp.mpf(c) * mp.mpf(u)
+            ref = mp.mpf(c) * mp.e**(-z) * (mp.besselk(0, abs(z)) + mp.sign(z) * mp.besselk(1, abs(z))) - 1 / mp.mpf(u)
+            val = cylinder_temperature_gradient_regular(np.array([u]), c)[0]
+            assert abs(val / float(ref) - 1) < 1e-13
 
 
 def test_half_plane_slope_odd():

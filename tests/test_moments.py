@@ -3,72 +3,71 @@ and refinement of the rules."""
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 import thermocontact.numerics.moments as mm
+from conftest import references
 from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
 from thermocontact.numerics.moments import kernel_moments, sgn_moments
 
 S = np.array([-0.999, -0.3, 0.0, 0.5, 0.99999, 1.0, 1.001, -1.2])
 
 
-def quad_moment(kernel, s, j, bounded):
-    """Adaptive quadrature in t = arccos r, split at t_s (u = 0 only where s - cos t
-    rounds to zero next to t_s; there a tiny u stands in for it)."""
-    k0 = kernel
-    kernel = lambda u: k0(np.where(u == 0.0, 1e-300, u))
-    if bounded:
-        f = lambda t: kernel(np.array([[s - np.cos(t)]]))[0, 0] * np.sin(t) * np.sin((j + 1) * t)
+@pytest.mark.parametrize("key, tol", [("NH_5", 5e-15), ("NH_1000", 5e-15), ("mr_5", 1e-13)])
+def test_kernel_moments_match_quadrature(key, tol):
+    """Moments of N(c u) H(u) (c = 5, 1000; values <= 1) and of c M(c u) - 1/u (c = 5,
+    logarithmic at u = 0; values up to 8) equal 25-digit mpmath quadrature in
+    t = arccos r (tests/data/make_references.py) to 5e-15 and 1e-13 absolute."""
+    ref = references()["chebyshev_moments"][key]
+    c = ref["c"]
+    assert ref["s"] == S.tolist()
+    if key.startswith("NH"):
+        B, T = kernel_moments(lambda u: cylinder_slope(c * u), S, 64, scale=c)
     else:
-        f = lambda t: kernel(np.array([[s - np.cos(t)]]))[0, 0] * np.cos(j * t)
-    ts = np.arccos(np.clip(s, -1, 1))
-    opts = dict(limit=400, epsabs=1e-15, epsrel=1e-13)
-    return sum(quad(f, a, b, **opts)[0] for a, b in ((0, ts), (ts, np.pi)) if b > a)
+        B, T = kernel_moments(lambda u: cylinder_temperature_gradient_regular(u, c), S, 64)
+    for k, j, weight, value in ref["values"]:
+        got = (B if weight == "b" else T)[k, j]
+        assert abs(got - value) < tol, (k, j, weight, got - value)
 
 
-@pytest.mark.parametrize("c", [5.0, 1000.0])
-def test_slope_kernel_moments_match_quadrature(c):
-    """N(c u) H(u) moments equal adaptive quadrature to 5e-15 (abs; values <= 1)."""
-    kern = lambda u: cylinder_slope(c * u)
-    B, T = kernel_moments(kern, S, 64, scale=c)
-    for k in (0, 1, 3, 4, 6):
-        for j in (0, 5, 63):
-            assert abs(B[k, j] - quad_moment(kern, S[k], j, True)) < 5e-15
-            assert abs(T[k, j] - quad_moment(kern, S[k], j, False)) < 5e-15
+def _clear_rules():
+    """Forget every cached rule and geometry, so that a changed _GL takes effect."""
+    from thermocontact.numerics import edge_graded as graded
 
-
-def test_log_kernel_moments_match_quadrature():
-    """c M(c u) - 1/u moments (c = 5, logarithmic at u = 0) equal adaptive quadrature
-    to 1e-13 (abs; values up to 8)."""
-    kern = lambda u: cylinder_temperature_gradient_regular(u, 5.0)
-    B, T = kernel_moments(kern, S, 64)
-    for k in (0, 1, 3, 4, 7):
-        for j in (0, 5, 63):
-            assert abs(B[k, j] - quad_moment(kern, S[k], j, True)) < 1e-13
-            assert abs(T[k, j] - quad_moment(kern, S[k], j, False)) < 1e-13
+    for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm._common,
+              mm.panel_rule, graded._common, graded.weight_integrals):
+        f.cache_clear()
+    graded.GEOMETRY.clear()
 
 
 @pytest.mark.parametrize("c", [1e3, 1e5, 1e6])
-def test_moments_stable_under_refinement(c):
-    """Moments of both kernels change by less than 1e-13 relative to their largest
-    value when every Gauss-Legendre rule goes from 16 to 24 points (c up to 1e6:
-    kernels of width 1e-6 and the near-pole -1/u beyond it)."""
-    kernels = [lambda u: cylinder_temperature_gradient_regular(u, c),
-               lambda u: cylinder_slope(c * u)]
-    try:
-        first = [kernel_moments(k, S, 64) for k in kernels]
-        mm._GL = 24
-        for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm._common):
-            f.cache_clear()
-        second = [kernel_moments(k, S, 64) for k in kernels]
-    finally:
-        mm._GL = 16
-        for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm._common):
-            f.cache_clear()
-    for (b1, t1), (b2, t2) in zip(first, second):
-        scale = max(np.abs(t1).max(), np.abs(b1).max())
-        assert np.abs(b1 - b2).max() < 1e-13 * scale
-        assert np.abs(t1 - t2).max() < 1e-13 * scale
+def test_moments_stable_under_refinement(c, monkeypatch):
+    """Moments of both kernels, by both engines (Chebyshev and edge-graded), change by
+    less than 1e-13 relative to their largest value when every Gauss-Legendre rule,
+    the common panels' included, goes from 16 to 24 points (c up to 1e6: kernels of
+    width 1e-6 and the near-pole -1/u beyond it)."""
+    from thermocontact.numerics import edge_graded as graded
+
+    kernels = [(lambda u: cylinder_temperature_gradient_regular(u, c), True),
+               (lambda u: cylinder_slope(c * u), False)]
+
+    def both(k, log):
+        return (kernel_moments(k, S, 64, scale=c, logarithmic=log),
+                graded.moments(k, S, 64, scale=c, logarithmic=log))
+
+    _clear_rules()
+    first = [both(*k) for k in kernels]
+    assert mm.panel_rule(64)[2].size == mm.panel_rule(64)[0] * 16
+    monkeypatch.setattr(mm, "_GL", 24)
+    _clear_rules()
+    assert mm.panel_rule(64)[2].size == mm.panel_rule(64)[0] * 24  # refined for real
+    second = [both(*k) for k in kernels]
+    monkeypatch.undo()
+    _clear_rules()
+    for pair1, pair2 in zip(first, second):
+        for (b1, t1), (b2, t2) in zip(pair1, pair2):
+            scale = max(np.abs(t1).max(), np.abs(b1).max())
+            assert np.abs(b1 - b2).max() < 1e-13 * scale
+            assert np.abs(t1 - t2).max() < 1e-13 * scale
 
 
 def test_sgn_closed_form_matches_graded_rule():

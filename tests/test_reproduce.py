@@ -2,10 +2,8 @@
 validity markers at the sign changes of the margins."""
 
 import csv
-import os
 import re
 
-import numpy as np
 import pytest
 
 from thermocontact import __version__, solve

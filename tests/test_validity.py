@@ -35,29 +35,33 @@ def test_hertz_gap_exact():
 
 
 def brute_force_slope_mismatch_chebyshev(sol, t):
-    """G(t) for |t| >= 1 by adaptive Gauss-Jacobi quadrature of the terms of (D14),
-    for the Chebyshev representation."""
+    """G(t) for |t| >= 1 by adaptive quadrature of the terms of (D14) in
+    theta = arccos r, for the Chebyshev representation: p dr = phi sin^2(theta) dtheta
+    and q' dr = psi dtheta, free of the edges' square roots (at |t| = 1 the Cauchy
+    integrand sin^2(theta)/(t - cos(theta)) is t + cos(theta))."""
     par = sol.parameters
     F, d, c = par.fhpe, par.delta1_over_delta2, par.cylinder_scale
     from thermocontact.numerics.quadrature import t_series_coefficients, u_series_coefficients, u_series_value
 
     a = u_series_coefficients(sol.phi)
     b = t_series_coefficients(sol.psi)
-    phi = lambda r: u_series_value(a, r)
-    psi = lambda r: np.polynomial.chebyshev.chebval(r, b)
-    bounded = dict(weight="alg", wvar=(0.5, 0.5), limit=200, epsabs=1e-14, epsrel=1e-13)
-    singular = dict(weight="alg", wvar=(-0.5, -0.5), limit=200, epsabs=1e-14, epsrel=1e-13)
-    nh = lambda r: d * cylinder_slope(c * (t - r))
+    phi = lambda r: u_series_value(a, r)  # noqa: E731
+    psi = lambda r: np.polynomial.chebyshev.chebval(r, b)  # noqa: E731
+    opts = dict(limit=200, epsabs=1e-13, epsrel=1e-12)
+
+    def over_theta(f):
+        return quad(lambda th: f(np.cos(th), th), 0.0, np.pi, **opts)[0]
+
+    nh = lambda r: d * cylinder_slope(c * (t - r))  # noqa: E731
     sg = np.sign(t)
-    if abs(t) == 1.0:  # at an edge sqrt(1-r^2)/(t-r) is a Jacobi weight times t
-        wv = (0.5, -0.5) if t > 0 else (-0.5, 0.5)
-        cauchy = t * quad(phi, -1, 1, weight="alg", wvar=wv, limit=200)[0] / np.pi
+    if abs(t) == 1.0:
+        cauchy = over_theta(lambda r, th: phi(r) * (t + r)) / np.pi
     else:
-        cauchy = quad(lambda r: phi(r) / (t - r), -1, 1, **bounded)[0] / np.pi
-    kp = quad(lambda r: phi(r) * (nh(r) + 0.5 * sg), -1, 1, **bounded)[0]
+        cauchy = over_theta(lambda r, th: phi(r) * np.sin(th) ** 2 / (t - r)) / np.pi
+    kp = over_theta(lambda r, th: phi(r) * np.sin(th) ** 2 * (nh(r) + 0.5 * sg))
     # q = psi/sqrt(1-r^2) + eta p
-    kq = quad(lambda r: psi(r) * (nh(r) - 0.5 * sg), -1, 1, **singular)[0]
-    kq += sol.eta * quad(lambda r: phi(r) * (nh(r) - 0.5 * sg), -1, 1, **bounded)[0]
+    kq = over_theta(lambda r, th: (psi(r) + sol.eta * phi(r) * np.sin(th) ** 2)
+                    * (nh(r) - 0.5 * sg))
     L, sig = sol.load_ratio, sol.sigma_over_delta
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
 
@@ -103,17 +107,17 @@ def brute_force_slope_mismatch(sol, t):
 
 
 def brute_force_gap(sol, s):
-    """Gap by quadrature of G - G(edge) from the edge to s (derivation D20-D21)."""
+    """Gap by quadrature of G - G(edge) from the edge to s (derivation D20-D21).
+
+    G - G(edge) grows like sqrt(|t| - 1) from the edge: with |t| = 1 + w^2 the
+    integrand 2 w (G - G(edge)) is smooth and QUADPACK certifies its accuracy.
+    """
     L = sol.load_ratio
-    if s > 1:
-        g1 = brute_force_slope_mismatch(sol, 1.0)
-        j = quad(lambda t: brute_force_slope_mismatch(sol, t) - g1, 1, s, epsabs=1e-13,
-                 epsrel=1e-12)[0]
-        return -np.pi / (2 * L) * j
-    g1 = brute_force_slope_mismatch(sol, -1.0)
-    j = quad(lambda t: brute_force_slope_mismatch(sol, t) - g1, s, -1, epsabs=1e-13,
-             epsrel=1e-12)[0]
-    return np.pi / (2 * L) * j
+    side = 1.0 if s > 1 else -1.0
+    g1 = brute_force_slope_mismatch(sol, side)
+    j = quad(lambda w: 2 * w * (brute_force_slope_mismatch(sol, side * (1 + w * w)) - g1),
+             0.0, np.sqrt(abs(s) - 1.0), epsabs=1e-13, epsrel=1e-12)[0]
+    return -side * np.pi / (2 * L) * j
 
 
 GAP_CASES = [

@@ -25,6 +25,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from . import moments as _moments
 from .cache import BoundedCache
 from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_lagrange,
                       levels_for, near_field, outer_panels, panel_rule)
@@ -205,7 +206,8 @@ class _Side:
         # Sides of zero length (points at or beyond an edge) contribute nothing.
         self.rows = np.flatnonzero(self.full), np.flatnonzero(~self.full & (side > 0.0))
         self.inner = np.where(self.full, w, np.minimum(side, w))
-        xg, wg = _gauss_legendre(16)
+        # The panels' points: the same rule as the common panels (moments._GL).
+        xg, wg = _gauss_legendre(_moments._GL)
         # Offsets and weights of the outer panels: fixed ones then the row's own.
         edges = w * (h / w) ** (np.arange(_FIXED_OUTER + 1) / _FIXED_OUTER)
         fixed = (edges[:-1, None] + np.diff(edges)[:, None] * xg).ravel()
