@@ -59,7 +59,7 @@ def test_every_module_belongs_to_a_layer():
     assert found <= set(LAYERS), found - set(LAYERS)
 
 
-@pytest.mark.parametrize("name, path", list(_modules()), ids=lambda v: str(v))
+@pytest.mark.parametrize("name, path", list(_modules()), ids=[m for m, _ in _modules()])
 def test_imports_only_from_lower_layers(name, path):
     """Each import's layer is at or below the importer's."""
     mine = LAYERS.index(_layer(name))
