@@ -1,0 +1,1 @@
+"""Analysis of a solution: the gap and contact inequalities, and the theory's applicability."""

@@ -1,0 +1,1 @@
+"""Discretisation: representations of the unknowns, the operators of (D14) and (D18), methods."""

@@ -1,0 +1,1 @@
+"""The paper's Figures 2-5 and their extensions."""

@@ -1,0 +1,1 @@
+"""Files: written whole (temporary name, then rename), output paths checked first, tables."""

@@ -1,0 +1,1 @@
+"""Numerics: Gauss-Chebyshev rules, kernel moments, the edge-graded map, caches, extrema."""

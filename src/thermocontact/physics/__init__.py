@@ -1,0 +1,1 @@
+"""Physics: Green's functions of both bodies and reference solutions (Hertz, Barber)."""

@@ -1,0 +1,1 @@
+"""Pictures (matplotlib, imported inside the functions)."""

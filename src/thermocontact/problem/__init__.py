@@ -1,0 +1,1 @@
+"""The problem statement: dimensionless parameters, validation, materials and units."""

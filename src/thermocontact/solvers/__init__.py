@@ -1,0 +1,1 @@
+"""Solvers: the linear system, the refinement driver, Model and solve(), results."""

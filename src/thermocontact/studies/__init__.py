@@ -1,0 +1,1 @@
+"""Studies: sweeps with their validity boundaries, and the problem in physical units."""
