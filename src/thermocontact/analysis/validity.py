@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..numerics.edge_graded import MIN_BLOCK
 from ..numerics.extrema import polish_minimum
 from ..physics.green_functions import cylinder_displacement, cylinder_slope
 from ..problem.parameters import Parameters
@@ -224,6 +225,10 @@ def _displacement_drop(a, h):
     return out
 
 
+#: Points per block of :func:`gap`: no more than the moments take in one block.
+GAP_BLOCK = MIN_BLOCK
+
+
 def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
     """Gap ``g(s)`` outside the contact, in units of ``Delta^2 / R``.
 
@@ -254,6 +259,12 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
         ``(G(-1), G(1))``.
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
+    if s.size > GAP_BLOCK:
+        # The kernels below carry each point's own distance past the edge: blocks of
+        # points small enough for the moments to take whole.
+        parts = [gap(par, rep, phi, psi, load_ratio, sigma, lam, s[i:i + GAP_BLOCK])
+                 for i in range(0, s.size, GAP_BLOCK)]
+        return np.concatenate([g for g, _ in parts]), parts[0][1]
     F = par.fhpe
     c = par.cylinder_scale
     d = par.delta1_over_delta2

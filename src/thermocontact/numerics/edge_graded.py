@@ -273,7 +273,14 @@ class _Geometry:
 
 
 #: The point geometry of the moments, shared by the kernels of one assembly.
-GEOMETRY = BoundedCache("graded geometry", 512 * 2**20)
+GEOMETRY = BoundedCache("graded geometry", 64 * 2**20)
+#: Rows times common-rule nodes per block of points: the moments of more points are
+#: computed block by block, so that the geometry and the kernel's values (arrays of
+#: that size, a few of them at once) stay near 4 MB each whatever n.
+BLOCK_ENTRIES = 2**19
+#: Fewest rows in a block: the validity checks' kernels carry their points' own
+#: distances as arrays of up to a few hundred rows.
+MIN_BLOCK = 256
 
 
 def _geometry(key: bytes, n: int, tau_key: bytes | None) -> _Geometry:
@@ -339,9 +346,19 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     added (derivation section 12).
     """
     s = np.ascontiguousarray(np.atleast_1d(np.asarray(s, dtype=float)))
+    m, h, r, g, panel, wts = _common(n)
+    rows = max(1, BLOCK_ENTRIES // r.size)
+    if s.size > rows and s.size > MIN_BLOCK:
+        # Block by block (kernels are elementwise in u, or carry at most MIN_BLOCK
+        # rows of their own, as the validity checks' do).
+        rows = max(rows, MIN_BLOCK)
+        parts = [moments(kernel, s[i:i + rows], n, scale=scale, cauchy=cauchy,
+                         tau=None if tau is None else np.asarray(tau)[i:i + rows],
+                         from_edge=from_edge, logarithmic=logarithmic)
+                 for i in range(0, s.size, rows)]
+        return (np.concatenate([b for b, _ in parts]), np.concatenate([q for _, q in parts]))
     tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
     geo = _geometry(s.tobytes(), n, tau_key)
-    m, h, r, g, panel, wts = _common(n)
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
     with np.errstate(divide="ignore", invalid="ignore"):
