@@ -115,6 +115,29 @@ def graded_edge_row():
     return {"c": c, "n": n, "j": j, "tau_s": float(tau[k]), "value": float(ref), "digits": 20}
 
 
+def principal_value(f, ts, extra_points=()):
+    """``PV integral_0^pi f(x) / (cos T(ts) - cos T(x)) dx`` by subtracting the pole.
+
+    Near ``ts`` the denominator is ``D (x - ts)`` with ``D = sin T(ts) T'(ts)``; it is
+    formed as ``2 sin(T(ts) + dT/2) sin(dT/2)``, ``dT = T(x) - T(ts)``, without
+    cancellation, and the subtracted ``f(ts)/(D (x - ts))`` is integrated in closed form.
+    """
+    D = mp.sin(T(ts)) * 2 * mp.sin(ts) ** 2
+    g0 = f(ts) / D
+
+    def subtracted(x):
+        dx = x - ts
+        if dx == 0:
+            return mp.mpf(0)
+        dT = dx - mp.cos(x + ts) * mp.sin(dx)
+        return f(x) / (2 * mp.sin(T(ts) + dT / 2) * mp.sin(dT / 2)) - g0 / dx
+
+    pts = sorted({mp.mpf(0), ts, mp.pi} | {ts + g * mp.mpf(2) ** -e for e in range(1, 60, 3)
+                                           for g in (-1, 1) if 0 < ts + g * mp.mpf(2) ** -e < mp.pi}
+                 | set(extra_points))
+    return mp.quad(subtracted, pts) + g0 * mp.log((mp.pi - ts) / ts)
+
+
 def graded_cauchy_edge_row():
     from thermocontact.discretisation.representations import range_projections
 
@@ -123,22 +146,8 @@ def graded_cauchy_edge_row():
     k = int(np.argmin(tau))
     with mp.workdps(30):
         ts = mp.mpf(float(tau[k]))
-        f = lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x)  # noqa: E731
-        D = mp.sin(T(ts)) * 2 * mp.sin(ts) ** 2
-        g0 = f(ts) / D
-
-        def subtracted(x):  # f/u - f(ts)/(D (x - ts)), u formed without cancellation
-            dx = x - ts
-            if dx == 0:
-                return mp.mpf(0)
-            dT = dx - mp.cos(x + ts) * mp.sin(dx)
-            return f(x) / (2 * mp.sin(T(ts) + dT / 2) * mp.sin(dT / 2)) - g0 / dx
-
-        pts = sorted({mp.mpf(0), ts, mp.pi}
-                     | {ts + g * mp.mpf(2) ** -e for e in range(1, 60, 3)
-                        for g in (-1, 1) if 0 < ts + g * mp.mpf(2) ** -e < mp.pi}
-                     | {mp.pi * i / 32 for i in range(1, 32)})
-        ref = mp.quad(subtracted, pts) + g0 * mp.log((mp.pi - ts) / ts)
+        ref = principal_value(lambda x: 2 * mp.sin(x) ** 2 * mp.cos(j * x), ts,
+                              [mp.pi * i / 32 for i in range(1, 32)])
     return {"n": n, "j": j, "tau_s": float(tau[k]), "value": float(ref), "digits": 30}
 
 
@@ -153,21 +162,8 @@ def graded_cauchy():
         for sk, tk in zip(s, tau_s):
             ts = mp.mpf(tk)
             for j in js:
-                f = lambda x, j=j: mp.sin(T(x)) ** 2 * 2 * mp.sin(x) ** 2 * mp.cos(j * x)  # noqa: E731
-                D = mp.sin(T(ts)) * 2 * mp.sin(ts) ** 2
-                g0 = f(ts) / D
-
-                def subtracted(x, f=f, g0=g0):
-                    dx = x - ts
-                    if dx == 0:
-                        return mp.mpf(0)
-                    dT = dx - mp.cos(x + ts) * mp.sin(dx)
-                    return f(x) / (2 * mp.sin(T(ts) + dT / 2) * mp.sin(dT / 2)) - g0 / dx
-
-                pts = sorted({mp.mpf(0), ts, mp.pi}
-                             | {ts + g * mp.mpf(2) ** -e for e in range(1, 60, 3)
-                                for g in (-1, 1) if 0 < ts + g * mp.mpf(2) ** -e < mp.pi})
-                ref = (mp.quad(subtracted, pts) + g0 * mp.log((mp.pi - ts) / ts)) / mp.pi
+                ref = principal_value(
+                    lambda x, j=j: mp.sin(T(x)) ** 2 * 2 * mp.sin(x) ** 2 * mp.cos(j * x), ts) / mp.pi
                 values.append([sk, j, float(ref)])
     return {"s": s, "tau_s": tau_s, "values": values, "digits": 30}
 

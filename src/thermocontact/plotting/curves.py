@@ -32,6 +32,15 @@ def _axes(ax):
     return ax
 
 
+def _stacked(axes):
+    """``axes``, or two new stacked Axes of the current figure."""
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        axes = plt.gcf().subplots(2, 1, sharex=True)
+    return axes
+
+
 def _figure(**kwargs):
     # A Figure of its own, outside pyplot: no backend, nothing left open.
     from matplotlib.figure import Figure
@@ -131,11 +140,7 @@ def plot_distributions(sol, axes=None):
     -------
     (Axes, Axes)
     """
-    if axes is None:
-        import matplotlib.pyplot as plt
-
-        axes = plt.gcf().subplots(2, 1, sharex=True)
-    ax1, ax2 = axes
+    ax1, ax2 = _stacked(axes)
     p = sol.parameters
     tag = f"Pe = {p.pe:g}, fHPe = {p.fhpe:g} ({'valid' if sol.valid else 'invalid'})"
     style = "-" if sol.valid else "--"
@@ -185,11 +190,7 @@ def plot_branch(branch, problem, axes=None, label=None):
     -------
     (Axes, Axes)
     """
-    if axes is None:
-        import matplotlib.pyplot as plt
-
-        axes = plt.gcf().subplots(2, 1, sharex=True)
-    ax1, ax2 = axes
+    ax1, ax2 = _stacked(axes)
     s = (branch.x - branch.offset) / branch.half_width
     tag = label or (f"half-width {branch.half_width:.3g} m, offset {branch.offset:.3g} m "
                     f"({'valid' if branch.valid else 'invalid'})")
