@@ -7,7 +7,8 @@ import pytest
 import thermocontact.numerics.moments as mm
 from conftest import references
 from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
-from thermocontact.numerics.moments import kernel_moments, sgn_moments
+from thermocontact.numerics.edge_graded import chebyshev_moments as kernel_moments
+from thermocontact.numerics.moments import sgn_moments
 
 S = np.array([-0.999, -0.3, 0.0, 0.5, 0.99999, 1.0, 1.001, -1.2])
 
@@ -33,15 +34,15 @@ def _clear_rules():
     """Forget every cached rule and geometry, so that a changed _GL takes effect."""
     from thermocontact.numerics import edge_graded as graded
 
-    for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm._common,
-              mm.panel_rule, graded._common, graded.weight_integrals):
+    for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm.panel_rule,
+              graded._common, graded.weight_integrals):
         f.cache_clear()
     graded.GEOMETRY.clear()
 
 
 @pytest.mark.parametrize("c", [1e3, 1e5, 1e6])
 def test_moments_stable_under_refinement(c, monkeypatch):
-    """Moments of both kernels, by both engines (Chebyshev and edge-graded), change by
+    """Moments of both kernels, for both maps (Chebyshev and edge-graded), change by
     less than 1e-13 relative to their largest value when every Gauss-Legendre rule,
     the common panels' included, goes from 16 to 24 points (c up to 1e6: kernels of
     width 1e-6 and the near-pole -1/u beyond it)."""

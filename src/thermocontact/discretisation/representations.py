@@ -22,7 +22,7 @@ Three representations:
   low algebraic order);
 * :class:`Chebyshev`: the same series, every kernel integrated exactly against
   them (section 10: closed forms for ``1/u`` and ``sgn``, moments to rounding by
-  :func:`~thermocontact.numerics.moments.kernel_moments` otherwise);
+  :func:`~thermocontact.numerics.edge_graded.chebyshev_moments` otherwise);
 * :class:`EdgeGraded`: cosine series in the edge-graded variable ``tau`` (section
   12), every integral a moment by
   :func:`~thermocontact.numerics.edge_graded.moments`.
@@ -41,7 +41,7 @@ import numpy as np
 
 from ..numerics import edge_graded as graded
 from ..numerics.cache import BoundedCache
-from ..numerics.moments import kernel_moments, sgn_moments
+from ..numerics.moments import sgn_moments
 from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_matrix,
                                    t_series_coefficients, u_coefficient_matrix,
                                    u_series_coefficients, u_series_value)
@@ -254,14 +254,14 @@ class Chebyshev(_ChebyshevSeries):
     def integrate(self, kernel, s, *, scale=None, logarithmic=False, aux=None):
         """Row operators ``(I_p, I_q)`` of ``integral K(s - r) (p, q')(r) dr``.
 
-        By :func:`~thermocontact.numerics.moments.kernel_moments`; ``scale`` and
+        By :func:`~thermocontact.numerics.edge_graded.chebyshev_moments`; ``scale`` and
         ``logarithmic`` describe the kernel as there.
 
         Returns
         -------
         ndarray, shape (k, n), twice
         """
-        b, t = kernel_moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
+        b, t = graded.chebyshev_moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
                               logarithmic=logarithmic)
         to_u, to_t = self._maps()
         return b @ to_u, t @ to_t

@@ -31,7 +31,11 @@ from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_l
                       levels_for, near_field, outer_panels, panel_rule)
 
 __all__ = [
+    "CoordinateMap",
+    "GRADED",
+    "IDENTITY",
     "bounded_weight",
+    "chebyshev_moments",
     "cosine_value",
     "moments",
     "nodes",
@@ -133,6 +137,39 @@ def singular_weight(tau):
     return stretch_derivative(tau)
 
 
+class CoordinateMap:
+    """A variable ``x`` on ``[0, pi]`` with ``r = cos T(x)``, and the unknowns' weights.
+
+    The moments are integrals over ``x`` of ``K(s - cos T(x))`` times a weight times
+    ``cos(j x)``.  The edge-graded map (:data:`GRADED`, section 12) has
+    ``T(x) = x - sin(2x)/2`` and the weights ``sin^2 T T'`` (pressure) and ``T'``
+    (flux); the identity (:data:`IDENTITY`, ``x = t = arccos r``) with weight 1 gives
+    the Chebyshev moments of section 10 (:func:`chebyshev_moments`).
+    """
+
+    def __init__(self, name, T, dT, increment, inverse, pressure_factor):
+        self.name = name
+        self.T, self.dT, self.increment, self.inverse = T, dT, increment, inverse
+        #: ``sin^2 T`` for the graded pressure weight, 1 for the identity map.
+        self.pressure_factor = pressure_factor
+
+    def weights(self, x):
+        """The pressure's and the flux's weight at ``x``."""
+        dT = self.dT(x)
+        return self.pressure_factor(self.T(x)) * dT, dT
+
+    def __repr__(self):
+        return f"CoordinateMap({self.name!r})"
+
+
+GRADED = CoordinateMap("graded", stretch, stretch_derivative, stretch_increment,
+                       stretch_inverse, lambda t: np.sin(t) ** 2)
+IDENTITY = CoordinateMap("identity", lambda x: np.asarray(x, dtype=float),
+                         lambda x: np.ones_like(np.asarray(x, dtype=float)),
+                         lambda x, d: np.broadcast_to(d, np.broadcast_shapes(np.shape(x), np.shape(d))).astype(float),
+                         lambda t: np.asarray(t, dtype=float), lambda t: np.ones_like(t))
+
+
 @lru_cache(maxsize=32)
 def weight_integrals(n: int):
     """``integral_0^pi W(tau) cos(j tau) dtau`` for both weights, ``j < n``.
@@ -151,16 +188,17 @@ def weight_integrals(n: int):
 
 
 @lru_cache(maxsize=16)
-def _common(n: int):
-    """Common panel rule in ``tau``, the bases and weights at its nodes."""
+def _common(n: int, cmap=None):
+    """Common panel rule in ``x``, the bases and weights at its nodes."""
+    cmap = GRADED if cmap is None else cmap
     m, h, tau, wt, panel = panel_rule(n)
     g = np.cos(np.arange(n)[None, :] * tau[:, None])
-    r = np.cos(stretch(tau))
-    wts = np.stack([bounded_weight(tau), singular_weight(tau)]) * wt[None, :]
+    r = np.cos(cmap.T(tau))
+    wts = np.stack(cmap.weights(tau)) * wt[None, :]
     return m, h, r, g, panel, wts
 
 
-def _u(s, tau_s, t_s, d, wq):
+def _u(s, tau_s, t_s, d, wq, cmap):
     """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``, and the weights.
 
     Returns ``(u, e)`` with ``e = u - (s - clip(s))``, the part measured from the
@@ -169,11 +207,11 @@ def _u(s, tau_s, t_s, d, wq):
     ``(2,) + d.shape``, with ``T(tau_s + d) = t_s + dT`` (an absolute error of
     rounding, all a weight needs).
     """
-    dt = stretch_increment(tau_s[:, None], d)
+    dt = cmap.increment(tau_s[:, None], d)
     half = t_s[:, None] + 0.5 * dt
     e = 2.0 * np.sin(half) * np.sin(0.5 * dt)
-    singular = stretch_derivative(tau_s[:, None] + d) * wq
-    bounded = np.sin(half + 0.5 * dt) ** 2 * singular
+    singular = cmap.dT(tau_s[:, None] + d) * wq
+    bounded = cmap.pressure_factor(half + 0.5 * dt) * singular
     return ((s - np.clip(s, -1.0, 1.0))[:, None] + e, e), np.stack([bounded, singular])
 
 
@@ -221,7 +259,7 @@ class _Side:
         full = self.full[:, None]
         dist, wq = np.where(full, dist, dist_s), np.where(full, wq, wq_s)
         d = sign * dist
-        self.outer_u, self.outer_w = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
+        self.outer_u, self.outer_w = _u(geo.s, geo.tau_s, geo.t_s, d, wq, geo.cmap)
         self.outer_live = wq > 0.0
         self.n_fixed = fixed.size
         # Rows paneled row by row: cosines and sines of their offsets, formed directly,
@@ -245,7 +283,7 @@ class _Side:
             ref_tau, om, _, lagr = _inner_reference(levels)
             d = self.sign * self.inner[:, None] * ref_tau[None, :]
             wq = self.inner[:, None] * om[None, :]
-            u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq)
+            u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq, geo.cmap)
             self._inner[levels] = (u, wq > 0.0, wts, lagr)
         return self._inner[levels]
 
@@ -253,15 +291,15 @@ class _Side:
 class _Geometry:
     """Everything about a set of points that does not depend on the kernel."""
 
-    def __init__(self, s, n, tau=None):
-        m, h, r, g, panel, wts = _common(n)
-        self.s, self.n = s, n
+    def __init__(self, s, n, tau, cmap):
+        m, h, r, g, panel, wts = _common(n, cmap)
+        self.s, self.n, self.cmap = s, n, cmap
         if tau is None:
             self.t_s = np.arccos(np.clip(s, -1.0, 1.0))
-            self.tau_s = stretch_inverse(self.t_s)
+            self.tau_s = cmap.inverse(self.t_s)
         else:
             self.tau_s = tau
-            self.t_s = stretch(tau)
+            self.t_s = cmap.T(tau)
         self.near, sides = near_field(self.tau_s, m, h, panel)
         self.far_u = s[:, None] - r[None, :]
         self.far_e = np.clip(s, -1.0, 1.0)[:, None] - r[None, :]
@@ -283,15 +321,15 @@ BLOCK_ENTRIES = 2**19
 MIN_BLOCK = 256
 
 
-def _geometry(key: bytes, n: int, tau_key: bytes | None) -> _Geometry:
+def _geometry(key: bytes, n: int, tau_key: bytes | None, cmap) -> _Geometry:
     def build():
         tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
-        return _Geometry(np.frombuffer(key, dtype=float), n, tau)
-    return GEOMETRY.get((key, n, tau_key), build)
+        return _Geometry(np.frombuffer(key, dtype=float), n, tau, cmap)
+    return GEOMETRY.get((key, n, tau_key, cmap.name), build)
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
-            logarithmic=False):
+            logarithmic=False, cmap=GRADED):
     """Moments of a convolution kernel against the graded bases.
 
     ``B[k, j] = integral_0^pi K(s_k - cos T(tau)) sin^2 T(tau) T'(tau) cos(j tau) dtau``
@@ -346,7 +384,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     added (derivation section 12).
     """
     s = np.ascontiguousarray(np.atleast_1d(np.asarray(s, dtype=float)))
-    m, h, r, g, panel, wts = _common(n)
+    m, h, r, g, panel, wts = _common(n, cmap)
     rows = max(1, BLOCK_ENTRIES // r.size)
     if s.size > rows and s.size > MIN_BLOCK:
         # Block by block (kernels are elementwise in u, or carry at most MIN_BLOCK
@@ -354,11 +392,11 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
         rows = max(rows, MIN_BLOCK)
         parts = [moments(kernel, s[i:i + rows], n, scale=scale, cauchy=cauchy,
                          tau=None if tau is None else np.asarray(tau)[i:i + rows],
-                         from_edge=from_edge, logarithmic=logarithmic)
+                         from_edge=from_edge, logarithmic=logarithmic, cmap=cmap)
                  for i in range(0, s.size, rows)]
         return (np.concatenate([b for b, _ in parts]), np.concatenate([q for _, q in parts]))
     tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
-    geo = _geometry(s.tobytes(), n, tau_key)
+    geo = _geometry(s.tobytes(), n, tau_key, cmap)
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -389,8 +427,25 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
         if np.any(interior):
             ts = geo.tau_s[interior]
             log_ratio = np.log(b_in[interior] / a_in[interior]) / (
-                np.sin(geo.t_s[interior]) * stretch_derivative(ts))
+                np.sin(geo.t_s[interior]) * cmap.dT(ts))
             basis = np.cos(np.arange(n)[None, :] * ts[:, None])
-            out[0][interior] += (bounded_weight(ts) * log_ratio)[:, None] * basis
-            out[1][interior] += (singular_weight(ts) * log_ratio)[:, None] * basis
+            w_b, w_s = cmap.weights(ts)
+            out[0][interior] += (w_b * log_ratio)[:, None] * basis
+            out[1][interior] += (w_s * log_ratio)[:, None] * basis
     return out[0], out[1]
+
+
+def chebyshev_moments(kernel, s, n: int, scale=None, logarithmic=False):
+    """Moments of ``K(s - r)`` against ``sqrt(1 - r^2) U_j`` and ``T_j / sqrt(1 - r^2)``.
+
+    ``B[k, j] = integral_0^pi K(s_k - cos t) sin t sin((j + 1) t) dt`` and
+    ``S[k, j] = integral_0^pi K(s_k - cos t) cos(j t) dt``, ``j < n`` (derivation
+    section 10): :func:`moments` with the identity map and weight 1, since
+    ``sin t sin((j + 1) t) = (cos(j t) - cos((j + 2) t)) / 2``.
+
+    Returns
+    -------
+    bounded, singular : ndarray, shape (len(s), n)
+    """
+    _, c = moments(kernel, s, n + 2, scale=scale, logarithmic=logarithmic, cmap=IDENTITY)
+    return 0.5 * (c[:, :n] - c[:, 2:]), c[:, :n].copy()

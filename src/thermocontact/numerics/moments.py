@@ -1,27 +1,18 @@
-"""Moments of a kernel against the Chebyshev bases of the two unknowns.
+"""The panel machinery of the kernel moments, and the step kernel's closed form.
 
-For points ``s`` and a convolution kernel ``K(s - r)`` this computes, to about
-machine precision,
-
-    B[k, j] = integral K(s_k - r) sqrt(1 - r^2) U_j(r) dr
-            = integral_0^pi K(s_k - cos t) sin t sin((j + 1) t) dt,
-    S[k, j] = integral K(s_k - r) T_j(r) / sqrt(1 - r^2) dr
-            = integral_0^pi K(s_k - cos t) cos(j t) dt,
-
-for ``j < n``.  In ``t = arccos r`` both integrands are free of the weights' edge
-singularities.  The kernels of this problem are smooth except at ``r = s``
-(a jump, a logarithm, and structure on the scale ``1/c`` of the moving body's
-kernels), so the integral is split (derivation section 10):
-
-* a common rule for every ``s``: ``M`` equal panels in ``t`` with 16-point
-  Gauss–Legendre each, enough for the bases' ``n/2`` oscillations;
-* for each ``s``, the panel holding ``t_s = arccos s`` and its two neighbours are
-  replaced by panels halving in length toward ``t_s`` from either side, down to
-  ``1e-14`` of their length, which integrates jumps, logarithms, nearly polar
-  behaviour and any scale of the kernel to about machine precision.
-
-Points outside ``[-1, 1]`` are graded toward the nearer edge.  The sums over the
-bases use the three-term recurrences of ``cos(j t)`` and ``sin((j + 1) t)``.
+The moments of a convolution kernel ``K(s - r)`` against the bases of the unknowns
+are computed by one engine, :func:`thermocontact.numerics.edge_graded.moments`,
+for either coordinate map (the edge-graded variable of derivation section 12 or
+``t = arccos r``, section 10).  Its pieces live here: a common rule of equal
+panels with ``_GL``-point Gauss–Legendre each (:func:`panel_rule`); the panel
+holding each point and its neighbours, replaced (:func:`near_field`) by an
+innermost interval graded toward the point (:func:`levels_for` halvings; its
+bases interpolated by :func:`chebyshev_lagrange`) and geometric outer panels
+(:func:`outer_panels`).  The kernels of this problem are smooth except at
+``r = s`` (a jump, a logarithm, structure on the scale ``1/c`` of the moving
+body's kernels), which this integrates to about machine precision.
+:func:`sgn_moments` gives the step kernel's moments against the Chebyshev bases
+in closed form.
 """
 
 from __future__ import annotations
@@ -30,8 +21,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["chebyshev_lagrange", "kernel_moments", "levels_for", "near_field", "outer_panels",
-           "panel_rule", "sgn_moments"]
+__all__ = ["chebyshev_lagrange", "levels_for", "near_field", "outer_panels", "panel_rule",
+           "sgn_moments"]
 
 _GL = 16
 
@@ -142,46 +133,6 @@ def levels_for(n: int, scale=None, logarithmic=False) -> int:
     return max(levels, LOG_LEVELS) if logarithmic else levels
 
 
-@lru_cache(maxsize=16)
-def _common(n: int):
-    """Common panel rule in ``t`` and the bases at its nodes."""
-    m, h, t, wt, panel = panel_rule(n)
-    j = np.arange(n)
-    gb = np.sin(t)[:, None] * np.sin((j + 1)[None, :] * t[:, None])
-    gs = np.cos(j[None, :] * t[:, None])
-    return m, h, t, wt, gb, gs, panel
-
-
-def _basis_sums(t, kw, n):
-    """``sum_q kw[k, q] g_j(t[k, q])`` for both bases, by recurrence in ``j``.
-
-    Parameters
-    ----------
-    t, kw : ndarray, shape (k, q)
-
-    Returns
-    -------
-    bounded, singular : ndarray, shape (k, n)
-    """
-    c = np.cos(t)
-    st = np.sin(t)
-    two_c = 2.0 * c
-    bounded = np.empty((t.shape[0], n))
-    singular = np.empty((t.shape[0], n))
-    # cos(j t): T-recurrence; sin((j + 1) t): U-recurrence (times sin t).
-    cm, c0 = np.ones_like(t), c  # cos(0 t), cos(1 t)
-    sm, s0 = st, 2.0 * c * st  # sin(1 t), sin(2 t)
-    kws = kw * st
-    singular[:, 0] = kw.sum(axis=1)
-    bounded[:, 0] = (kws * sm).sum(axis=1)
-    for j in range(1, n):
-        singular[:, j] = (kw * c0).sum(axis=1)
-        bounded[:, j] = (kws * s0).sum(axis=1)
-        cm, c0 = c0, two_c * c0 - cm
-        sm, s0 = s0, two_c * s0 - sm
-    return bounded, singular
-
-
 _P = 20  # interpolation points of the bases across the innermost interval
 _OUTER = 3  # panels per side between the innermost interval and the common rule
 
@@ -214,84 +165,6 @@ def _inner_reference(levels: int):
     tau, om = _graded_reference(levels)
     x, lagrange = chebyshev_lagrange(tau, _P)
     return tau, om, x, lagrange
-
-
-def _offsets_to_u(s, ts, d):
-    """``s - cos(t_s + d)`` without cancellation next to ``t_s``.
-
-    ``(s - cos t_s) + 2 sin(t_s + d/2) sin(d/2)``; ``s - cos t_s`` is 0 inside
-    ``[-1, 1]`` and ``s -+ 1`` outside.
-    """
-    return (s - np.clip(s, -1.0, 1.0))[:, None] + 2.0 * np.sin(ts[:, None] + 0.5 * d) * np.sin(0.5 * d)
-
-
-def kernel_moments(kernel, s, n: int, scale=None, logarithmic=False):
-    """Moments of ``kernel(s - r)`` against ``sqrt(1-r^2) U_j`` and ``T_j/sqrt(1-r^2)``.
-
-    Parameters
-    ----------
-    kernel : callable
-        Vectorised ``K(u)``, ``u = s - r``, called with arrays of shape
-        ``(len(s), q)`` whose rows belong to the points ``s``; may jump or be
-        logarithmically singular at ``u = 0`` and vary on any scale near it.
-    s : ndarray, shape (k,)
-        Points; inside or outside ``[-1, 1]``.
-    n : int
-        Number of basis functions.
-    scale : float, optional
-        For a kernel that is smooth on either side of ``u = 0`` (a jump at most)
-        and varies on the scale ``1/scale`` there, the grading toward ``t_s`` stops
-        at ``1e-3/scale``; by default it goes to ``1e-14`` of the interval, as a
-        logarithm needs.
-    logarithmic : bool
-        With ``scale``: the kernel is ``a(u) + b(u) ln|u|`` with ``a``, ``b`` smooth
-        on the scale ``1/scale`` (at least :data:`LOG_LEVELS` halvings).
-
-    Returns
-    -------
-    bounded, singular : ndarray, shape (k, n)
-        ``B`` and ``S`` of the module docstring.
-
-    Notes
-    -----
-    Within ``w = 6/(n + 1)`` of ``t_s`` no basis function completes a period, so
-    there the bases are replaced by their interpolants on ``_P`` Chebyshev points
-    and only the kernel's moments against the ``_P`` Lagrange polynomials are
-    summed over the graded rule; between ``w`` and the common rule, ``_OUTER``
-    geometric panels of 16 points carry the bases directly.
-    """
-    s = np.asarray(s, dtype=float)
-    m, h, t, wt, gb, gs, panel = _common(n)
-    ts = np.arccos(np.clip(s, -1.0, 1.0))
-    near, sides = near_field(ts, m, h, panel)
-
-    # Far field on the common rule, near panels masked out.
-    kf = kernel(s[:, None] - np.cos(t)[None, :]) * wt[None, :]
-    kf[near] = 0.0
-    bounded = kf @ gb
-    singular = kf @ gs
-
-    w_in = 6.0 / (n + 1)
-    tau, om, xp, lagr = _inner_reference(levels_for(n, scale, logarithmic))
-    for sign, side in sides:
-        inner = np.minimum(side, w_in)
-        # Innermost interval: kernel moments against the Lagrange basis.
-        d = sign * inner[:, None] * tau[None, :]
-        wq = inner[:, None] * om[None, :]
-        u = np.where(wq > 0.0, _offsets_to_u(s, ts, d), 1.0)
-        mu = (kernel(u) * wq) @ lagr
-        tp = ts[:, None] + sign * inner[:, None] * xp[None, :]
-        b2, s2 = _basis_sums(tp, mu, n)
-        bounded += b2
-        singular += s2
-        # Outer panels, geometric from the innermost interval to the side's end.
-        dist, wq = outer_panels(side, inner)
-        d = sign * dist
-        u = np.where(wq > 0.0, _offsets_to_u(s, ts, d), 1.0)
-        b3, s3 = _basis_sums(ts[:, None] + d, kernel(u) * wq, n)
-        bounded += b3
-        singular += s3
-    return bounded, singular
 
 
 def sgn_moments(s, n: int):
