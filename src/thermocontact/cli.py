@@ -130,6 +130,61 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
         click.echo(text)
 
 
+@cli.command("boundary")
+@click.option("--along", required=True,
+              help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1 or "
+                   "delta1-over-delta2.")
+@click.option("--from", "start", type=float, required=True, help="Start of the path.")
+@click.option("--to", "stop", type=float, required=True, help="End of the path.")
+@click.option("--pe", type=float, default=None, help="Peclet number (unless followed).")
+@click.option("--fhpe", type=float, default=None, help="f H Pe (unless followed).")
+@click.option("--K2-over-K1", "K2_over_K1", type=float, default=None,
+              help="Conductivity ratio (unless followed).")
+@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+              help="Diffusivity ratio [default: K2/K1].")
+@click.option("--delta1-over-delta2", type=float, default=None,
+              help="Distortivity ratio [default: 1].")
+@click.option("--lam", type=float, default=None, help="Heat partition (or --sigma).")
+@click.option("--sigma", type=float, default=None, help="Contact offset sigma/Delta (or --lam).")
+@click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
+              help="Error target for the choice of n.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
+              show_default=True, help="Discretisation method.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
+                 lam, sigma, tol, method, as_json):
+    """Every change of validity along one parameter, located to 1e-9 relative."""
+    from .studies.boundaries import follow
+
+    names = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
+             "K2-over-K1": "K2_over_K1", "k2-over-k1": "k2_over_k1",
+             "delta1-over-delta2": "delta1_over_delta2"}
+    if along not in names:
+        raise InputError(f"--along must be one of {sorted(names)}, got {along!r}")
+    name = names[along]
+    given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
+             "delta1_over_delta2": delta1_over_delta2, "lam": lam, "sigma_over_delta": sigma}
+    fixed = {k: v for k, v in given.items() if v is not None and k != name}
+    for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
+        if k != name and k not in fixed:
+            raise InputError(f"{option} must be given (it is not the parameter followed)")
+    closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
+    if len(closures) != 1:
+        raise InputError("give exactly one of --lam and --sigma, or follow one of them")
+    path = follow(fixed, name, start, stop, method=method, tol=check_positive("tol", tol))
+    if as_json:
+        click.echo(json.dumps(path.to_dict(), allow_nan=False))
+        return
+    click.echo(f"thermocontact {__version__}: along {along} from {start:g} to {stop:g} "
+               f"(method {method}, n = {path.n})")
+    if not path.events:
+        click.echo(f"  no change of validity (valid throughout: {bool(path.valid.all())})")
+    for e in path.events:
+        where = f" at the {e.edge} edge" if e.edge else ""
+        click.echo(f"  {along} = {e.at:.10g}: {e.inequality}{where}; valid "
+                   f"{e.valid_before} -> {e.valid_after}")
+
+
 @cli.command("reproduce")
 @click.option("--out", "out_dir", default="figures", show_default=True,
               help="Folder for the PNG, SVG and CSV files (created if missing).")

@@ -69,9 +69,9 @@ class Validity:
         ``p ~ sqrt(1 -+ s) (a + k ln(1 -+ s))`` (D22); ``-inf`` where ``k <= 0``
         (the widths themselves, :attr:`edge_layer_widths`, underflow below 1e-308).
     edge_margins : tuple of float
-        ``a + k ln(EDGE_LAYER_TOLERANCE)`` at each edge: the bracket of (D22) at
-        the tolerated depth, >= 0 exactly when the layer is no wider than
-        :data:`EDGE_LAYER_TOLERANCE`.
+        ``a + k ln(EDGE_LAYER_TOLERANCE)`` at each edge where ``k > 0``: the bracket
+        of (D22) at the tolerated depth, >= 0 exactly when the layer is no wider
+        than :data:`EDGE_LAYER_TOLERANCE`; ``max(a, 0)`` where ``k <= 0`` (no layer).
     strictly_valid : bool
         ``valid`` with every edge coefficient required to be ``<= 0`` (no tensile
         layer of any width), the criterion of Comninou and Dundurs.
@@ -389,7 +389,11 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam) -> Validity:
     e = _EDGE_DEPTH
     p_near = rep.pressure_at(phi, np.array([-1.0 + e, 1.0 - e])) / np.sqrt(e)
     a_edge = p_near - k_log * np.log(e)
-    edge_margins = a_edge + k_log * np.log(EDGE_LAYER_TOLERANCE)
+    # Without a positive coefficient there is no layer: the margin is the bracket
+    # itself where positive (continuous through k = 0 then), else 0 (a tensile edge
+    # without a layer is the pressure margin's to judge).
+    edge_margins = np.where(k_log > 0.0, a_edge + k_log * np.log(EDGE_LAYER_TOLERANCE),
+                            np.maximum(a_edge, 0.0))
     log_widths = np.where(k_log > 0.0, -np.maximum(a_edge, 0.0) / np.where(k_log > 0.0, k_log, 1.0),
                           -np.inf)
 

@@ -1,0 +1,215 @@
+"""Where validity changes along any one parameter: events located to 1e-9.
+
+A solution is followed along one of the dimensionless parameters (``fhpe``,
+``pe``, ``lam``, ``sigma_over_delta``, ``K2_over_K1``, ``k2_over_k1``,
+``delta1_over_delta2``) from ``start`` to ``stop``.  The resolution ``n`` is chosen
+once, by the refinement driver at the path's ends and middle; the path is sampled
+with step control (an interval is halved while a margin comes closer to zero than
+its change across the interval, so that a margin that dips below zero and back
+within one step is not missed), and every sign change of a margin (the load ratio,
+the pressure, the gap, the edge layers; :meth:`Validity.margins
+<thermocontact.analysis.validity.Validity.margins>`) is located by Brent's method on
+that margin to ``rtol`` relative in the parameter.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..problem.parameters import SolveError
+from ..problem.validation import InputError, check_choice, check_finite, check_integer
+from ..solvers.refinement import refine
+from ..solvers.single_patch import DEFAULT_TOL, Model
+
+__all__ = ["ALONG", "Event", "Path", "follow"]
+
+#: The parameters a path may follow.
+ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
+         "delta1_over_delta2")
+#: Margins, each >= 0 exactly when its inequality holds.
+MARGINS = ("load", "pressure", "gap", "edge")
+#: Initial samples of a path, and the most halvings of one interval.
+START_POINTS = 33
+MAX_HALVINGS = 5
+
+
+@dataclass(frozen=True)
+class Event:
+    """A change of validity along a path.
+
+    Attributes
+    ----------
+    at : float
+        The parameter's value, to ``rtol`` relative.
+    inequality : {"load", "pressure", "gap", "edge"}
+        The inequality whose margin changes sign.
+    edge : {"leading", "trailing"} or None
+        Where it fails (None for the load).
+    valid_before, valid_after : bool
+        Validity just before and just after ``at`` along the path's direction.
+    """
+
+    at: float
+    inequality: str
+    edge: str | None
+    valid_before: bool
+    valid_after: bool
+
+    def to_dict(self) -> dict:
+        return {"at": self.at, "inequality": self.inequality, "edge": self.edge,
+                "valid_before": self.valid_before, "valid_after": self.valid_after}
+
+
+@dataclass(frozen=True)
+class Path:
+    """The samples of a path and its events."""
+
+    along: str
+    fixed: dict
+    x: np.ndarray
+    valid: np.ndarray
+    events: tuple
+    n: int
+    method: str
+    error_estimate: float
+
+    def to_dict(self) -> dict:
+        return {"along": self.along, "fixed": self.fixed, "n": self.n, "method": self.method,
+                "error_estimate": self.error_estimate,
+                "events": [e.to_dict() for e in self.events]}
+
+
+def _inputs(fixed: dict, along: str, x: float) -> dict:
+    kw = {**fixed, along: x}
+    if along == "lam":
+        kw.pop("sigma_over_delta", None)
+    if along == "sigma_over_delta":
+        kw.pop("lam", None)
+    return kw
+
+
+def _solver(fixed, along, method):
+    """``at(n, x)``: the solution at ``x`` with ``n`` unknowns (None where there is none)."""
+    def at(n, x):
+        kw = _inputs(fixed, along, x)
+        try:
+            model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
+                          delta1_over_delta2=kw.get("delta1_over_delta2", 1.0),
+                          method=method, n=n)
+            close = {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
+            return model.solve_at(n, kw["fhpe"], **close)
+        except (SolveError, InputError):
+            return None
+    return at
+
+
+def _margins(sol):
+    return None if sol is None else {"load": sol.load_ratio, **sol.validity.margins()}
+
+
+def _where(sol, inequality):
+    v = sol.validity
+    at = {"load": None, "pressure": v.pressure_margin_at, "gap": v.gap_margin_at,
+          "edge": 1.0 if v.edge_margins[1] <= v.edge_margins[0] else -1.0}[inequality]
+    return None if at is None else ("leading" if at > 0 else "trailing")
+
+
+def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
+           rtol=1e-9, points=START_POINTS) -> Path:
+    """Follow a solution along one parameter and locate every change of validity.
+
+    Parameters
+    ----------
+    fixed : dict
+        The other inputs of :func:`~thermocontact.solvers.single_patch.solve`
+        (``pe``, ``fhpe``, ``K2_over_K1``, optionally ``k2_over_k1``,
+        ``delta1_over_delta2``, and ``lam`` or ``sigma_over_delta``).
+    along : str
+        One of :data:`ALONG`.
+    start, stop : float
+        The path's ends (either order).
+    method : str
+    tol : float
+        Error target of ``P_H/P`` and ``sigma/Delta`` for the choice of ``n``.
+    rtol : float
+        Relative tolerance of the events in the parameter.
+    points : int
+        Initial samples (at least 3).
+
+    Returns
+    -------
+    Path
+    """
+    along = check_choice("along", along, ALONG)
+    start, stop = check_finite("start", start), check_finite("stop", stop)
+    if start == stop:
+        raise InputError(f"stop must differ from start, got {stop!r} twice")
+    points = check_integer("points", points, 3, 10_000)
+    at = _solver(fixed, along, method)
+    # One n for the whole path, refined until the estimate meets tol at its ends and
+    # middle (so that the margins vary smoothly along it).
+    probes = [start, 0.5 * (start + stop), stop]
+    lo, n_max = METHODS[method].auto_range
+    levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
+                         tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
+    n = lo * 2 ** (len(levels) - 1)
+
+    xs = list(np.linspace(start, stop, points))
+    sols = {x: at(n, x) for x in xs}
+
+    def suspicious(a, b):
+        ma, mb = _margins(sols[a]), _margins(sols[b])
+        if ma is None or mb is None:
+            return False
+        return any(min(abs(ma[k]), abs(mb[k])) < abs(ma[k] - mb[k]) for k in MARGINS)
+
+    for _ in range(MAX_HALVINGS):
+        new = [0.5 * (a + b) for a, b in zip(xs[:-1], xs[1:]) if suspicious(a, b)]
+        if not new:
+            break
+        for x in new:
+            sols[x] = at(n, x)
+        xs = sorted(set(xs) | set(new), reverse=stop < start)
+
+    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+    events = []
+    for a, b in zip(xs[:-1], xs[1:]):
+        ma, mb = _margins(sols[a]), _margins(sols[b])
+        if ma is None or mb is None:
+            continue
+        found = []
+        for k in MARGINS:
+            if (ma[k] >= 0) == (mb[k] >= 0):
+                continue
+            # The margins other than the load's scale with 1/L: not continuous
+            # through L = 0.
+            if k != "load" and (ma["load"] <= 0) != (mb["load"] <= 0):
+                continue
+
+            def f(x, k=k):
+                m = _margins(at(n, x))
+                if m is None:
+                    # Refused only where P_H/P vanishes (sigma infinite): the load
+                    # margin's root itself.
+                    return 0.0 if k == "load" else np.nan
+                return m[k]
+            try:
+                root = brentq(f, min(a, b), max(a, b), xtol=rtol * max(abs(a), abs(b), 1e-300),
+                              rtol=4 * np.finfo(float).eps)
+            except (ValueError, RuntimeError):
+                continue
+            found.append((abs(root - a), root, k))
+        for _, root, k in sorted(found):
+            past = at(n, root + np.sign(b - a) * rtol * max(abs(root), 1e-300) * 10)
+            before = sols[a].valid
+            after = past.valid if past is not None else sols[b].valid
+            events.append(Event(float(root), k, _where(past or sols[b], k),
+                                bool(before), bool(after)))
+    xs_arr = np.array(xs)
+    valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
+    return Path(along, dict(fixed), xs_arr, valid, tuple(events), n, method,
+                float(est) if est is not None else float("nan"))

@@ -1,0 +1,92 @@
+"""Changes of validity along one parameter: located to 1e-9, checked against Barber's
+limiting width, bisection of plain solves and the sweeps of the figures."""
+
+import json
+
+import numpy as np
+import pytest
+from scipy.optimize import bisect
+
+from thermocontact import solve
+from thermocontact.cli import main
+from thermocontact.physics.reference_solutions import barber_insulated
+from thermocontact.studies.boundaries import follow
+
+#: Barber's limiting width of the insulated, non-distorting cylinder (derivation §9).
+BARBER = 0.578886941848794
+
+
+def test_barber_limit_approached_at_first_order():
+    """Along fHPe with lam = -1, k2/k1 = 1, delta1/delta2 = 0, the load ratio vanishes at
+    fHPe* whose distance from Barber's 0.5788869418... falls tenfold per decade of
+    K2/K1 (observed 2.5662e-5, 2.5661e-6, 2.5661e-7 at 1e4, 1e5, 1e6; ratios within
+    1e-3 of 10), the first-order approach of derivation §9; the reference itself is
+    the independent Galerkin solution's zero (checked here to 1e-12)."""
+    assert abs(barber_insulated(BARBER).load_ratio) < 1e-12
+    gaps = []
+    for K in (1e4, 1e5, 1e6):
+        path = follow(dict(pe=5, K2_over_K1=K, k2_over_k1=1, delta1_over_delta2=0, lam=-1.0),
+                      "fhpe", 0.3, 0.9)
+        (e,) = [e for e in path.events if e.inequality == "load"]
+        assert e.edge is None and e.valid_before and not e.valid_after
+        gaps.append(e.at - BARBER)
+    ratios = np.array(gaps[:-1]) / np.array(gaps[1:])
+    assert np.all(np.abs(ratios - 10) < 1e-2), ratios
+    assert 0 < gaps[-1] < 1e-6
+
+
+def test_events_against_bisection_of_plain_solves():
+    """Fig. 4 (Pe = 5, K2/K1 = 10, lam = 1) along fHPe: the gap margin turns negative just
+    outside the leading edge at 0.66536213..., equal to bisection of the gap margin of
+    plain solves at the path's n to 1e-9 relative; then the pressure margin at the
+    leading edge."""
+    path = follow(dict(pe=5, K2_over_K1=10, lam=1.0), "fhpe", 0.0, 2.0)
+    gap, pressure = path.events[:2]
+    assert (gap.inequality, gap.edge, gap.valid_before, gap.valid_after) == \
+        ("gap", "leading", True, False)
+    assert pressure.inequality == "pressure" and pressure.edge == "leading"
+    root = bisect(lambda f: solve(5, f, 10, lam=1.0, n=path.n).validity.gap_margin,
+                  0.6, 0.7, xtol=1e-13)
+    assert abs(gap.at - root) < 1e-9 * root
+
+
+def test_along_an_assembly_parameter_and_lam():
+    """Along lam (Fig. 5, fHPe = 0.3) the gap boundary (3.5656185) equals the one the
+    figures' sweep locates at the same n to 1e-9 relative; along Pe (fHPe = 0.9) the
+    pressure and gap events (Pe = 27.5, 33.5) agree with plain solves 1e-6 either side."""
+    from thermocontact.studies.sweeps import sweep
+
+    path = follow(dict(pe=5, fhpe=0.3, K2_over_K1=10), "lam", -1.0, 5.0)
+    e = path.events[0]
+    curve = sweep("fig5", dict(pe=5, fhpe=0.3, K2_over_K1=10), "lam", np.linspace(3, 4, 3),
+                  n=path.n, xtol=1e-12)
+    assert e.inequality == "gap" and abs(e.at - curve.boundaries[0].x) < 1e-9 * e.at
+    path = follow(dict(fhpe=0.9, K2_over_K1=10, lam=1.0), "pe", 0.5, 50.0)
+    assert [e.inequality for e in path.events] == ["pressure", "gap"]
+    for e in path.events:
+        for x, valid in ((e.at * (1 - 1e-6), e.valid_before), (e.at * (1 + 1e-6), e.valid_after)):
+            assert solve(x, 0.9, 10, lam=1.0, n=path.n).valid == valid
+
+
+def test_boundary_command(capsys):
+    assert main(["boundary", "--along", "fhpe", "--from", "0", "--to", "2", "--pe", "5",
+                 "--K2-over-K1", "10", "--lam", "1", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert {"at", "inequality", "edge", "valid_before", "valid_after"} <= rec["events"][0].keys()
+    assert abs(rec["events"][0]["at"] - 0.66536213) < 1e-8
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--along", "bogus", "--pe", "5", "--K2-over-K1", "10", "--lam", "1"],
+     "--along must be one of"),
+    (["--along", "fhpe", "--pe", "5", "--lam", "1"], "--K2-over-K1 must be given"),
+    (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10"], "give exactly one of --lam"),
+    (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10", "--lam", "1", "--to", "0"],
+     "stop must differ from start"),
+])
+def test_boundary_bad_input(args, words, capsys):
+    """One line naming what to change, exit status 2."""
+    base = ["boundary", "--from", "0"] + ([] if "--to" in args else ["--to", "1"])
+    assert main(base + args) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1
