@@ -60,7 +60,7 @@ def test_along_an_assembly_parameter_and_lam():
     e = path.events[0]
     curve = sweep("fig5", dict(pe=5, fhpe=0.3, K2_over_K1=10), "lam", np.linspace(3, 4, 3),
                   n=path.n, xtol=1e-12)
-    assert e.inequality == "gap" and abs(e.at - curve.boundaries[0].x) < 1e-9 * e.at
+    assert e.inequality == "gap" and abs(e.at - curve.boundaries[0].at) < 1e-9 * e.at
     path = follow(dict(fhpe=0.9, K2_over_K1=10, lam=1.0), "pe", 0.5, 50.0)
     assert [e.inequality for e in path.events] == ["pressure", "gap"]
     for e in path.events:

@@ -10,7 +10,8 @@ from thermocontact import __version__, solve
 from thermocontact.cli import main
 from thermocontact.figures.paper_figures import FIGURES
 from thermocontact.solvers.single_patch import DEFAULT_METHOD
-from thermocontact.studies.sweeps import _solver, validity_margins
+from thermocontact.studies.boundaries import validity_margins
+from thermocontact.studies.sweeps import _solver
 
 
 @pytest.fixture(scope="module")

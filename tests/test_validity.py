@@ -218,10 +218,10 @@ def test_boundary_is_the_zero_of_the_exact_gap_margin():
     curve = sweep("fig4", dict(pe=5, K2_over_K1=10, lam=1.0), "fhpe",
                   np.linspace(0.6, 0.7, 3), n=64, xtol=1e-12)
     (b,) = curve.boundaries
-    assert b.margin == "gap" and not b.becomes_valid and 1.0 < b.at < 1.02
+    assert b.inequality == "gap" and not b.valid_after and 1.0 < b.position < 1.02
     root = bisect(lambda f: solve(5, f, 10, lam=1.0, n=64).validity.gap_margin, 0.6, 0.7,
                   xtol=1e-13)
-    assert abs(root - b.x) < 1e-9
+    assert abs(root - b.at) < 1e-9
     sol = solve(5, root, 10, lam=1.0, n=64)
     tt = np.geomspace(1e-4, 1e-1, 20001)
     assert abs(np.min(sol.gap_at(1.0 + tt) / tt**1.5)) < 1e-8

@@ -88,9 +88,10 @@ def _header(fig: Figure, curves, extra=()) -> list[str]:
         lines.append(f"curve '{c.label}': {fixed}; sweep {c.x_name}; method {c.method}, "
                      f"n {c.n}, error estimate (middle and end of sweep) {c.error_estimate:.1e}")
         for b in c.boundaries:
-            kind = "becomes valid" if b.becomes_valid else "stops being valid"
-            lines.append(f"  validity boundary: {c.x_name} = {b.x:.9f} ({kind}; "
-                         f"{b.margin} margin, at s = {b.at:.4f})")
+            kind = "becomes valid" if b.valid_after else "stops being valid"
+            where = "" if b.position is None else f", at s = {b.position:.4f}"
+            lines.append(f"  validity boundary: {c.x_name} = {b.at:.9f} ({kind}; "
+                         f"{b.inequality} margin{where})")
     lines.extend(extra)
     return lines
 

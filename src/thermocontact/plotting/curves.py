@@ -86,16 +86,16 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
     # Insert the boundary points so that the solid and dashed parts meet there.
     xs, vs, ok = list(x), list(v), list(curve.valid)
     for b in curve.boundaries:
-        yb = np.interp(b.x, x, v)
-        i = int(np.searchsorted(xs, b.x))
-        xs[i:i] = [b.x, b.x]
+        yb = np.interp(b.at, x, v)
+        i = int(np.searchsorted(xs, b.at))
+        xs[i:i] = [b.at, b.at]
         vs[i:i] = [yb, yb]
-        ok[i:i] = [not b.becomes_valid, b.becomes_valid]
+        ok[i:i] = [b.valid_before, b.valid_after]
     xs, vs, ok = np.array(xs), np.array(vs), np.array(ok)
     line, = ax.plot(xs, np.where(ok, vs, np.nan), label=curve.label, **kwargs)
     ax.plot(xs, np.where(~ok, vs, np.nan), "--", color=line.get_color(), lw=1)
     for b in curve.boundaries:
-        ax.plot([b.x], [np.interp(b.x, x, v)], "x", color=line.get_color(), ms=8, mew=2)
+        ax.plot([b.at], [np.interp(b.at, x, v)], "x", color=line.get_color(), ms=8, mew=2)
     ax.set_xlabel("fHPe" if curve.x_name == "fhpe" else r"$\lambda$")
     ax.set_ylabel(_YLABEL[y])
     return ax

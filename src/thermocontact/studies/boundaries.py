@@ -24,7 +24,7 @@ from ..problem.validation import InputError, check_choice, check_finite, check_i
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["ALONG", "Event", "Path", "follow"]
+__all__ = ["ALONG", "Event", "Path", "follow", "locate_events", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
@@ -50,6 +50,9 @@ class Event:
         Where it fails (None for the load).
     valid_before, valid_after : bool
         Validity just before and just after ``at`` along the path's direction.
+    position : float or None
+        ``s = (x - sigma)/Delta`` where the margin is least just past the event (None
+        for the load).
     """
 
     at: float
@@ -57,10 +60,12 @@ class Event:
     edge: str | None
     valid_before: bool
     valid_after: bool
+    position: float | None = None
 
     def to_dict(self) -> dict:
         return {"at": self.at, "inequality": self.inequality, "edge": self.edge,
-                "valid_before": self.valid_before, "valid_after": self.valid_after}
+                "valid_before": self.valid_before, "valid_after": self.valid_after,
+                "position": self.position}
 
 
 @dataclass(frozen=True)
@@ -106,15 +111,88 @@ def _solver(fixed, along, method):
     return at
 
 
-def _margins(sol):
+def validity_margins(sol) -> dict[str, float]:
+    """The signed margins of the contact inequalities of one solution (None for None).
+
+    ``load``: ``P_H/P``, and those of :meth:`Validity.margins
+    <thermocontact.analysis.validity.Validity.margins>`; ``sol.valid`` holds exactly
+    when all are >= 0.
+    """
     return None if sol is None else {"load": sol.load_ratio, **sol.validity.margins()}
 
 
 def _where(sol, inequality):
+    """The position ``s`` and the edge where ``inequality`` is least (None for the load)."""
     v = sol.validity
     at = {"load": None, "pressure": v.pressure_margin_at, "gap": v.gap_margin_at,
           "edge": 1.0 if v.edge_margins[1] <= v.edge_margins[0] else -1.0}[inequality]
-    return None if at is None else ("leading" if at > 0 else "trailing")
+    return (None, None) if at is None else (float(at), "leading" if at > 0 else "trailing")
+
+
+def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
+    """Every sign change of a margin between neighbouring samples, by Brent's method.
+
+    Parameters
+    ----------
+    at : callable
+        ``at(x)``: the solution at ``x``; None, or a :class:`SolveError`, where there
+        is none.
+    xs, sols : sequences
+        The samples, in the path's order, and their solutions (None allowed).
+    xtol : callable
+        ``xtol(a, b)``: Brent's tolerance on the interval ``(a, b)``.
+    only_validity_changes : bool
+        Keep, per interval, only the first event, and only where the samples'
+        validity differs (a figure's boundaries).
+
+    Returns
+    -------
+    tuple of Event
+    """
+    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+    events = []
+    for a, b, sa, sb in zip(xs[:-1], xs[1:], sols[:-1], sols[1:]):
+        ma, mb = validity_margins(sa), validity_margins(sb)
+        if ma is None or mb is None or (only_validity_changes and sa.valid == sb.valid):
+            continue
+        found = []
+        for k in MARGINS:
+            if (ma[k] >= 0) == (mb[k] >= 0):
+                continue
+            # The margins other than the load's scale with 1/L: not continuous
+            # through L = 0.
+            if k != "load" and (ma["load"] <= 0 or mb["load"] <= 0):
+                continue
+
+            def f(x, k=k):
+                try:
+                    m = validity_margins(at(x))
+                except SolveError:
+                    m = None
+                if m is None:
+                    # Refused only where P_H/P vanishes (sigma infinite): the load
+                    # margin's root itself.
+                    return 0.0 if k == "load" else np.nan
+                return m[k]
+            try:
+                root = brentq(f, min(a, b), max(a, b), xtol=xtol(a, b),
+                              rtol=4 * np.finfo(float).eps)
+            except (ValueError, RuntimeError):
+                continue
+            found.append((abs(root - a), root, k))
+        found.sort()
+        for _, root, k in found[:1] if only_validity_changes else found:
+            step = 10 * xtol(a, b) * np.sign(b - a)
+            try:
+                past = at(root + step) if abs(step) < abs(b - a) else None
+            except SolveError:
+                past = None
+            past = past if past is not None else sb
+            position, edge = _where(past, k)
+            events.append(Event(float(root), k, edge, bool(sa.valid), bool(past.valid),
+                                position))
+    return tuple(events)
 
 
 def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
@@ -161,7 +239,7 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     sols = {x: at(n, x) for x in xs}
 
     def suspicious(a, b):
-        ma, mb = _margins(sols[a]), _margins(sols[b])
+        ma, mb = validity_margins(sols[a]), validity_margins(sols[b])
         if ma is None or mb is None:
             return False
         return any(min(abs(ma[k]), abs(mb[k])) < abs(ma[k] - mb[k]) for k in MARGINS)
@@ -174,42 +252,9 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
             sols[x] = at(n, x)
         xs = sorted(set(xs) | set(new), reverse=stop < start)
 
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
-    events = []
-    for a, b in zip(xs[:-1], xs[1:]):
-        ma, mb = _margins(sols[a]), _margins(sols[b])
-        if ma is None or mb is None:
-            continue
-        found = []
-        for k in MARGINS:
-            if (ma[k] >= 0) == (mb[k] >= 0):
-                continue
-            # The margins other than the load's scale with 1/L: not continuous
-            # through L = 0.
-            if k != "load" and (ma["load"] <= 0) != (mb["load"] <= 0):
-                continue
-
-            def f(x, k=k):
-                m = _margins(at(n, x))
-                if m is None:
-                    # Refused only where P_H/P vanishes (sigma infinite): the load
-                    # margin's root itself.
-                    return 0.0 if k == "load" else np.nan
-                return m[k]
-            try:
-                root = brentq(f, min(a, b), max(a, b), xtol=rtol * max(abs(a), abs(b), 1e-300),
-                              rtol=4 * np.finfo(float).eps)
-            except (ValueError, RuntimeError):
-                continue
-            found.append((abs(root - a), root, k))
-        for _, root, k in sorted(found):
-            past = at(n, root + np.sign(b - a) * rtol * max(abs(root), 1e-300) * 10)
-            before = sols[a].valid
-            after = past.valid if past is not None else sols[b].valid
-            events.append(Event(float(root), k, _where(past or sols[b], k),
-                                bool(before), bool(after)))
+    events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs],
+                           xtol=lambda a, b: rtol * max(abs(a), abs(b), 1e-300))
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
-    return Path(along, dict(fixed), xs_arr, valid, tuple(events), n, method,
+    return Path(along, dict(fixed), xs_arr, valid, events, n, method,
                 float(est) if est is not None else float("nan"))

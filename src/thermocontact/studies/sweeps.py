@@ -3,7 +3,7 @@
 Along a sweep in ``fhpe`` or ``lam`` the discrete blocks do not change, so each
 point costs one linear solve (derivation section 5).  The point where a curve
 stops being valid is located by Brent's method on the margin that changes sign
-(:func:`validity_margins`), not by sampling.
+(:func:`~.boundaries.validity_margins`), not by sampling.
 """
 
 from __future__ import annotations
@@ -11,52 +11,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..discretisation.methods import DEFAULT_METHOD
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
 from ..solvers.refinement import refine
-from ..solvers.result import ContactSolution
 from ..solvers.single_patch import Model
+from .boundaries import locate_events
 
-__all__ = ["Boundary", "Curve", "choose_n", "sweep", "validity_margins"]
-
-#: Names of the margins; each is >= 0 exactly when its inequality holds.
-MARGINS = ("load", "pressure", "gap", "edge")
-
-
-def validity_margins(sol: ContactSolution) -> dict[str, float]:
-    """The signed margins of the contact inequalities of one solution.
-
-    ``load``: ``P_H/P``, and those of :meth:`Validity.margins
-    <thermocontact.analysis.validity.Validity.margins>`.  ``sol.valid`` holds
-    exactly when all are >= 0.
-    """
-    return {"load": sol.load_ratio, **sol.validity.margins()}
-
-
-@dataclass(frozen=True)
-class Boundary:
-    """Where a curve changes validity.
-
-    Attributes
-    ----------
-    x : float
-        Value of the swept parameter, to ``xtol``.
-    margin : str
-        Which inequality: ``load``, ``pressure``, ``gap`` or ``edge``.
-    at : float
-        Where it fails (``s``) just past the boundary.
-    becomes_valid : bool
-        Whether the curve turns valid (rather than invalid) as ``x`` increases.
-    """
-
-    x: float
-    margin: str
-    at: float
-    becomes_valid: bool
-
+__all__ = ["Curve", "choose_n", "sweep"]
 
 @dataclass(frozen=True)
 class Curve:
@@ -70,7 +33,8 @@ class Curve:
     x_name : str
         ``"fhpe"`` or ``"lam"``.
     x, load_ratio, sigma_over_delta, lam, valid, pressure_margin, gap_margin : ndarray
-    boundaries : tuple of Boundary
+    boundaries : tuple of Event
+        Where validity changes (:func:`~.boundaries.locate_events`).
     n : int
     method : str
     error_estimate : float
@@ -144,52 +108,6 @@ def _solver(fixed: dict, x_name: str, n: int, method: str):
     return at
 
 
-def _boundaries(at, x, sols, xtol):
-    """Brent's method on each margin that changes sign between neighbouring points."""
-    out = []
-    margins = [validity_margins(s) if s is not None else None for s in sols]
-    for i in range(len(x) - 1):
-        a, b = margins[i], margins[i + 1]
-        if a is None or b is None or sols[i].valid == sols[i + 1].valid:
-            continue
-        roots = []
-        for name in MARGINS:
-            if (a[name] >= 0) == (b[name] >= 0):
-                continue
-            # The gap and pressure margins scale with 1/L and are not continuous
-            # through L = 0: only the load margin is sought across it.
-            if name != "load" and (a["load"] <= 0 or b["load"] <= 0):
-                continue
-
-            def f(xx, name=name):
-                try:
-                    return validity_margins(at(xx))[name]
-                except SolveError:
-                    # Only where P_H/P vanishes (sigma infinite): the load
-                    # margin's root itself.
-                    if name == "load":
-                        return 0.0
-                    raise
-
-            try:
-                root = brentq(f, x[i], x[i + 1], xtol=xtol)
-            except (ValueError, SolveError):
-                continue
-            roots.append((root, name))
-        if not roots:
-            continue
-        root, name = min(roots)
-        # Sample the invalid side just past the root to say where it fails.
-        past = at(min(root + 10 * xtol, x[i + 1]) if sols[i].valid else
-                  max(root - 10 * xtol, x[i]))
-        v = past.validity
-        where = {"load": 0.0, "pressure": v.pressure_margin_at, "gap": v.gap_margin_at,
-                 "edge": 1.0 if v.edge_margins[1] <= v.edge_margins[0] else -1.0}
-        out.append(Boundary(float(root), name, float(where[name]),
-                            becomes_valid=bool(sols[i + 1].valid)))
-    return tuple(out)
-
-
 def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_METHOD,
           tol=1e-6, n_max=None, xtol=1e-9, keep_solutions=False) -> Curve:
     """Solve along ``x`` with one assembly and locate the validity boundaries.
@@ -250,7 +168,8 @@ def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_MET
         valid=np.array([bool(s.valid) if s is not None else False for s in sols]),
         pressure_margin=col(lambda s: s.validity.pressure_margin),
         gap_margin=col(lambda s: s.validity.gap_margin),
-        boundaries=_boundaries(at, x, sols, xtol) if ok else (),
+        boundaries=(locate_events(at, list(x), sols, xtol=lambda a, b: xtol,
+                                  only_validity_changes=True) if ok else ()),
         n=n,
         method=method,
         error_estimate=est,
