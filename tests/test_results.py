@@ -81,3 +81,6 @@ def test_caches_are_bounded_and_clearable():
     assert cache_info()["assemblies"][0] > 0
     clear_caches()
     assert all(entries == 0 for entries, _, _ in cache_info().values())
+    from thermocontact.numerics.moments import panel_rule
+
+    assert panel_rule.cache_info().currsize == 0  # the small tables too

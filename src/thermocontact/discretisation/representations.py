@@ -35,12 +35,12 @@ and what it computes is kept in per-process caches bounded in bytes
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 
 from ..numerics import edge_graded as graded
-from ..numerics.cache import BoundedCache
+from ..numerics.cache import BoundedCache, small_cache
 from ..numerics.moments import sgn_moments
 from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_matrix,
                                    t_series_coefficients, u_coefficient_matrix,
@@ -78,7 +78,7 @@ class NodeRule:
 OVERSAMPLING = 2
 
 
-@lru_cache(maxsize=16)
+@small_cache(16)
 def range_projections(n: int):
     """Points and projections of the two equations on their range spaces.
 

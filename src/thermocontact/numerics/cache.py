@@ -11,13 +11,16 @@ with empty caches and fills its own.
 from __future__ import annotations
 
 from collections import OrderedDict
+from functools import lru_cache
 from threading import RLock
 
 import numpy as np
 
-__all__ = ["BoundedCache", "cache_info", "clear_caches"]
+__all__ = ["BoundedCache", "cache_info", "clear_caches", "small_cache"]
 
 _ALL: dict[str, "BoundedCache"] = {}
+#: The functools caches of small, n-dependent tables (rules, coefficient matrices).
+_SMALL: list = []
 
 
 def nbytes(value) -> int:
@@ -89,10 +92,21 @@ class BoundedCache:
                 f"{self._bytes / 2**20:.1f} of {self.max_bytes / 2**20:.0f} MiB)")
 
 
+def small_cache(maxsize: int):
+    """``functools.lru_cache(maxsize)`` for a small table, emptied by :func:`clear_caches`."""
+    def deco(func):
+        cached = lru_cache(maxsize=maxsize)(func)
+        _SMALL.append(cached)
+        return cached
+    return deco
+
+
 def clear_caches():
-    """Empty every cache of this process."""
+    """Empty every cache of this process (the bounded ones and the small tables')."""
     for cache in _ALL.values():
         cache.clear()
+    for cached in _SMALL:
+        cached.cache_clear()
 
 
 def cache_info() -> dict[str, tuple[int, int, int]]:

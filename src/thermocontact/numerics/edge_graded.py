@@ -21,12 +21,11 @@ every operator is a moment computed by :func:`moments`, the construction of
 
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
 
 from . import moments as _moments
-from .cache import BoundedCache
+from .cache import BoundedCache, small_cache
 from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_lagrange,
                       levels_for, near_field, outer_panels, panel_rule)
 
@@ -170,7 +169,7 @@ IDENTITY = CoordinateMap("identity", lambda x: np.asarray(x, dtype=float),
                          lambda t: np.asarray(t, dtype=float), lambda t: np.ones_like(t))
 
 
-@lru_cache(maxsize=32)
+@small_cache(32)
 def weight_integrals(n: int):
     """``integral_0^pi W(tau) cos(j tau) dtau`` for both weights, ``j < n``.
 
@@ -187,7 +186,7 @@ def weight_integrals(n: int):
     return basis @ bounded_weight(tq), basis @ singular_weight(tq)
 
 
-@lru_cache(maxsize=16)
+@small_cache(16)
 def _common(n: int, cmap=None):
     """Common panel rule in ``x``, the bases and weights at its nodes."""
     cmap = GRADED if cmap is None else cmap

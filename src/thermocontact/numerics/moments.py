@@ -17,9 +17,10 @@ in closed form.
 
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
+
+from .cache import small_cache
 
 __all__ = ["chebyshev_lagrange", "levels_for", "near_field", "outer_panels", "panel_rule",
            "sgn_moments"]
@@ -27,13 +28,13 @@ __all__ = ["chebyshev_lagrange", "levels_for", "near_field", "outer_panels", "pa
 _GL = 16
 
 
-@lru_cache(maxsize=8)
+@small_cache(8)
 def _gauss_legendre(m: int):
     x, w = np.polynomial.legendre.leggauss(m)
     return 0.5 * (x + 1.0), 0.5 * w
 
 
-@lru_cache(maxsize=64)
+@small_cache(64)
 def _graded_reference(levels: int = 47):
     """Nodes and weights on ``(0, 1]`` graded toward 0.
 
@@ -63,7 +64,7 @@ def _graded_reference(levels: int = 47):
 LOG_LEVELS = 20
 
 
-@lru_cache(maxsize=16)
+@small_cache(16)
 def panel_rule(n: int):
     """Common rule on ``[0, pi]`` for ``n`` basis functions: ``m`` equal panels, 16 points each.
 
@@ -156,7 +157,7 @@ def chebyshev_lagrange(x, points: int):
     return xc, out
 
 
-@lru_cache(maxsize=64)
+@small_cache(64)
 def _inner_reference(levels: int):
     """Graded rule on (0, 1] and the Lagrange basis of ``_P`` Chebyshev points there.
 

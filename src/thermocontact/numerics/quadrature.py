@@ -10,9 +10,10 @@ set of collocation points at which the Cauchy principal value of the rule is exa
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
+
+from .cache import small_cache
 
 __all__ = [
     "BoundedRule",
@@ -115,7 +116,7 @@ def singular_rule(n: int) -> SingularRule:
     return SingularRule(nodes, weights, colloc)
 
 
-@lru_cache(maxsize=32)
+@small_cache(32)
 def u_coefficient_matrix(n: int):
     """Matrix taking ``phi`` at the U-nodes to its ``U``-coefficients (read-only).
 
@@ -128,7 +129,7 @@ def u_coefficient_matrix(n: int):
     return m
 
 
-@lru_cache(maxsize=32)
+@small_cache(32)
 def t_coefficient_matrix(n: int):
     """Matrix taking ``psi`` at the T-nodes to its ``T``-coefficients (read-only).
 
