@@ -139,3 +139,23 @@ def test_interrupt_while_importing_prints_no_traceback():
             continue
         assert proc.returncode == 130 and "Traceback" not in err, err
         assert len(err.strip().splitlines()) == 1
+
+
+def test_no_noise_after_refusal_or_with_no_branch(tmp_path, capsys):
+    """A load of 1e-300 N/m is refused in one line (no RuntimeWarning on the way), and a
+    picture of a contact with no branch is drawn without a warning (no empty legend)."""
+    import warnings
+
+    from thermocontact.plotting.curves import contact_figure
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.physical_contact import PhysicalContact, PhysicalProblem
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        args = CONTACT[:7] + ["--load", "1e-300 N/m"] + CONTACT[9:]
+        msg = _error(capsys, args)
+        assert "load 1e-300 N/m" in msg
+        prob = PhysicalProblem(get_material("steel"), get_material("cast-iron"), 0.45, 2e5,
+                               20.0, 0.35, 0.5)
+        contact_figure(PhysicalContact(prob, (), None, "none", None), str(tmp_path / "c.png"))
+    assert (tmp_path / "c.png").stat().st_size > 1000

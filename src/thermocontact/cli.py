@@ -227,7 +227,7 @@ def _branch_record(b) -> dict:
         "temperature_mismatch": b.temperature_mismatch,
         "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
-        "reason": v.reason,
+        "reason": v.reason, "strictly_valid": v.strictly_valid,
         "applicable": b.applicable,
         "applicability_reasons": list(b.applicability.reasons),
     }
@@ -291,7 +291,7 @@ def _contact_summary(res) -> str:
             f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
             f"{'met' if b.converged else 'NOT met'})",
         ]
-        if not b.valid:
+        if b.solution.validity.reason != "valid":
             lines.append(f"    {b.solution.validity.reason}")
         if b.applicable:
             lines.append("    theory applicable: yes")
