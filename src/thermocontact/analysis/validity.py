@@ -144,11 +144,11 @@ class Validity:
         edge layer is named."""
         if not self.valid:
             return "invalid: " + "; ".join(self.failures)
-        layers = [f"{_width(lw)} at the {_edge_name(at)}"
+        layers = [f"{_width(lw)} half-widths wide inside the {_edge_name(at)}"
                   for lw, at in zip(self.edge_layer_log_widths, (-1.0, 1.0)) if lw > -np.inf]
         if layers:
-            return ("valid (strictly invalid: tensile edge layer of " + ", ".join(layers)
-                    + f" half-widths, below the tolerated {EDGE_LAYER_TOLERANCE:g})")
+            return ("valid (strictly invalid: tensile edge layer " + " and ".join(layers)
+                    + f", below the tolerated {EDGE_LAYER_TOLERANCE:g})")
         return "valid"
 
     def to_dict(self) -> dict:
