@@ -40,11 +40,19 @@ def test_status_message_and_record(sol):
     assert rec["status"] == "converged" and len(rec["pressure"]) == sol.n + 2
 
 
-def test_dataset_holds_profiles_and_provenance(sol):
+def test_dataset_holds_profiles_and_provenance(sol, tmp_path):
     ds = sol.to_dataset()
     assert ds["pressure"].dims == ("s",) and np.array_equal(ds["s"].values, sol.s)
     assert np.array_equal(ds["flux_cylinder"].values, sol.flux_cylinder)
     assert ds.attrs["load_ratio"] == sol.load_ratio and ds.attrs["method"] == "graded"
+    # It travels through NetCDF (scipy's writer) unchanged.
+    import xarray as xr
+
+    ds.to_netcdf(tmp_path / "sol.nc", engine="scipy")
+    back = xr.open_dataset(tmp_path / "sol.nc", engine="scipy")
+    assert back.attrs["load_ratio"] == sol.load_ratio
+    assert np.array_equal(back["pressure"].values, sol.pressure)
+    back.close()
     # The pressure integrates to one (unit load) by the representation's own rule.
     rule = sol.representation.pressure_rule
     assert abs(rule.weights @ sol.phi - 1.0) < 1e-13
