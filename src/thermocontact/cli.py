@@ -74,19 +74,36 @@ def cli():
     """Thermoelastic sliding contact of a conducting cylinder on a conducting half-plane."""
 
 
+def _problem_options(required: bool):
+    """The dimensionless problem's options, shared by ``solve`` and ``boundary`` (where
+    the parameter followed is not given, so none is required)."""
+    unless = "" if required else " (unless followed)"
+    options = [
+        click.option("--pe", type=float, required=required,
+                     help=f"Peclet number v Delta/(2 k2) > 0{unless}."),
+        click.option("--fhpe", type=float, required=required,
+                     help=f"Thermoelastic coupling f H Pe >= 0{unless}."),
+        click.option("--K2-over-K1", "K2_over_K1", type=float, required=required,
+                     help=f"Conductivity ratio K2/K1 > 0{unless}."),
+        click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+                     help="Diffusivity ratio k2/k1 > 0 [default: K2/K1]."),
+        click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
+                     help="Distortivity ratio delta1/delta2 >= 0."),
+        click.option("--lam", type=float, default=None,
+                     help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma."),
+        click.option("--sigma", type=float, default=None,
+                     help="Contact offset sigma/Delta; give this or --lam."),
+    ]
+
+    def deco(func):
+        for option in reversed(options):
+            func = option(func)
+        return func
+    return deco
+
+
 @cli.command("solve")
-@click.option("--pe", type=float, required=True, help="Peclet number v Delta/(2 k2) > 0.")
-@click.option("--fhpe", type=float, required=True, help="Thermoelastic coupling f H Pe >= 0.")
-@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
-              help="Conductivity ratio K2/K1 > 0.")
-@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
-              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
-@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
-              help="Distortivity ratio delta1/delta2 >= 0.")
-@click.option("--lam", type=float, default=None,
-              help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma.")
-@click.option("--sigma", type=float, default=None,
-              help="Contact offset sigma/Delta; give this or --lam.")
+@_problem_options(required=True)
 @click.option("-n", "n", type=int, default=None,
               help="Unknowns per function [default: chosen, doubling over the method's "
                    "range (" + "; ".join(f"{m.name} {m.auto_range[0]}-{m.auto_range[1]}"
@@ -136,16 +153,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
                    "delta1-over-delta2.")
 @click.option("--from", "start", type=float, required=True, help="Start of the path.")
 @click.option("--to", "stop", type=float, required=True, help="End of the path.")
-@click.option("--pe", type=float, default=None, help="Peclet number (unless followed).")
-@click.option("--fhpe", type=float, default=None, help="f H Pe (unless followed).")
-@click.option("--K2-over-K1", "K2_over_K1", type=float, default=None,
-              help="Conductivity ratio (unless followed).")
-@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
-              help="Diffusivity ratio [default: K2/K1].")
-@click.option("--delta1-over-delta2", type=float, default=None,
-              help="Distortivity ratio [default: 1].")
-@click.option("--lam", type=float, default=None, help="Heat partition (or --sigma).")
-@click.option("--sigma", type=float, default=None, help="Contact offset sigma/Delta (or --lam).")
+@_problem_options(required=False)
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Error target for the choice of n.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
