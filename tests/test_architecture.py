@@ -10,7 +10,7 @@ import thermocontact
 
 PACKAGE = pathlib.Path(thermocontact.__file__).parent
 #: Lowest layer first, as drawn in docs/architecture.md.
-LAYERS = ("_version", "problem", "io", "physics", "numerics", "discretisation", "analysis",
+LAYERS = ("_version", "problem", "io", "execution", "physics", "numerics", "discretisation", "analysis",
           "solvers", "studies", "plotting", "figures", "cli", "__main__")
 
 

@@ -193,6 +193,181 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                    f"{e.valid_before} -> {e.valid_after}")
 
 
+def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,
+                    speed, friction, lam, tol, dimensionless):
+    from .problem.materials import get_material, load_materials
+    from .problem.units import parse_quantity
+    from .studies.operating_maps import OperatingSpec, parse_physical_axis
+
+    for name, value in dimensionless.items():
+        if value is not None:
+            raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless map, "
+                             f"not to an operating map (--cylinder)")
+    for name, value in (("--cylinder", cylinder), ("--half-plane", half_plane),
+                        ("--friction", friction), ("--lam", lam)):
+        if value is None:
+            raise InputError(f"{name} must be given for an operating map")
+    if materials_file is not None:
+        load_materials(materials_file)
+    units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
+    fixed = {k: parse_quantity(v, u, k) for k, (v, u) in units.items() if v is not None}
+    x, y = parse_physical_axis("--x", x_spec), parse_physical_axis("--y", y_spec)
+    for axis in (x, y):
+        if axis.name in fixed:
+            raise InputError(f"--{axis.name} must not be given: it is an axis")
+    return OperatingSpec(get_material(cylinder, materials_file),
+                         get_material(half_plane, materials_file), friction, lam, x, y, fixed,
+                         tol=check_positive("tol", tol))
+
+
+def _workers(workers, scheduler):
+    """The executor of ``--workers``/``--scheduler`` (a Dask client to be closed, or an int)."""
+    from .execution.executors import MAX_WORKERS, connect, cpu_count
+
+    if scheduler is not None:
+        if workers is not None:
+            raise InputError("give --workers or --scheduler, not both (a cluster has its own)")
+        return connect(scheduler)
+    if workers is None:
+        return cpu_count()
+    if not 1 <= workers <= MAX_WORKERS:
+        raise InputError(f"--workers must be 1 to {MAX_WORKERS}, got {workers}")
+    return workers
+
+
+def _run_map(spec, out, workers, title, command):
+    """Compute (or resume) a map, write the dataset and its picture, keep nothing else."""
+    import time
+
+    from .execution.executors import ExecutionError
+    from .execution.progress import ProgressLine
+    from .plotting.maps import map_figure
+    from .studies.maps import compute_map, parts_folder, read_map, write_map
+
+    picture = os.path.splitext(out)[0] + ".png"
+    manifest = json.dumps(spec.manifest(), sort_keys=True)
+    if os.path.exists(out):
+        try:
+            old = read_map(out).attrs.get("manifest")
+        except Exception:  # not a map of ours: never overwritten
+            old = None
+        if old != manifest:
+            raise InputError(f"--out {out} exists and holds a different map; remove it or "
+                             f"choose another --out")
+        if not os.path.exists(picture):
+            map_figure(read_map(out), picture, title=title)
+        click.echo(f"{out} is complete (same arguments): nothing to compute")
+        return
+    parts = parts_folder(out)
+    bar = ProgressLine("map", "lines")
+    t0 = time.perf_counter()
+    try:
+        compute = compute_map
+        if hasattr(spec, "cylinder"):
+            from .studies.operating_maps import compute_operating_map as compute
+        ds = compute(spec, workers=workers, store_path=parts, progress=bar, command=command)
+    except KeyboardInterrupt:
+        bar.close()
+        click.echo(f"interrupted: finished lines are kept in {parts}; run the same command "
+                   f"to resume", err=True)
+        raise click.exceptions.Exit(130)
+    except ExecutionError as exc:
+        bar.close()
+        raise InputError(f"{exc} (kept in {parts})") from None
+    finally:
+        if hasattr(workers, "close"):
+            workers.close()
+    bar.close()
+    write_map(ds, out)
+    map_figure(ds, picture, title=title)
+    import shutil
+
+    shutil.rmtree(parts, ignore_errors=True)  # the dataset holds everything now
+    status = np.asarray(ds["status"].values)
+    failed = int((status == "failed").sum())
+    unconverged = int((status == "not converged").sum())
+    click.echo(f"wrote {out} and {picture}: {status.size} points ({int(ds['valid'].sum())} "
+               f"valid, {unconverged} not converged, {failed} failed), "
+               f"{ds.sizes.get('event', 0)} boundary points, in {time.perf_counter() - t0:.1f} s")
+
+
+@cli.command("map")
+@click.option("--x", "x_spec", required=True,
+              help="First axis, name:start:stop:count[:log] (e.g. fhpe:0:0.8:41).")
+@click.option("--y", "y_spec", required=True,
+              help="Second axis, name:start:stop:count[:log] (e.g. pe:0.5:100:31:log).")
+@_problem_options(required=False)
+@click.option("--delta-over-r", "delta_over_r", type=float, default=None,
+              help="Half-width over radius > 0: also map whether the theory applies.")
+@click.option("--tol", type=float, default=1e-6, show_default=True,
+              help="Error target of every point.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
+              show_default=True, help="Discretisation method.")
+@click.option("--out", required=True,
+              help="Dataset to write: .nc (NetCDF) or .zarr; the picture goes beside it (.png).")
+@click.option("--workers", type=int, default=None,
+              help="Local worker processes [default: all cores].")
+@click.option("--scheduler", default=None,
+              help="Run on the Dask cluster whose scheduler is at this address "
+                   "(tcp://host:port) instead.")
+@click.option("--cylinder", default=None,
+              help="Operating map in physical units: the cylinder's material (with "
+                   "--half-plane, --friction, --lam and the one of --radius, --load, "
+                   "--speed that is not an axis; axes load, speed, radius in SI units).")
+@click.option("--half-plane", "half_plane", default=None, help="The half-plane's material.")
+@click.option("--materials", "materials_file", default=None,
+              help="TOML file adding or overriding materials.")
+@click.option("--radius", default=None, help="Cylinder radius (m, or 10mm).")
+@click.option("--load", default=None, help="Load per unit length (N/m, or 200kN/m).")
+@click.option("--speed", default=None, help="Sliding speed (m/s, or 72km/h).")
+@click.option("--friction", type=float, default=None, help="Coefficient of friction >= 0.")
+def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma,
+            delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
+            materials_file, radius, load, speed, friction):
+    """The solution over a grid of two parameters, and where it stops being valid.
+
+    Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2;
+    with --cylinder, load, speed and radius in SI units (an operating map).
+    Interrupted, the same command resumes; finished work is kept beside --out.
+    """
+    from .io.files import check_output_dir, check_output_file
+    from .studies.maps import MapSpec, parse_axis
+
+    if cylinder is not None or half_plane is not None:
+        spec = _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius,
+                               load, speed, friction, lam, tol,
+                               dict(pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
+                                    k2_over_k1=k2_over_k1, sigma=sigma,
+                                    delta_over_r=delta_over_r))
+        fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
+        title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
+                 f"lambda = {spec.lam:g}, {fixed} (SI); valid where not shaded")
+    else:
+        for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
+                            ("--friction", friction)):
+            if value is not None:
+                raise InputError(f"{name} belongs to an operating map: give --cylinder and "
+                                 f"--half-plane too")
+        spec = MapSpec(parse_axis("--x", x_spec), parse_axis("--y", y_spec),
+                       {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
+                        "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
+                        "lam": lam, "sigma_over_delta": sigma},
+                       method=method, tol=tol, delta_over_r=delta_over_r)
+        fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
+        title = f"{fixed}; method {method}, tol {tol:g}; valid where not shaded"
+    if out.lower().endswith(".zarr"):
+        out = check_output_dir("--out", out)
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise InputError("--out .zarr needs the zarr package: pip install "
+                             "'thermocontact[zarr]', or write .nc") from None
+    else:
+        out = check_output_file("--out", out, suffixes=(".nc", ".zarr"))
+    _run_map(spec, out, _workers(workers, scheduler), title,
+             "thermocontact " + " ".join(sys.argv[1:]))
+
+
 @cli.command("reproduce")
 @click.option("--out", "out_dir", default="figures", show_default=True,
               help="Folder for the PNG, SVG and CSV files (created if missing).")

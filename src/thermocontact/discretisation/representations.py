@@ -173,6 +173,15 @@ class Representation:
         s = np.asarray(s, dtype=float)
         return np.sqrt(np.clip(1.0 - s * s, 0.0, None)) * self.phi_at(phi, s)
 
+    def pressure_matrix(self, s):
+        """The matrix ``M`` with ``M @ phi = p(s)``, cached for the points ``s``
+        (fixed points where many solutions are evaluated)."""
+        s = np.asarray(s, dtype=float)
+        return self.rows(("pressure", s.tobytes()), lambda: self._pressure_matrix(s))
+
+    def _pressure_matrix(self, s):
+        return np.column_stack([self.pressure_at(e, s) for e in np.eye(self.n)])
+
 
 class _ChebyshevSeries(Representation):
     """``phi`` as a ``U``-series, ``psi`` as a ``T``-series (derivation section 6)."""
@@ -380,8 +389,16 @@ class EdgeGraded(Representation):
 
         Denser toward the edges than Chebyshev points, and no ``tau`` is inverted.
         """
-        tau = np.linspace(np.pi, 0.0, count)
-        return np.cos(graded.stretch(tau)), graded.cosine_value(self.to_cos @ phi, tau)
+        def build():
+            tau = np.linspace(np.pi, 0.0, count)
+            return np.cos(graded.stretch(tau)), graded.cosine_value(self.to_cos, tau).T
+        s, values = self.rows(("phi_samples", count), build)
+        return s, values @ phi
+
+    def _pressure_matrix(self, s):
+        # phi(s) = sum_j (to_cos @ phi)_j cos(j tau(s)): one inversion of tau for all j.
+        weight = np.sqrt(np.clip(1.0 - s * s, 0.0, None))
+        return weight[:, None] * graded.cosine_value(self.to_cos, graded.tau_of(s)).T
 
     def psi_at(self, psi, s):
         return graded.cosine_value(self.to_cos @ psi, graded.tau_of(s))

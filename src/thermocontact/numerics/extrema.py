@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["POLISH_POINTS", "polish_minimum"]
+__all__ = ["LOCAL_POINTS", "POLISH_POINTS", "interpolated_minimum", "polish_minimum"]
 
 
 #: Chebyshev points on which a margin is interpolated between the neighbours of its
@@ -12,6 +12,8 @@ __all__ = ["POLISH_POINTS", "polish_minimum"]
 #: two sample spacings to about 1e-13 (checked against Brent's method on the closed
 #: forms in tests/test_validity.py).
 POLISH_POINTS = 17
+#: Samples on which :func:`interpolated_minimum` fits its local polynomial.
+LOCAL_POINTS = 7
 
 
 def polish_minimum(f, x, values, i):
@@ -52,4 +54,65 @@ def polish_minimum(f, x, values, i):
     value = float(f(np.array([at]))[0])
     if np.isfinite(value) and value < best[1]:
         best = (float(at), value)
+    return best
+
+
+def interpolated_minimum(x, values, i, points=LOCAL_POINTS):
+    """The least value of the polynomial through the ``points`` samples nearest ``i``.
+
+    No new evaluation of the function: the interpolant of degree ``points - 1``
+    on the samples around the least one is minimised between the neighbours of
+    ``values[i]`` (on a grid, then by Newton's method on its derivative).  On the
+    validity margins' samples it agrees with :func:`polish_minimum` to about 1e-7
+    (measured in tests/test_validity.py), at no cost beyond the samples.
+
+    Parameters
+    ----------
+    x, values : ndarray
+        Increasing samples and the function there.
+    i : int
+        Index of the least sample.
+    points : int
+        Samples of the stencil (at most ``len(x)``).
+
+    Returns
+    -------
+    x_min, f_min : float
+    """
+    best = (float(x[i]), float(values[i]))
+    m = min(points, len(x))
+    if m < 3:
+        return best
+    lo = min(max(i - m // 2, 0), len(x) - m)
+    xs, fs = x[lo:lo + m], values[lo:lo + m]
+    a, b = x[max(i - 1, 0)], x[min(i + 1, len(x) - 1)]
+    if not (b > a and np.all(np.isfinite(fs))):
+        return best
+    # The interpolant in a local variable u (x = x[i] + u h), by its Vandermonde
+    # system: microseconds, against a millisecond for numpy.polynomial's fit.
+    h = 0.5 * (b - a)
+    try:
+        c = np.linalg.solve(np.vander((xs - x[i]) / h, m), fs)
+    except np.linalg.LinAlgError:
+        return best
+    ua, ub = (a - x[i]) / h, (b - x[i]) / h
+    grid = np.linspace(ua, ub, 33)
+    vals = np.polyval(c, grid)
+    u = grid[int(np.argmin(vals))]
+    d1, d2 = np.polyder(c), np.polyder(c, 2)
+    # From a grid point, 1/16 of the interval off at most, Newton's error squares:
+    # 4 steps reach rounding.
+    for _ in range(4):
+        curv = np.polyval(d2, u)
+        if not curv > 0.0:
+            break
+        step = np.polyval(d1, u) / curv
+        u = min(max(u - step, ua), ub)
+        if abs(step) <= 1e-13:
+            break
+    value = float(np.polyval(c, u))
+    if not value <= vals.min():
+        u, value = grid[int(np.argmin(vals))], float(vals.min())
+    if np.isfinite(value) and value < best[1]:
+        best = (float(x[i] + h * u), value)
     return best

@@ -71,7 +71,7 @@ def _factor(A):
 
 
 def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
-                 sigma_over_delta=None, check_validity=True) -> ContactSolution:
+                 sigma_over_delta=None, check_validity=True, polish=True) -> ContactSolution:
     """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
 
     Parameters
@@ -86,6 +86,9 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     check_validity : bool, optional
         Evaluate the contact inequalities (default); without, ``validity`` is
         None (for scans that need only ``P_H/P``).
+    polish : bool, optional
+        Polish every margin's minimum on the closed forms (default), or only those
+        near zero (:func:`~thermocontact.analysis.validity.assess`; maps).
 
     Returns
     -------
@@ -161,7 +164,8 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
 
-    validity = assess(par, rep, phi, psi, L, sigma, lam) if check_validity else None
+    validity = (assess(par, rep, phi, psi, L, sigma, lam, polish=polish) if check_validity
+                else None)
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
@@ -258,10 +262,11 @@ class Model:
         return Parameters(p.pe, fhpe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2)
 
     def solve_at(self, n: int, fhpe, *, lam=None, sigma_over_delta=None,
-                 check_validity=True) -> ContactSolution:
+                 check_validity=True, polish=True) -> ContactSolution:
         """One solve at ``n`` without error estimate."""
         return solve_system(self.parameters_at(fhpe), self.blocks(n), self.method, lam=lam,
-                            sigma_over_delta=sigma_over_delta, check_validity=check_validity)
+                            sigma_over_delta=sigma_over_delta, check_validity=check_validity,
+                            polish=polish)
 
     def sizes(self):
         """The first levels of the refinement and the largest ``n``."""
@@ -272,7 +277,7 @@ class Model:
         return coarse + [self.n], self.n
 
     def solve(self, fhpe, *, lam=None, sigma_over_delta=None, check_convergence=False,
-              progress=None, _stacklevel=2) -> ContactSolution:
+              progress=None, polish=True, _stacklevel=2) -> ContactSolution:
         """Solve at ``fhpe`` with the heat partition or the offset given.
 
         Parameters
@@ -287,6 +292,9 @@ class Model:
         progress : callable, optional
             ``progress(n, estimate)`` before each level
             (:func:`~thermocontact.solvers.refinement.refine`).
+        polish : bool, optional
+            Polish every margin's minimum on the closed forms (default), or only
+            those near zero (:func:`~thermocontact.analysis.validity.assess`).
 
         Returns
         -------
@@ -307,7 +315,7 @@ class Model:
 
         def validity_of(sol):
             return assess(par, sol.representation, sol.phi, sol.psi, sol.load_ratio,
-                          sol.sigma_over_delta, sol.lam)
+                          sol.sigma_over_delta, sol.lam, polish=polish)
 
         sizes, n_max = self.sizes()
         method = METHODS[self.method]

@@ -1,0 +1,84 @@
+"""Solves per second of a map in this process, on a process pool and on a Dask cluster.
+
+Run: ``python bench/bench_map.py [COUNT]`` (default 100: a COUNT x COUNT map over
+fHPe 0-0.8 and Pe 0.5-100, K2/K1 = 10, lambda = 1, tolerance 1e-6).  A benchmark,
+not a test: it prints a table and asserts nothing.  Each row times one whole map
+from a cold start of its workers (imports and assemblies included); the
+LocalCluster's start is timed separately.  The last column compares the cost of a
+grid point with that of one plain ``solve`` (fresh assembly, closed-form polish)
+at a point of the grid.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import numpy as np
+
+
+def one_solve_time(repeats=5):
+    from thermocontact import clear_caches, solve
+
+    best = float("inf")
+    for _ in range(repeats):
+        clear_caches()
+        t0 = time.perf_counter()
+        solve(5.0, 0.4, 10.0, lam=1.0, tol=1e-6)
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def main(count=100):
+    from thermocontact.execution.executors import cpu_count
+    from thermocontact.studies.maps import MapSpec, compute_map, parse_axis
+
+    spec = MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
+                   parse_axis("--y", f"pe:0.5:100:{count}:log"),
+                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    points = count * count
+    solve_s = one_solve_time()
+    print(f"{count} x {count} map ({points} points) on {cpu_count()} cores; one plain solve "
+          f"{1e3 * solve_s:.1f} ms")
+    print(f"{'executor':28s} {'wall s':>8s} {'points/s':>9s} {'efficiency':>10s} "
+          f"{'point/solve':>11s}")
+    rows, ref = [], None
+
+    def record(name, workers, t, ds):
+        nonlocal ref
+        rate = points / t
+        base = rows[0][2] if rows else rate
+        eff = rate / (base * workers)
+        rows.append((name, t, rate))
+        per_point = t * workers / points
+        print(f"{name:28s} {t:8.1f} {rate:9.1f} {eff:10.2f} {per_point / solve_s:11.3f}")
+        if ref is None:
+            ref = ds
+        else:
+            same = np.array_equal(ds.load_ratio.values, ref.load_ratio.values, equal_nan=True)
+            print(f"{'':28s} same numbers as in one process: {same}")
+
+    t0 = time.perf_counter()
+    ds = compute_map(spec, workers=1)
+    record("this process (1 core)", 1, time.perf_counter() - t0, ds)
+    t0 = time.perf_counter()
+    ds = compute_map(spec, workers=2)
+    record("process pool, 2 workers", 2, time.perf_counter() - t0, ds)
+    try:
+        import distributed
+    except ImportError:
+        print("dask.distributed not installed: no cluster row")
+        return
+    t0 = time.perf_counter()
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        start = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        ds = compute_map(spec, workers=client)
+        record("Dask LocalCluster, 2 workers", 2, time.perf_counter() - t0, ds)
+    print(f"(the cluster took {start:.1f} s to start, not counted)")
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 100)

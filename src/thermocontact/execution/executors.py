@@ -1,0 +1,211 @@
+"""One way to run independent tasks, wherever they run.
+
+:func:`run` takes a picklable function and a list of picklable tasks and yields
+``(index, result)`` as each task finishes.  Where the tasks run is the
+``workers`` argument, as scipy's ``workers=``:
+
+* ``1``: in this process;
+* an int ``N > 1`` or ``None`` (all cores): a local process pool, one BLAS thread
+  per worker (the tasks are many small solves: processes, not threads, scale);
+* a ``concurrent.futures.Executor``, or a ``dask.distributed`` ``Client``;
+* a map-like callable, ``workers(func, tasks)`` returning the results in order.
+
+At most a few tasks per worker are in flight, so an interrupt stops the run
+promptly, and the caller can store each result as it arrives: whatever finished
+before a failure (an interrupt, a killed worker, a lost scheduler) is kept.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import multiprocessing
+import os
+import re
+
+from ..problem.validation import InputError, check_integer
+
+__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run"]
+
+#: Tasks in flight per worker.
+IN_FLIGHT = 2
+#: Most local worker processes.
+MAX_WORKERS = 1024
+
+
+class ExecutionError(RuntimeError):
+    """The executor failed (a worker died, the scheduler was lost): the finished
+    tasks are kept, the rest can be run again."""
+
+
+def cpu_count() -> int:
+    """Cores this process may use."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def _start_method() -> str:
+    """``fork`` where it is safe (POSIX, no other thread in this process): the workers
+    start at once, with the modules already imported, whatever ``__main__`` is (a
+    notebook, standard input).  Otherwise ``forkserver`` or ``spawn``."""
+    import threading
+
+    methods = multiprocessing.get_all_start_methods()
+    if "fork" in methods and threading.active_count() == 1:
+        return "fork"
+    return "forkserver" if "forkserver" in methods else "spawn"
+
+
+def _single_thread():
+    """Worker initialiser: one BLAS thread (the workers are the parallelism)."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(1)
+
+
+_ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(:\d{1,5})?/?$|^[^\s/:]+:\d{1,5}$")
+
+
+def check_scheduler(address) -> str:
+    """``address`` if it looks like a Dask scheduler address (``tcp://host:port``)."""
+    if not isinstance(address, str) or not _ADDRESS.match(address.strip()):
+        raise InputError(f"scheduler must be an address such as tcp://127.0.0.1:8786, "
+                         f"got {address!r}")
+    address = address.strip()
+    port = address.rsplit(":", 1)[-1].rstrip("/")
+    if port.isdigit() and not 0 < int(port) < 65536:
+        raise InputError(f"scheduler port must be 1 to 65535, got {address!r}")
+    return address
+
+
+def connect(address, timeout=10.0):
+    """A ``dask.distributed`` client of the scheduler at ``address``.
+
+    Raises
+    ------
+    InputError
+        dask.distributed is not installed, the address is malformed, or no scheduler
+        answers there within ``timeout`` seconds.
+    """
+    address = check_scheduler(address)
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError("scheduler needs dask.distributed: pip install "
+                         "'thermocontact[dask]'") from None
+    try:
+        return Client(address, timeout=timeout, set_as_default=False)
+    except (OSError, TimeoutError) as exc:
+        raise InputError(f"scheduler {address} did not answer within {timeout:g} s "
+                         f"({type(exc).__name__})") from None
+
+
+def _is_dask_client(obj) -> bool:
+    return type(obj).__name__ == "Client" and hasattr(obj, "submit") and hasattr(obj, "gather")
+
+
+def run(func, tasks, *, workers=1, progress=None):
+    """Run ``func`` on every task; yield ``(index, result)`` as each finishes.
+
+    Parameters
+    ----------
+    func : callable
+        Picklable (module level) unless ``workers == 1``.
+    tasks : sequence
+    workers : int, None, Executor, dask Client or callable
+        Where to run (module docstring).
+    progress : callable, optional
+        ``progress(done, total)`` before the first task and after each.
+
+    Raises
+    ------
+    ExecutionError
+        The executor broke; the results yielded so far are complete.
+    """
+    tasks = list(tasks)
+    total = len(tasks)
+    if progress is not None:
+        progress(0, total)
+    for done, (i, result) in enumerate(_run(func, tasks, workers), start=1):
+        if progress is not None:
+            progress(done, total)
+        yield i, result
+
+
+def _run(func, tasks, workers):
+    if isinstance(workers, (int, type(None))) and not isinstance(workers, bool):
+        n = cpu_count() if workers is None else check_integer("workers", workers, 1, MAX_WORKERS)
+        n = min(n, max(len(tasks), 1))
+        if n == 1:
+            from threadpoolctl import threadpool_limits
+
+            # One BLAS thread here too: the same arithmetic as in a worker.
+            with threadpool_limits(1):
+                for i, task in enumerate(tasks):
+                    yield i, func(task)
+            return
+        ctx = multiprocessing.get_context(_start_method())
+        with cf.ProcessPoolExecutor(n, mp_context=ctx, initializer=_single_thread) as pool:
+            try:
+                yield from _as_completed(pool.submit, cf.wait, cf.FIRST_COMPLETED, func,
+                                         tasks, n)
+            except BaseException:
+                pool.shutdown(wait=False, cancel_futures=True)
+                raise
+        return
+    if isinstance(workers, cf.Executor):
+        n = getattr(workers, "_max_workers", None) or cpu_count()
+        yield from _as_completed(workers.submit, cf.wait, cf.FIRST_COMPLETED, func, tasks, n)
+        return
+    if _is_dask_client(workers):
+        from distributed import wait
+
+        def submit(f, t):
+            return workers.submit(f, t, pure=False)
+
+        n = max(1, sum(workers.nthreads().values()))
+        with workers.as_current():  # wait() looks for the current client
+            yield from _as_completed(submit, wait, "FIRST_COMPLETED", func, tasks, n)
+        return
+    if callable(workers):
+        yield from enumerate(workers(func, tasks))
+        return
+    raise InputError(f"workers must be a number of processes, an executor or a map-like "
+                     f"callable, got {workers!r}")
+
+
+def _as_completed(submit, wait, first_completed, func, tasks, n):
+    """Keep ``IN_FLIGHT * n`` tasks submitted; yield each as it finishes."""
+    pending = {}
+    queue = iter(enumerate(tasks))
+
+    def top_up():
+        for i, task in queue:
+            pending[submit(func, task)] = i
+            if len(pending) >= IN_FLIGHT * n:
+                break
+
+    top_up()
+    try:
+        while pending:
+            finished, _ = wait(list(pending), return_when=first_completed)
+            for fut in finished:
+                i = pending.pop(fut)
+                try:
+                    result = fut.result()
+                except (InputError, KeyboardInterrupt):
+                    raise
+                except Exception as exc:
+                    if type(exc).__name__ in ("BrokenProcessPool", "CancelledError",
+                                              "CommClosedError", "KilledWorker", "TimeoutError",
+                                              "OSError", "FutureCancelledError"):
+                        raise ExecutionError(f"the executor failed ({type(exc).__name__}: "
+                                             f"{exc}); finished work is kept, run again to "
+                                             f"resume") from None
+                    raise
+                yield i, result
+            top_up()
+    finally:
+        for fut in pending:
+            fut.cancel()

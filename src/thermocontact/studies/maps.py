@@ -1,0 +1,501 @@
+"""Maps of the single-patch solution over a grid of two parameters.
+
+A map evaluates :meth:`Model.solve <thermocontact.solvers.single_patch.Model.solve>`
+at every point of a grid ``x × y`` of two dimensionless parameters, the others
+fixed, and locates where validity changes along the grid's lines.  The work is
+cut into chunks, one grid line each, along the axis that keeps the assembly
+(``fhpe``, ``lam`` or ``sigma_over_delta``; derivation section 5) when there is
+one: a chunk costs one assembly per resolution and a linear solve per point.
+Chunks run wherever :func:`thermocontact.execution.executors.run` sends them and
+are kept on disk as they finish (:class:`~thermocontact.io.chunks.ChunkStore`), so
+an interrupted map resumes where it stopped and ends identical to an
+uninterrupted one.
+
+The existence boundary is located on every grid line by Brent's method on the
+margin that changes sign (:func:`~.boundaries.locate_events`), to ``rtol``
+relative along the line: its position along that axis does not depend on the
+grid's spacing.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._version import __version__
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..execution.executors import run
+from ..io.chunks import ChunkStore
+from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
+from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
+from ..solvers.single_patch import Model
+from .boundaries import ALONG, locate_events
+
+__all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "read_map",
+           "run_chunks", "write_map"]
+
+#: Parameter names a dimensionless map accepts (command-line spellings included).
+NAMES = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
+         "sigma_over_delta": "sigma_over_delta", "K2-over-K1": "K2_over_K1",
+         "K2_over_K1": "K2_over_K1", "k2-over-k1": "k2_over_k1", "k2_over_k1": "k2_over_k1",
+         "delta1-over-delta2": "delta1_over_delta2", "delta1_over_delta2": "delta1_over_delta2"}
+#: Axes along which the assembly is kept: a grid line along one is one chunk.
+CHEAP = ("fhpe", "lam", "sigma_over_delta")
+#: Most points on one axis, and in a map.
+MAX_AXIS_POINTS = 4096
+MAX_POINTS = 1_000_000
+#: Default error target of a map's solutions.
+MAP_TOL = 1e-6
+#: Relative tolerance of the boundary along a grid line.
+BOUNDARY_RTOL = 1e-9
+#: Fields of each point, in the dataset's order.
+FIELDS = ("load_ratio", "sigma_over_delta", "lam", "valid", "applicable", "pressure_margin",
+          "gap_margin", "edge_margin", "error_estimate", "n", "status", "reason")
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One axis of a grid: ``count`` values from ``start`` to ``stop``."""
+
+    name: str
+    start: float
+    stop: float
+    count: int
+    log: bool = False
+
+    @property
+    def values(self) -> np.ndarray:
+        if self.log:
+            return np.geomspace(self.start, self.stop, self.count)
+        return np.linspace(self.start, self.stop, self.count)
+
+    @property
+    def spec(self) -> str:
+        """The axis as written on the command line."""
+        return (f"{self.name}:{self.start!r}:{self.stop!r}:{self.count}"
+                + (":log" if self.log else ""))
+
+
+def parse_axis(option: str, spec, names=NAMES) -> Axis:
+    """An :class:`Axis` from ``name:start:stop:count[:log]``.
+
+    Raises
+    ------
+    InputError
+        Naming ``option``: an unknown parameter, values that are not numbers, a
+        reversed or empty range, fewer than 2 or more than :data:`MAX_AXIS_POINTS`
+        points, a log axis that does not stay positive, or a bad fifth field.
+    """
+    form = "name:start:stop:count[:log]"
+    if not isinstance(spec, str):
+        raise InputError(f"{option} must be {form}, got {spec!r}")
+    parts = spec.split(":")
+    if len(parts) not in (4, 5):
+        raise InputError(f"{option} must be {form}, got {spec!r}")
+    name = parts[0].strip()
+    if name not in names:
+        allowed = sorted({k for k in names if "_" not in k} or names)
+        raise InputError(f"{option} parameter must be one of {', '.join(allowed)}, got {name!r}")
+    try:
+        start, stop = float(parts[1]), float(parts[2])
+    except ValueError:
+        raise InputError(f"{option} start and stop must be numbers, got {spec!r}") from None
+    start, stop = check_finite(f"{option} start", start), check_finite(f"{option} stop", stop)
+    if not stop > start:
+        raise InputError(f"{option} stop must be greater than start, got {spec!r}")
+    try:
+        count = int(parts[3])
+    except ValueError:
+        raise InputError(f"{option} count must be an integer, got {parts[3]!r}") from None
+    if not 2 <= count <= MAX_AXIS_POINTS:
+        raise InputError(f"{option} count must be 2 to {MAX_AXIS_POINTS}, got {count}")
+    log = False
+    if len(parts) == 5:
+        if parts[4].strip() != "log":
+            raise InputError(f"{option} fifth field must be 'log', got {parts[4]!r}")
+        if not start > 0.0:
+            raise InputError(f"{option} log axis must stay positive (start > 0), got {spec!r}")
+        log = True
+    return Axis(names[name], start, stop, count, log)
+
+
+def _closure(kw: dict) -> dict:
+    return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
+
+
+def _inputs(fixed: dict, name: str, value: float) -> dict:
+    kw = {**fixed, name: float(value)}
+    return kw
+
+
+def _model(kw: dict, method: str, tol: float) -> Model:
+    return Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
+                 delta1_over_delta2=kw.get("delta1_over_delta2", 1.0), method=method, tol=tol)
+
+
+@dataclass(frozen=True)
+class MapSpec:
+    """A dimensionless map: two axes, the fixed inputs, the method and the target.
+
+    Parameters
+    ----------
+    x, y : Axis
+    fixed : dict
+        The other inputs of :func:`~thermocontact.solvers.single_patch.solve`
+        (``pe``, ``fhpe``, ``K2_over_K1``, optionally ``k2_over_k1`` and
+        ``delta1_over_delta2``, and ``lam`` or ``sigma_over_delta`` unless an axis
+        is one of them).
+    method : str
+    tol : float
+        Error target of every point.
+    delta_over_r : float, optional
+        Half-width over radius, for the theory's applicability (not assessed without).
+    """
+
+    x: Axis
+    y: Axis
+    fixed: dict
+    method: str = DEFAULT_METHOD
+    tol: float = MAP_TOL
+    delta_over_r: float | None = None
+    chunk_points: int = field(default=256, repr=False)
+
+    def __post_init__(self):
+        if self.x.name == self.y.name:
+            raise InputError(f"--y must name a parameter other than --x's, got "
+                             f"{self.y.name!r} twice")
+        if self.x.count * self.y.count > MAX_POINTS:
+            raise InputError(f"the grid must have at most {MAX_POINTS} points, got "
+                             f"{self.x.count} x {self.y.count}")
+        check_choice("method", self.method, METHODS)
+        check_positive("tol", self.tol)
+        if self.delta_over_r is not None:
+            check_positive("delta_over_r", self.delta_over_r)
+        axes = {self.x.name, self.y.name}
+        fixed = {k: v for k, v in self.fixed.items() if v is not None and k not in axes}
+        fixed = {k: check_finite(k, v) for k, v in fixed.items()}
+        for k in ("pe", "fhpe", "K2_over_K1"):
+            if k not in axes and k not in fixed:
+                raise InputError(f"--{k.replace('_', '-')} must be given (it is not an axis)")
+        closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k in axes]
+        if len(closures) != 1:
+            raise InputError("give exactly one of --lam and --sigma, or make one of them an axis")
+        object.__setattr__(self, "fixed", fixed)
+        # Every parameter's range is an interval: the grid's corners check them all.
+        for xv in (self.x.start, self.x.stop):
+            for yv in (self.y.start, self.y.stop):
+                kw = {**fixed, self.x.name: xv, self.y.name: yv}
+                Parameters(kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
+                           kw.get("delta1_over_delta2", 1.0))
+
+    @property
+    def inner(self) -> str:
+        """``"x"`` or ``"y"``: the axis each chunk runs along."""
+        return "y" if self.y.name in CHEAP and self.x.name not in CHEAP else "x"
+
+    def tasks(self) -> list[dict]:
+        """The chunks: grid lines along :attr:`inner`, each cut into pieces of at most
+        ``chunk_points`` points."""
+        inner, outer = (self.x, self.y) if self.inner == "x" else (self.y, self.x)
+        values = inner.values
+        pieces = max(1, math.ceil(values.size / self.chunk_points))
+        cuts = np.array_split(np.arange(values.size), pieces)
+        out = []
+        for j, v in enumerate(outer.values):
+            for cut in cuts:
+                out.append({"fixed": {**self.fixed, outer.name: float(v)}, "name": inner.name,
+                            "values": [float(u) for u in values[cut]], "outer": j,
+                            "start": int(cut[0]), "method": self.method, "tol": self.tol,
+                            "delta_over_r": self.delta_over_r})
+        return out
+
+    def manifest(self) -> dict:
+        """What identifies the map: equal manifests, equal maps."""
+        return {"kind": "thermocontact map", "version": __version__, "x": self.x.spec,
+                "y": self.y.spec, "fixed": self.fixed, "method": self.method, "tol": self.tol,
+                "delta_over_r": self.delta_over_r, "chunk_points": self.chunk_points}
+
+
+def _record(sol, delta_over_r) -> dict:
+    v = sol.validity
+    applicable = -1
+    if delta_over_r is not None:
+        from ..analysis.applicability import applicability
+
+        applicable = int(applicability(sol, delta_over_r).applicable)
+    reason = v.reason
+    if not v.certain():
+        reason += (f" (a margin is within its change since n/2, {v.margin_change:.1e}: its "
+                   f"sign is not certain)")
+    return {"load_ratio": sol.load_ratio, "sigma_over_delta": sol.sigma_over_delta,
+            "lam": sol.lam, "valid": int(v.valid), "applicable": applicable,
+            "pressure_margin": v.pressure_margin, "gap_margin": v.gap_margin,
+            "edge_margin": min(v.edge_margins),
+            "error_estimate": (float("nan") if sol.error_estimate is None
+                               else sol.error_estimate),
+            "n": sol.n, "status": sol.status, "reason": reason}
+
+
+def _failed(exc) -> dict:
+    nan = float("nan")
+    return {"load_ratio": nan, "sigma_over_delta": nan, "lam": nan, "valid": 0,
+            "applicable": -1, "pressure_margin": nan, "gap_margin": nan, "edge_margin": nan,
+            "error_estimate": nan, "n": 0, "status": "failed", "reason": str(exc)}
+
+
+def evaluate_chunk(task: dict) -> dict:
+    """Solve the points of one chunk and locate the changes of validity between them.
+
+    Returns
+    -------
+    dict
+        ``{field: list}`` for every field of :data:`FIELDS`, and ``events``: the
+        changes of validity along the chunk, each ``{"at", "inequality", "edge",
+        "valid_before", "valid_after", "position"}``.
+    """
+    fixed, name, values = task["fixed"], task["name"], task["values"]
+    method, tol = task["method"], task["tol"]
+    shared = _model(fixed, method, tol) if name in CHEAP else None
+    out = {k: [] for k in FIELDS}
+    sols = []
+    for value in values:
+        kw = _inputs(fixed, name, value)
+        try:
+            with warnings.catch_warnings():
+                # The status records it.
+                warnings.simplefilter("ignore", ConvergenceWarning)
+                model = shared if shared is not None else _model(kw, method, tol)
+                sol = model.solve(kw["fhpe"], polish=False, **_closure(kw))
+            rec = _record(sol, task["delta_over_r"])
+        except (SolveError, InputError) as exc:
+            sol, rec = None, _failed(exc)
+        sols.append(sol)
+        for k in FIELDS:
+            out[k].append(rec[k])
+    out["events"] = _events(fixed, name, values, sols, method, tol)
+    return out
+
+
+def _events(fixed, name, values, sols, method, tol):
+    """Changes of validity between neighbouring solved points, located by Brent's method."""
+    events = []
+    for a, b, sa, sb in zip(values[:-1], values[1:], sols[:-1], sols[1:]):
+        if sa is None or sb is None or sa.valid == sb.valid:
+            continue
+        n = max(sa.n, sb.n)
+
+        def at(x, n=n):
+            kw = _inputs(fixed, name, x)
+            try:
+                return _model(kw, method, tol).solve_at(n, kw["fhpe"], polish=False,
+                                                        **_closure(kw))
+            except InputError:
+                return None
+        ends = [at(a), at(b)]
+        if ends[0] is None or ends[1] is None:
+            continue
+        found = locate_events(at, [a, b], ends, only_validity_changes=True,
+                              xtol=lambda p, q: BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300))
+        events += [e.to_dict() for e in found]
+    return events
+
+
+def _dataset(spec: MapSpec, chunks: dict, command: str | None):
+    """The map as an :class:`xarray.Dataset` from its chunks (by task index)."""
+    import xarray as xr
+
+    xs, ys = spec.x.values, spec.y.values
+    shape = (ys.size, xs.size)
+    data = {k: np.empty(shape, dtype=object) for k in FIELDS}
+    boundary = []
+    for i, task in enumerate(spec.tasks()):
+        chunk = chunks[i]
+        j, k0 = task["outer"], task["start"]
+        idx = np.arange(k0, k0 + len(task["values"]))
+        for k in FIELDS:
+            col = np.empty(len(chunk[k]), dtype=object)
+            col[:] = chunk[k]
+            if spec.inner == "x":
+                data[k][j, idx] = col
+            else:
+                data[k][idx, j] = col
+        outer_value = task["fixed"][(spec.y if spec.inner == "x" else spec.x).name]
+        for e in chunk["events"]:
+            xy = (e["at"], outer_value) if spec.inner == "x" else (outer_value, e["at"])
+            boundary.append((*xy, e["inequality"], e["edge"] or "", int(e["valid_before"]),
+                             int(e["valid_after"])))
+    dtypes = {"valid": np.int8, "applicable": np.int8, "n": np.int32, "status": str,
+              "reason": str}
+    dims = (spec.y.name, spec.x.name)
+    variables = {k: (dims, data[k].astype(dtypes.get(k, float))) for k in FIELDS}
+    variables["boundary_x"] = ("event", np.array([b[0] for b in boundary], dtype=float))
+    variables["boundary_y"] = ("event", np.array([b[1] for b in boundary], dtype=float))
+    variables["boundary_inequality"] = ("event", np.array([b[2] for b in boundary], dtype=str))
+    variables["boundary_edge"] = ("event", np.array([b[3] for b in boundary], dtype=str))
+    variables["boundary_valid_before"] = ("event", np.array([b[4] for b in boundary],
+                                                             dtype=np.int8))
+    variables["boundary_valid_after"] = ("event", np.array([b[5] for b in boundary],
+                                                            dtype=np.int8))
+    ds = xr.Dataset(variables, coords={spec.y.name: ys, spec.x.name: xs})
+    ds = _describe(ds, spec, command)
+    return ds
+
+
+_DESCRIPTIONS = {
+    "load_ratio": "P_H/P: Hertz load of the contact's half-width over the load",
+    "sigma_over_delta": "contact offset sigma/Delta",
+    "lam": "heat partition (Q1 - Q2)/(Q1 + Q2)",
+    "valid": "1 where every contact inequality holds",
+    "applicable": "1 where the theory applies, 0 where not, -1 not assessed (no delta_over_r)",
+    "pressure_margin": "least p/sqrt(1 - s^2) over the contact (< 0: tensile)",
+    "gap_margin": "least g/(|s| - 1)^1.5 outside the contact (< 0: interpenetration)",
+    "edge_margin": "least edge-layer margin (derivation section 8; < 0: tensile layer "
+                   "wider than 1e-6 half-widths)",
+    "error_estimate": "estimated error of P_H/P and sigma/Delta",
+    "n": "unknowns per function",
+    "status": "converged, not converged, or failed",
+    "reason": "the validity verdict, or why the point failed",
+    "boundary_x": "x of the changes of validity, located to 1e-9 relative along the chunk axis",
+    "boundary_y": "y of the changes of validity",
+    "boundary_inequality": "the inequality whose margin changes sign",
+    "boundary_edge": "where it fails: leading, trailing, or empty (the load)",
+    "boundary_valid_before": "validity before the change, along the chunk axis",
+    "boundary_valid_after": "validity after the change",
+}
+
+
+def _describe(ds, spec: MapSpec, command):
+    for k, text in _DESCRIPTIONS.items():
+        if k in ds:
+            ds[k].attrs["long_name"] = text
+    ds["boundary_x"].attrs["parameter"] = spec.x.name
+    ds["boundary_y"].attrs["parameter"] = spec.y.name
+    ds["applicable"].attrs.update(flag_values=np.array([-1, 0, 1], dtype=np.int8),
+                                  flag_meanings="not_assessed not_applicable applicable")
+    ds.attrs.update({
+        "title": "thermocontact map of the single-patch solution",
+        "thermocontact_version": __version__,
+        "method": spec.method,
+        "tol": spec.tol,
+        "x": spec.x.spec,
+        "y": spec.y.spec,
+        "chunk_axis": spec.inner,
+        "boundary_rtol": BOUNDARY_RTOL,
+        "command": command or "",
+        "manifest": json.dumps(spec.manifest(), sort_keys=True),
+    })
+    for k, v in spec.fixed.items():
+        ds.attrs[k] = v
+    if spec.delta_over_r is not None:
+        ds.attrs["delta_over_r"] = spec.delta_over_r
+    return ds
+
+
+def parts_folder(path) -> str:
+    """Where the finished chunks of the map at ``path`` are kept until it is written."""
+    return os.fspath(path).rstrip("/\\") + ".parts"
+
+
+def compute_map(spec: MapSpec, *, workers=1, store_path=None, progress=None, command=None):
+    """Evaluate a map, keeping finished chunks in ``store_path`` (resumed if present).
+
+    Parameters
+    ----------
+    spec : MapSpec
+    workers : int, None, executor, dask Client or callable
+        Where the chunks run (:func:`thermocontact.execution.executors.run`).
+    store_path : str, optional
+        Folder of the finished chunks; without one nothing is kept on disk.
+    progress : callable, optional
+        ``progress(done, total)`` in chunks.
+    command : str, optional
+        Recorded in the dataset's attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    chunks = run_chunks(evaluate_chunk, spec.tasks(), spec.manifest(), store_path,
+                        workers=workers, progress=progress)
+    return _dataset(spec, chunks, command)
+
+
+def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=None) -> dict:
+    """``{index: func(task)}`` for every task, each kept in ``store_path`` as it finishes
+    and read from there when present (a resumed run computes only what is missing).
+
+    Every result goes through its stored (JSON) form, so a resumed run's results equal
+    an uninterrupted run's exactly.
+    """
+    store = None if store_path is None else ChunkStore(store_path, manifest, "the map")
+    chunks = {} if store is None else {i: store.get(i) for i in store.done()}
+    todo = [i for i in range(len(tasks)) if i not in chunks]
+
+    def report(done, total):
+        if progress is not None:
+            progress(len(tasks) - total + done, len(tasks))
+
+    for k, result in run(func, [tasks[i] for i in todo], workers=workers, progress=report):
+        i = todo[k]
+        if store is not None:
+            store.put(i, result)
+            chunks[i] = store.get(i)
+        else:
+            chunks[i] = json.loads(json.dumps(result))
+    return chunks
+
+
+def _engine():
+    for name in ("netCDF4", "h5netcdf"):
+        try:
+            __import__(name)
+            return name.lower()
+        except ImportError:
+            continue
+    return "scipy"
+
+
+def write_map(ds, path):
+    """Write the dataset atomically: NetCDF for ``.nc``, Zarr for ``.zarr``."""
+    import shutil
+    import tempfile
+
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if path.lower().endswith(".zarr"):
+        tmp = tempfile.mkdtemp(prefix=".tmp-", suffix=".zarr", dir=folder)
+        try:
+            ds.to_zarr(tmp, mode="w")
+            if os.path.isdir(path):
+                shutil.rmtree(path)
+            os.replace(tmp, path)
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)
+            raise
+        return path
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".nc", dir=folder)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine=_engine())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def read_map(path):
+    """The dataset written by :func:`write_map`, loaded into memory."""
+    import xarray as xr
+
+    path = os.fspath(path)
+    if path.lower().endswith(".zarr"):
+        return xr.open_zarr(path).load()
+    with xr.open_dataset(path, engine=_engine()) as ds:
+        return ds.load()

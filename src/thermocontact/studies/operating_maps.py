@@ -1,0 +1,384 @@
+"""Operating maps in physical units: where, in load, speed and radius, a single patch exists.
+
+For one pair of materials, one friction coefficient and one heat partition, the
+dimensionless inputs at a trial half-width ``Delta`` are ``Pe = v Delta/(2 k2)``,
+``fHPe = f H Pe`` and the fixed ratios (:class:`~.physical_contact.PhysicalProblem`):
+every solution lies on one *ray* ``Pe -> (Pe, f H Pe)``.  The half-widths that carry
+a load ``P`` are the roots of ``P_H(Delta) = P (P_H/P)(Pe)``; with
+``P_H(Delta) = pi Delta^2/(2 A R)`` and the Hertz half-width
+``Delta_H^2 = 2 A R P/pi`` this is ``(Delta/Delta_H)^2 = L(Pe)``, i.e.
+
+    Pe^2 = Pe_H^2 L(Pe),    Pe_H = v Delta_H / (2 k2).
+
+So load, radius and speed enter only through ``Pe_H`` (derivation section 5a):
+one continuation along the ray answers every point of a load-speed(-radius) plane.
+The ray is sampled geometrically (:data:`RAY_PER_DECADE`), the samples run as chunks
+on any executor, validity changes along it are located by Brent's method on the
+margins; each grid point's roots are found on a local interpolant of the samples in
+``ln Pe`` (degree 5) and its fields read off the same interpolant.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._version import __version__
+from ..problem.materials import Material
+from ..problem.parameters import ConvergenceWarning, SolveError
+from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
+from ..solvers.single_patch import Model
+from .boundaries import locate_events
+from .maps import Axis, parse_axis, run_chunks
+from .physical_contact import MAX_WIDTH, PhysicalProblem
+
+__all__ = ["OperatingSpec", "RAY_PER_DECADE", "compute_operating_map", "ray_samples"]
+
+#: Physical axes of an operating map, and their SI units.
+AXES = {"load": "N/m", "speed": "m/s", "radius": "m"}
+#: Samples of the ray per decade of Pe, and of one chunk.
+RAY_PER_DECADE = 24
+RAY_CHUNK = 16
+#: Samples of the local interpolant in ln Pe.
+STENCIL = 6
+
+
+def parse_physical_axis(option, spec) -> Axis:
+    """An axis over ``load``, ``speed`` or ``radius`` in SI units."""
+    return parse_axis(option, spec, names={k: k for k in AXES})
+
+
+@dataclass(frozen=True)
+class OperatingSpec:
+    """An operating map: materials, friction, heat partition, two physical axes.
+
+    Attributes
+    ----------
+    cylinder, half_plane : Material
+    friction, lam : float
+    x, y : Axis
+        Over ``load`` (N/m), ``speed`` (m/s) or ``radius`` (m), positive.
+    fixed : dict
+        The third of load, speed, radius (SI).
+    tol : float
+        Error target of every ray sample.
+    """
+
+    cylinder: Material
+    half_plane: Material
+    friction: float
+    lam: float
+    x: Axis
+    y: Axis
+    fixed: dict
+    tol: float = 1e-6
+
+    def __post_init__(self):
+        check_nonnegative("friction", self.friction)
+        check_finite("lam", self.lam)
+        check_positive("tol", self.tol)
+        if self.x.name == self.y.name:
+            raise InputError(f"--y must name a parameter other than --x's, got "
+                             f"{self.y.name!r} twice")
+        for axis in (self.x, self.y):
+            if not axis.start > 0.0:
+                raise InputError(f"--{'x' if axis is self.x else 'y'} {axis.name} must be "
+                                 f"> 0, got {axis.start!r}")
+        third = [k for k in AXES if k not in (self.x.name, self.y.name)][0]
+        if self.fixed.get(third) is None:
+            raise InputError(f"--{third} must be given (it is not an axis)")
+        object.__setattr__(self, "fixed", {third: check_positive(third, self.fixed[third])})
+        # Every corner must be a problem the solver accepts.
+        for xv in (self.x.start, self.x.stop):
+            for yv in (self.y.start, self.y.stop):
+                self.problem(**{self.x.name: xv, self.y.name: yv})
+
+    def problem(self, **values) -> PhysicalProblem:
+        kw = {**self.fixed, **values}
+        return PhysicalProblem(self.cylinder, self.half_plane, kw["radius"], kw["load"],
+                               kw["speed"], self.friction, self.lam)
+
+    def grid(self):
+        """``(load, speed, radius)`` arrays of shape ``(y.count, x.count)``."""
+        yy, xx = np.meshgrid(self.y.values, self.x.values, indexing="ij")
+        kw = {self.x.name: xx, self.y.name: yy, **{k: np.full(xx.shape, v)
+                                                   for k, v in self.fixed.items()}}
+        return kw["load"], kw["speed"], kw["radius"]
+
+    @property
+    def compliance(self) -> float:
+        return self.cylinder.compliance + self.half_plane.compliance
+
+    def pe_hertz(self, load, speed, radius):
+        """``Pe_H = v Delta_H/(2 k2)``, ``Delta_H = sqrt(2 A R P/pi)``."""
+        return speed * np.sqrt(2.0 * self.compliance * radius * load / np.pi) / (
+            2.0 * self.half_plane.k)
+
+    @property
+    def fh(self) -> float:
+        """``f H``: the ray's slope ``fHPe/Pe``."""
+        return self.friction * self.half_plane.k * self.half_plane.distortivity / self.compliance
+
+    def ratios(self) -> dict:
+        c, h = self.cylinder, self.half_plane
+        return {"K2_over_K1": h.K / c.K, "k2_over_k1": h.k / c.k,
+                "delta1_over_delta2": c.distortivity / h.distortivity}
+
+    def manifest(self) -> dict:
+        return {"kind": "thermocontact operating map", "version": __version__,
+                "cylinder": self.cylinder.name, "half_plane": self.half_plane.name,
+                "friction": self.friction, "lam": self.lam, "x": self.x.spec,
+                "y": self.y.spec, "fixed": self.fixed, "tol": self.tol}
+
+
+def _ray_model(task, pe):
+    r = task["ratios"]
+    return Model(pe, r["K2_over_K1"], k2_over_k1=r["k2_over_k1"],
+                 delta1_over_delta2=r["delta1_over_delta2"], tol=task["tol"])
+
+
+def _shape(sol):
+    """Peak of the normalised pressure and of the cylinder's temperature in units of
+    ``f v P/(pi K1)`` (derivation D24): the maxima of local interpolants of 257
+    samples, even in the angle ``s = -cos(theta)``."""
+    from ..numerics.extrema import interpolated_minimum
+    from ..physics.green_functions import cylinder_temperature
+
+    par, rep = sol.parameters, sol.representation
+    s = np.cos(np.linspace(np.pi, 0.0, 257))
+    k = np.arange(s.size, dtype=float)
+    p = sol.pressure_at(s)
+    _, neg_p = interpolated_minimum(k, -p, int(np.argmax(p)))
+    c, eta = par.cylinder_scale, par.eta
+    ib, iq = rep.integrate(lambda u: cylinder_temperature(c * u), s)
+    t = 0.5 * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi)
+    _, neg_t = interpolated_minimum(k, -t, int(np.argmax(t)))
+    return -neg_p, -neg_t
+
+
+def evaluate_ray(task) -> dict:
+    """Solve the ray at the chunk's Péclet numbers: ``P_H/P``, offset, margins, shapes."""
+    out = {k: [] for k in ("pe", "load_ratio", "sigma_over_delta", "valid", "peak", "flash",
+                           "error_estimate", "n", "status", "reason")}
+    for pe in task["pe"]:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ConvergenceWarning)
+                sol = _ray_model(task, pe).solve(task["fh"] * pe, lam=task["lam"], polish=False)
+            peak, flash = _shape(sol)
+            rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), peak, flash,
+                   sol.error_estimate if sol.error_estimate is not None else math.nan, sol.n,
+                   sol.status, sol.validity.reason)
+        except (SolveError, InputError) as exc:
+            nan = math.nan
+            rec = (nan, nan, 0, nan, nan, nan, 0, "failed", str(exc))
+        for k, v in zip(list(out)[1:], rec):
+            out[k].append(v)
+        out["pe"].append(pe)
+    return out
+
+
+def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
+                store_path=None) -> dict:
+    """The ray sampled from ``pe_lo`` to ``pe_hi``, and its validity changes (chunks
+    kept in ``store_path`` as they finish)."""
+    count = max(8, int(math.ceil(RAY_PER_DECADE * math.log10(pe_hi / pe_lo))) + 1)
+    pes = np.geomspace(pe_lo, pe_hi, count)
+    base = {"ratios": spec.ratios(), "tol": spec.tol, "fh": spec.fh, "lam": spec.lam}
+    tasks = [{**base, "pe": [float(p) for p in pes[i:i + RAY_CHUNK]]}
+             for i in range(0, count, RAY_CHUNK)]
+    manifest = {**spec.manifest(), "pe": [pe_lo, pe_hi, count], "chunk": RAY_CHUNK}
+    parts = run_chunks(evaluate_ray, tasks, manifest, store_path, workers=workers,
+                       progress=progress)
+    ray = {k: np.concatenate([np.asarray(parts[i][k]) for i in range(len(tasks))])
+           for k in parts[0]}
+    ray["valid"] = ray["valid"].astype(bool)
+    # Validity changes along the ray, located on the margins (one n per interval).
+    events = []
+    for i in np.flatnonzero(ray["valid"][:-1] != ray["valid"][1:]):
+        if "failed" in (ray["status"][i], ray["status"][i + 1]):
+            continue
+        n = int(max(ray["n"][i], ray["n"][i + 1]))
+
+        def at(pe, n=n):
+            return _ray_model(base, pe).solve_at(n, base["fh"] * pe, lam=base["lam"],
+                                                 polish=False)
+        a, b = float(ray["pe"][i]), float(ray["pe"][i + 1])
+        try:
+            ends = [at(a), at(b)]
+        except SolveError:
+            continue
+        events += locate_events(at, [a, b], ends, only_validity_changes=True,
+                                xtol=lambda p, q: 1e-10 * q)
+    ray["events"] = tuple(events)
+    return ray
+
+
+def _local(ln_pe, values, x):
+    """The degree-5 interpolant of ``values`` in ``ln Pe`` at ``x``, on the samples
+    nearest ``x``."""
+    i = int(np.searchsorted(ln_pe, x))
+    lo = min(max(i - STENCIL // 2, 0), len(ln_pe) - STENCIL)
+    xs, fs = ln_pe[lo:lo + STENCIL], values[lo:lo + STENCIL]
+    out = 0.0
+    for j in range(STENCIL):
+        w = 1.0
+        for k in range(STENCIL):
+            if k != j:
+                w *= (x - xs[k]) / (xs[j] - xs[k])
+        out += w * fs[j]
+    return out
+
+
+def _roots(ray, pe_h):
+    """The ray's Péclet numbers whose half-widths carry the load: ``Pe^2 = Pe_H^2 L``."""
+    from scipy.optimize import brentq
+
+    lp = np.log(ray["pe"])
+    L = ray["load_ratio"]
+    ok = np.isfinite(L)
+    g = pe_h**2 * L - ray["pe"] ** 2
+    roots = []
+    for i in np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) * np.sign(g[1:]) < 0)):
+        if not np.all(ok[max(i - 3, 0):i + 4]):
+            continue
+
+        def h(x):
+            return pe_h**2 * _local(lp, L, x) - math.exp(2 * x)
+        roots.append(brentq(h, lp[i], lp[i + 1], xtol=1e-14))
+    return roots
+
+
+CURVE_POINTS = 201
+
+
+def boundary_curve(spec: OperatingSpec, pe_h):
+    """The curve ``Pe_H = pe_h`` across the map: ``CURVE_POINTS`` values of x and the y
+    on the curve (NaN outside the y range).  ``v sqrt(R P) = Pe_H 2 k2 / sqrt(2A/pi)``
+    is solved for y exactly."""
+    x = (np.geomspace if spec.x.log else np.linspace)(spec.x.start, spec.x.stop, CURVE_POINTS)
+    K = pe_h * 2.0 * spec.half_plane.k / math.sqrt(2.0 * spec.compliance / math.pi)
+    kw = {spec.x.name: x, **spec.fixed}
+    if spec.y.name == "speed":
+        y = K / np.sqrt(kw["radius"] * kw["load"])
+    elif spec.y.name == "load":
+        y = (K / kw["speed"]) ** 2 / kw["radius"]
+    else:
+        y = (K / kw["speed"]) ** 2 / kw["load"]
+    y = np.where((y >= spec.y.start) & (y <= spec.y.stop), y, np.nan)
+    return x, y
+
+
+def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command=None,
+                          store_path=None):
+    """The operating map as an :class:`xarray.Dataset` (SI units).
+
+    Returns
+    -------
+    xarray.Dataset
+        Over the two axes: ``half_width``, ``offset``, ``peak_pressure``,
+        ``mean_pressure``, ``flash_temperature``, ``load_ratio``, ``pe``, ``fhpe``,
+        ``valid``, ``applicable``, ``branches``, ``status``, ``reason``; the boundary
+        as values of ``Pe_H`` and as curves in the plane.
+    """
+    import xarray as xr
+
+    load, speed, radius = spec.grid()
+    pe_h = spec.pe_hertz(load, speed, radius)
+    fhpe_min = 0.05
+    pe_lo = 0.5 * min(pe_h.min(), fhpe_min / spec.fh if spec.fh > 0 else pe_h.min())
+    pe_hi = MAX_WIDTH * pe_h.max()
+    ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=progress,
+                      store_path=store_path)
+    lp = np.log(ray["pe"])
+    # Valid intervals of the ray: sample validity, switched at the located events.
+    switch = sorted(e.at for e in ray["events"])
+
+    def valid_at(pe):
+        i = int(np.clip(np.searchsorted(ray["pe"], pe), 1, len(lp) - 1))
+        a, b = ray["pe"][i - 1], ray["pe"][i]
+        inside = [s for s in switch if a <= s <= b]
+        if not inside:
+            return bool(ray["valid"][i - 1]) and bool(ray["valid"][i])
+        return bool(ray["valid"][i - 1]) if pe < inside[0] else bool(ray["valid"][i])
+
+    shape = pe_h.shape
+    fields = {k: np.full(shape, np.nan) for k in ("half_width", "offset", "peak_pressure",
+                                                   "mean_pressure", "flash_temperature",
+                                                   "load_ratio", "pe", "fhpe")}
+    valid = np.zeros(shape, dtype=np.int8)
+    applicable = np.zeros(shape, dtype=np.int8)
+    branches = np.zeros(shape, dtype=np.int32)
+    status = np.full(shape, "solved", dtype=object)
+    reason = np.full(shape, "", dtype=object)
+    k2, K1 = spec.half_plane.k, spec.cylinder.K
+    limits = [t for t in (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
+              if t is not None]
+    for idx in np.ndindex(shape):
+        roots = _roots(ray, pe_h[idx])
+        branches[idx] = len(roots)
+        if not roots:
+            status[idx] = "no branch"
+            reason[idx] = "no half-width carries this load on the searched range"
+            continue
+        flags = [valid_at(math.exp(r)) for r in roots]
+        r = roots[flags.index(True)] if any(flags) else roots[0]
+        pe = math.exp(r)
+        P, v, R = load[idx], speed[idx], radius[idx]
+        d = pe * 2.0 * k2 / v
+        Lr = _local(lp, ray["load_ratio"], r)
+        fields["half_width"][idx] = d
+        # L sigma, not sigma, is smooth along the ray: sigma has a pole where L = 0.
+        fields["offset"][idx] = _local(lp, ray["load_ratio"] * ray["sigma_over_delta"],
+                                       r) / Lr * d
+        fields["peak_pressure"][idx] = P / d * _local(lp, ray["peak"], r)
+        fields["mean_pressure"][idx] = P / (2.0 * d)
+        flash = spec.friction * v * P / (np.pi * K1) * _local(lp, ray["flash"], r)
+        fields["flash_temperature"][idx] = flash
+        fields["load_ratio"][idx] = Lr
+        fields["pe"][idx] = pe
+        fields["fhpe"][idx] = spec.fh * pe
+        valid[idx] = int(valid_at(pe))
+        reasons = []
+        if d / R > 0.1:
+            reasons.append(f"half-width/radius {d / R:.3g} > 0.1")
+        if limits and 293.15 + flash > min(limits):
+            reasons.append(f"flash temperature {flash:.3g} K above ambient exceeds a "
+                           f"material's limit")
+        applicable[idx] = int(not reasons)
+        reason[idx] = ("valid" if valid[idx] else "invalid single patch") + (
+            "; not applicable: " + "; ".join(reasons) if reasons else "")
+    # The existence boundary: Pe_H at the ray's validity changes (each a curve
+    # Pe_H = const in the plane).
+    bounds = np.array([e.at / math.sqrt(_local(lp, ray["load_ratio"], math.log(e.at)))
+                       if _local(lp, ray["load_ratio"], math.log(e.at)) > 0 else np.nan
+                       for e in ray["events"]])
+    curves = [boundary_curve(spec, b) if np.isfinite(b) else
+              (np.full(CURVE_POINTS, np.nan), np.full(CURVE_POINTS, np.nan)) for b in bounds]
+    bx = np.array([c[0] for c in curves]).reshape(len(curves), CURVE_POINTS)
+    by = np.array([c[1] for c in curves]).reshape(len(curves), CURVE_POINTS)
+    dims = (spec.y.name, spec.x.name)
+    ds = xr.Dataset(
+        {**{k: (dims, v) for k, v in fields.items()},
+         "valid": (dims, valid), "applicable": (dims, applicable),
+         "branches": (dims, branches), "status": (dims, status.astype(str)),
+         "reason": (dims, reason.astype(str)), "pe_hertz": (dims, pe_h),
+         "boundary_pe_hertz": ("event", bounds),
+         "boundary_inequality": ("event", np.array([e.inequality for e in ray["events"]],
+                                                   dtype=str)),
+         "boundary_x": (("event", "curve"), bx), "boundary_y": (("event", "curve"), by),
+         "ray_pe": ("ray", ray["pe"]), "ray_load_ratio": ("ray", ray["load_ratio"]),
+         "ray_valid": ("ray", ray["valid"].astype(np.int8))},
+        coords={spec.y.name: spec.y.values, spec.x.name: spec.x.values})
+    ds.attrs.update({"title": "thermocontact operating map", "thermocontact_version": __version__,
+                     "cylinder": spec.cylinder.name, "half_plane": spec.half_plane.name,
+                     "friction": spec.friction, "lam": spec.lam, "x": spec.x.spec,
+                     "y": spec.y.spec, "tol": spec.tol, "units": "SI",
+                     "command": command or "", "chunk_axis": "ray",
+                     "manifest": json.dumps(spec.manifest(), sort_keys=True),
+                     **{k: v for k, v in spec.fixed.items()}})
+    return ds

@@ -1,0 +1,246 @@
+"""Maps: grid specifications, chunks kept on disk and resumed, the same numbers in this
+process, on a process pool and on a Dask cluster, and the boundary located on each line."""
+
+import concurrent.futures as cf
+import json
+import os
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from thermocontact.cli import main
+from thermocontact.execution.executors import ExecutionError, check_scheduler, connect, run
+from thermocontact.io.chunks import ChunkStore
+from thermocontact.problem.validation import InputError
+from thermocontact.studies.boundaries import follow
+from thermocontact.studies.maps import (MAX_AXIS_POINTS, MapSpec, compute_map, parse_axis,
+                                        read_map, write_map)
+
+#: A small map that crosses the boundary: Pe = 1, 3, 10 and fHPe to 0.8 (the gap
+#: closes outside the leading edge near fHPe = 0.65).
+X, Y = "fhpe:0:0.8:9", "pe:1:10:3:log"
+FIXED = {"K2_over_K1": 10.0, "lam": 1.0}
+
+
+def small_spec(**kw):
+    return MapSpec(parse_axis("--x", X), parse_axis("--y", Y), dict(FIXED), **kw)
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """The small map, uninterrupted, in this process."""
+    return compute_map(small_spec(), workers=1)
+
+
+@pytest.mark.parametrize("spec, words", [
+    ("velocity:0:1:5", "parameter must be one of"),
+    ("fhpe:0:1", "name:start:stop:count[:log]"),
+    ("fhpe:a:1:5", "start and stop must be numbers"),
+    ("fhpe:1:0:5", "stop must be greater than start"),
+    ("fhpe:0:0:5", "stop must be greater than start"),
+    ("fhpe:0:1:1", "count must be 2 to"),
+    (f"fhpe:0:1:{MAX_AXIS_POINTS + 1}", "count must be 2 to"),
+    ("fhpe:0:1:2.5", "count must be an integer"),
+    ("fhpe:0:1:5:log", "log axis must stay positive"),
+    ("fhpe:-1:1:5:log", "log axis must stay positive"),
+    ("fhpe:0:1:5:lin", "fifth field must be 'log'"),
+    ("fhpe:0:inf:5", "must be a finite real number"),
+])
+def test_bad_axes_are_refused_in_one_line(spec, words, capsys):
+    with pytest.raises(InputError, match=words.replace("[", r"\[").replace("]", r"\]")):
+        parse_axis("--x", spec)
+    rc = main(["map", "--x", spec, "--y", "pe:1:10:3", "--K2-over-K1", "10", "--lam", "1",
+               "--out", "never.nc"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("error: --x") and err.count("\n") == 1
+    assert not os.path.exists("never.nc")
+
+
+def test_bad_grids_are_refused():
+    """The same parameter twice, a missing fixed input, both closures, a corner out of
+    the solver's range, too many points."""
+    x = parse_axis("--x", X)
+    with pytest.raises(InputError, match="other than --x's"):
+        MapSpec(x, parse_axis("--y", "fhpe:0:1:3"), dict(FIXED))
+    with pytest.raises(InputError, match="--K2-over-K1 must be given"):
+        MapSpec(x, parse_axis("--y", Y), {"lam": 1.0})
+    with pytest.raises(InputError, match="exactly one of --lam and --sigma"):
+        MapSpec(x, parse_axis("--y", Y), {**FIXED, "sigma_over_delta": 0.1})
+    with pytest.raises(InputError, match="pe"):
+        MapSpec(x, parse_axis("--y", "pe:-1:10:3"), dict(FIXED))
+    with pytest.raises(InputError, match="at most 1000000 points"):
+        MapSpec(parse_axis("--x", "fhpe:0:1:4000"), parse_axis("--y", "pe:1:2:400"),
+                dict(FIXED))
+
+
+def test_map_points_equal_plain_solves(reference):
+    """Every point is Model.solve's answer at that point (polish near zero only: the
+    margins to 1e-6, the verdicts exactly); failed points carry a reason."""
+    from thermocontact import solve
+
+    ds = reference
+    for j in (0, 2):
+        for i in (0, 4, 8):
+            pe, f = float(ds.pe[j]), float(ds.fhpe[i])
+            sol = solve(pe, f, 10.0, lam=1.0, tol=1e-6)
+            point = ds.isel(pe=j, fhpe=i)
+            assert float(point.load_ratio) == pytest.approx(sol.load_ratio, abs=1e-13)
+            assert bool(point.valid) == sol.valid
+            assert float(point.gap_margin) == pytest.approx(sol.validity.gap_margin, abs=1e-6)
+            assert str(point.status.values) == sol.status
+    assert set(np.unique(ds.status.values)) <= {"converged", "not converged"}
+
+
+def test_boundary_on_each_line_equals_the_path_follower(reference):
+    """The boundary point of each line is the event that `boundary` locates along fhpe
+    independently (its own n and samples), to 1e-7 relative."""
+    ds = reference
+    assert ds.sizes["event"] >= 2
+    for bx, by in zip(ds.boundary_x.values, ds.boundary_y.values):
+        path = follow({"pe": float(by), **FIXED}, "fhpe", 0.0, 0.8, tol=1e-6)
+        ats = [e.at for e in path.events if e.valid_before != e.valid_after]
+        assert min(abs(a - bx) for a in ats) < 1e-7 * bx
+
+
+def test_resume_after_interruption_is_identical(tmp_path, reference):
+    """Interrupted after two lines, the run keeps them; run again it computes only the
+    missing line, and the dataset, written and read back, equals the uninterrupted one."""
+    store = tmp_path / "m.nc.parts"
+    calls = []
+
+    def interrupted(func, tasks):
+        for task in tasks:
+            if len(calls) == 2:
+                raise KeyboardInterrupt
+            calls.append(task["outer"])
+            yield func(task)
+
+    with pytest.raises(KeyboardInterrupt):
+        compute_map(small_spec(), workers=interrupted, store_path=store)
+    assert ChunkStore(store, small_spec().manifest()).done() == {0, 1}
+
+    def counting(func, tasks):
+        calls.append(len(tasks))
+        return map(func, tasks)
+
+    ds = compute_map(small_spec(), workers=counting, store_path=store)
+    assert calls[-1] == 1
+    write_map(ds, tmp_path / "m.nc")
+    xr.testing.assert_identical(read_map(tmp_path / "m.nc"), reference)
+
+
+def test_a_broken_executor_keeps_finished_work(tmp_path):
+    """A worker that dies (BrokenProcessPool) ends the run with ExecutionError; the
+    finished lines are on disk."""
+
+    class Dying(cf.ThreadPoolExecutor):
+        count = 0
+
+        def submit(self, fn, *args):
+            Dying.count += 1
+            if Dying.count == 3:
+                fut = cf.Future()
+                fut.set_exception(cf.process.BrokenProcessPool("a worker died"))
+                return fut
+            return super().submit(fn, *args)
+
+    with Dying(1) as pool, pytest.raises(ExecutionError, match="run again to resume"):
+        compute_map(small_spec(), workers=pool, store_path=tmp_path / "parts")
+    assert len(ChunkStore(tmp_path / "parts", small_spec().manifest()).done()) >= 1
+
+
+def test_different_arguments_are_refused(tmp_path):
+    store = tmp_path / "parts"
+    ChunkStore(store, small_spec().manifest())
+    with pytest.raises(InputError, match="different run .*tol"):
+        ChunkStore(store, small_spec(tol=1e-7).manifest())
+
+
+def test_process_pool_gives_the_same_numbers(reference):
+    ds = compute_map(small_spec(), workers=2)
+    xr.testing.assert_identical(ds, reference)
+
+
+def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
+    """A real scheduler and two worker processes on the loopback interface, started here:
+    the same dataset as in this process, through the API and through --scheduler."""
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            ds = compute_map(small_spec(), workers=client)
+        xr.testing.assert_identical(ds, reference)
+        out = tmp_path / "d.nc"
+        rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
+                   "--out", str(out), "--scheduler", cluster.scheduler_address])
+        assert rc == 0, capsys.readouterr().err
+    back = read_map(out)
+    np.testing.assert_array_equal(back.load_ratio.values, reference.load_ratio.values)
+    assert (tmp_path / "d.png").stat().st_size > 10_000
+    assert not (tmp_path / "d.nc.parts").exists()
+
+
+@pytest.mark.parametrize("address, words", [
+    ("localhost", "scheduler must be an address"),
+    ("tcp://", "scheduler must be an address"),
+    ("tcp://127.0.0.1:99999", "port must be 1 to 65535"),
+])
+def test_bad_scheduler_addresses(address, words, capsys):
+    with pytest.raises(InputError, match=words):
+        check_scheduler(address)
+    rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
+               "--out", "never.nc", "--scheduler", address])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("error: scheduler") and err.count("\n") == 1
+
+
+def test_no_scheduler_at_the_address():
+    pytest.importorskip("distributed")
+    import socket
+
+    with socket.socket() as s:  # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    with pytest.raises(InputError, match="did not answer within 1 s"):
+        connect(f"tcp://127.0.0.1:{port}", timeout=1.0)
+
+
+def test_command_writes_refuses_and_completes(tmp_path, capsys):
+    """The command writes dataset and picture and removes its parts; run again it has
+    nothing to compute; with other arguments on the same --out it refuses."""
+    out = tmp_path / "m.nc"
+    args = ["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1", "--out", str(out),
+            "--workers", "1"]
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert "27 points" in text and (tmp_path / "m.png").exists()
+    ds = read_map(out)
+    assert ds.attrs["thermocontact_version"] and ds.attrs["method"] == "graded"
+    assert json.loads(ds.attrs["manifest"])["x"] == "fhpe:0.0:0.8:9"
+    assert ds.boundary_x.attrs["parameter"] == "fhpe"
+    assert main(args) == 0 and "nothing to compute" in capsys.readouterr().out
+    rc = main(args[:-2] + ["--tol", "1e-7", "--workers", "1"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "holds a different map" in err
+
+
+def test_failed_points_carry_their_reason():
+    """Past the pole where no finite offset reaches lam (fhpe = 0 with --sigma is
+    refused): a failed point has status 'failed', NaN values and the solver's message."""
+    spec = MapSpec(parse_axis("--x", "fhpe:0:0.4:3"), parse_axis("--y", "pe:1:2:2"),
+                   {"K2_over_K1": 10.0, "sigma_over_delta": 0.1})
+    ds = compute_map(spec)
+    point = ds.isel(pe=0, fhpe=0)
+    assert str(point.status.values) == "failed"
+    assert "sigma_over_delta cannot be imposed when fhpe = 0" in str(point.reason.values)
+    assert np.isnan(float(point.load_ratio)) and int(point.valid) == 0
+    assert (ds.status.values[:, 1:] != "failed").all()
+
+
+def test_run_yields_every_task_once():
+    assert sorted(run(abs, [-1, -2, 3], workers=1)) == [(0, 1), (1, 2), (2, 3)]
+    assert sorted(run(abs, [-1, -2, 3], workers=lambda f, t: map(f, t))) == [(0, 1), (1, 2),
+                                                                              (2, 3)]
+    with pytest.raises(InputError, match="workers must be"):
+        list(run(abs, [1], workers="many"))
