@@ -480,6 +480,9 @@ def write_map(ds, path):
         return path
     fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".nc", dir=folder)
     os.close(fd)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)  # as an ordinary file, not mkstemp's 0600
     try:
         ds.to_netcdf(tmp, engine=_engine())
         os.replace(tmp, path)
