@@ -244,3 +244,29 @@ def test_run_yields_every_task_once():
                                                                               (2, 3)]
     with pytest.raises(InputError, match="workers must be"):
         list(run(abs, [1], workers="many"))
+
+
+def test_progress_line_reports_rate_and_time_left():
+    """10 of 100 chunks 5 s after the first report: 2 chunks/s, 45 s left."""
+    import io
+
+    from thermocontact.execution.progress import ProgressLine
+
+    bar = ProgressLine("map", "lines", stream=io.StringIO())
+    assert bar.text(0, 100, now=100.0) == "map: 0/100 lines (0%)"
+    assert bar.text(10, 100, now=105.0) == "map: 10/100 lines (10%), 2 lines/s, 0:45 left"
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--friction", "-0.1"], "friction must be"),
+    (["--friction", "0.2", "--speed", "1"], "--speed must not be given: it is an axis"),
+    (["--friction", "0.2", "--pe", "5"], "--pe belongs to a dimensionless map"),
+    (["--friction", "0.2", "--radius", "-1mm"], "radius"),
+])
+def test_bad_operating_maps_are_refused_in_one_line(extra, words, capsys):
+    rc = main(["map", "--cylinder", "copper", "--half-plane", "steel", "--lam", "-1",
+               "--x", "load:1e2:1e6:3:log", "--y", "speed:0.01:100:3:log", "--out", "never.nc",
+               *([] if "--radius" in extra else ["--radius", "10mm"]), *extra])
+    err = capsys.readouterr().err
+    assert rc == 2 and words in err and err.count("\n") == 1, err
+    assert not os.path.exists("never.nc")

@@ -10,7 +10,7 @@ a load ``P`` are the roots of ``P_H(Delta) = P (P_H/P)(Pe)``; with
 
     Pe^2 = Pe_H^2 L(Pe),    Pe_H = v Delta_H / (2 k2).
 
-So load, radius and speed enter only through ``Pe_H`` (derivation section 5a):
+So load, radius and speed enter only through ``Pe_H`` (derivation section 11b, D26):
 one continuation along the ray answers every point of a load-speed(-radius) plane.
 The ray is sampled geometrically (:data:`RAY_PER_DECADE`), the samples run as chunks
 on any executor, validity changes along it are located by Brent's method on the
