@@ -162,11 +162,8 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  lam, sigma, tol, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
-    from .studies.boundaries import follow
+    from .studies.boundaries import SPELLINGS as names, follow
 
-    names = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
-             "K2-over-K1": "K2_over_K1", "k2-over-k1": "k2_over_k1",
-             "delta1-over-delta2": "delta1_over_delta2"}
     if along not in names:
         raise InputError(f"--along must be one of {sorted(names)}, got {along!r}")
     name = names[along]
@@ -248,14 +245,14 @@ def _run_map(spec, out, workers, title, command):
     manifest = json.dumps(spec.manifest(), sort_keys=True)
     if os.path.exists(out):
         try:
-            old = read_map(out).attrs.get("manifest")
+            done = read_map(out)
         except Exception:  # not a map of ours: never overwritten
-            old = None
-        if old != manifest:
+            done = None
+        if done is None or done.attrs.get("manifest") != manifest:
             raise InputError(f"--out {out} exists and holds a different map; remove it or "
                              f"choose another --out")
         if not os.path.exists(picture):
-            map_figure(read_map(out), picture, title=title)
+            map_figure(done, picture, title=title)
         click.echo(f"{out} is complete (same arguments): nothing to compute")
         return
     parts = parts_folder(out)
@@ -280,9 +277,9 @@ def _run_map(spec, out, workers, title, command):
     bar.close()
     write_map(ds, out)
     map_figure(ds, picture, title=title)
-    import shutil
+    from .io.chunks import discard
 
-    shutil.rmtree(parts, ignore_errors=True)  # the dataset holds everything now
+    discard(parts)  # the dataset holds everything now
     status = np.asarray(ds["status"].values)
     failed = int((status == "failed").sum())
     unconverged = int((status == "not converged").sum())

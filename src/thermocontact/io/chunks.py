@@ -18,7 +18,7 @@ import shutil
 from ..problem.validation import InputError
 from .files import atomic_write
 
-__all__ = ["ChunkStore", "manifest_difference"]
+__all__ = ["ChunkStore", "discard", "manifest_difference"]
 
 MANIFEST = "manifest.json"
 _CHUNK = re.compile(r"^chunk-(\d{6})\.json$")
@@ -91,6 +91,8 @@ class ChunkStore:
         with open(self._path(index)) as fh:
             return json.load(fh)
 
-    def remove(self):
-        """Delete the folder (once the run's output is written)."""
-        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def discard(folder):
+    """Delete a store's folder (once the run's output holds everything)."""
+    shutil.rmtree(os.fspath(folder), ignore_errors=True)

@@ -12,14 +12,64 @@ from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import tempfile
 
 from ..problem.validation import InputError
 
-__all__ = ["atomic_write", "check_output_dir", "check_output_file"]
+__all__ = ["atomic_path", "atomic_write", "check_output_dir", "check_output_file"]
 
 #: Longest file name most file systems accept.
 NAME_MAX = 255
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+@contextlib.contextmanager
+def atomic_path(path, folder=False):
+    """A temporary path beside ``path``, renamed to ``path`` when the block succeeds.
+
+    For writers that take a path rather than a file object (NetCDF, Zarr).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    folder : bool
+        Yield a new folder (a Zarr store) rather than a file; an existing folder at
+        ``path`` is replaced.
+
+    Yields
+    ------
+    str
+        The temporary path (same extension as ``path``); on an exception (or an
+        interrupt) it is removed and ``path`` is left as it was.
+    """
+    path = os.fspath(path)
+    parent = os.path.dirname(os.path.abspath(path))
+    suffix = "-" + os.path.basename(path)[:64]
+    if folder:
+        tmp = tempfile.mkdtemp(prefix=".tmp-", suffix=suffix, dir=parent)
+    else:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=suffix, dir=parent)
+        os.close(fd)
+    # Ordinary permissions, not the temporary's private ones.
+    os.chmod(tmp, (0o777 if folder else 0o666) & ~_umask())
+    try:
+        yield tmp
+        if folder and os.path.isdir(path):
+            shutil.rmtree(path)
+        os.replace(tmp, path)
+    except BaseException:
+        if folder:
+            shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
 
 
 @contextlib.contextmanager
@@ -39,20 +89,10 @@ def atomic_write(path, mode="w", **kwargs):
         The temporary file; on an exception (or an interrupt) it is removed and
         ``path`` is left as it was.
     """
-    path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix="-" + os.path.basename(path)[:64],
-                               dir=folder)
-    try:
-        with os.fdopen(fd, mode, **kwargs) as fh:
-            yield fh
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+    with atomic_path(path) as tmp, open(tmp, mode, **kwargs) as fh:
+        yield fh
+        fh.flush()
+        os.fsync(fh.fileno())
 
 
 def _check_name(option: str, path: str):

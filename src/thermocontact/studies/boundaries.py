@@ -24,11 +24,16 @@ from ..problem.validation import InputError, check_choice, check_finite, check_i
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["ALONG", "Event", "Path", "follow", "locate_events", "validity_margins"]
+__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "follow", "locate_events",
+           "model_for", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
          "delta1_over_delta2")
+#: The command line's spellings of :data:`ALONG`.
+SPELLINGS = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
+             "K2-over-K1": "K2_over_K1", "k2-over-k1": "k2_over_k1",
+             "delta1-over-delta2": "delta1_over_delta2"}
 #: Margins, each >= 0 exactly when its inequality holds.
 MARGINS = ("load", "pressure", "gap", "edge")
 #: Initial samples of a path, and the most halvings of one interval.
@@ -96,16 +101,25 @@ def _inputs(fixed: dict, along: str, x: float) -> dict:
     return kw
 
 
+def model_for(kw: dict, method=DEFAULT_METHOD, tol=DEFAULT_TOL, n=None) -> Model:
+    """The :class:`Model` of the inputs ``kw`` (those of ``solve``; ``fhpe`` and the
+    closure are the solve's)."""
+    return Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
+                 delta1_over_delta2=kw.get("delta1_over_delta2", 1.0), method=method, n=n,
+                 tol=tol)
+
+
+def closure(kw: dict) -> dict:
+    """``lam`` or ``sigma_over_delta`` of the inputs ``kw``, as given."""
+    return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
+
+
 def _solver(fixed, along, method):
     """``at(n, x)``: the solution at ``x`` with ``n`` unknowns (None where there is none)."""
     def at(n, x):
         kw = _inputs(fixed, along, x)
         try:
-            model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
-                          delta1_over_delta2=kw.get("delta1_over_delta2", 1.0),
-                          method=method, n=n)
-            close = {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
-            return model.solve_at(n, kw["fhpe"], **close)
+            return model_for(kw, method, n=n).solve_at(n, kw["fhpe"], **closure(kw))
         except (SolveError, InputError):
             return None
     return at

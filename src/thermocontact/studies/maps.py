@@ -31,19 +31,16 @@ from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.executors import run
 from ..io.chunks import ChunkStore
+from ..io.files import atomic_path
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
-from ..solvers.single_patch import Model
-from .boundaries import ALONG, locate_events
+from .boundaries import ALONG, SPELLINGS, closure, locate_events, model_for
 
 __all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "read_map",
            "run_chunks", "write_map"]
 
-#: Parameter names a dimensionless map accepts (command-line spellings included).
-NAMES = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
-         "sigma_over_delta": "sigma_over_delta", "K2-over-K1": "K2_over_K1",
-         "K2_over_K1": "K2_over_K1", "k2-over-k1": "k2_over_k1", "k2_over_k1": "k2_over_k1",
-         "delta1-over-delta2": "delta1_over_delta2", "delta1_over_delta2": "delta1_over_delta2"}
+#: Parameter names a dimensionless map accepts: the command line's and Python's.
+NAMES = {**SPELLINGS, **{name: name for name in ALONG}}
 #: Axes along which the assembly is kept: a grid line along one is one chunk.
 CHEAP = ("fhpe", "lam", "sigma_over_delta")
 #: Most points on one axis, and in a map.
@@ -122,20 +119,6 @@ def parse_axis(option: str, spec, names=NAMES) -> Axis:
             raise InputError(f"{option} log axis must stay positive (start > 0), got {spec!r}")
         log = True
     return Axis(names[name], start, stop, count, log)
-
-
-def _closure(kw: dict) -> dict:
-    return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
-
-
-def _inputs(fixed: dict, name: str, value: float) -> dict:
-    kw = {**fixed, name: float(value)}
-    return kw
-
-
-def _model(kw: dict, method: str, tol: float) -> Model:
-    return Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
-                 delta1_over_delta2=kw.get("delta1_over_delta2", 1.0), method=method, tol=tol)
 
 
 @dataclass(frozen=True)
@@ -260,17 +243,17 @@ def evaluate_chunk(task: dict) -> dict:
     """
     fixed, name, values = task["fixed"], task["name"], task["values"]
     method, tol = task["method"], task["tol"]
-    shared = _model(fixed, method, tol) if name in CHEAP else None
+    shared = model_for(fixed, method, tol) if name in CHEAP else None
     out = {k: [] for k in FIELDS}
     sols = []
     for value in values:
-        kw = _inputs(fixed, name, value)
+        kw = {**fixed, name: float(value)}
         try:
             with warnings.catch_warnings():
                 # The status records it.
                 warnings.simplefilter("ignore", ConvergenceWarning)
-                model = shared if shared is not None else _model(kw, method, tol)
-                sol = model.solve(kw["fhpe"], polish=False, **_closure(kw))
+                model = shared if shared is not None else model_for(kw, method, tol)
+                sol = model.solve(kw["fhpe"], polish=False, **closure(kw))
             rec = _record(sol, task["delta_over_r"])
         except (SolveError, InputError) as exc:
             sol, rec = None, _failed(exc)
@@ -290,10 +273,10 @@ def _events(fixed, name, values, sols, method, tol):
         n = max(sa.n, sb.n)
 
         def at(x, n=n):
-            kw = _inputs(fixed, name, x)
+            kw = {**fixed, name: float(x)}
             try:
-                return _model(kw, method, tol).solve_at(n, kw["fhpe"], polish=False,
-                                                        **_closure(kw))
+                return model_for(kw, method, tol).solve_at(n, kw["fhpe"], polish=False,
+                                                        **closure(kw))
             except InputError:
                 return None
         ends = [at(a), at(b)]
@@ -461,35 +444,15 @@ def _engine():
 
 
 def write_map(ds, path):
-    """Write the dataset atomically: NetCDF for ``.nc``, Zarr for ``.zarr``."""
-    import shutil
-    import tempfile
-
+    """Write the dataset whole (a temporary name, then renamed): NetCDF for ``.nc``,
+    Zarr for ``.zarr``."""
     path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    if path.lower().endswith(".zarr"):
-        tmp = tempfile.mkdtemp(prefix=".tmp-", suffix=".zarr", dir=folder)
-        try:
+    zarr = path.lower().endswith(".zarr")
+    with atomic_path(path, folder=zarr) as tmp:
+        if zarr:
             ds.to_zarr(tmp, mode="w")
-            if os.path.isdir(path):
-                shutil.rmtree(path)
-            os.replace(tmp, path)
-        except BaseException:
-            shutil.rmtree(tmp, ignore_errors=True)
-            raise
-        return path
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".nc", dir=folder)
-    os.close(fd)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)  # as an ordinary file, not mkstemp's 0600
-    try:
-        ds.to_netcdf(tmp, engine=_engine())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+        else:
+            ds.to_netcdf(tmp, engine=_engine())
     return path
 
 

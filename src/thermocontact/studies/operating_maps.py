@@ -28,11 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._version import __version__
+from ..analysis.applicability import AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS
 from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
-from ..solvers.single_patch import Model
-from .boundaries import locate_events
+from .boundaries import locate_events, model_for
 from .maps import Axis, parse_axis, run_chunks
 from .physical_contact import MAX_WIDTH, PhysicalProblem
 
@@ -136,9 +136,7 @@ class OperatingSpec:
 
 
 def _ray_model(task, pe):
-    r = task["ratios"]
-    return Model(pe, r["K2_over_K1"], k2_over_k1=r["k2_over_k1"],
-                 delta1_over_delta2=r["delta1_over_delta2"], tol=task["tol"])
+    return model_for({"pe": pe, **task["ratios"]}, tol=task["tol"])
 
 
 def _shape(sol):
@@ -344,9 +342,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         fields["fhpe"][idx] = spec.fh * pe
         valid[idx] = int(valid_at(pe))
         reasons = []
-        if d / R > 0.1:
-            reasons.append(f"half-width/radius {d / R:.3g} > 0.1")
-        if limits and 293.15 + flash > min(limits):
+        if d / R > MAX_HALF_WIDTH_OVER_RADIUS:
+            reasons.append(f"half-width/radius {d / R:.3g} > {MAX_HALF_WIDTH_OVER_RADIUS:g}")
+        if limits and AMBIENT_TEMPERATURE + flash > min(limits):
             reasons.append(f"flash temperature {flash:.3g} K above ambient exceeds a "
                            f"material's limit")
         applicable[idx] = int(not reasons)

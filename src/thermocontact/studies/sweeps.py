@@ -16,8 +16,7 @@ from ..discretisation.methods import DEFAULT_METHOD
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
 from ..solvers.refinement import refine
-from ..solvers.single_patch import Model
-from .boundaries import locate_events
+from .boundaries import closure, locate_events, model_for
 
 __all__ = ["Curve", "choose_n", "sweep"]
 
@@ -59,15 +58,6 @@ class Curve:
     solutions: tuple = ()
 
 
-def _model(fixed: dict, method: str, n=None) -> Model:
-    return Model(fixed["pe"], fixed["K2_over_K1"], k2_over_k1=fixed.get("k2_over_k1"),
-                 delta1_over_delta2=fixed.get("delta1_over_delta2", 1.0), method=method, n=n)
-
-
-def _closure(kw: dict) -> dict:
-    return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
-
-
 def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
              n_max=None) -> tuple[int, float]:
     """Smallest ``n`` (doubling from 16) whose error estimate at the points
@@ -81,14 +71,14 @@ def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
     -------
     n, error_estimate
     """
-    model = _model(fixed, method)
+    model = model_for(fixed, method)
     points = [{**fixed, x_name: float(x)} for x in np.atleast_1d(x_end)]
 
     def at(m):
         out = []
         for kw in points:
             try:
-                out.append(model.solve_at(m, kw["fhpe"], check_validity=False, **_closure(kw)))
+                out.append(model.solve_at(m, kw["fhpe"], check_validity=False, **closure(kw)))
             except SolveError:
                 out.append(None)
         return tuple(out)
@@ -99,11 +89,11 @@ def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
 
 
 def _solver(fixed: dict, x_name: str, n: int, method: str):
-    model = _model(fixed, method)
+    model = model_for(fixed, method)
 
     def at(x):
         kw = {**fixed, x_name: x}
-        return model.solve_at(n, kw["fhpe"], **_closure(kw))
+        return model.solve_at(n, kw["fhpe"], **closure(kw))
 
     return at
 
