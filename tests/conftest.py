@@ -4,6 +4,12 @@ import json
 import pathlib
 from functools import lru_cache
 
+from threadpoolctl import threadpool_limits
+
+# The matrices are small: one BLAS thread, as the command line and every map worker
+# use (several threads competing for two cores made the suite three times slower).
+threadpool_limits(1)
+
 
 @lru_cache(maxsize=None)
 def references() -> dict:

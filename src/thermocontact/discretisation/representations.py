@@ -390,10 +390,11 @@ class EdgeGraded(Representation):
         Denser toward the edges than Chebyshev points, and no ``tau`` is inverted.
         """
         def build():
+            # cos(j tau_k): the cosine series at the samples is one product.
             tau = np.linspace(np.pi, 0.0, count)
-            return np.cos(graded.stretch(tau)), graded.cosine_value(self.to_cos, tau).T
-        s, values = self.rows(("phi_samples", count), build)
-        return s, values @ phi
+            return np.cos(graded.stretch(tau)), np.cos(np.outer(tau, np.arange(self.n)))
+        s, cosines = self.rows(("phi_samples", count), build)
+        return s, cosines @ (self.to_cos @ phi)
 
     def _pressure_matrix(self, s):
         # phi(s) = sum_j (to_cos @ phi)_j cos(j tau(s)): one inversion of tau for all j.
