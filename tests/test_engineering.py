@@ -11,7 +11,8 @@ from scipy.special import k0
 
 from thermocontact import InputError, solve
 from thermocontact.cli import main
-from thermocontact.studies.physical_contact import PhysicalProblem, _temperatures, contact, find_roots
+from thermocontact.studies.physical_contact import PhysicalProblem, _temperatures, contact
+from thermocontact.studies.ray import _secant, brackets, follow, interpolated_roots
 from thermocontact.problem.materials import MaterialError, get_material
 
 STEEL, IRON = get_material("steel"), get_material("cast-iron")
@@ -72,12 +73,35 @@ def test_friction_zero_is_hertz_in_si():
     assert br.flash_temperature == 0.0
 
 
-def test_branch_finder_finds_every_root_and_skips_poles():
-    """h with roots 1e-3, 2e-3, 3e-3 and a pole at 2.5e-3 between them: the three
-    roots to 1e-15 abs, the pole rejected."""
-    h = lambda x: (x - 1e-3) * (x - 2e-3) * (x - 3e-3) / (x - 2.5e-3) * 1e6
-    roots, _ = find_roots(h, 5e-4, 5e-3, points=40)
-    assert np.allclose(roots, [1e-3, 2e-3, 3e-3], rtol=0, atol=1e-15)
+class _SyntheticRay:
+    """``L`` with ``Pe^2 - Pe_H^2 L = (Pe - 1)(Pe - 2)(Pe - 3)/(Pe - 2.5)`` at
+    ``Pe_H = 1``: roots of D26 at 1, 2, 3 and a pole at 2.5 between them."""
+
+    calls = 0
+
+    def load_ratio(self, pe, n):
+        self.calls += 1
+        return pe**2 - (pe - 1) * (pe - 2) * (pe - 3) / (pe - 2.5)
+
+
+def test_continuation_brackets_every_root_and_the_pole():
+    """Following a synthetic ray from Pe = 0.5 to 5 brackets each root and the pole
+    in its own step (the pole is rejected later, on the solver, by |h|).  Secant
+    steps from the samples' interpolated roots (a first guess, here within 1e-2)
+    converge to the exact roots to 1e-12."""
+    ray = _SyntheticRay()
+    scan = follow(ray, 0.5, 5.0, pe_h=1.0)
+    found = [(scan.pe[i], scan.pe[i + 1]) for i in brackets(scan.pe, scan.load_ratio, 1.0)]
+    assert [a < x < b for (a, b), x in zip(found, (1.0, 2.0, 2.5, 3.0))] == [True] * 4
+    assert scan.evaluations == ray.calls and scan.evaluations < 60
+    guesses = interpolated_roots(scan.pe, scan.load_ratio, 1.0)
+
+    def h(x):
+        return np.exp(2 * x) - ray.load_ratio(np.exp(x), None)
+    for x, exact in zip(guesses[:2] + guesses[3:], (1.0, 2.0, 3.0)):
+        assert abs(np.exp(x) / exact - 1) < 1e-2
+        root, _ = _secant(h, x, (h(x + 1e-6) - h(x - 1e-6)) / 2e-6, x - 0.2, x + 0.2)
+        assert abs(np.exp(root) - exact) < 1e-12
 
 
 def test_coupled_contact_has_branch_with_fields():

@@ -74,3 +74,33 @@ def test_messages_are_one_line():
         with pytest.raises(InputError) as err:
             parse_quantity(value, "m/s", "v")
         assert "\n" not in str(err.value)
+
+
+SI_CASES = [
+    ("450mm", "m"), ("72 km/h", "m/s"), ("200kN/m", "N/m"), ("3 m / s", "m/s"),
+    ("12e-6 1/K", "1/K"), ("50 W/m/K", "W/m/K"), ("1.2e-5 m^2/s", "m^2/s"),
+    ("1.2e-5 m**2/s", "m^2/s"), ("2 N/mm", "N/m"), ("0.5 ms", "s"), ("10 min", "s"),
+    ("1 h", "s"), ("30 GPa", "Pa"), ("3 mPa", "Pa"), (".5 um", "m"), ("2 N*m/m", "N"),
+    ("2 N m / m", "N"), ("3e2 mm/min", "m/s"), ("7 kg/m^3", "kg/m^3"),
+    ("1 W/m^2", "kg/s^3"), ("4 cm^-1", "1/m"), ("8 MN/m", "N/m"), ("1 kJ/kg/K", "J/kg/K"),
+]
+
+
+@pytest.mark.parametrize(("value", "unit"), SI_CASES)
+def test_si_table_agrees_with_pint(value, unit):
+    """Units read by the SI table (no pint) equal pint's reading to rounding, and the
+    table does read each of these (it is what keeps pint out of a command line)."""
+    from thermocontact.problem.units import _read_si, _registry
+
+    fast = _read_si(value, unit)
+    assert isinstance(fast, float)
+    assert fast == pytest.approx(_registry().Quantity(value).to(unit).magnitude, rel=1e-14)
+
+
+@pytest.mark.parametrize(("value", "unit"), [("5 mph", "m/s"), ("1 inch", "m"),
+                                             ("20 degC", "K"), ("5 m/", "m"), ("2 (N/m)", "N/m")])
+def test_other_units_are_left_to_pint(value, unit):
+    """What the table does not know is pint's to read (or to refuse)."""
+    from thermocontact.problem.units import _read_si
+
+    assert _read_si(value, unit) is None

@@ -158,13 +158,13 @@ def test_edge_log_term_makes_contact_invalid():
     k > 0 at s = +1, tensile just inside that edge.  The polynomial representation
     sees it only through a drift of phi_n(1) = p/sqrt(1-s^2) at s = 1 of
     -sqrt(2) k ln 2 per doubling of n (it resolves 1 - s down to ~1/n^2): with
-    product integration the drifts for n = 128 ... 1024 are 0.9944, 0.9972 and
-    0.9986 of the prediction (asserted within 1 %), and by n = 256 the discrete
+    product integration the drifts for n = 128 ... 512 are 0.9944 and 0.9972 of the
+    prediction (asserted within 1 %; 0.9986 to n = 1024), and by n = 256 the discrete
     pressure itself is tensile next to the edge (the margin is taken outside the
     tolerated layer of 1e-6 half-widths, whose width the edge margin judges: too wide
     here)."""
     sols = [solve(5, 0.3, 10, k2_over_k1=1, delta1_over_delta2=0, lam=1, n=n, method="product")
-            for n in (128, 256, 512, 1024)]
+            for n in (128, 256, 512)]
     for sol in sols:
         k_minus, k_plus = sol.validity.edge_log_coefficients
         assert k_plus > 0 and not sol.valid and sol.load_ratio > 0

@@ -338,7 +338,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                     delta_over_r=delta_over_r))
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
-                 f"lambda = {spec.lam:g}, {fixed} (SI); valid where not shaded")
+                 f"lambda = {spec.lam:g}, {fixed} (SI)\nvalid where not shaded; theory not "
+                 f"applicable where hatched")
     else:
         for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
                             ("--friction", friction)):
@@ -351,7 +352,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                         "lam": lam, "sigma_over_delta": sigma},
                        method=method, tol=tol, delta_over_r=delta_over_r)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
-        title = f"{fixed}; method {method}, tol {tol:g}; valid where not shaded"
+        title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "
+                 f"applicable where hatched")
     if out.lower().endswith(".zarr"):
         out = check_output_dir("--out", out)
         try:
@@ -518,7 +520,11 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         get_material(cylinder, materials_file), get_material(half_plane, materials_file),
         parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
         parse_quantity(speed, "m/s", "speed"), friction, lam)
-    res = contact(prob, tol=check_positive("tol", tol))
+    from .execution.progress import ProgressLine
+
+    bar = ProgressLine("contact: half-widths followed", "%")
+    res = contact(prob, tol=check_positive("tol", tol), progress=bar)
+    bar.close()
     if csv_file is not None:
         _write_contact_csv(res, csv_file)
     if plot_file is not None:

@@ -197,9 +197,10 @@ def plot_branch(branch, problem, axes=None, label=None):
     line, = ax1.plot(s, branch.pressure / problem.hertz_peak_pressure,
                      "-" if branch.valid else "--", label=tag)
     ax2.plot(s, branch.temperature_cylinder, color=line.get_color())
-    ax1.set_ylabel("pressure / Hertz peak $p_0$")
+    # Plain-text labels: mathtext's parser would double the picture's cost.
+    ax1.set_ylabel("pressure / Hertz peak p₀")
     ax2.set_ylabel("surface temperature rise, K\n(cylinder = half-plane in contact)")
-    ax2.set_xlabel("$(x - \\mathrm{offset})/\\Delta$ of each branch "
+    ax2.set_xlabel("(x − offset)/Δ of each branch "
                    "(cylinder surface moves toward -x)")
     return ax1, ax2
 
@@ -223,5 +224,6 @@ def contact_figure(res, path):
                  f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
                  f"lambda = {prob.lam:g}\nHertz: half-width {prob.hertz_half_width:.3g} m, "
                  f"p0 = {prob.hertz_peak_pressure:.3g} Pa", fontsize=8)
-    fig.tight_layout()
+    # Fixed margins: tight_layout would draw the figure once more to measure it.
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.9, hspace=0.08)
     _save(fig, path)

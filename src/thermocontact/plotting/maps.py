@@ -49,6 +49,12 @@ def plot_map(ds, field="load_ratio", ax=None):
     # Invalid (but solved) points: a grey veil; failed points: crosses.
     veil = np.where(valid, np.nan, 1.0)
     ax.pcolormesh(x, y, veil, shading="nearest", cmap="Greys", vmin=0.0, vmax=2.5, alpha=0.6)
+    # Solved where the theory behind it does not apply (size, slopes, temperatures):
+    # hatched, whatever the validity.
+    if "applicable" in ds and (np.asarray(ds["applicable"].values) == 0).any():
+        outside = np.where(np.asarray(ds["applicable"].values) == 0, 1.0, 0.0)
+        ax.contourf(x, y, outside, levels=[0.5, 1.5], colors="none", hatches=["////"])
+        ax.contour(x, y, outside, levels=[0.5], colors="white", linewidths=0.8)
     failed = np.asarray(ds["status"].values) == "failed"
     if failed.any():
         yy, xx = np.meshgrid(y, x, indexing="ij")
@@ -86,7 +92,8 @@ def map_figure(ds, path, field="load_ratio", title=""):
     fig = _figure(figsize=(7, 5.5))
     ax = fig.subplots()
     plot_map(ds, field, ax)
-    ax.set_title(title or "valid where not shaded", fontsize=8)
+    ax.set_title(title or "valid where not shaded; theory not applicable where hatched",
+                 fontsize=8)
     fig.tight_layout()
     _save(fig, path)
     return path

@@ -3,9 +3,12 @@
 The engineering front end accepts inputs such as ``"200 kN/m"``, ``"72 km/h"`` or
 ``"450mm"`` as well as plain numbers.  :func:`parse_quantity` turns any of them into
 a float in a stated SI unit.  Plain numbers (and plain-number strings) are taken to
-be in that SI unit already; anything else is parsed with `pint`_, which is imported
-only when a unit actually has to be read, because building its unit registry takes a
-noticeable fraction of a second.
+be in that SI unit already.  A unit written in the SI symbols of mechanics and heat
+(m, g, s, min, h, N, Pa, J, W, K with the prefixes p to T, joined by ``/``, ``*``,
+spaces and integer powers) is read by a small table here; anything else by `pint`_,
+whose import and registry take one to two seconds, as long as a whole solve: the
+table keeps them out of a command like ``contact --load 310kN/m``, and a test checks
+it against pint.
 
 .. _pint: https://pint.readthedocs.io
 """
@@ -13,11 +16,76 @@ noticeable fraction of a second.
 from __future__ import annotations
 
 import numbers
+import re
 from functools import lru_cache
 
 from .validation import InputError, check_finite
 
 __all__ = ["parse_quantity"]
+
+
+#: SI symbols: (scale to SI, exponents of m, kg, s, K).
+_SYMBOLS = {
+    "m": (1.0, (1, 0, 0, 0)), "g": (1e-3, (0, 1, 0, 0)), "s": (1.0, (0, 0, 1, 0)),
+    "min": (60.0, (0, 0, 1, 0)), "h": (3600.0, (0, 0, 1, 0)), "K": (1.0, (0, 0, 0, 1)),
+    "N": (1.0, (1, 1, -2, 0)), "Pa": (1.0, (-1, 1, -2, 0)), "J": (1.0, (2, 1, -2, 0)),
+    "W": (1.0, (2, 1, -3, 0)),
+}
+_PREFIXES = {"p": 1e-12, "n": 1e-9, "u": 1e-6, "\u00b5": 1e-6, "\u03bc": 1e-6, "m": 1e-3,
+             "c": 1e-2, "k": 1e3, "M": 1e6, "G": 1e9, "T": 1e12}
+_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+_FACTOR = re.compile(r"^([A-Za-z\u00b5\u03bc]+)(?:(?:\^|\*\*)([+-]?\d+))?$")
+
+
+def _si(unit: str):
+    """``(scale, exponents)`` of a product of SI symbols, or None if not one.
+
+    ``"kN/m"``, ``"W/m/K"``, ``"m^2/s"``, ``"1/K"``; division binds to the next
+    factor only, as in pint.
+    """
+    text = unit.replace(" / ", "/").replace("/ ", "/").replace(" /", "/")
+    tokens = re.split(r"((?<!\*)\*(?!\*)|/|\s+)", text.strip())
+    scale, dims, sign = 1.0, [0, 0, 0, 0], 1
+    for token in tokens:
+        if token == "*" or not token or token.isspace():
+            continue
+        if token == "/":
+            sign = -1
+            continue
+        if token == "1":
+            sign = 1
+            continue
+        match = _FACTOR.match(token)
+        if match is None:
+            return None
+        name, power = match.group(1), int(match.group(2) or 1)
+        if name in _SYMBOLS:
+            factor, exps = _SYMBOLS[name]
+        elif name[:1] in _PREFIXES and name[1:] in _SYMBOLS:
+            factor, exps = _SYMBOLS[name[1:]]
+            factor *= _PREFIXES[name[:1]]
+        else:
+            return None
+        scale *= factor ** (sign * power)
+        dims = [d + sign * power * e for d, e in zip(dims, exps)]
+        sign = 1
+    if sign == -1:  # a trailing "/"
+        return None
+    return scale, tuple(dims)
+
+
+def _read_si(text: str, unit: str):
+    """``text`` in ``unit`` if both are numbers and SI symbols, else None; a
+    dimension mismatch is the string ``"mismatch"``."""
+    match = _NUMBER.match(text)
+    if match is None:
+        return None
+    have, want = _si(text[match.end():]), _si(unit)
+    if have is None or want is None:
+        return None
+    if have[1] != want[1]:
+        return "mismatch"
+    return float(match.group(0)) * have[0] / want[0]
 
 
 @lru_cache(maxsize=1)
@@ -87,6 +155,11 @@ def parse_quantity(value, unit: str, name: str) -> float:
             return _finite(name, x, value)
         if not text:
             raise InputError(f"{name}: cannot read {value!r} as a quantity in {shown}")
+        x = _read_si(text, unit)
+        if x == "mismatch":
+            raise InputError(f"{name}: cannot read {value!r} as a quantity in {shown}")
+        if x is not None:
+            return _finite(name, x, value)
         ureg = _registry()
         try:
             quantity = ureg.Quantity(text)

@@ -32,9 +32,12 @@ from ..analysis.applicability import AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RA
 from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
-from .boundaries import locate_events, model_for
+from .boundaries import locate_events
 from .maps import Axis, parse_axis, run_chunks
 from .physical_contact import MAX_WIDTH, PhysicalProblem
+from .ray import Ray
+from .ray import interpolated_roots as _interpolated_roots
+from .ray import local as _local
 
 __all__ = ["OperatingSpec", "RAY_PER_DECADE", "compute_operating_map", "ray_samples"]
 
@@ -43,8 +46,6 @@ AXES = {"load": "N/m", "speed": "m/s", "radius": "m"}
 #: Samples of the ray per decade of Pe, and of one chunk.
 RAY_PER_DECADE = 24
 RAY_CHUNK = 16
-#: Samples of the local interpolant in ln Pe.
-STENCIL = 6
 
 
 def parse_physical_axis(option, spec) -> Axis:
@@ -136,7 +137,7 @@ class OperatingSpec:
 
 
 def _ray_model(task, pe):
-    return model_for({"pe": pe, **task["ratios"]}, tol=task["tol"])
+    return Ray(**task["ratios"], fh=task["fh"], lam=task["lam"]).model(pe, tol=task["tol"])
 
 
 def _shape(sol):
@@ -216,41 +217,6 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     return ray
 
 
-def _local(ln_pe, values, x):
-    """The degree-5 interpolant of ``values`` in ``ln Pe`` at ``x``, on the samples
-    nearest ``x``."""
-    i = int(np.searchsorted(ln_pe, x))
-    lo = min(max(i - STENCIL // 2, 0), len(ln_pe) - STENCIL)
-    xs, fs = ln_pe[lo:lo + STENCIL], values[lo:lo + STENCIL]
-    out = 0.0
-    for j in range(STENCIL):
-        w = 1.0
-        for k in range(STENCIL):
-            if k != j:
-                w *= (x - xs[k]) / (xs[j] - xs[k])
-        out += w * fs[j]
-    return out
-
-
-def _roots(ray, pe_h):
-    """The ray's Péclet numbers whose half-widths carry the load: ``Pe^2 = Pe_H^2 L``."""
-    from scipy.optimize import brentq
-
-    lp = np.log(ray["pe"])
-    L = ray["load_ratio"]
-    ok = np.isfinite(L)
-    g = pe_h**2 * L - ray["pe"] ** 2
-    roots = []
-    for i in np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) * np.sign(g[1:]) < 0)):
-        if not np.all(ok[max(i - 3, 0):i + 4]):
-            continue
-
-        def h(x):
-            return pe_h**2 * _local(lp, L, x) - math.exp(2 * x)
-        roots.append(brentq(h, lp[i], lp[i + 1], xtol=1e-14))
-    return roots
-
-
 CURVE_POINTS = 201
 
 
@@ -317,7 +283,7 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     limits = [t for t in (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
               if t is not None]
     for idx in np.ndindex(shape):
-        roots = _roots(ray, pe_h[idx])
+        roots = _interpolated_roots(ray["pe"], ray["load_ratio"], pe_h[idx])
         branches[idx] = len(roots)
         if not roots:
             status[idx] = "no branch"

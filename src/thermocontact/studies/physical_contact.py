@@ -6,10 +6,11 @@ For a trial half-width ``Delta`` the dimensionless groups follow from the inputs
 ``H = k2 delta2 / A``, and the solver gives ``P_H/P``; the load that half-width
 carries is ``P = P_H(Delta) / (P_H/P)`` with the Hertz load
 ``P_H = pi Delta^2 / (2 A R)`` (D2).  The half-widths that carry the given load are
-the roots of ``h(Delta) = P_H(Delta) - P (P_H/P)(Delta)``, which, unlike
+the roots of ``h(Delta) = P_H(Delta)/P - (P_H/P)(Delta)``, which, unlike
 ``P(Delta)``, stays finite where ``P_H/P`` passes through zero.  ``h`` need not be
-monotone, so it is scanned on a geometric grid of ``Delta`` and every sign change
-is refined by Brent's method.
+monotone: it is followed along the half-widths by continuation with step control
+(every trial half-width is a point of the problem's :class:`~.ray.Ray`), and every
+sign change is refined on the solver (:func:`~.ray.root`).
 """
 
 from __future__ import annotations
@@ -17,35 +18,26 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq, root_scalar
 
 from ..analysis.applicability import Applicability, applicability
-from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..numerics.extrema import polish_minimum
-from ..solvers.refinement import refine
 from ..solvers.result import ContactSolution
-from ..solvers.single_patch import Model
+from .ray import Ray, brackets, follow, root
 
-__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact", "find_roots"]
+__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact"]
 
-#: Scan of the half-width: points per decade, from below fHPe = FHPE_MIN (or half
-#: the Hertz half-width) up to MAX_WIDTH Hertz half-widths, whatever fHPe that
-#: reaches.  Past fHPe ~ 0.6 (Barber's limiting width) P_H/P is negative, and from
-#: about 2 the formal solution has poles between which P_H/P turns positive again:
-#: such branches exist formally and are reported with their validity (roots were
-#: found at fHPe = 2.8 and 14 for steel on cast iron).
-SCAN_PER_DECADE = 32
-SCAN_POINTS = 64
+#: Half-widths searched: from below fHPe = FHPE_MIN (or half the Hertz half-width)
+#: up to MAX_WIDTH Hertz half-widths, whatever fHPe that reaches.  Past fHPe ~ 0.6
+#: (Barber's limiting width) P_H/P is negative, and from about 2 the formal solution
+#: has poles between which P_H/P turns positive again: such branches exist formally
+#: and are reported with their validity (roots were found at fHPe = 2.8 and 14 for
+#: steel on cast iron).
 FHPE_MIN = 0.05
 MAX_WIDTH = 4.0
-#: Method of every solve, and its n for the scan (enough to bracket the roots, which
-#: are then refined at the n that meets the error target).
-METHOD = DEFAULT_METHOD
-SCAN_N = 32
 
 
 @dataclass(frozen=True)
@@ -129,6 +121,22 @@ class PhysicalProblem:
     def fhpe(self, half_width):
         """``fHPe`` at half-width ``Delta``."""
         return self.friction * self.H * self.pe(half_width)
+
+    @property
+    def pe_hertz(self) -> float:
+        """``Pe_H = v Delta_H / (2 k2)``: with the ray, all that load, radius and speed
+        decide (D26)."""
+        return self.pe(self.hertz_half_width)
+
+    def half_width(self, pe):
+        """The half-width at ``Pe``, m."""
+        return pe * 2.0 * self.half_plane.k / self.speed
+
+    def ray(self) -> Ray:
+        """The dimensionless problems of every trial half-width."""
+        c, h = self.cylinder, self.half_plane
+        return Ray(h.K / c.K, h.k / c.k, c.distortivity / h.distortivity,
+                   self.friction * self.H, self.lam)
 
     def hertz_load(self, half_width):
         """``P_H = pi Delta^2 / (2 A R)``, N/m."""
@@ -220,23 +228,6 @@ class PhysicalContact:
     searched: tuple | None = None
 
 
-def _solve_at(prob: PhysicalProblem, half_width, n, check_validity=False):
-    # Each trial half-width is a new Pe and fHPe: one assembly per call.
-    par = prob.parameters(half_width)
-    model = Model(par.pe, par.K2_over_K1, k2_over_k1=par.k2_over_k1,
-                  delta1_over_delta2=par.delta1_over_delta2, method=METHOD)
-    return model.solve_at(n, par.fhpe, lam=prob.lam, check_validity=check_validity)
-
-
-def _h(prob, half_width, n):
-    """``P_H(Delta) - P (P_H/P)(Delta)`` scaled by ``P``."""
-    try:
-        L = _solve_at(prob, half_width, n).load_ratio
-    except SolveError:  # P_H/P = 0 exactly at this lam
-        L = 0.0
-    return prob.hertz_load(half_width) / prob.load - L
-
-
 def _scan_range(prob: PhysicalProblem):
     dh = prob.hertz_half_width
     beta = prob.fhpe(1.0)  # fHPe per metre of half-width
@@ -249,16 +240,23 @@ def _scan_range(prob: PhysicalProblem):
     return lo, hi
 
 
+def _cylinder_temperature(prob: PhysicalProblem, sol: ContactSolution, s):
+    """The cylinder's surface temperature rise at ``s`` (derivation D24)."""
+    par = sol.parameters
+    c, eta = par.cylinder_scale, par.eta
+    # q1 = ((1 + eta) p + q')/2, in units f v P / Delta.
+    ib, iq = sol.representation.integrate(lambda u: cylinder_temperature(c * u), s)
+    return (prob.friction * prob.speed * prob.load / (np.pi * prob.cylinder.K) * 0.5
+            * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi))
+
+
 def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
     """Surface temperature rises of both bodies over the contact (derivation D24, D25)."""
-    par = sol.parameters
     rep = sol.representation
-    c = par.cylinder_scale
-    eta = par.eta
+    eta = sol.parameters.eta
     f, v, P = prob.friction, prob.speed, prob.load
-    # q1 = ((1 + eta) p + q')/2 and q2 = ((1 - eta) p - q')/2, in units f v P / Delta.
-    ib, iq = rep.integrate(lambda u: cylinder_temperature(c * u), s)
-    t1 = f * v * P / (np.pi * prob.cylinder.K) * 0.5 * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi)
+    t1 = _cylinder_temperature(prob, sol, s)
+    # q2 = ((1 - eta) p - q')/2, in units f v P / Delta.
     lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s)
     t2 = -f * v * P / (np.pi * prob.half_plane.K) * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi)
     # The half-plane's level is fixed by continuity with the cylinder in the contact.
@@ -267,13 +265,14 @@ def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
     return t1, t2, float(np.max(np.abs(t1 - t2)))
 
 
-def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
-    levels, est = refine(lambda m: (_solve_at(prob, half_width, m, check_validity=(m == n)),),
-                         [m for m in (n // 4, n // 2, n) if m >= 8])
-    est = float("inf") if est is None else est
+def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
+    """The fields of the solution at ``Pe`` with ``n`` unknowns, whose error estimate
+    is ``estimate`` (:func:`~.ray.root`)."""
+    half_width = prob.half_width(pe)
+    est = estimate
     # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
     est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
-    sol = levels[-1][0].replace(error_estimate=est, tol=tol)
+    sol = prob.ray().solve_at(pe, n, check_validity=True).replace(error_estimate=est, tol=tol)
     s = np.cos(np.linspace(np.pi, 0.0, 201))
     p = prob.load / half_width * sol.pressure_at(s)
     s_in = s[1:-1]
@@ -283,11 +282,11 @@ def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
     ip = int(np.argmax(p))
     _, neg_peak = polish_minimum(lambda x: -prob.load / half_width * sol.pressure_at(x), s, -p, ip)
     s_t = np.concatenate([[-1.0], s_in, [1.0]])
-    t_all = np.concatenate([_temperatures(prob, sol, half_width, [-1.0])[0], t1,
-                            _temperatures(prob, sol, half_width, [1.0])[0]])
+    t_edges = _cylinder_temperature(prob, sol, [-1.0, 1.0])
+    t_all = np.concatenate([t_edges[:1], t1, t_edges[1:]])
     it = int(np.argmax(t_all))
-    _, neg_flash = polish_minimum(lambda x: -_temperatures(prob, sol, half_width, x)[0],
-                                  s_t, -t_all, it)
+    _, neg_flash = polish_minimum(lambda x: -_cylinder_temperature(prob, sol, x), s_t, -t_all,
+                                  it)
     offset = sol.sigma_over_delta * half_width
     lam = sol.lam
     q = prob.friction * prob.speed * prob.load
@@ -315,7 +314,7 @@ def _branch(prob: PhysicalProblem, half_width, n, tol) -> Branch:
     )
 
 
-def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
+def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContact:
     """Find every half-width that carries the load, with validity and physical fields.
 
     Parameters
@@ -323,6 +322,9 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
     problem : PhysicalProblem
     tol : float
         Error target of ``P_H/P`` in each branch's final solve (default 1e-6).
+    progress : callable, optional
+        ``progress(done, 100)`` while the half-widths are followed
+        (:func:`~.ray.follow`).
 
     Returns
     -------
@@ -332,22 +334,18 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
     tol = check_positive("tol", tol)
     if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0:
         # No thermal coupling: the Hertz contact, exactly (P_H/P = 1 at any n).
-        roots = [prob.hertz_half_width]
+        roots = [(prob.pe_hertz, 16, 0.0)]
         scan = None
     else:
         lo, hi = _scan_range(prob)
-        points = max(SCAN_POINTS, int(np.ceil(SCAN_PER_DECADE * np.log10(hi / lo))))
-        found, grid = find_roots(lambda d: _h(prob, d, SCAN_N), lo, hi, points=points)
-        roots = found
-        scan = (grid, None)
+        ray, pe_h = prob.ray(), prob.pe_hertz
+        scan = follow(ray, prob.pe(lo), prob.pe(hi), pe_h=pe_h, progress=progress)
+        roots = [r for i in brackets(scan.pe, scan.load_ratio, pe_h)
+                 if (r := root(ray, pe_h, scan, i, tol)) is not None]
     branches, singular = [], 0
-    for d in roots:
+    for pe, n, estimate in roots:
         try:
-            if scan is not None:
-                d, n = _refine(prob, d, tol)
-            else:
-                n = 16
-            branches.append(_branch(prob, d, n, tol))
+            branches.append(_branch(prob, pe, n, tol, estimate))
         except SolveError:
             # Only at the limiting width, where P_H/P = 0 and the offset is infinite.
             singular += 1
@@ -372,75 +370,38 @@ def contact(problem: PhysicalProblem, tol=1e-6) -> PhysicalContact:
         message += f"; the largest load with a valid solution is {largest:.4g} N/m"
     searched = None
     if scan is not None:
-        grid = scan[0]
-        searched = (float(grid[0]), float(grid[-1]), float(prob.fhpe(grid[0])),
-                    float(prob.fhpe(grid[-1])))
+        searched = (float(lo), float(hi), float(prob.fhpe(lo)), float(prob.fhpe(hi)))
         if message:
             message += (f" (half-widths searched: {searched[0]:.3g} to {searched[1]:.3g} m, "
                         f"fHPe {searched[2]:.3g} to {searched[3]:.3g})")
     return PhysicalContact(prob, branches, primary, message, largest, searched)
 
 
-def find_roots(h, lo, hi, points=SCAN_POINTS, pole_tol=1e-6):
-    """Every root of ``h`` on ``[lo, hi]``: scan, bracket, Brent.
-
-    ``h`` is sampled at ``points`` geometrically spaced values; each sign change
-    is refined by Brent's method, and kept only if ``|h|`` there is below
-    ``pole_tol`` (a sign change across a pole is not a root).
-
-    Returns
-    -------
-    roots : list of float
-        Increasing.
-    grid : ndarray
-        The scan.
-    """
-    grid = np.geomspace(lo, hi, points)
-    values = np.array([h(x) for x in grid])
-    roots = []
-    for i in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0):
-        root = brentq(h, grid[i], grid[i + 1], xtol=1e-13 * grid[i])
-        if abs(h(root)) <= pole_tol:
-            roots.append(float(root))
-    return roots, grid
-
-
-def _refine(prob, root, tol):
-    """The root at the resolution whose estimated error is below ``tol``.
-
-    ``n`` doubles over the method's automatic range (8 to 256) until the Richardson
-    estimate of the errors of ``P_H/P`` and ``sigma/Delta`` is below ``tol``; the
-    root is then refined by the secant method from the scan's root.
-
-    Returns
-    -------
-    half_width, n
-    """
-    start, n_max = METHODS[METHOD].auto_range
-    # The estimate the branch reports (P_H/P and sigma/Delta), so that it is met.
-    levels, _ = refine(lambda m: (_solve_at(prob, root, m),), [start, 2 * start, 4 * start],
-                       tol=tol, n_max=n_max)
-    n = levels[-1][0].n
-    # Secant steps from the scan's root (each costs an assembly at this n).
-    sol = root_scalar(lambda d: _h(prob, d, n), method="secant", x0=root,
-                      x1=root * (1 + 1e-6), xtol=1e-14 * root, maxiter=20)
-    return (float(sol.root) if sol.converged else root), n
-
-
 def _largest_valid_load(prob, scan):
-    """Largest load over the scanned half-widths whose solution is valid."""
-    grid, _ = scan
-    best, smallest_ratio = None, np.inf
-    for d in grid:
+    """Largest load carried by a valid solution at the followed half-widths.
+
+    The load a sample carries, ``P_H(Delta)/L``, needs no validity, so the samples
+    with ``L > 0`` are checked in decreasing load and the first valid one is the
+    answer; valid within 1 % of the limiting width (``L -> 0``), where the load grows
+    without bound, it is ``inf``.
+    """
+    ray = prob.ray()
+    pe, L = scan.pe, scan.load_ratio
+    load = np.where(L > 0, prob.load * (pe / prob.pe_hertz) ** 2 / np.where(L > 0, L, 1.0),
+                    -np.inf)
+    inside = np.cos(np.linspace(np.pi, 0.0, 257))[1:-1]  # 7.5e-5 from the edges
+    for i in np.argsort(-load):
+        if not load[i] > 0:
+            break
         try:
-            sol = _solve_at(prob, d, SCAN_N, check_validity=True)
+            sol = ray.solve_at(pe[i], scan.n)
+            # Tension inside the tolerated edge layers is invalid for certain: only
+            # the others need the inequalities' full assessment.
+            if np.min(sol.pressure_at(inside)) < 0.0:
+                continue
+            sol = ray.solve_at(pe[i], scan.n, check_validity=True, polish=False)
         except SolveError:
             continue
         if sol.valid and sol.load_ratio > 0:
-            load = prob.hertz_load(d) / sol.load_ratio
-            best = load if best is None else max(best, load)
-            smallest_ratio = min(smallest_ratio, sol.load_ratio)
-    # Valid within 1 % of the limiting width (P_H/P -> 0): no finite bound.
-    if best is not None and smallest_ratio < 0.01:
-        return float("inf")
-    return best
+            return float("inf") if sol.load_ratio < 0.01 else float(load[i])
+    return None

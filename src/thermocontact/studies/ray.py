@@ -1,0 +1,279 @@
+"""The ray of a physical problem: every trial half-width of one pair of materials.
+
+For one pair of materials, one friction coefficient and one heat partition, a trial
+half-width ``Delta`` fixes ``Pe = v Delta/(2 k2)`` and ``fHPe = f H Pe``, the ratios
+being the materials': every dimensionless problem lies on the *ray*
+``Pe -> (Pe, f H Pe)``.  A load ``P`` is carried where (derivation section 11b, D26)
+
+    Pe^2 = Pe_H^2 L(Pe),    Pe_H = v Delta_H/(2 k2),    L = P_H/P,
+
+so load, radius and speed enter only through ``Pe_H``.  :func:`follow` traces ``L``
+along the ray by continuation in ``ln Pe`` with step control;
+:func:`interpolated_roots` finds the roots of D26 on a local interpolant of samples;
+:func:`root` refines one root on the solver itself.  ``thermocontact contact``
+(one ``Pe_H``) and the operating maps (every ``Pe_H`` of a plane) share them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..problem.parameters import SolveError
+from ..solvers.refinement import refine
+from ..solvers.single_patch import DEFAULT_TOL, Model
+
+__all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "local", "root"]
+
+#: Unknowns per function of the continuation: enough to bracket the roots of D26,
+#: which :func:`root` then refines at the resolution that meets the error target.
+SCAN_N = 16
+#: Steps of the continuation in ln Pe: the first, the largest and the smallest.
+STEP_FIRST = math.log(10.0) / 8
+STEP_MAX = math.log(10.0) / 2
+STEP_MIN = math.log(10.0) / 256
+#: A step is accepted when the quadratic extrapolation of the last three samples
+#: predicts ``L`` to this fraction of ``max(1, |L|)``, or (following one load) to
+#: SIGN_MARGIN of the distance ``|L - (Pe/Pe_H)^2|`` from a root of D26.
+PREDICTOR_TOL = 0.02
+SIGN_MARGIN = 0.25
+#: Samples of the local interpolant in ln Pe (degree STENCIL - 1).
+STENCIL = 6
+
+
+@dataclass(frozen=True)
+class Ray:
+    """The dimensionless problems of one material pair, friction and heat partition.
+
+    Attributes
+    ----------
+    K2_over_K1, k2_over_k1, delta1_over_delta2 : float
+        The materials' ratios.
+    fh : float
+        ``f H``, the ray's slope ``fHPe/Pe``.
+    lam : float
+        Heat partition.
+    method : str
+    """
+
+    K2_over_K1: float
+    k2_over_k1: float
+    delta1_over_delta2: float
+    fh: float
+    lam: float
+    method: str = DEFAULT_METHOD
+
+    def model(self, pe, tol=DEFAULT_TOL, n=None) -> Model:
+        """The :class:`Model` at ``Pe``."""
+        return Model(pe, self.K2_over_K1, k2_over_k1=self.k2_over_k1,
+                     delta1_over_delta2=self.delta1_over_delta2, method=self.method, n=n,
+                     tol=tol)
+
+    def solve_at(self, pe, n, check_validity=False, polish=True):
+        """The solution at ``Pe`` with ``n`` unknowns per function."""
+        return self.model(pe).solve_at(n, self.fh * pe, lam=self.lam,
+                                       check_validity=check_validity, polish=polish)
+
+    def load_ratio(self, pe, n) -> float:
+        """``L = P_H/P`` at ``Pe`` (0 where the closure is singular, ``L = 0`` exactly)."""
+        try:
+            return float(self.solve_at(pe, n).load_ratio)
+        except SolveError:
+            return 0.0
+
+
+@dataclass(frozen=True)
+class RayScan:
+    """``L`` along the ray, from :func:`follow`.
+
+    Attributes
+    ----------
+    pe, load_ratio : ndarray
+        The accepted samples, increasing in ``Pe``.
+    n : int
+        Unknowns per function of every sample.
+    evaluations : int
+        Solves made, rejected steps included.
+    """
+
+    pe: np.ndarray = field(repr=False)
+    load_ratio: np.ndarray = field(repr=False)
+    n: int
+    evaluations: int
+
+    def __repr__(self):
+        return (f"RayScan(Pe {self.pe[0]:.4g} to {self.pe[-1]:.4g}, {self.pe.size} samples, "
+                f"n={self.n}, evaluations={self.evaluations})")
+
+
+def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RayScan:
+    """Trace ``L`` from ``pe_lo`` to ``pe_hi`` by continuation in ``ln Pe``.
+
+    Each step is predicted by the quadratic through the last three samples; it is
+    accepted when the solve agrees to ``PREDICTOR_TOL max(1, |L|)`` (or, given
+    ``pe_h``, to ``SIGN_MARGIN |L - (Pe/Pe_H)^2|``: far from a root of D26 only the
+    sign of that difference matters) and then grows (by at most 2, as the error's
+    cube root: the predictor is third order), and is halved otherwise, between
+    :data:`STEP_MIN` and :data:`STEP_MAX`.  Near a pole of ``L`` (past fHPe ~ 2)
+    the step falls to its smallest and the pole is crossed.
+
+    Parameters
+    ----------
+    ray : Ray
+    pe_lo, pe_hi : float
+        ``0 < pe_lo < pe_hi``.
+    n : int
+    pe_h : float, optional
+        Follow for the one load of this ``Pe_H``.
+    progress : callable, optional
+        ``progress(done, 100)``: the percentage of ``ln Pe`` covered.
+
+    Returns
+    -------
+    RayScan
+    """
+    x_lo, x_hi = math.log(pe_lo), math.log(pe_hi)
+    xs, fs = [x_lo], [ray.load_ratio(pe_lo, n)]
+    evaluations, step = 1, STEP_FIRST
+    while xs[-1] < x_hi:
+        x = min(xs[-1] + step, x_hi)
+        f = ray.load_ratio(math.exp(x), n)
+        evaluations += 1
+        if len(xs) >= 3:
+            (a, b, c), (fa, fb, fc) = xs[-3:], fs[-3:]
+            predicted = (fa * (x - b) * (x - c) / ((a - b) * (a - c))
+                         + fb * (x - a) * (x - c) / ((b - a) * (b - c))
+                         + fc * (x - a) * (x - b) / ((c - a) * (c - b)))
+            allowed = PREDICTOR_TOL * max(1.0, abs(f))
+            if pe_h is not None:
+                allowed = max(allowed, SIGN_MARGIN * abs(f - math.exp(2 * x) / pe_h**2))
+            error = abs(f - predicted) / allowed
+            if error > 1.0 and step > STEP_MIN * (1 + 1e-9):
+                step = max(step / 2, STEP_MIN)
+                continue
+            step *= min(2.0, 0.9 / max(error, 1e-3) ** (1 / 3))
+            step = min(max(step, STEP_MIN), STEP_MAX)
+        xs.append(x)
+        fs.append(f)
+        if progress is not None:
+            progress(round(100 * (x - x_lo) / (x_hi - x_lo)), 100)
+    return RayScan(np.exp(xs), np.array(fs), n, evaluations)
+
+
+def local(ln_pe, values, x, stencil=STENCIL):
+    """The Lagrange interpolant of ``values`` in ``ln Pe`` at ``x``, on the ``stencil``
+    samples nearest ``x``."""
+    i = int(np.searchsorted(ln_pe, x))
+    stencil = min(stencil, len(ln_pe))
+    lo = min(max(i - stencil // 2, 0), len(ln_pe) - stencil)
+    xs, fs = ln_pe[lo:lo + stencil], values[lo:lo + stencil]
+    out = 0.0
+    for j in range(stencil):
+        w = 1.0
+        for k in range(stencil):
+            if k != j:
+                w *= (x - xs[k]) / (xs[j] - xs[k])
+        out += w * fs[j]
+    return out
+
+
+def brackets(pe, load_ratio, pe_h):
+    """Indices ``i`` where ``Pe^2 - Pe_H^2 L`` changes sign between samples ``i`` and
+    ``i + 1`` (both finite)."""
+    g = np.asarray(pe) ** 2 - pe_h**2 * np.asarray(load_ratio)
+    ok = np.isfinite(g)
+    return np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) * np.sign(g[1:]) < 0))
+
+
+def interpolated_roots(pe, load_ratio, pe_h):
+    """The roots ``ln Pe`` of D26 on the local interpolants of the samples (those
+    with ``STENCIL`` finite samples around them)."""
+    lp = np.log(pe)
+    L = np.asarray(load_ratio)
+    ok = np.isfinite(L)
+    roots = []
+    for i in brackets(pe, L, pe_h):
+        if not np.all(ok[max(i - 3, 0):i + 4]):
+            continue
+
+        def h(x):
+            return pe_h**2 * local(lp, L, x) - math.exp(2 * x)
+        roots.append(brentq(h, lp[i], lp[i + 1], xtol=1e-14))
+    return roots
+
+
+def _secant(h, x0, slope, lo, hi, h0=None, xtol=1e-13):
+    """The root of ``h`` by secant steps from ``x0``, the first along ``slope``.
+
+    Returns ``(x, slope)`` at the last point evaluated (its ``h`` known to the
+    caller's solver), or None when a step leaves ``[lo, hi]`` or 30 do not converge.
+    """
+    h0 = h(x0) if h0 is None else h0
+    for _ in range(30):
+        if slope == 0.0 or not math.isfinite(slope):
+            return None
+        x1 = x0 - h0 / slope
+        if not lo <= x1 <= hi:
+            return None
+        h1 = h(x1)
+        if abs(x1 - x0) <= xtol * max(1.0, abs(x1)):
+            return x1, slope
+        if h1 != h0:
+            slope = (h1 - h0) / (x1 - x0)
+        x0, h0 = x1, h1
+    return None
+
+
+def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
+    """The root of D26 between samples ``i`` and ``i + 1`` of ``scan``, at the
+    resolution that meets ``tol``.
+
+    At the scan's ``n``: secant steps from the root of the samples' local
+    interpolant along its slope (Brent's method if they leave the bracket); a sign
+    change across a pole of ``L``, where ``|h|`` stays above ``pole_tol``, is no
+    root.  There ``n`` doubles over the method's automatic range until the
+    Richardson estimate of ``P_H/P`` and ``sigma/Delta`` meets ``tol``; at that ``n``
+    secant steps converge from the first root along its slope (one or two
+    assemblies), ``h = (Pe/Pe_H)^2 - L`` changing there by the discretisation error
+    only.
+
+    Returns
+    -------
+    (pe, n, estimate) or None
+        None for a pole.  ``estimate`` is that of the levels at the first root
+        (``Pe`` within the first root's error, about 1e-7 relative, of the last).
+    """
+    def h(x, n):
+        return math.exp(2 * x) / pe_h**2 - ray.load_ratio(math.exp(x), n)
+
+    lp = np.log(scan.pe)
+    a, b = float(lp[i]), float(lp[i + 1])
+
+    def interpolant(x):
+        return math.exp(2 * x) / pe_h**2 - local(lp, scan.load_ratio, x)
+
+    x0 = brentq(interpolant, a, b, xtol=1e-14)
+    d = 1e-6 * (b - a)
+    slope = (interpolant(x0 + d) - interpolant(x0 - d)) / (2 * d)
+    found = _secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-12)
+    if found is None:
+        x = brentq(h, a, b, args=(scan.n,), xtol=1e-12)
+    else:
+        x, slope = found
+    if abs(h(x, scan.n)) > pole_tol:
+        return None
+    start, n_max = METHODS[ray.method].auto_range
+    levels, estimate = refine(lambda m: (ray.solve_at(math.exp(x), m),),
+                              [start, 2 * start, 4 * start], tol=tol, n_max=n_max)
+    fine = levels[-1][0]
+    n = fine.n
+    width = max(b - a, 1e-9)
+    found = _secant(lambda y: h(y, n), x, slope, x - width, x + width,
+                    h0=math.exp(2 * x) / pe_h**2 - fine.load_ratio)
+    if found is not None:
+        x = found[0]
+    return math.exp(x), n, (math.inf if estimate is None else estimate)
