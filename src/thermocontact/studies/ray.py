@@ -20,7 +20,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..problem.parameters import SolveError
@@ -33,7 +32,7 @@ __all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "local", "root"]
 #: which :func:`root` then refines at the resolution that meets the error target.
 SCAN_N = 16
 #: Steps of the continuation in ln Pe: the first, the largest and the smallest.
-STEP_FIRST = math.log(10.0) / 8
+STEP_FIRST = math.log(10.0) / 4
 STEP_MAX = math.log(10.0) / 2
 STEP_MIN = math.log(10.0) / 256
 #: A step is accepted when the quadratic extrapolation of the last three samples
@@ -192,6 +191,8 @@ def brackets(pe, load_ratio, pe_h):
 def interpolated_roots(pe, load_ratio, pe_h):
     """The roots ``ln Pe`` of D26 on the local interpolants of the samples (those
     with ``STENCIL`` finite samples around them)."""
+    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
     lp = np.log(pe)
     L = np.asarray(load_ratio)
     ok = np.isfinite(L)
@@ -233,7 +234,8 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     resolution that meets ``tol``.
 
     At the scan's ``n``: secant steps from the root of the samples' local
-    interpolant along its slope (Brent's method if they leave the bracket); a sign
+    interpolant (itself found by secant steps from linear interpolation) along its
+    slope (Brent's method if they leave the bracket); a sign
     change across a pole of ``L``, where ``|h|`` stays above ``pole_tol``, is no
     root.  There ``n`` doubles over the method's automatic range until the
     Richardson estimate of ``P_H/P`` and ``sigma/Delta`` meets ``tol``; at that ``n``
@@ -256,11 +258,14 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     def interpolant(x):
         return math.exp(2 * x) / pe_h**2 - local(lp, scan.load_ratio, x)
 
-    x0 = brentq(interpolant, a, b, xtol=1e-14)
-    d = 1e-6 * (b - a)
-    slope = (interpolant(x0 + d) - interpolant(x0 - d)) / (2 * d)
-    found = _secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-12)
+    ha, hb = interpolant(a), interpolant(b)
+    x0, slope = a - ha * (b - a) / (hb - ha), (hb - ha) / (b - a)
+    x0, slope = _secant(interpolant, x0, slope, a, b) or (x0, slope)
+    # To 1e-8 only: the steps at the final n start from here along this slope.
+    found = _secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-8)
     if found is None:
+        from scipy.optimize import brentq
+
         x = brentq(h, a, b, args=(scan.n,), xtol=1e-12)
     else:
         x, slope = found
