@@ -388,6 +388,14 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     phi_min_at, phi_min = _least(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi, polish)
 
     so = _outside_grid(par, sigma, lam, load_ratio)
+    # Where an edge coefficient is positive the bodies also overlap in a layer just
+    # outside that edge (the gap's face of the same logarithm, section 8): the gap
+    # margin is taken outside the tolerated width there, as the pressure margin is
+    # inside.
+    for side, k in ((-1.0, k_log[0]), (1.0, k_log[1])):
+        if k > 0.0:
+            inside_layer = (np.sign(so) == side) & (np.abs(so) - 1.0 < EDGE_LAYER_TOLERANCE)
+            so = np.sort(np.append(so[~inside_layer], side * (1.0 + EDGE_LAYER_TOLERANCE)))
     g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
     ig = int(np.argmin(g))
     margin = g / (np.abs(so) - 1.0) ** 1.5

@@ -25,7 +25,7 @@ from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
 __all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "follow", "locate_events",
-           "model_for", "validity_margins"]
+           "model_for", "trace", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
@@ -236,20 +236,32 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     Path
     """
     along = check_choice("along", along, ALONG)
+    return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
+                 method=method, tol=tol, rtol=rtol, points=points)
+
+
+def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
+          rtol=1e-9, points=START_POINTS, log=False) -> Path:
+    """:func:`follow` on any solver: ``at(n, x)`` gives the solution at ``x`` with ``n``
+    unknowns (None where there is none); ``along`` and ``fixed`` are recorded.  With
+    ``log`` (both ends positive) the samples and their halvings are geometric."""
     start, stop = check_finite("start", start), check_finite("stop", stop)
     if start == stop:
         raise InputError(f"stop must differ from start, got {stop!r} twice")
     points = check_integer("points", points, 3, 10_000)
-    at = _solver(fixed, along, method)
+    log = bool(log and start > 0 and stop > 0)
+
+    def middle(a, b):
+        return float(np.sqrt(a * b)) if log else 0.5 * (a + b)
     # One n for the whole path, refined until the estimate meets tol at its ends and
     # middle (so that the margins vary smoothly along it).
-    probes = [start, 0.5 * (start + stop), stop]
+    probes = [start, middle(start, stop), stop]
     lo, n_max = METHODS[method].auto_range
     levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
                          tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
     n = lo * 2 ** (len(levels) - 1)
 
-    xs = list(np.linspace(start, stop, points))
+    xs = list((np.geomspace if log else np.linspace)(start, stop, points))
     sols = {x: at(n, x) for x in xs}
 
     def suspicious(a, b):
@@ -259,7 +271,7 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
         return any(min(abs(ma[k]), abs(mb[k])) < abs(ma[k] - mb[k]) for k in MARGINS)
 
     for _ in range(MAX_HALVINGS):
-        new = [0.5 * (a + b) for a, b in zip(xs[:-1], xs[1:]) if suspicious(a, b)]
+        new = [middle(a, b) for a, b in zip(xs[:-1], xs[1:]) if suspicious(a, b)]
         if not new:
             break
         for x in new:
@@ -270,5 +282,5 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
                            xtol=lambda a, b: rtol * max(abs(a), abs(b), 1e-300))
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
-    return Path(along, dict(fixed), xs_arr, valid, events, n, method,
+    return Path(along, fixed, xs_arr, valid, events, n, method,
                 float(est) if est is not None else float("nan"))

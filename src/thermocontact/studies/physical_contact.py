@@ -15,6 +15,8 @@ sign change is refined on the solver (:func:`~.ray.root`).
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,9 +28,15 @@ from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..numerics.extrema import polish_minimum
 from ..solvers.result import ContactSolution
-from .ray import Ray, brackets, follow, root
+from ..solvers.single_patch import DEFAULT_TOL
+from .boundaries import Path, trace
+from .ray import Ray, _secant, brackets, follow, root, start_of_root
 
-__all__ = ["Branch", "PhysicalContact", "PhysicalProblem", "contact"]
+__all__ = ["ALONG", "Branch", "PhysicalContact", "PhysicalProblem", "contact", "follow_along"]
+
+#: The physical inputs a path may follow (SI units), and whether it is sampled
+#: geometrically.
+ALONG = {"load": True, "speed": True, "radius": True, "friction": False}
 
 #: Half-widths searched: from below fHPe = FHPE_MIN (or half the Hertz half-width)
 #: up to MAX_WIDTH Hertz half-widths, whatever fHPe that reaches.  Past fHPe ~ 0.6
@@ -405,3 +413,89 @@ def _largest_valid_load(prob, scan):
         if sol.valid and sol.load_ratio > 0:
             return float("inf") if sol.load_ratio < 0.01 else float(load[i])
     return None
+
+
+def _primary(problem: PhysicalProblem, along: str):
+    """``at(n, x)``: the first branch (least half-width) of ``problem`` with ``along``
+    set to ``x``, solved with ``n`` unknowns; None where there is none.
+
+    Its ``Pe`` solves D26 at that ``n`` by secant steps in ``ln Pe`` from the nearest
+    root found so far, moved by the change of ``ln Pe_H`` (exact where ``P_H/P`` does
+    not change); a point farther than a factor 1.5 in ``Pe_H`` (or friction) from
+    every root found is first bracketed by a scan of its ray (:func:`~.ray.follow`).
+    """
+    found = []  # (x, Pe_H, ln Pe)
+
+    def at(n, x):
+        prob = dataclasses.replace(problem, **{along: x})
+        ray, pe_h = prob.ray(), prob.pe_hertz
+        if ray.fh == 0.0:
+            return ray.solve_at(pe_h, n, check_validity=True)
+
+        def h(y):
+            return math.exp(2 * y) / pe_h**2 - ray.load_ratio(math.exp(y), n)
+        near = min(found, key=lambda r: abs(math.log(r[1] / pe_h)) + abs(math.log(
+            max(r[0], 1e-300) / max(x, 1e-300))) * (along == "friction"), default=None)
+        if near is not None and (abs(math.log(near[1] / pe_h)) < math.log(1.5) and (
+                along != "friction" or abs(math.log(max(near[0], 1e-300) / x)) < math.log(1.5))):
+            y = near[2] + math.log(pe_h / near[1])
+            lo, hi = y - 1.0, y + 1.0
+        else:
+            a, b = _scan_range(prob)
+            scan = follow(ray, prob.pe(a), prob.pe(b), pe_h=pe_h)
+            first = brackets(scan.pe, scan.load_ratio, pe_h)
+            if not len(first):
+                return None
+            lo, hi = math.log(scan.pe[first[0]]), math.log(scan.pe[first[0] + 1])
+            y = start_of_root(scan, pe_h, first[0])[0]
+        d = 1e-6
+        h0 = h(y)
+        step = _secant(h, y, (h(y + d) - h0) / d, lo, hi, h0=h0, xtol=1e-13)
+        if step is None:
+            return None
+        y = step[0]
+        found.append((x, pe_h, y))
+        try:
+            return ray.solve_at(math.exp(y), n, check_validity=True)
+        except SolveError:
+            return None
+    return at
+
+
+def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAULT_TOL,
+                 rtol=1e-9, points=17) -> Path:
+    """Follow the contact of ``problem`` along load, speed, radius or friction and
+    locate every change of validity (:func:`~.boundaries.trace`).
+
+    The solution followed is the first branch, of least half-width (the one reached
+    by loading from zero).  Its dimensionless margins are those of the solution at
+    each point; events are located by Brent's method on them to ``rtol`` relative in
+    the physical parameter.
+
+    Parameters
+    ----------
+    problem : PhysicalProblem
+        The fixed inputs (its value of ``along`` is replaced).
+    along : {"load", "speed", "radius", "friction"}
+    start, stop : float
+        SI units; load, speed and radius positive, friction non-negative.
+    tol, rtol, points
+        As in :func:`~.boundaries.follow`.
+
+    Returns
+    -------
+    Path
+        ``fixed`` holds the other inputs (materials by name, SI units).
+    """
+    from ..problem.validation import check_choice
+
+    along = check_choice("along", along, tuple(ALONG))
+    for name, value in (("start", start), ("stop", stop)):
+        check = check_nonnegative if along == "friction" else check_positive
+        check(name, value)
+        dataclasses.replace(problem, **{along: value})  # validated as a problem
+    fixed = {"cylinder": problem.cylinder.name, "half_plane": problem.half_plane.name,
+             **{k: getattr(problem, k) for k in ("radius", "load", "speed", "friction", "lam")
+                if k != along}}
+    return trace(_primary(problem, along), along, fixed, start, stop, tol=tol, rtol=rtol,
+                 points=points, log=ALONG[along])

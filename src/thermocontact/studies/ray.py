@@ -26,7 +26,7 @@ from ..problem.parameters import SolveError
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "local", "root"]
+__all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "local", "root", "start_of_root"]
 
 #: Unknowns per function of the continuation: enough to bracket the roots of D26,
 #: which :func:`root` then refines at the resolution that meets the error target.
@@ -229,6 +229,20 @@ def _secant(h, x0, slope, lo, hi, h0=None, xtol=1e-13):
     return None
 
 
+def start_of_root(scan: RayScan, pe_h, i):
+    """``(ln Pe, slope of h)`` at the root of D26 on the local interpolant of the
+    samples ``i`` and ``i + 1`` of ``scan`` (secant steps from linear interpolation)."""
+    lp = np.log(scan.pe)
+    a, b = float(lp[i]), float(lp[i + 1])
+
+    def interpolant(x):
+        return math.exp(2 * x) / pe_h**2 - local(lp, scan.load_ratio, x)
+
+    ha, hb = interpolant(a), interpolant(b)
+    x0, slope = a - ha * (b - a) / (hb - ha), (hb - ha) / (b - a)
+    return _secant(interpolant, x0, slope, a, b) or (x0, slope)
+
+
 def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     """The root of D26 between samples ``i`` and ``i + 1`` of ``scan``, at the
     resolution that meets ``tol``.
@@ -252,15 +266,8 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     def h(x, n):
         return math.exp(2 * x) / pe_h**2 - ray.load_ratio(math.exp(x), n)
 
-    lp = np.log(scan.pe)
-    a, b = float(lp[i]), float(lp[i + 1])
-
-    def interpolant(x):
-        return math.exp(2 * x) / pe_h**2 - local(lp, scan.load_ratio, x)
-
-    ha, hb = interpolant(a), interpolant(b)
-    x0, slope = a - ha * (b - a) / (hb - ha), (hb - ha) / (b - a)
-    x0, slope = _secant(interpolant, x0, slope, a, b) or (x0, slope)
+    a, b = math.log(scan.pe[i]), math.log(scan.pe[i + 1])
+    x0, slope = start_of_root(scan, pe_h, i)
     # To 1e-8 only: the steps at the final n start from here along this slope.
     found = _secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-8)
     if found is None:
