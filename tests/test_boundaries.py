@@ -90,3 +90,43 @@ def test_boundary_bad_input(args, words, capsys):
     assert main(base + args) == 2
     err = capsys.readouterr().err
     assert words in err and len(err.strip().splitlines()) == 1
+
+
+def test_physical_paths_meet_at_one_pe_hertz(capsys):
+    """Along the load (API) and along the speed (command line) the steel/cast-iron
+    contact (lam = 1) passes the edge-layer event at one Pe_H (D26: load and
+    speed enter only through v sqrt(P)): v* = v0 sqrt(P*/P0) to 1e-8 at the same n;
+    each event carries its discretisation error estimate (against n/2)."""
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.physical_contact import PhysicalProblem, follow_along
+
+    prob = PhysicalProblem(get_material("steel"), get_material("cast-iron"), 0.45, 1e5, 1.0,
+                           0.35, 1.0)
+    (e,) = [e for e in follow_along(prob, "load", 3.7e5, 4.1e5, n=32, points=3).events
+            if e.inequality == "edge"]
+    assert e.edge == "leading" and not e.valid_after
+    assert 0 < e.error_estimate < 0.01 * e.at
+    assert main(["boundary", "--along", "speed", "--from", "1.9", "--to", "2.05", "--cylinder",
+                 "steel", "--half-plane", "cast-iron", "--radius", "450mm", "--load",
+                 "100kN/m", "--friction", "0.35", "--lam", "1", "-n", "32", "--json"]) == 0
+    (v,) = [v for v in json.loads(capsys.readouterr().out)["events"]
+            if v["inequality"] == "edge"]
+    assert abs(v["at"] / np.sqrt(e.at / 1e5) - 1) < 1e-8
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--along", "load", "--from", "1e3", "--to", "1e4", "--cylinder", "steel",
+      "--half-plane", "cast-iron", "--radius", "0.45", "--friction", "0.3", "--lam", "1"],
+     "--speed must be given"),
+    (["--along", "load", "--from", "1e3", "--to", "1e4", "--radius", "0.45"],
+     "--cylinder must be given"),
+    (["--along", "fhpe", "--from", "0", "--to", "1", "--pe", "5", "--K2-over-K1", "10",
+      "--lam", "1", "--load", "1e4"], "--load belongs to a physical path"),
+    (["--along", "load", "--from", "-1", "--to", "1e4", "--cylinder", "steel",
+      "--half-plane", "cast-iron", "--radius", "0.45", "--speed", "1", "--friction", "0.3",
+      "--lam", "1"], "load must be > 0"),
+])
+def test_bad_physical_paths_refused(args, words, capsys):
+    assert main(["boundary"] + args) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1

@@ -149,45 +149,123 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
 
 @cli.command("boundary")
 @click.option("--along", required=True,
-              help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1 or "
-                   "delta1-over-delta2.")
-@click.option("--from", "start", type=float, required=True, help="Start of the path.")
-@click.option("--to", "stop", type=float, required=True, help="End of the path.")
+              help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
+                   "delta1-over-delta2; or, with --cylinder and --half-plane, load, speed, "
+                   "radius or friction.")
+@click.option("--from", "start", required=True,
+              help="Start of the path (physical parameters in SI units or with units).")
+@click.option("--to", "stop", required=True, help="End of the path.")
 @_problem_options(required=False)
+@click.option("--cylinder", default=None, help="Material of the sliding cylinder (physical paths).")
+@click.option("--half-plane", "half_plane", default=None, help="Material of the half-plane.")
+@click.option("--materials", "materials_file", default=None, help="TOML file adding or overriding materials.")
+@click.option("--radius", default=None, help="Cylinder radius (m, or with units).")
+@click.option("--load", default=None, help="Load per unit length (N/m, or with units).")
+@click.option("--speed", default=None, help="Sliding speed (m/s, or with units).")
+@click.option("--friction", type=float, default=None, help="Coefficient of friction >= 0.")
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Error target for the choice of n.")
+@click.option("-n", "n", type=int, default=None,
+              help="Unknowns per function of the whole path (default: chosen by --tol); "
+                   "each event's error estimate compares with n/2.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation method.")
+              show_default=True, help="Discretisation method (dimensionless paths).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
-                 lam, sigma, tol, method, as_json):
+                 lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
+                 friction, tol, n, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
     from .studies.boundaries import SPELLINGS as names, follow
 
-    if along not in names:
-        raise InputError(f"--along must be one of {sorted(names)}, got {along!r}")
-    name = names[along]
-    given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
-             "delta1_over_delta2": delta1_over_delta2, "lam": lam, "sigma_over_delta": sigma}
-    fixed = {k: v for k, v in given.items() if v is not None and k != name}
-    for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
-        if k != name and k not in fixed:
-            raise InputError(f"{option} must be given (it is not the parameter followed)")
-    closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
-    if len(closures) != 1:
-        raise InputError("give exactly one of --lam and --sigma, or follow one of them")
-    path = follow(fixed, name, start, stop, method=method, tol=check_positive("tol", tol))
+    physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
+                "load": load, "speed": speed, "friction": friction}
+    tol = check_positive("tol", tol)
+    if cylinder is not None or half_plane is not None or along in _PHYSICAL_UNITS:
+        path = _physical_path(along, start, stop, physical, materials_file, lam, tol, n,
+                              {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
+                               "k2_over_k1": k2_over_k1, "sigma": sigma})
+        method = path.method
+    else:
+        for name, value in physical.items():
+            if value is not None:
+                raise InputError(f"--{name.replace('_', '-')} belongs to a physical path: "
+                                 f"give --cylinder and --half-plane too")
+        if along not in names:
+            raise InputError(f"--along must be one of {sorted(names) + sorted(_PHYSICAL_UNITS)}"
+                             f", got {along!r}")
+        name = names[along]
+        given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
+                 "delta1_over_delta2": delta1_over_delta2, "lam": lam,
+                 "sigma_over_delta": sigma}
+        fixed = {k: v for k, v in given.items() if v is not None and k != name}
+        for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
+            if k != name and k not in fixed:
+                raise InputError(f"--{option.lstrip('-')} must be given (it is not the "
+                                 f"parameter followed)".replace("----", "--"))
+        closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
+        if len(closures) != 1:
+            raise InputError("give exactly one of --lam and --sigma, or follow one of them")
+        path = follow(fixed, name, _number("--from", start), _number("--to", stop),
+                      method=method, tol=tol, n=n)
     if as_json:
         click.echo(json.dumps(path.to_dict(), allow_nan=False))
         return
-    click.echo(f"thermocontact {__version__}: along {along} from {start:g} to {stop:g} "
-               f"(method {method}, n = {path.n})")
+    unit = _PHYSICAL_UNITS.get(along, "")
+    click.echo(f"thermocontact {__version__}: along {along} from {path.x[0]:g} to "
+               f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n})")
     if not path.events:
         click.echo(f"  no change of validity (valid throughout: {bool(path.valid.all())})")
     for e in path.events:
         where = f" at the {e.edge} edge" if e.edge else ""
-        click.echo(f"  {along} = {e.at:.10g}: {e.inequality}{where}; valid "
-                   f"{e.valid_before} -> {e.valid_after}")
+        err = ("" if e.error_estimate is None else
+               f" (discretisation error estimate {e.error_estimate:.1e})")
+        click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
+                   f"{e.inequality}{where}; valid {e.valid_before} -> {e.valid_after}")
+
+
+#: Physical parameters a path may follow, and their SI units.
+_PHYSICAL_UNITS = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
+
+
+def _number(option, text) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise InputError(f"{option} must be a number, got {text!r}") from None
+
+
+def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, dimensionless):
+    """The path of ``boundary`` along a physical parameter."""
+    from .problem.materials import get_material, load_materials
+    from .problem.units import parse_quantity
+    from .studies.physical_contact import PhysicalProblem, follow_along
+
+    if along not in _PHYSICAL_UNITS:
+        raise InputError(f"--along must be one of {sorted(_PHYSICAL_UNITS)} with --cylinder, "
+                         f"got {along!r}")
+    for name, value in dimensionless.items():
+        if value is not None:
+            raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless path, "
+                             f"not to one with --cylinder")
+    for name in ("cylinder", "half_plane", "radius", "load", "speed", "friction"):
+        if name != along and physical[name] is None:
+            raise InputError(f"--{name.replace('_', '-')} must be given (it is not the "
+                             f"parameter followed)")
+    if lam is None:
+        raise InputError("--lam must be given")
+    if materials_file is not None:
+        load_materials(materials_file)
+    unit = _PHYSICAL_UNITS[along]
+    ends = [parse_quantity(v, unit, o) if unit else _number(o, v)
+            for o, v in (("--from", start), ("--to", stop))]
+    units = {"radius": "m", "load": "N/m", "speed": "m/s"}
+    values = {k: (parse_quantity(physical[k], u, k) if k != along else ends[0])
+              for k, u in units.items()}
+    friction = ends[0] if along == "friction" else physical["friction"]
+    prob = PhysicalProblem(get_material(physical["cylinder"], materials_file),
+                           get_material(physical["half_plane"], materials_file),
+                           values["radius"], values["load"], values["speed"], friction, lam)
+    return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n)
 
 
 def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,

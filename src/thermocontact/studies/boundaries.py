@@ -14,6 +14,7 @@ that margin to ``rtol`` relative in the parameter.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,6 +59,10 @@ class Event:
     position : float or None
         ``s = (x - sigma)/Delta`` where the margin is least just past the event (None
         for the load).
+    error_estimate : float or None
+        The event's distance from where the same margin changes sign with half the
+        unknowns: the discretisation's share of its error (``at`` itself is located
+        to ``rtol``).  None where it could not be bracketed at ``n/2``.
     """
 
     at: float
@@ -66,11 +71,12 @@ class Event:
     valid_before: bool
     valid_after: bool
     position: float | None = None
+    error_estimate: float | None = None
 
     def to_dict(self) -> dict:
         return {"at": self.at, "inequality": self.inequality, "edge": self.edge,
                 "valid_before": self.valid_before, "valid_after": self.valid_after,
-                "position": self.position}
+                "position": self.position, "error_estimate": self.error_estimate}
 
 
 @dataclass(frozen=True)
@@ -209,8 +215,36 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
     return tuple(events)
 
 
+def _relocated(at, event, lo, hi, xtol):
+    """``|event.at - x|`` for the sign change ``x`` of the event's margin under ``at``
+    nearest ``event.at`` (brackets widened from 1e-4 of ``|at|`` to a tenth of the
+    path), or None."""
+    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+    def f(x):
+        try:
+            m = validity_margins(at(x))
+        except SolveError:
+            m = None
+        return np.nan if m is None else m[event.inequality]
+
+    x0, width = event.at, max(abs(event.at), 1e-12) * 1e-4
+    for _ in range(12):
+        a, b = max(x0 - width, lo), min(x0 + width, hi)
+        fa, fb = f(a), f(b)
+        if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
+            try:
+                return float(abs(brentq(f, a, b, xtol=xtol(a, b)) - x0))
+            except (ValueError, RuntimeError):
+                return None
+        if width > 0.1 * (hi - lo):
+            return None
+        width *= 4.0
+    return None
+
+
 def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
-           rtol=1e-9, points=START_POINTS) -> Path:
+           rtol=1e-9, points=START_POINTS, n=None) -> Path:
     """Follow a solution along one parameter and locate every change of validity.
 
     Parameters
@@ -230,6 +264,9 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
         Relative tolerance of the events in the parameter.
     points : int
         Initial samples (at least 3).
+    n : int, optional
+        Unknowns per function of the whole path, instead of the choice by ``tol``
+        (each event's error estimate compares with ``n/2``).
 
     Returns
     -------
@@ -237,11 +274,11 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     """
     along = check_choice("along", along, ALONG)
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
-                 method=method, tol=tol, rtol=rtol, points=points)
+                 method=method, tol=tol, rtol=rtol, points=points, n=n)
 
 
 def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
-          rtol=1e-9, points=START_POINTS, log=False) -> Path:
+          rtol=1e-9, points=START_POINTS, log=False, n=None) -> Path:
     """:func:`follow` on any solver: ``at(n, x)`` gives the solution at ``x`` with ``n``
     unknowns (None where there is none); ``along`` and ``fixed`` are recorded.  With
     ``log`` (both ends positive) the samples and their halvings are geometric."""
@@ -257,9 +294,14 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     # middle (so that the margins vary smoothly along it).
     probes = [start, middle(start, stop), stop]
     lo, n_max = METHODS[method].auto_range
-    levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
-                         tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
-    n = lo * 2 ** (len(levels) - 1)
+    if n is None:
+        levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
+                             tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
+        n = lo * 2 ** (len(levels) - 1)
+    else:
+        n = check_integer("n", n, 8, 1024)
+        _, est = refine(lambda m: tuple(at(m, x) for x in probes), [n // 4, n // 2, n],
+                        p_max=METHODS[method].order_cap)
 
     xs = list((np.geomspace if log else np.linspace)(start, stop, points))
     sols = {x: at(n, x) for x in xs}
@@ -278,8 +320,11 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
             sols[x] = at(n, x)
         xs = sorted(set(xs) | set(new), reverse=stop < start)
 
-    events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs],
-                           xtol=lambda a, b: rtol * max(abs(a), abs(b), 1e-300))
+    xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
+    events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs], xtol=xtol)
+    lo_x, hi_x = min(start, stop), max(start, stop)
+    events = tuple(dataclasses.replace(e, error_estimate=_relocated(
+        lambda x: at(n // 2, x), e, lo_x, hi_x, xtol)) for e in events)
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
     return Path(along, fixed, xs_arr, valid, events, n, method,

@@ -463,7 +463,7 @@ def _primary(problem: PhysicalProblem, along: str):
 
 
 def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAULT_TOL,
-                 rtol=1e-9, points=17) -> Path:
+                 rtol=1e-9, points=17, n=None) -> Path:
     """Follow the contact of ``problem`` along load, speed, radius or friction and
     locate every change of validity (:func:`~.boundaries.trace`).
 
@@ -479,7 +479,7 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
     along : {"load", "speed", "radius", "friction"}
     start, stop : float
         SI units; load, speed and radius positive, friction non-negative.
-    tol, rtol, points
+    tol, rtol, points, n
         As in :func:`~.boundaries.follow`.
 
     Returns
@@ -498,4 +498,4 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
              **{k: getattr(problem, k) for k in ("radius", "load", "speed", "friction", "lam")
                 if k != along}}
     return trace(_primary(problem, along), along, fixed, start, stop, tol=tol, rtol=rtol,
-                 points=points, log=ALONG[along])
+                 points=points, log=ALONG[along], n=n)
