@@ -37,7 +37,8 @@ def test_map_points_equal_contact():
     read off the one ray, equals `contact` at that point: half-width and offset to 1e-6, peak pressure
     and flash temperature to 1e-5 relative (each side's error target is 1e-6 in P_H/P
     at its own n; the ray is interpolated in ln Pe to degree 5 at 24 samples per
-    decade; observed 2.6e-6 on the peak pressure), validity exactly."""
+    decade; observed 2.6e-6 on the peak pressure), slopes and strains to 1e-5,
+    validity and applicability exactly."""
     s = spec(x="load:1e4:4e4:2:log", y="speed:0.3:3:2:log")
     ds = compute_operating_map(s, workers=2)
     for j, v in enumerate(ds.speed.values):
@@ -50,6 +51,15 @@ def test_map_points_equal_contact():
             assert float(point.flash_temperature) == pytest.approx(ref.flash_temperature,
                                                                    rel=1e-5)
             assert bool(point.valid) == ref.valid
+            # Slopes and strains from the ray's factors against contact's own measure
+            # (201 points of the contact; observed 4e-7).
+            a = ref.applicability
+            for i, body in enumerate(("cylinder", "half_plane")):
+                assert float(point[f"max_slope_{body}"]) == pytest.approx(a.max_slope[i],
+                                                                        rel=1e-5)
+                assert float(point[f"max_strain_{body}"]) == pytest.approx(a.max_strain[i],
+                                                                         rel=1e-5)
+            assert bool(point.applicable) == ref.applicable
 
 
 def test_bad_operating_maps_are_refused():

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._version import __version__
-from ..analysis.applicability import AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS
+from ..analysis.applicability import (AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS,
+                                      MAX_SLOPE, MAX_STRAIN, surface_slopes)
 from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
@@ -124,6 +125,11 @@ class OperatingSpec:
         """``f H``: the ray's slope ``fHPe/Pe``."""
         return self.friction * self.half_plane.k * self.half_plane.distortivity / self.compliance
 
+    def fractions(self) -> tuple:
+        """Each body's compliance over their sum ``A``."""
+        return (self.cylinder.compliance / self.compliance,
+                self.half_plane.compliance / self.compliance)
+
     def ratios(self) -> dict:
         c, h = self.cylinder, self.half_plane
         return {"K2_over_K1": h.K / c.K, "k2_over_k1": h.k / c.k,
@@ -133,7 +139,8 @@ class OperatingSpec:
         return {"kind": "thermocontact operating map", "version": __version__,
                 "cylinder": self.cylinder.name, "half_plane": self.half_plane.name,
                 "friction": self.friction, "lam": self.lam, "x": self.x.spec,
-                "y": self.y.spec, "fixed": self.fixed, "tol": self.tol}
+                "y": self.y.spec, "fixed": self.fixed, "tol": self.tol,
+                "fields": "slopes and strains"}
 
 
 def _ray_model(task, pe):
@@ -159,10 +166,24 @@ def _shape(sol):
     return -neg_p, -neg_t
 
 
+def _slope_factors(sol, fractions):
+    """Per body, the largest ``fraction |elastic| + |thermal|`` of the slope terms of
+    (D14) over the contact (:func:`~thermocontact.analysis.applicability.surface_slopes`):
+    times ``(Delta/R) pi/(2L)``, plus the rigid profile's ``(|sigma| + 1) Delta/R``, the
+    bound on each surface's slope that ``contact`` reports; and the peak pressure on
+    the same points, whose product with that scale and a fraction is its strain."""
+    s, elastic, t1, t2 = surface_slopes(sol)
+    return (float(np.max(fractions[0] * np.abs(elastic) + np.abs(t1))),
+            float(np.max(fractions[1] * np.abs(elastic) + np.abs(t2))),
+            float(np.max(sol.pressure_at(s))))
+
+
 def evaluate_ray(task) -> dict:
     """Solve the ray at the chunk's Péclet numbers: ``P_H/P``, offset, margins, shapes."""
     out = {k: [] for k in ("pe", "load_ratio", "sigma_over_delta", "valid", "peak", "flash",
-                           "error_estimate", "n", "status", "reason")}
+                           "slope_cylinder", "slope_half_plane", "strain", "error_estimate",
+                           "n",
+                           "status", "reason")}
     for pe in task["pe"]:
         try:
             with warnings.catch_warnings():
@@ -170,11 +191,12 @@ def evaluate_ray(task) -> dict:
                 sol = _ray_model(task, pe).solve(task["fh"] * pe, lam=task["lam"], polish=False)
             peak, flash = _shape(sol)
             rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), peak, flash,
+                   *_slope_factors(sol, task["fractions"]),
                    sol.error_estimate if sol.error_estimate is not None else math.nan, sol.n,
                    sol.status, sol.validity.reason)
         except (SolveError, InputError) as exc:
             nan = math.nan
-            rec = (nan, nan, 0, nan, nan, nan, 0, "failed", str(exc))
+            rec = (nan, nan, 0, nan, nan, nan, nan, nan, nan, 0, "failed", str(exc))
         for k, v in zip(list(out)[1:], rec):
             out[k].append(v)
         out["pe"].append(pe)
@@ -187,7 +209,8 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     kept in ``store_path`` as they finish)."""
     count = max(8, int(math.ceil(RAY_PER_DECADE * math.log10(pe_hi / pe_lo))) + 1)
     pes = np.geomspace(pe_lo, pe_hi, count)
-    base = {"ratios": spec.ratios(), "tol": spec.tol, "fh": spec.fh, "lam": spec.lam}
+    base = {"ratios": spec.ratios(), "tol": spec.tol, "fh": spec.fh, "lam": spec.lam,
+            "fractions": spec.fractions()}
     tasks = [{**base, "pe": [float(p) for p in pes[i:i + RAY_CHUNK]]}
              for i in range(0, count, RAY_CHUNK)]
     manifest = {**spec.manifest(), "pe": [pe_lo, pe_hi, count], "chunk": RAY_CHUNK}
@@ -246,7 +269,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     xarray.Dataset
         Over the two axes: ``half_width``, ``offset``, ``peak_pressure``,
         ``mean_pressure``, ``flash_temperature``, ``load_ratio``, ``pe``, ``fhpe``,
-        ``valid``, ``applicable``, ``branches``, ``status``, ``reason``; the boundary
+        ``max_slope_*`` and ``max_strain_*`` of the cylinder and the half-plane (as
+        ``contact`` measures them), ``valid``, ``applicable`` (size, slopes, strains,
+        flash temperature), ``branches``, ``status``, ``reason``; the boundary
         as values of ``Pe_H`` and as curves in the plane.
     """
     import xarray as xr
@@ -271,15 +296,17 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         return bool(ray["valid"][i - 1]) if pe < inside[0] else bool(ray["valid"][i])
 
     shape = pe_h.shape
-    fields = {k: np.full(shape, np.nan) for k in ("half_width", "offset", "peak_pressure",
-                                                   "mean_pressure", "flash_temperature",
-                                                   "load_ratio", "pe", "fhpe")}
+    fields = {k: np.full(shape, np.nan) for k in (
+        "half_width", "offset", "peak_pressure", "mean_pressure", "flash_temperature",
+        "load_ratio", "pe", "fhpe", "max_slope_cylinder", "max_slope_half_plane",
+        "max_strain_cylinder", "max_strain_half_plane")}
     valid = np.zeros(shape, dtype=np.int8)
     applicable = np.zeros(shape, dtype=np.int8)
     branches = np.zeros(shape, dtype=np.int32)
     status = np.full(shape, "solved", dtype=object)
     reason = np.full(shape, "", dtype=object)
     k2, K1 = spec.half_plane.k, spec.cylinder.K
+    fractions = spec.fractions()
     limits = [t for t in (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
               if t is not None]
     for idx in np.ndindex(shape):
@@ -307,9 +334,27 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         fields["pe"][idx] = pe
         fields["fhpe"][idx] = spec.fh * pe
         valid[idx] = int(valid_at(pe))
+        # Slopes and strains as contact's applicability measures them (module notes of
+        # thermocontact.analysis.applicability), from the ray's per-sample factors.
+        scale = d / R * np.pi / (2.0 * abs(Lr))
+        sigma = fields["offset"][idx] / d
+        peak_hat = _local(lp, ray["strain"], r)
+        bodies = (("cylinder", "slope_cylinder", 0), ("half_plane", "slope_half_plane", 1))
+        for body, key, i in bodies:
+            fields[f"max_slope_{body}"][idx] = (abs(sigma) + 1.0) * d / R + scale * _local(
+                lp, ray[key], r)
+            fields[f"max_strain_{body}"][idx] = fractions[i] * peak_hat * scale
         reasons = []
         if d / R > MAX_HALF_WIDTH_OVER_RADIUS:
             reasons.append(f"half-width/radius {d / R:.3g} > {MAX_HALF_WIDTH_OVER_RADIUS:g}")
+        for body, _, _ in bodies:
+            name = body.replace("_", "-")
+            if not fields[f"max_slope_{body}"][idx] <= MAX_SLOPE:
+                reasons.append(f"{name} slope {fields[f'max_slope_{body}'][idx]:.3g} > "
+                               f"{MAX_SLOPE:g}")
+            if not fields[f"max_strain_{body}"][idx] <= MAX_STRAIN:
+                reasons.append(f"{name} strain {fields[f'max_strain_{body}'][idx]:.3g} > "
+                               f"{MAX_STRAIN:g}")
         if limits and AMBIENT_TEMPERATURE + flash > min(limits):
             reasons.append(f"flash temperature {flash:.3g} K above ambient exceeds a "
                            f"material's limit")

@@ -424,7 +424,7 @@ def _primary(problem: PhysicalProblem, along: str):
     not change); a point farther than a factor 1.5 in ``Pe_H`` (or friction) from
     every root found is first bracketed by a scan of its ray (:func:`~.ray.follow`).
     """
-    found = []  # (x, Pe_H, ln Pe)
+    found = []  # (x, Pe_H, ln Pe, slope of h there)
 
     def at(n, x):
         prob = dataclasses.replace(problem, **{along: x})
@@ -438,7 +438,7 @@ def _primary(problem: PhysicalProblem, along: str):
             max(r[0], 1e-300) / max(x, 1e-300))) * (along == "friction"), default=None)
         if near is not None and (abs(math.log(near[1] / pe_h)) < math.log(1.5) and (
                 along != "friction" or abs(math.log(max(near[0], 1e-300) / x)) < math.log(1.5))):
-            y = near[2] + math.log(pe_h / near[1])
+            y, slope = near[2] + math.log(pe_h / near[1]), near[3]
             lo, hi = y - 1.0, y + 1.0
         else:
             a, b = _scan_range(prob)
@@ -447,14 +447,12 @@ def _primary(problem: PhysicalProblem, along: str):
             if not len(first):
                 return None
             lo, hi = math.log(scan.pe[first[0]]), math.log(scan.pe[first[0] + 1])
-            y = start_of_root(scan, pe_h, first[0])[0]
-        d = 1e-6
-        h0 = h(y)
-        step = _secant(h, y, (h(y + d) - h0) / d, lo, hi, h0=h0, xtol=1e-13)
+            y, slope = start_of_root(scan, pe_h, first[0])
+        step = _secant(h, y, slope, lo, hi, xtol=1e-13)
         if step is None:
             return None
-        y = step[0]
-        found.append((x, pe_h, y))
+        y, slope = step
+        found.append((x, pe_h, y, slope))
         try:
             return ray.solve_at(math.exp(y), n, check_validity=True)
         except SolveError:
