@@ -102,6 +102,37 @@ def _problem_options(required: bool):
     return deco
 
 
+def _physical_options(required: bool):
+    """The physical problem's options, shared by ``contact`` and, where they select the
+    physical variant and the parameter followed or mapped is left out, by ``boundary``
+    and ``map``."""
+    unless = "" if required else " (physical variant; unless followed or an axis)"
+    options = [
+        click.option("--cylinder", required=required, default=None,
+                     help="Material of the sliding cylinder: a name or "
+                          "E=..,nu=..,alpha=..,K=..,k=.." + (
+                              "" if required else " (selects the physical variant)")),
+        click.option("--half-plane", "half_plane", required=required, default=None,
+                     help="Material of the stationary half-plane."),
+        click.option("--materials", "materials_file", default=None,
+                     help="TOML file adding or overriding materials."),
+        click.option("--radius", required=required, default=None,
+                     help=f"Cylinder radius (m, or with units: 450mm){unless}."),
+        click.option("--load", required=required, default=None,
+                     help=f"Load per unit length (N/m, or 200kN/m){unless}."),
+        click.option("--speed", required=required, default=None,
+                     help=f"Sliding speed (m/s, or 72km/h){unless}."),
+        click.option("--friction", type=float, required=required, default=None,
+                     help=f"Coefficient of friction >= 0{unless}."),
+    ]
+
+    def deco(func):
+        for option in reversed(options):
+            func = option(func)
+        return func
+    return deco
+
+
 @cli.command("solve")
 @_problem_options(required=True)
 @click.option("-n", "n", type=int, default=None,
@@ -156,13 +187,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
               help="Start of the path (physical parameters in SI units or with units).")
 @click.option("--to", "stop", required=True, help="End of the path.")
 @_problem_options(required=False)
-@click.option("--cylinder", default=None, help="Material of the sliding cylinder (physical paths).")
-@click.option("--half-plane", "half_plane", default=None, help="Material of the half-plane.")
-@click.option("--materials", "materials_file", default=None, help="TOML file adding or overriding materials.")
-@click.option("--radius", default=None, help="Cylinder radius (m, or with units).")
-@click.option("--load", default=None, help="Load per unit length (N/m, or with units).")
-@click.option("--speed", default=None, help="Sliding speed (m/s, or with units).")
-@click.option("--friction", type=float, default=None, help="Coefficient of friction >= 0.")
+@_physical_options(required=False)
 @click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
               help="Error target for the choice of n.")
 @click.option("-n", "n", type=int, default=None,
@@ -385,17 +410,7 @@ def _run_map(spec, out, workers, title, command):
 @click.option("--scheduler", default=None,
               help="Run on the Dask cluster whose scheduler is at this address "
                    "(tcp://host:port) instead.")
-@click.option("--cylinder", default=None,
-              help="Operating map in physical units: the cylinder's material (with "
-                   "--half-plane, --friction, --lam and the one of --radius, --load, "
-                   "--speed that is not an axis; axes load, speed, radius in SI units).")
-@click.option("--half-plane", "half_plane", default=None, help="The half-plane's material.")
-@click.option("--materials", "materials_file", default=None,
-              help="TOML file adding or overriding materials.")
-@click.option("--radius", default=None, help="Cylinder radius (m, or 10mm).")
-@click.option("--load", default=None, help="Load per unit length (N/m, or 200kN/m).")
-@click.option("--speed", default=None, help="Sliding speed (m/s, or 72km/h).")
-@click.option("--friction", type=float, default=None, help="Coefficient of friction >= 0.")
+@_physical_options(required=False)
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
             materials_file, radius, load, speed, friction):
@@ -563,13 +578,7 @@ def _contact_summary(res) -> str:
 
 
 @cli.command("contact")
-@click.option("--cylinder", required=True, help="Material of the sliding cylinder: a name or E=..,nu=..,alpha=..,K=..,k=..")
-@click.option("--half-plane", "half_plane", required=True, help="Material of the stationary half-plane.")
-@click.option("--materials", "materials_file", default=None, help="TOML file adding or overriding materials.")
-@click.option("--radius", required=True, help="Cylinder radius (m, or with units: 450mm).")
-@click.option("--load", required=True, help="Load per unit length (N/m, or 200kN/m).")
-@click.option("--speed", required=True, help="Sliding speed (m/s, or 72km/h).")
-@click.option("--friction", type=float, required=True, help="Coefficient of friction >= 0.")
+@_physical_options(required=True)
 @click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
 @click.option("--tol", type=float, default=1e-6, show_default=True, help="Error target of P_H/P per branch.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
