@@ -130,3 +130,18 @@ def test_bad_physical_paths_refused(args, words, capsys):
     assert main(["boundary"] + args) == 2
     err = capsys.readouterr().err
     assert words in err and len(err.strip().splitlines()) == 1
+
+
+def test_slowly_converging_events_are_located_again_with_more_unknowns():
+    """delta1/delta2 = 0.8: the margins converge algebraically (the edge logarithm), so
+    an event's estimate against n/2 can exceed event_rtol at the path's n (64 here);
+    each event is then located again with doubled n, and equals the event of the
+    whole path run at that n to 1e-9, with an estimate below event_rtol."""
+    kw = dict(pe=5, K2_over_K1=10, delta1_over_delta2=0.8, lam=1.0)
+    auto = follow(kw, "fhpe", 0.3, 1.2, points=9, event_rtol=1e-3)
+    assert auto.event_n > auto.n
+    fixed = follow(kw, "fhpe", 0.3, 1.2, points=9, n=auto.event_n)
+    assert [e.inequality for e in auto.events] == [e.inequality for e in fixed.events]
+    for a, b in zip(auto.events, fixed.events):
+        assert abs(a.at / b.at - 1) < 1e-9
+        assert a.error_estimate < 1e-3 * a.at

@@ -205,10 +205,11 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction}
     tol = check_positive("tol", tol)
+    bar = _StageProgress(f"boundary along {along}")
     if cylinder is not None or half_plane is not None or along in _PHYSICAL_UNITS:
         path = _physical_path(along, start, stop, physical, materials_file, lam, tol, n,
                               {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
-                               "k2_over_k1": k2_over_k1, "sigma": sigma})
+                               "k2_over_k1": k2_over_k1, "sigma": sigma}, bar)
         method = path.method
     else:
         for name, value in physical.items():
@@ -231,13 +232,15 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         if len(closures) != 1:
             raise InputError("give exactly one of --lam and --sigma, or follow one of them")
         path = follow(fixed, name, _number("--from", start), _number("--to", stop),
-                      method=method, tol=tol, n=n)
+                      method=method, tol=tol, n=n, progress=bar)
+    bar.close()
     if as_json:
         click.echo(json.dumps(path.to_dict(), allow_nan=False))
         return
     unit = _PHYSICAL_UNITS.get(along, "")
     click.echo(f"thermocontact {__version__}: along {along} from {path.x[0]:g} to "
-               f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n})")
+               f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n}"
+               + (f"; events at n = {path.event_n}" if path.event_n != path.n else "") + ")")
     if not path.events:
         click.echo(f"  no change of validity (valid throughout: {bool(path.valid.all())})")
     for e in path.events:
@@ -259,7 +262,34 @@ def _number(option, text) -> float:
         raise InputError(f"{option} must be a number, got {text!r}") from None
 
 
-def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, dimensionless):
+class _StageProgress:
+    """``progress(stage, done, total)``: one :class:`ProgressLine` per stage, shown
+    once the command has run 2 s."""
+
+    def __init__(self, label):
+        import time
+
+        self.label, self.start, self.line, self.stage = label, time.monotonic(), None, None
+
+    def __call__(self, stage, done, total):
+        import time
+
+        from .execution.progress import ProgressLine
+
+        if stage != self.stage:
+            self.close()
+            delay = max(0.0, 2.0 - (time.monotonic() - self.start))
+            self.stage, self.line = stage, ProgressLine(f"{self.label}: {stage}", "steps",
+                                                         delay=delay)
+        self.line(done, total)
+
+    def close(self):
+        if self.line is not None:
+            self.line.close()
+
+
+def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, dimensionless,
+                   progress=None):
     """The path of ``boundary`` along a physical parameter."""
     from .problem.materials import get_material, load_materials
     from .problem.units import parse_quantity
@@ -290,7 +320,7 @@ def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, di
     prob = PhysicalProblem(get_material(physical["cylinder"], materials_file),
                            get_material(physical["half_plane"], materials_file),
                            values["radius"], values["load"], values["speed"], friction, lam)
-    return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n)
+    return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
 
 
 def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,

@@ -37,6 +37,10 @@ SPELLINGS = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delt
              "delta1-over-delta2": "delta1_over_delta2"}
 #: Margins, each >= 0 exactly when its inequality holds.
 MARGINS = ("load", "pressure", "gap", "edge")
+#: An event's error estimate (against n/2) is brought below this fraction of its
+#: value (or of a thousandth of the path) by doubling n for the events alone, when n is
+#: chosen automatically.
+EVENT_RTOL = 1e-2
 #: Initial samples of a path, and the most halvings of one interval.
 START_POINTS = 33
 MAX_HALVINGS = 5
@@ -81,7 +85,11 @@ class Event:
 
 @dataclass(frozen=True)
 class Path:
-    """The samples of a path and its events."""
+    """The samples of a path and its events.
+
+    ``n`` is that of the samples; ``event_n`` that of the events' final location
+    (larger where their estimates asked for it, :data:`EVENT_RTOL`).
+    """
 
     along: str
     fixed: dict
@@ -91,10 +99,11 @@ class Path:
     n: int
     method: str
     error_estimate: float
+    event_n: int | None = None
 
     def to_dict(self) -> dict:
         return {"along": self.along, "fixed": self.fixed, "n": self.n, "method": self.method,
-                "error_estimate": self.error_estimate,
+                "error_estimate": self.error_estimate, "event_n": self.event_n,
                 "events": [e.to_dict() for e in self.events]}
 
 
@@ -216,9 +225,8 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
 
 
 def _relocated(at, event, lo, hi, xtol):
-    """``|event.at - x|`` for the sign change ``x`` of the event's margin under ``at``
-    nearest ``event.at`` (brackets widened from 1e-4 of ``|at|`` to a tenth of the
-    path), or None."""
+    """The sign change of the event's margin under ``at`` nearest ``event.at``
+    (brackets widened from 1e-4 of ``|at|`` to a tenth of the path), or None."""
     from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
     def f(x):
@@ -234,7 +242,7 @@ def _relocated(at, event, lo, hi, xtol):
         fa, fb = f(a), f(b)
         if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
             try:
-                return float(abs(brentq(f, a, b, xtol=xtol(a, b)) - x0))
+                return float(brentq(f, a, b, xtol=xtol(a, b)))
             except (ValueError, RuntimeError):
                 return None
         if width > 0.1 * (hi - lo):
@@ -244,7 +252,8 @@ def _relocated(at, event, lo, hi, xtol):
 
 
 def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
-           rtol=1e-9, points=START_POINTS, n=None) -> Path:
+           rtol=1e-9, points=START_POINTS, n=None, event_rtol=EVENT_RTOL,
+           progress=None) -> Path:
     """Follow a solution along one parameter and locate every change of validity.
 
     Parameters
@@ -267,6 +276,11 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     n : int, optional
         Unknowns per function of the whole path, instead of the choice by ``tol``
         (each event's error estimate compares with ``n/2``).
+    event_rtol : float
+        With ``n`` chosen by ``tol``: each event is located again with doubled ``n``
+        until its error estimate is below this fraction of its value.
+    progress : callable, optional
+        ``progress(stage, done, total)`` (:func:`trace`).
 
     Returns
     -------
@@ -274,14 +288,18 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     """
     along = check_choice("along", along, ALONG)
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
-                 method=method, tol=tol, rtol=rtol, points=points, n=n)
+                 method=method, tol=tol, rtol=rtol, points=points, n=n, event_rtol=event_rtol,
+                 progress=progress)
 
 
 def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
-          rtol=1e-9, points=START_POINTS, log=False, n=None) -> Path:
+          rtol=1e-9, points=START_POINTS, log=False, n=None, event_rtol=EVENT_RTOL,
+          progress=None) -> Path:
     """:func:`follow` on any solver: ``at(n, x)`` gives the solution at ``x`` with ``n``
     unknowns (None where there is none); ``along`` and ``fixed`` are recorded.  With
-    ``log`` (both ends positive) the samples and their halvings are geometric."""
+    ``log`` (both ends positive) the samples and their halvings are geometric;
+    ``progress(stage, done, total)`` is told of each sample and event."""
+    report = progress or (lambda stage, done, total: None)
     start, stop = check_finite("start", start), check_finite("stop", stop)
     if start == stop:
         raise InputError(f"stop must differ from start, got {stop!r} twice")
@@ -294,6 +312,7 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     # middle (so that the margins vary smoothly along it).
     probes = [start, middle(start, stop), stop]
     lo, n_max = METHODS[method].auto_range
+    auto = n is None
     if n is None:
         levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
                              tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
@@ -304,7 +323,10 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
                         p_max=METHODS[method].order_cap)
 
     xs = list((np.geomspace if log else np.linspace)(start, stop, points))
-    sols = {x: at(n, x) for x in xs}
+    sols = {}
+    for i, x in enumerate(xs):
+        sols[x] = at(n, x)
+        report("samples", i + 1, len(xs))
 
     def suspicious(a, b):
         ma, mb = validity_margins(sols[a]), validity_margins(sols[b])
@@ -316,16 +338,40 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
         new = [middle(a, b) for a, b in zip(xs[:-1], xs[1:]) if suspicious(a, b)]
         if not new:
             break
-        for x in new:
+        for i, x in enumerate(new):
             sols[x] = at(n, x)
+            report("samples halved", i + 1, len(new))
         xs = sorted(set(xs) | set(new), reverse=stop < start)
 
     xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
     events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs], xtol=xtol)
     lo_x, hi_x = min(start, stop), max(start, stop)
-    events = tuple(dataclasses.replace(e, error_estimate=_relocated(
-        lambda x: at(n // 2, x), e, lo_x, hi_x, xtol)) for e in events)
+
+    def estimated(e, m):
+        x = _relocated(lambda y: at(m // 2, y), e, lo_x, hi_x, xtol)
+        return dataclasses.replace(e, error_estimate=None if x is None else abs(x - e.at))
+    located = []
+    for i, e in enumerate(events):
+        located.append(estimated(e, n))
+        report(f"events' estimates (n = {n // 2})", i + 1, len(events))
+    events = located
+    # Where the margins converge slowly (delta1 != delta2, derivation section 8) an
+    # event's estimate can exceed event_rtol at the path's n: each event is then
+    # located again with doubled n (not the whole path) until its estimate meets it.
+    event_n, chosen = n, auto
+    span = abs(stop - start)
+    while chosen and event_n * 2 <= n_max and any(
+            e.error_estimate is None or e.error_estimate > event_rtol * max(abs(e.at), 1e-3 * span)
+            for e in events):
+        event_n *= 2
+        moved = []
+        for i, e in enumerate(events):
+            x = _relocated(lambda y: at(event_n, y), e, lo_x, hi_x, xtol)
+            moved.append(e if x is None else dataclasses.replace(
+                e, at=x, error_estimate=abs(x - e.at)))
+            report(f"events located again (n = {event_n})", i + 1, len(events))
+        events = sorted(moved, key=lambda e: e.at, reverse=stop < start)
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
-    return Path(along, fixed, xs_arr, valid, events, n, method,
-                float(est) if est is not None else float("nan"))
+    return Path(along, fixed, xs_arr, valid, tuple(events), n, method,
+                float(est) if est is not None else float("nan"), event_n)

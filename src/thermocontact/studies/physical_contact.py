@@ -29,7 +29,7 @@ from ..problem.validation import InputError, check_finite, check_nonnegative, ch
 from ..numerics.extrema import polish_minimum
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import DEFAULT_TOL
-from .boundaries import Path, trace
+from .boundaries import EVENT_RTOL, Path, trace
 from .ray import Ray, _secant, brackets, follow, root, start_of_root
 
 __all__ = ["ALONG", "Branch", "PhysicalContact", "PhysicalProblem", "contact", "follow_along"]
@@ -461,7 +461,7 @@ def _primary(problem: PhysicalProblem, along: str):
 
 
 def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAULT_TOL,
-                 rtol=1e-9, points=17, n=None) -> Path:
+                 rtol=1e-9, points=17, n=None, event_rtol=EVENT_RTOL, progress=None) -> Path:
     """Follow the contact of ``problem`` along load, speed, radius or friction and
     locate every change of validity (:func:`~.boundaries.trace`).
 
@@ -477,7 +477,7 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
     along : {"load", "speed", "radius", "friction"}
     start, stop : float
         SI units; load, speed and radius positive, friction non-negative.
-    tol, rtol, points, n
+    tol, rtol, points, n, event_rtol, progress
         As in :func:`~.boundaries.follow`.
 
     Returns
@@ -496,4 +496,5 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
              **{k: getattr(problem, k) for k in ("radius", "load", "speed", "friction", "lam")
                 if k != along}}
     return trace(_primary(problem, along), along, fixed, start, stop, tol=tol, rtol=rtol,
-                 points=points, log=ALONG[along], n=n)
+                 points=points, log=ALONG[along], n=n, event_rtol=event_rtol,
+                 progress=progress)
