@@ -50,6 +50,12 @@ MAX_POINTS = 1_000_000
 MAP_TOL = 1e-6
 #: Relative tolerance of the boundary along a grid line.
 BOUNDARY_RTOL = 1e-9
+#: Between grid lines the boundary is traced further where it bends: a segment whose
+#: middle deviates from the straight line by more than CURVE_TOL of the chunk axis's
+#: span (in its own scale, log or linear) gets a point on the line halfway, located
+#: like the grid lines' own, at most CURVE_DEPTH times over.
+CURVE_TOL = 1e-3
+CURVE_DEPTH = 3
 #: Fields of each point, in the dataset's order.
 FIELDS = ("load_ratio", "sigma_over_delta", "lam", "valid", "applicable", "pressure_margin",
           "gap_margin", "edge_margin", "error_estimate", "n", "status", "reason")
@@ -288,6 +294,84 @@ def _events(fixed, name, values, sols, method, tol):
     return events
 
 
+def _between_lines(spec: MapSpec, boundary, n_grid):
+    """Points of the boundary between grid lines where it bends (:data:`CURVE_TOL`).
+
+    Boundary points are grouped by inequality, edge and direction; where a group has
+    one point on each of three neighbouring lines and the middle one is off the chord
+    of the outer two by more than ``CURVE_TOL`` of the chunk axis's span, each of the
+    two segments gets a point on the line halfway between its lines, located by
+    Brent's method on that inequality's margin near the chord (at the larger ``n`` of
+    the two lines), and so on to ``CURVE_DEPTH`` levels.  The tolerance compares
+    positions in the axes' own scales (log or linear).
+    """
+    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+    inner, outer = (spec.x, spec.y) if spec.inner == "x" else (spec.y, spec.x)
+    fwd_i = (lambda v: math.log(v)) if inner.log else float
+    inv_i = math.exp if inner.log else float
+    fwd_o = (lambda v: math.log(v)) if outer.log else float
+    inv_o = math.exp if outer.log else float
+    span = abs(fwd_i(inner.stop) - fwd_i(inner.start))
+    lo_i, hi_i = sorted((fwd_i(inner.start), fwd_i(inner.stop)))
+    n_lines = np.asarray(n_grid, dtype=float)
+    n_lines = np.nanmax(np.where(n_lines > 0, n_lines, np.nan), axis=1 if spec.inner == "x" else 0)
+    outer_index = {float(v): j for j, v in enumerate(outer.values)}
+    groups = {}
+    for b in boundary:
+        u, v = (b[0], b[1]) if spec.inner == "x" else (b[1], b[0])
+        groups.setdefault(b[2:6], {}).setdefault(outer_index[float(v)], []).append(u)
+    added = []
+
+    def locate(key, ua, va, ub, vb, n, depth):
+        vm, up = 0.5 * (va + vb), 0.5 * (ua + ub)
+        fixed = {**spec.fixed, outer.name: inv_o(vm)}
+
+        def margin(u):
+            kw = {**fixed, inner.name: inv_i(u)}
+            try:
+                sol = model_for(kw, spec.method, spec.tol).solve_at(
+                    n, kw["fhpe"], polish=False, **closure(kw))
+            except (SolveError, InputError):
+                return math.nan
+            return {"load": sol.load_ratio, **sol.validity.margins()}[key[0]]
+        width = max(abs(ua - ub), span / 1000)
+        for _ in range(8):
+            a, b = max(up - width, lo_i), min(up + width, hi_i)
+            fa, fb = margin(a), margin(b)
+            if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
+                break
+            width *= 2
+        else:
+            return
+        try:
+            um = brentq(margin, a, b, xtol=BOUNDARY_RTOL * max(abs(a), abs(b), 1e-300))
+        except (ValueError, RuntimeError):
+            return
+        x = inv_i(um)
+        point = (x, inv_o(vm)) if spec.inner == "x" else (inv_o(vm), x)
+        added.append((*point, *key, 1))
+        if depth < CURVE_DEPTH and abs(um - up) > CURVE_TOL * span:
+            locate(key, ua, va, um, vm, n, depth + 1)
+            locate(key, um, vm, ub, vb, n, depth + 1)
+
+    for key, lines in groups.items():
+        single = {j: fwd_i(us[0]) for j, us in lines.items() if len(us) == 1}
+        marked = set()
+        for j in single:
+            if j - 1 in single and j + 1 in single:
+                v0, v1, v2 = (fwd_o(outer.values[k]) for k in (j - 1, j, j + 1))
+                u0, u1, u2 = single[j - 1], single[j], single[j + 1]
+                chord = u0 + (u2 - u0) * (v1 - v0) / (v2 - v0)
+                if abs(u1 - chord) > CURVE_TOL * span:
+                    marked |= {j - 1, j}
+        for j in sorted(marked):
+            n = int(max(n_lines[j], n_lines[j + 1]))
+            locate(key, single[j], fwd_o(outer.values[j]), single[j + 1],
+                   fwd_o(outer.values[j + 1]), n, 1)
+    return added
+
+
 def _dataset(spec: MapSpec, chunks: dict, command: str | None):
     """The map as an :class:`xarray.Dataset` from its chunks (by task index)."""
     import xarray as xr
@@ -311,7 +395,8 @@ def _dataset(spec: MapSpec, chunks: dict, command: str | None):
         for e in chunk["events"]:
             xy = (e["at"], outer_value) if spec.inner == "x" else (outer_value, e["at"])
             boundary.append((*xy, e["inequality"], e["edge"] or "", int(e["valid_before"]),
-                             int(e["valid_after"])))
+                             int(e["valid_after"]), 0))
+    boundary += _between_lines(spec, boundary, data["n"])
     dtypes = {"valid": np.int8, "applicable": np.int8, "n": np.int32, "status": str,
               "reason": str}
     dims = (spec.y.name, spec.x.name)
@@ -324,6 +409,8 @@ def _dataset(spec: MapSpec, chunks: dict, command: str | None):
                                                              dtype=np.int8))
     variables["boundary_valid_after"] = ("event", np.array([b[5] for b in boundary],
                                                             dtype=np.int8))
+    variables["boundary_between_lines"] = ("event", np.array([b[6] for b in boundary],
+                                                             dtype=np.int8))
     ds = xr.Dataset(variables, coords={spec.y.name: ys, spec.x.name: xs})
     ds = _describe(ds, spec, command)
     return ds
@@ -349,6 +436,8 @@ _DESCRIPTIONS = {
     "boundary_edge": "where it fails: leading, trailing, or empty (the load)",
     "boundary_valid_before": "validity before the change, along the chunk axis",
     "boundary_valid_after": "validity after the change",
+    "boundary_between_lines": "1 for points traced between grid lines where the boundary "
+                              "bends (CURVE_TOL), located like those on the lines",
 }
 
 
