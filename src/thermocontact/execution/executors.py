@@ -162,7 +162,7 @@ def _run(func, tasks, workers):
         from distributed import wait
 
         def submit(f, t):
-            return workers.submit(f, t, pure=False)
+            return workers.submit(_one_blas_thread, f, t, pure=False)
 
         n = max(1, sum(workers.nthreads().values()))
         with workers.as_current():  # wait() looks for the current client
@@ -173,6 +173,15 @@ def _run(func, tasks, workers):
         return
     raise InputError(f"workers must be a number of processes, an executor or a map-like "
                      f"callable, got {workers!r}")
+
+
+def _one_blas_thread(func, task):
+    """``func(task)`` with BLAS on one thread: a Dask worker's tasks, like a pool's
+    processes, must not each start a BLAS thread per core."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1):
+        return func(task)
 
 
 def _as_completed(submit, wait, first_completed, func, tasks, n):
