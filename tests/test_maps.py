@@ -2,6 +2,7 @@
 process, on a process pool and on a Dask cluster, and the boundary located on each line."""
 
 import concurrent.futures as cf
+from concurrent.futures.process import BrokenProcessPool
 import json
 import os
 
@@ -145,7 +146,7 @@ def test_a_broken_executor_keeps_finished_work(tmp_path):
             Dying.count += 1
             if Dying.count == 3:
                 fut = cf.Future()
-                fut.set_exception(cf.process.BrokenProcessPool("a worker died"))
+                fut.set_exception(BrokenProcessPool("a worker died"))
                 return fut
             return super().submit(fn, *args)
 
