@@ -25,8 +25,8 @@ from ..problem.validation import InputError, check_choice, check_finite, check_i
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "follow", "locate_events",
-           "model_for", "trace", "validity_margins"]
+__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "estimate_events", "follow",
+           "locate_events", "model_for", "trace", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
@@ -251,6 +251,58 @@ def _relocated(at, event, lo, hi, xtol):
     return None
 
 
+def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, n_max=256,
+                    progress=None):
+    """Each event with its error estimate, located again with more unknowns where
+    that estimate asks for it.
+
+    The estimate is the event's distance from the same margin's sign change under
+    ``at(n // 2, x)``.  Where the margins converge slowly (delta1 != delta2,
+    derivation section 8) it can exceed ``event_rtol`` of the event's value (or of a
+    thousandth of the path): the events alone are then located again with doubled
+    ``n`` (up to ``n_max``; ``event_rtol=None``: never), each new estimate being the
+    move.
+
+    Parameters
+    ----------
+    at : callable
+        ``at(n, x)``: the solution at ``x`` with ``n`` unknowns (None where none).
+    events : sequence of Event
+        Located at ``n``.
+    start, stop : float
+        The path's ends (the events stay between them).
+    xtol : callable
+        Brent's tolerance, as in :func:`locate_events`.
+
+    Returns
+    -------
+    events : list of Event
+        In the path's order.
+    n : int
+        That of their final location.
+    """
+    report = progress or (lambda stage, done, total: None)
+    lo, hi = min(start, stop), max(start, stop)
+    span = abs(stop - start)
+    out = []
+    for i, e in enumerate(events):
+        x = _relocated(lambda y: at(n // 2, y), e, lo, hi, xtol)
+        out.append(dataclasses.replace(e, error_estimate=None if x is None else abs(x - e.at)))
+        report(f"events' estimates (n = {n // 2})", i + 1, len(events))
+    while event_rtol is not None and n * 2 <= n_max and any(
+            e.error_estimate is None or e.error_estimate > event_rtol * max(abs(e.at), 1e-3 * span)
+            for e in out):
+        n *= 2
+        moved = []
+        for i, e in enumerate(out):
+            x = _relocated(lambda y: at(n, y), e, lo, hi, xtol)
+            moved.append(e if x is None else dataclasses.replace(
+                e, at=x, error_estimate=abs(x - e.at)))
+            report(f"events located again (n = {n})", i + 1, len(out))
+        out = sorted(moved, key=lambda e: e.at, reverse=stop < start)
+    return out, n
+
+
 def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=DEFAULT_TOL,
            rtol=1e-9, points=START_POINTS, n=None, event_rtol=EVENT_RTOL,
            progress=None) -> Path:
@@ -345,32 +397,9 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
 
     xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
     events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs], xtol=xtol)
-    lo_x, hi_x = min(start, stop), max(start, stop)
-
-    def estimated(e, m):
-        x = _relocated(lambda y: at(m // 2, y), e, lo_x, hi_x, xtol)
-        return dataclasses.replace(e, error_estimate=None if x is None else abs(x - e.at))
-    located = []
-    for i, e in enumerate(events):
-        located.append(estimated(e, n))
-        report(f"events' estimates (n = {n // 2})", i + 1, len(events))
-    events = located
-    # Where the margins converge slowly (delta1 != delta2, derivation section 8) an
-    # event's estimate can exceed event_rtol at the path's n: each event is then
-    # located again with doubled n (not the whole path) until its estimate meets it.
-    event_n, chosen = n, auto
-    span = abs(stop - start)
-    while chosen and event_n * 2 <= n_max and any(
-            e.error_estimate is None or e.error_estimate > event_rtol * max(abs(e.at), 1e-3 * span)
-            for e in events):
-        event_n *= 2
-        moved = []
-        for i, e in enumerate(events):
-            x = _relocated(lambda y: at(event_n, y), e, lo_x, hi_x, xtol)
-            moved.append(e if x is None else dataclasses.replace(
-                e, at=x, error_estimate=abs(x - e.at)))
-            report(f"events located again (n = {event_n})", i + 1, len(events))
-        events = sorted(moved, key=lambda e: e.at, reverse=stop < start)
+    events, event_n = estimate_events(at, events, n, start, stop, xtol,
+                                      event_rtol=event_rtol if auto else None, n_max=n_max,
+                                      progress=report)
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
     return Path(along, fixed, xs_arr, valid, tuple(events), n, method,

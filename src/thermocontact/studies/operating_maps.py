@@ -33,7 +33,7 @@ from ..analysis.applicability import (AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_R
 from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
-from .boundaries import locate_events
+from .boundaries import estimate_events, locate_events
 from .maps import Axis, parse_axis, run_chunks
 from .physical_contact import MAX_WIDTH, PhysicalProblem
 from .ray import Ray
@@ -219,23 +219,26 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     ray = {k: np.concatenate([np.asarray(parts[i][k]) for i in range(len(tasks))])
            for k in parts[0]}
     ray["valid"] = ray["valid"].astype(bool)
-    # Validity changes along the ray, located on the margins (one n per interval).
+    # Validity changes along the ray, located on the margins (one n per interval),
+    # each with its estimate against n/2 and located again with more unknowns where
+    # that exceeds EVENT_RTOL (as a path's events).
     events = []
+
+    def at_n(m, pe):
+        return _ray_model(base, pe).solve_at(m, base["fh"] * pe, lam=base["lam"], polish=False)
+    xtol = lambda p, q: 1e-10 * max(abs(p), abs(q))  # noqa: E731
     for i in np.flatnonzero(ray["valid"][:-1] != ray["valid"][1:]):
         if "failed" in (ray["status"][i], ray["status"][i + 1]):
             continue
         n = int(max(ray["n"][i], ray["n"][i + 1]))
-
-        def at(pe, n=n):
-            return _ray_model(base, pe).solve_at(n, base["fh"] * pe, lam=base["lam"],
-                                                 polish=False)
         a, b = float(ray["pe"][i]), float(ray["pe"][i + 1])
         try:
-            ends = [at(a), at(b)]
+            ends = [at_n(n, a), at_n(n, b)]
         except SolveError:
             continue
-        events += locate_events(at, [a, b], ends, only_validity_changes=True,
-                                xtol=lambda p, q: 1e-10 * q)
+        found = locate_events(lambda pe, n=n: at_n(n, pe), [a, b], ends,
+                              only_validity_changes=True, xtol=xtol)
+        events += estimate_events(at_n, found, n, pe_lo, pe_hi, xtol)[0]
     ray["events"] = tuple(events)
     return ray
 
@@ -377,6 +380,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
          "branches": (dims, branches), "status": (dims, status.astype(str)),
          "reason": (dims, reason.astype(str)), "pe_hertz": (dims, pe_h),
          "boundary_pe_hertz": ("event", bounds),
+         "boundary_pe_hertz_error": ("event", np.array([
+             b * e.error_estimate / e.at if e.error_estimate is not None else np.nan
+             for b, e in zip(bounds, ray["events"])], dtype=float)),
          "boundary_inequality": ("event", np.array([e.inequality for e in ray["events"]],
                                                    dtype=str)),
          "boundary_x": (("event", "curve"), bx), "boundary_y": (("event", "curve"), by),
