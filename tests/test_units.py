@@ -104,3 +104,46 @@ def test_other_units_are_left_to_pint(value, unit):
     from thermocontact.problem.units import _read_si
 
     assert _read_si(value, unit) is None
+
+
+def _si_expressions():
+    from hypothesis import strategies as st
+
+    symbols = st.sampled_from(["m", "g", "s", "min", "h", "K", "N", "Pa", "J", "W"])
+    prefixes = st.sampled_from(["", "p", "n", "u", "m", "c", "k", "M", "G"])
+    powers = st.sampled_from(["", "^2", "^-1", "**3", "^3"])
+    factor = st.tuples(prefixes, symbols, powers).map(lambda t: "".join(t))
+    joins = st.sampled_from(["/", "*", " ", " / "])
+    return st.tuples(st.floats(1e-3, 1e3), factor,
+                     st.lists(st.tuples(joins, factor), max_size=3))
+
+
+def test_si_table_agrees_with_pint_on_generated_units():
+    """Products and quotients of the table's symbols with prefixes and powers, as the
+    table reads them and as pint does (converted to the SI base units of their own
+    dimension), agree to 1e-12; what the table does not read, pint must be asked."""
+    from hypothesis import given, settings
+
+    from thermocontact.problem.units import _read_si, _registry, _si
+
+    ureg = _registry()
+
+    @settings(max_examples=150, deadline=None)
+    @given(_si_expressions())
+    def check(case):
+        number, first, rest = case
+        unit = first + "".join(j + f for j, f in rest)
+        text = f"{number!r} {unit}"
+        q = ureg.Quantity(text).to_base_units()
+        base = {"meter": 0, "kilogram": 1, "second": 2, "kelvin": 3}
+        dims = [0, 0, 0, 0]
+        for name, power in q.unit_items():
+            dims[base[name]] += power
+        have = _si(unit)
+        assert have is not None, unit
+        assert tuple(dims) == have[1], unit
+        si_unit = "*".join(f"{k}^{p}" for k, p in zip(("m", "kg", "s", "K"), have[1]) if p) or ""
+        value = _read_si(text, si_unit) if si_unit else None
+        if value is not None:
+            assert value == pytest.approx(q.magnitude, rel=1e-12), text
+    check()
