@@ -300,3 +300,30 @@ def test_sampled_margins_equal_the_polished_ones():
                     if abs(getattr(b.validity, m)) <= POLISH_BAND:
                         assert getattr(b.validity, m) == getattr(a.validity, m)
     assert worst[0] < 1e-6 and worst[1] < 1e-6, worst
+
+
+def test_overlap_layer_outside_an_edge_is_judged_beyond_the_tolerated_width():
+    """Steel on cast iron, lam = 1 (Pe = 46.35, fHPe = 2.79; k > 0 at the leading edge):
+    outside that edge g/t^1.5 = b + k' ln t with k' > 0 (its values at t = 1e-8 ... 1e-5
+    lie on one straight line in ln t to 1 % of the rise), so the bodies overlap in a
+    layer of a few 1e-8 half-widths, the face of the logarithm that makes the tensile
+    layer inside.  The gap margin is taken beyond the tolerated width, at t >= 1e-6,
+    where it converges (n = 64 and 128: 0.0777 and 0.0772), and the solution is valid."""
+    from thermocontact.analysis.validity import EDGE_LAYER_TOLERANCE, gap
+
+    kw = dict(pe=46.35468324286389, fhpe=2.7894821519125217,
+              K2_over_K1=0.8016528925619835, k2_over_k1=0.8250431488801054,
+              delta1_over_delta2=0.8207398661944115, lam=1.0)
+    sols = [solve(n=n, **kw) for n in (64, 128)]
+    sol = sols[-1]
+    assert sol.validity.edge_log_coefficients[1] > 0
+    t = np.array([1e-8, 1e-7, 1e-6, 1e-5])
+    g, _ = gap(sol.parameters, sol.representation, sol.phi, sol.psi, sol.load_ratio,
+               sol.sigma_over_delta, sol.lam, 1.0 + t)
+    m = g / t**1.5
+    slope = np.polyfit(np.log(t), m, 1)[0]
+    assert slope > 0 and m[0] < 0 < m[2]
+    assert np.max(np.abs(np.polyval(np.polyfit(np.log(t), m, 1), np.log(t)) - m)) < 0.01 * (m[-1] - m[0])
+    margins = [s.validity.gap_margin for s in sols]
+    assert sol.validity.gap_margin_at >= 1.0 + EDGE_LAYER_TOLERANCE
+    assert abs(margins[0] - margins[1]) < 1e-3 and sol.valid
