@@ -84,6 +84,25 @@ class _SyntheticRay:
         return pe**2 - (pe - 1) * (pe - 2) * (pe - 3) / (pe - 2.5)
 
 
+@pytest.mark.parametrize("depth", [0.005, 0.002])
+def test_continuation_brackets_three_close_roots(depth):
+    """L = 1 + 2x + 2.5x^2 - depth in x = ln Pe, Pe_H = 1: three roots of D26 within a
+    factor 1.5 in Pe (0.87 ... 1.24 at depth 0.005), which a step of the continuation
+    that predicts L exactly could straddle; each gets its own bracket."""
+    class Parabola:
+        def load_ratio(self, pe, n):
+            x = np.log(pe)
+            return 1 + 2 * x + 2.5 * x * x - depth
+
+    pes = np.geomspace(0.1, 10.0, 2001)
+    g = pes**2 - Parabola().load_ratio(pes, None)
+    dense = pes[np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))]
+    assert len(dense) == 3
+    scan = follow(Parabola(), 0.1, 10.0, pe_h=1.0)
+    found = [(scan.pe[i], scan.pe[i + 1]) for i in brackets(scan.pe, scan.load_ratio, 1.0)]
+    assert len(found) == 3 and all(a <= x <= b for (a, b), x in zip(found, dense))
+
+
 def test_continuation_brackets_every_root_and_the_pole():
     """Following a synthetic ray from Pe = 0.5 to 5 brackets each root and the pole
     in its own step (the pole is rejected later, on the solver, by |h|).  Secant

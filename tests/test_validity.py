@@ -327,3 +327,11 @@ def test_overlap_layer_outside_an_edge_is_judged_beyond_the_tolerated_width():
     margins = [s.validity.gap_margin for s in sols]
     assert sol.validity.gap_margin_at >= 1.0 + EDGE_LAYER_TOLERANCE
     assert abs(margins[0] - margins[1]) < 1e-3 and sol.valid
+    # The sampled margins (maps) agree: the side's samples keep their even spacing in
+    # ln t from the tolerated width on.
+    from thermocontact import Model
+
+    model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
+                  delta1_over_delta2=kw["delta1_over_delta2"])
+    sampled = model.solve_at(128, kw["fhpe"], lam=1.0, polish=False).validity
+    assert abs(sampled.gap_margin - margins[1]) < 1e-7

@@ -392,10 +392,16 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     # outside that edge (the gap's face of the same logarithm, section 8): the gap
     # margin is taken outside the tolerated width there, as the pressure margin is
     # inside.
+    # The side's points are the same geometric sequence moved out to start at the
+    # tolerated width: sampled margins (polish=False) are interpolated in the index,
+    # which wants the spacing even in ln(|s| - 1).
     for side, k in ((-1.0, k_log[0]), (1.0, k_log[1])):
         if k > 0.0:
-            inside_layer = (np.sign(so) == side) & (np.abs(so) - 1.0 < EDGE_LAYER_TOLERANCE)
-            so = np.sort(np.append(so[~inside_layer], side * (1.0 + EDGE_LAYER_TOLERANCE)))
+            on_side = np.sign(so) == side
+            t = np.sort(np.abs(so[on_side]) - 1.0)
+            t = t * (EDGE_LAYER_TOLERANCE / t[0])
+            t = t[t <= 1.0001 * (np.abs(so[on_side]).max() - 1.0)]
+            so = np.sort(np.concatenate([so[~on_side], side * (1.0 + t)]))
     g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
     ig = int(np.argmin(g))
     margin = g / (np.abs(so) - 1.0) ** 1.5

@@ -46,12 +46,17 @@ def _si(unit: str):
     text = unit.replace(" / ", "/").replace("/ ", "/").replace(" /", "/")
     tokens = re.split(r"((?<!\*)\*(?!\*)|/|\s+)", text.strip())
     scale, dims, sign = 1.0, [0, 0, 0, 0], 1
+    pending = None  # an operator not yet followed by a factor
     for token in tokens:
-        if token == "*" or not token or token.isspace():
+        if not token or token.isspace():
             continue
-        if token == "/":
-            sign = -1
+        if token in ("*", "/"):
+            if pending is not None:  # "m / / s", "*/m": pint refuses them
+                return None
+            pending = token
+            sign = -1 if token == "/" else 1
             continue
+        pending = None
         if token == "1":
             sign = 1
             continue
@@ -69,7 +74,7 @@ def _si(unit: str):
         scale *= factor ** (sign * power)
         dims = [d + sign * power * e for d, e in zip(dims, exps)]
         sign = 1
-    if sign == -1:  # a trailing "/"
+    if pending is not None:  # a trailing operator
         return None
     return scale, tuple(dims)
 

@@ -226,7 +226,8 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
 
 def _relocated(at, event, lo, hi, xtol):
     """The sign change of the event's margin under ``at`` nearest ``event.at``
-    (brackets widened from 1e-4 of ``|at|`` to a tenth of the path), or None."""
+    (brackets widened from 1e-4 of ``max(|at|, 1e-3 (hi - lo))`` to a tenth of the
+    path), or None."""
     from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
     def f(x):
@@ -236,7 +237,7 @@ def _relocated(at, event, lo, hi, xtol):
             m = None
         return np.nan if m is None else m[event.inequality]
 
-    x0, width = event.at, max(abs(event.at), 1e-12) * 1e-4
+    x0, width = event.at, max(abs(event.at), 1e-3 * (hi - lo), 1e-300) * 1e-4
     for _ in range(12):
         a, b = max(x0 - width, lo), min(x0 + width, hi)
         fa, fb = f(a), f(b)
@@ -282,19 +283,24 @@ def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, 
         That of their final location.
     """
     report = progress or (lambda stage, done, total: None)
+    start, stop = float(start), float(stop)
     lo, hi = min(start, stop), max(start, stop)
-    span = abs(stop - start)
+    span = hi - lo
     out = []
     for i, e in enumerate(events):
         x = _relocated(lambda y: at(n // 2, y), e, lo, hi, xtol)
         out.append(dataclasses.replace(e, error_estimate=None if x is None else abs(x - e.at)))
         report(f"events' estimates (n = {n // 2})", i + 1, len(events))
-    while event_rtol is not None and n * 2 <= n_max and any(
-            e.error_estimate is None or e.error_estimate > event_rtol * max(abs(e.at), 1e-3 * span)
-            for e in out):
+
+    def too_large(e):
+        # An event that cannot be bracketed with fewer unknowns is not escalated.
+        return (e.error_estimate is not None
+                and e.error_estimate > event_rtol * max(abs(e.at), 1e-3 * span))
+    while event_rtol is not None and n * 2 <= n_max and any(too_large(e) for e in out):
         n *= 2
         moved = []
         for i, e in enumerate(out):
+            # All events move to the new n (so that event_n is every event's n).
             x = _relocated(lambda y: at(n, y), e, lo, hi, xtol)
             moved.append(e if x is None else dataclasses.replace(
                 e, at=x, error_estimate=abs(x - e.at)))

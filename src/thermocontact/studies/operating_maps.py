@@ -246,6 +246,20 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
 CURVE_POINTS = 201
 
 
+def _pe_hertz_error(lp, load_ratio, event):
+    """The change of ``Pe_H = Pe/sqrt(L)`` over the event's error estimate in ``Pe``
+    (the larger of the two sides; L from the ray's interpolant), or NaN."""
+    if event.error_estimate is None:
+        return math.nan
+
+    def pe_h(pe):
+        L = _local(lp, load_ratio, math.log(pe))
+        return pe / math.sqrt(L) if L > 0 else math.nan
+    err = event.error_estimate
+    here = pe_h(event.at)
+    return max(abs(pe_h(event.at + err) - here), abs(pe_h(max(event.at - err, 1e-300)) - here))
+
+
 def boundary_curve(spec: OperatingSpec, pe_h):
     """The curve ``Pe_H = pe_h`` across the map: ``CURVE_POINTS`` values of x and the y
     on the curve (NaN outside the y range).  ``v sqrt(R P) = Pe_H 2 k2 / sqrt(2A/pi)``
@@ -287,16 +301,19 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=progress,
                       store_path=store_path)
     lp = np.log(ray["pe"])
-    # Valid intervals of the ray: sample validity, switched at the located events.
-    switch = sorted(e.at for e in ray["events"])
 
     def valid_at(pe):
+        # Near an event (within a sample interval on either side; a relocated event
+        # may have left the interval it was found in) the event decides; elsewhere
+        # the samples either side.
         i = int(np.clip(np.searchsorted(ray["pe"], pe), 1, len(lp) - 1))
-        a, b = ray["pe"][i - 1], ray["pe"][i]
-        inside = [s for s in switch if a <= s <= b]
-        if not inside:
-            return bool(ray["valid"][i - 1]) and bool(ray["valid"][i])
-        return bool(ray["valid"][i - 1]) if pe < inside[0] else bool(ray["valid"][i])
+        a = ray["pe"][max(i - 2, 0)]
+        b = ray["pe"][min(i + 1, len(lp) - 1)]
+        near = [e for e in ray["events"] if a <= e.at <= b]
+        if near:
+            e = min(near, key=lambda e: abs(e.at - pe))
+            return bool(e.valid_before) if pe < e.at else bool(e.valid_after)
+        return bool(ray["valid"][i - 1]) and bool(ray["valid"][i])
 
     shape = pe_h.shape
     fields = {k: np.full(shape, np.nan) for k in (
@@ -381,8 +398,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
          "reason": (dims, reason.astype(str)), "pe_hertz": (dims, pe_h),
          "boundary_pe_hertz": ("event", bounds),
          "boundary_pe_hertz_error": ("event", np.array([
-             b * e.error_estimate / e.at if e.error_estimate is not None else np.nan
-             for b, e in zip(bounds, ray["events"])], dtype=float)),
+             _pe_hertz_error(lp, ray["load_ratio"], e) for e in ray["events"]],
+             dtype=float)),
          "boundary_inequality": ("event", np.array([e.inequality for e in ray["events"]],
                                                    dtype=str)),
          "boundary_x": (("event", "curve"), bx), "boundary_y": (("event", "curve"), by),

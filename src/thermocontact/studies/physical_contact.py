@@ -46,6 +46,8 @@ ALONG = {"load": True, "speed": True, "radius": True, "friction": False}
 #: steel on cast iron).
 FHPE_MIN = 0.05
 MAX_WIDTH = 4.0
+#: Unknowns per function of the validity checks behind the largest valid load.
+VALIDITY_N = 64
 
 
 @dataclass(frozen=True)
@@ -348,11 +350,19 @@ def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContac
         lo, hi = _scan_range(prob)
         ray, pe_h = prob.ray(), prob.pe_hertz
         scan = follow(ray, prob.pe(lo), prob.pe(hi), pe_h=pe_h, progress=progress)
-        roots = [r for i in brackets(scan.pe, scan.load_ratio, pe_h)
-                 if (r := root(ray, pe_h, scan, i, tol)) is not None]
+        roots = []
+        for i in brackets(scan.pe, scan.load_ratio, pe_h):
+            try:
+                r = root(ray, pe_h, scan, i, tol)
+            except SolveError:  # the closure singular at a level: as at the limit
+                r = (None, None, None)
+            if r is not None:
+                roots.append(r)
     branches, singular = [], 0
     for pe, n, estimate in roots:
         try:
+            if pe is None:
+                raise SolveError("singular at a level of the refinement")
             branches.append(_branch(prob, pe, n, tol, estimate))
         except SolveError:
             # Only at the limiting width, where P_H/P = 0 and the offset is infinite.
@@ -386,33 +396,51 @@ def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContac
 
 
 def _largest_valid_load(prob, scan):
-    """Largest load carried by a valid solution at the followed half-widths.
+    """Largest load carried by a valid solution over the followed half-widths.
 
-    The load a sample carries, ``P_H(Delta)/L``, needs no validity, so the samples
-    with ``L > 0`` are checked in decreasing load and the first valid one is the
-    answer; valid within 1 % of the limiting width (``L -> 0``), where the load grows
-    without bound, it is ``inf``.
+    Each sample with ``L > 0`` is assessed (one with tension inside the tolerated edge
+    layers is invalid without the full assessment); between a valid sample and an
+    invalid neighbour the validity change is located by Brent's method on the margins
+    (:func:`~.boundaries.locate_events`); its load, ``P_H(Delta)/L``, is a candidate
+    with the valid samples'.  All at ``n =`` :data:`VALIDITY_N`, not the scan's 16:
+    with delta1 != delta2 the margins converge algebraically (derivation section 8),
+    and at n = 16 even the order of the events can differ.  Valid within 1 % of the limiting width
+    (``L -> 0``), where the load grows without bound, it is ``inf``.
     """
+    from .boundaries import locate_events
+
     ray = prob.ray()
     pe, L = scan.pe, scan.load_ratio
-    load = np.where(L > 0, prob.load * (pe / prob.pe_hertz) ** 2 / np.where(L > 0, L, 1.0),
-                    -np.inf)
     inside = np.cos(np.linspace(np.pi, 0.0, 257))[1:-1]  # 7.5e-5 from the edges
-    for i in np.argsort(-load):
-        if not load[i] > 0:
-            break
+
+    n = VALIDITY_N
+
+    def at(p):
+        return ray.solve_at(p, n, check_validity=True, polish=False)
+
+    valid = np.zeros(pe.size, dtype=bool)
+    for i in np.flatnonzero(L > 0):
         try:
-            sol = ray.solve_at(pe[i], scan.n)
-            # Tension inside the tolerated edge layers is invalid for certain: only
-            # the others need the inequalities' full assessment.
-            if np.min(sol.pressure_at(inside)) < 0.0:
-                continue
-            sol = ray.solve_at(pe[i], scan.n, check_validity=True, polish=False)
+            sol = ray.solve_at(pe[i], n)
+            # Tension inside the tolerated edge layers is invalid for certain.
+            valid[i] = bool(np.min(sol.pressure_at(inside)) >= 0.0 and at(pe[i]).valid)
         except SolveError:
             continue
-        if sol.valid and sol.load_ratio > 0:
-            return float("inf") if sol.load_ratio < 0.01 else float(load[i])
-    return None
+    candidates = [(pe[i], L[i]) for i in np.flatnonzero(valid)]
+    for i in np.flatnonzero(valid[:-1] != valid[1:]):
+        try:
+            ends = [at(pe[i]), at(pe[i + 1])]
+            events = locate_events(at, [pe[i], pe[i + 1]], ends, only_validity_changes=True,
+                                   xtol=lambda a, b: 1e-10 * max(a, b))
+            candidates += [(e.at, at(e.at).load_ratio) for e in events]
+        except SolveError:
+            continue
+    candidates = [(p, l) for p, l in candidates if l > 0]
+    if not candidates:
+        return None
+    if min(l for _, l in candidates) < 0.01:
+        return float("inf")
+    return float(max(prob.load * (p / prob.pe_hertz) ** 2 / l for p, l in candidates))
 
 
 def _primary(problem: PhysicalProblem, along: str):
@@ -436,19 +464,23 @@ def _primary(problem: PhysicalProblem, along: str):
             return math.exp(2 * y) / pe_h**2 - ray.load_ratio(math.exp(y), n)
         near = min(found, key=lambda r: abs(math.log(r[1] / pe_h)) + abs(math.log(
             max(r[0], 1e-300) / max(x, 1e-300))) * (along == "friction"), default=None)
+        step = None
         if near is not None and (abs(math.log(near[1] / pe_h)) < math.log(1.5) and (
                 along != "friction" or abs(math.log(max(near[0], 1e-300) / x)) < math.log(1.5))):
-            y, slope = near[2] + math.log(pe_h / near[1]), near[3]
-            lo, hi = y - 1.0, y + 1.0
-        else:
+            y = near[2] + math.log(pe_h / near[1])
+            step = _secant(h, y, near[3], y - 1.0, y + 1.0, xtol=1e-13)
+        if step is None:
+            # No root found so far near enough, or the steps from it failed: bracket
+            # the first root on the ray (poles, where |h| stays large, skipped).
             a, b = _scan_range(prob)
             scan = follow(ray, prob.pe(a), prob.pe(b), pe_h=pe_h)
-            first = brackets(scan.pe, scan.load_ratio, pe_h)
-            if not len(first):
-                return None
-            lo, hi = math.log(scan.pe[first[0]]), math.log(scan.pe[first[0] + 1])
-            y, slope = start_of_root(scan, pe_h, first[0])
-        step = _secant(h, y, slope, lo, hi, xtol=1e-13)
+            for i in brackets(scan.pe, scan.load_ratio, pe_h):
+                lo, hi = math.log(scan.pe[i]), math.log(scan.pe[i + 1])
+                y, slope = start_of_root(scan, pe_h, i)
+                step = _secant(h, y, slope, lo, hi, xtol=1e-13)
+                if step is not None and abs(h(step[0])) <= 1e-6:
+                    break
+                step = None
         if step is None:
             return None
         y, slope = step

@@ -40,6 +40,8 @@ STEP_MIN = math.log(10.0) / 256
 #: SIGN_MARGIN of the distance ``|L - (Pe/Pe_H)^2|`` from a root of D26.
 PREDICTOR_TOL = 0.02
 SIGN_MARGIN = 0.25
+#: Points per step where the parabola of ``L`` is checked for hidden roots.
+SUBSTEPS = 16
 #: Samples of the local interpolant in ln Pe (degree STENCIL - 1).
 STENCIL = 6
 
@@ -117,7 +119,10 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     ``pe_h``, to ``SIGN_MARGIN |L - (Pe/Pe_H)^2|``: far from a root of D26 only the
     sign of that difference matters) and then grows (by at most 2, as the error's
     cube root: the predictor is third order), and is halved otherwise, between
-    :data:`STEP_MIN` and :data:`STEP_MAX`.  Near a pole of ``L`` (past fHPe ~ 2)
+    :data:`STEP_MIN` and :data:`STEP_MAX`.  Given ``pe_h``, a step is halved too
+    where ``h = L - (Pe/Pe_H)^2``, with ``L`` on the parabola through the last two
+    samples and the new one, changes sign more than once inside it, so that pairs of
+    roots (near a fold of the load) do not hide in one step.  Near a pole of ``L`` (past fHPe ~ 2)
     the step falls to its smallest and the pole is crossed.
 
     Parameters
@@ -142,6 +147,19 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
         x = min(xs[-1] + step, x_hi)
         f = ray.load_ratio(math.exp(x), n)
         evaluations += 1
+        if pe_h is not None and len(xs) >= 2 and step > STEP_MIN * (1 + 1e-9):
+            # Between the samples, h = L - (Pe/Pe_H)^2 with L on the parabola through
+            # the last two samples and this one (the term (Pe/Pe_H)^2 is exact): more
+            # than one sign change of it inside the step, two roots could hide there.
+            (a, b), c = xs[-2:], x
+            u = np.linspace(b, c, SUBSTEPS + 1)
+            quad = (fs[-2] * (u - b) * (u - c) / ((a - b) * (a - c))
+                    + fs[-1] * (u - a) * (u - c) / ((b - a) * (b - c))
+                    + f * (u - a) * (u - b) / ((c - a) * (c - b)))
+            h = quad - np.exp(2 * u) / pe_h**2
+            if np.count_nonzero(np.diff(np.sign(h)) != 0) > 1:
+                step = max(step / 2, STEP_MIN)
+                continue
         if len(xs) >= 3:
             (a, b, c), (fa, fb, fc) = xs[-3:], fs[-3:]
             predicted = (fa * (x - b) * (x - c) / ((a - b) * (a - c))
