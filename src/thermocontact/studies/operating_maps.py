@@ -143,8 +143,8 @@ class OperatingSpec:
                 "fields": "slopes and strains"}
 
 
-def _ray_model(task, pe):
-    return Ray(**task["ratios"], fh=task["fh"], lam=task["lam"]).model(pe, tol=task["tol"])
+def _ray(task) -> Ray:
+    return Ray(**task["ratios"], fh=task["fh"], lam=task["lam"])
 
 
 def _shape(sol):
@@ -188,7 +188,8 @@ def evaluate_ray(task) -> dict:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ConvergenceWarning)
-                sol = _ray_model(task, pe).solve(task["fh"] * pe, lam=task["lam"], polish=False)
+                sol = _ray(task).model(pe, tol=task["tol"]).solve(task["fh"] * pe,
+                                                                 lam=task["lam"], polish=False)
             peak, flash = _shape(sol)
             rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), peak, flash,
                    *_slope_factors(sol, task["fractions"]),
@@ -225,7 +226,7 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     events = []
 
     def at_n(m, pe):
-        return _ray_model(base, pe).solve_at(m, base["fh"] * pe, lam=base["lam"], polish=False)
+        return _ray(base).solve_at(pe, m, check_validity=True, polish=False)
     xtol = lambda p, q: 1e-10 * max(abs(p), abs(q))  # noqa: E731
     for i in np.flatnonzero(ray["valid"][:-1] != ray["valid"][1:]):
         if "failed" in (ray["status"][i], ray["status"][i + 1]):

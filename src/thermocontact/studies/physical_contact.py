@@ -462,11 +462,15 @@ def _primary(problem: PhysicalProblem, along: str):
 
         def h(y):
             return math.exp(2 * y) / pe_h**2 - ray.load_ratio(math.exp(y), n)
-        near = min(found, key=lambda r: abs(math.log(r[1] / pe_h)) + abs(math.log(
-            max(r[0], 1e-300) / max(x, 1e-300))) * (along == "friction"), default=None)
+        def distance(root):
+            # In ln Pe_H; along the friction also in ln f (the ray itself moves).
+            far = abs(math.log(root[1] / pe_h))
+            if along == "friction":
+                far = max(far, abs(math.log(max(root[0], 1e-300) / max(x, 1e-300))))
+            return far
+        near = min(found, key=distance, default=None)
         step = None
-        if near is not None and (abs(math.log(near[1] / pe_h)) < math.log(1.5) and (
-                along != "friction" or abs(math.log(max(near[0], 1e-300) / x)) < math.log(1.5))):
+        if near is not None and distance(near) < math.log(1.5):
             y = near[2] + math.log(pe_h / near[1])
             step = _secant(h, y, near[3], y - 1.0, y + 1.0, xtol=1e-13)
         if step is None:

@@ -26,7 +26,8 @@ from ..problem.parameters import SolveError
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "local", "root", "start_of_root"]
+__all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "lagrange", "local", "root",
+           "start_of_root"]
 
 #: Unknowns per function of the continuation: enough to bracket the roots of D26,
 #: which :func:`root` then refines at the resolution that meets the error target.
@@ -151,20 +152,13 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
             # Between the samples, h = L - (Pe/Pe_H)^2 with L on the parabola through
             # the last two samples and this one (the term (Pe/Pe_H)^2 is exact): more
             # than one sign change of it inside the step, two roots could hide there.
-            (a, b), c = xs[-2:], x
-            u = np.linspace(b, c, SUBSTEPS + 1)
-            quad = (fs[-2] * (u - b) * (u - c) / ((a - b) * (a - c))
-                    + fs[-1] * (u - a) * (u - c) / ((b - a) * (b - c))
-                    + f * (u - a) * (u - b) / ((c - a) * (c - b)))
-            h = quad - np.exp(2 * u) / pe_h**2
+            u = np.linspace(xs[-1], x, SUBSTEPS + 1)
+            h = lagrange(xs[-2:] + [x], fs[-2:] + [f], u) - np.exp(2 * u) / pe_h**2
             if np.count_nonzero(np.diff(np.sign(h)) != 0) > 1:
                 step = max(step / 2, STEP_MIN)
                 continue
         if len(xs) >= 3:
-            (a, b, c), (fa, fb, fc) = xs[-3:], fs[-3:]
-            predicted = (fa * (x - b) * (x - c) / ((a - b) * (a - c))
-                         + fb * (x - a) * (x - c) / ((b - a) * (b - c))
-                         + fc * (x - a) * (x - b) / ((c - a) * (c - b)))
+            predicted = float(lagrange(xs[-3:], fs[-3:], x))
             allowed = PREDICTOR_TOL * max(1.0, abs(f))
             if pe_h is not None:
                 allowed = max(allowed, SIGN_MARGIN * abs(f - math.exp(2 * x) / pe_h**2))
@@ -181,21 +175,26 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     return RayScan(np.exp(xs), np.array(fs), n, evaluations)
 
 
+def lagrange(xs, fs, x):
+    """The polynomial through the points ``(xs, fs)`` at ``x`` (Lagrange's form)."""
+    x = np.asarray(x, dtype=float)
+    out = np.zeros_like(x)
+    for j, (xj, fj) in enumerate(zip(xs, fs)):
+        w = np.ones_like(x)
+        for k, xk in enumerate(xs):
+            if k != j:
+                w = w * (x - xk) / (xj - xk)
+        out = out + w * fj
+    return out
+
+
 def local(ln_pe, values, x, stencil=STENCIL):
     """The Lagrange interpolant of ``values`` in ``ln Pe`` at ``x``, on the ``stencil``
     samples nearest ``x``."""
     i = int(np.searchsorted(ln_pe, x))
     stencil = min(stencil, len(ln_pe))
     lo = min(max(i - stencil // 2, 0), len(ln_pe) - stencil)
-    xs, fs = ln_pe[lo:lo + stencil], values[lo:lo + stencil]
-    out = 0.0
-    for j in range(stencil):
-        w = 1.0
-        for k in range(stencil):
-            if k != j:
-                w *= (x - xs[k]) / (xs[j] - xs[k])
-        out += w * fs[j]
-    return out
+    return float(lagrange(ln_pe[lo:lo + stencil], values[lo:lo + stencil], x))
 
 
 def brackets(pe, load_ratio, pe_h):
