@@ -141,6 +141,48 @@ def test_interrupt_while_importing_prints_no_traceback():
         assert len(err.strip().splitlines()) == 1
 
 
+def test_picture_drawn_beside_equals_picture_drawn_here(tmp_path, capsys, monkeypatch):
+    """`contact --plot` draws in a second process that imported Matplotlib while the
+    contact was solved; the picture is the one drawn in this process, byte for byte."""
+    import thermocontact.execution.executors as ex
+
+    args = ["contact", "--cylinder", "copper", "--half-plane", "steel", "--radius", "50mm",
+            "--load", "5kN/m", "--speed", "10", "--friction", "0.3", "--lam", "0"]
+    assert main(args + ["--plot", str(tmp_path / "beside.png")]) == 0
+    monkeypatch.setattr(ex, "cpu_count", lambda: 1)
+    assert ex.side_process("math") is None
+    assert main(args + ["--plot", str(tmp_path / "here.png")]) == 0
+    capsys.readouterr()
+    assert (tmp_path / "beside.png").read_bytes() == (tmp_path / "here.png").read_bytes()
+
+
+def test_interrupted_contact_picture_leaves_no_process(tmp_path):
+    """SIGINT while `contact --plot` solves (its picture process importing Matplotlib):
+    status 130, one line, and no process of its group left behind."""
+    import pathlib
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    script = pathlib.Path(sys.executable).with_name("thermocontact")
+    proc = subprocess.Popen([str(script)] + CONTACT + ["--plot", str(tmp_path / "c.png")],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    time.sleep(0.6)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and len(err.strip().splitlines()) == 1, err
+    for _ in range(50):
+        try:
+            os.killpg(proc.pid, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.1)
+    else:
+        raise AssertionError("a process of the interrupted command is still running")
+
+
 def test_no_noise_after_refusal_or_with_no_branch(tmp_path, capsys):
     """A load of 1e-300 N/m is refused in one line (no RuntimeWarning on the way), and a
     picture of a contact with no branch is drawn without a warning (no empty legend)."""

@@ -1,6 +1,5 @@
 """Operating maps in physical units: one ray answers the whole load-speed plane."""
 
-import numpy as np
 import pytest
 
 from thermocontact.problem.materials import get_material

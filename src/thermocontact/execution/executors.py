@@ -24,7 +24,7 @@ import re
 
 from ..problem.validation import InputError, check_integer
 
-__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run"]
+__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "side_process"]
 
 #: Tasks in flight per worker.
 IN_FLIGHT = 2
@@ -62,6 +62,35 @@ def _single_thread():
     from threadpoolctl import threadpool_limits
 
     threadpool_limits(1)
+
+
+def _import_quietly(modules):
+    """Side-process start: ignore Ctrl-C (the parent stops the process), import ``modules``."""
+    import importlib
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _single_thread()
+    for name in modules:
+        importlib.import_module(name)
+
+
+def side_process(*modules):
+    """One worker process that imports ``modules`` now, while this process computes.
+
+    For work whose imports cost as much as the computation before it (a picture:
+    Matplotlib takes about as long to import as a `contact` to solve): submit the
+    work to the returned executor when its input is ready.  ``None`` where only one
+    core is available, where the overlap gains nothing; the caller then works here.
+    The caller shuts the executor down.
+    """
+    if cpu_count() < 2:
+        return None
+    ctx = multiprocessing.get_context(_start_method())
+    pool = cf.ProcessPoolExecutor(1, mp_context=ctx, initializer=_import_quietly,
+                                  initargs=(modules,))
+    pool.submit(int)  # starts the process, and so its imports
+    return pool
 
 
 _ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(:\d{1,5})?/?$|^[^\s/:]+:\d{1,5}$")
