@@ -34,6 +34,16 @@ def test_hertz_gap_exact():
     assert abs(v.gap_margin - HERTZ_EDGE) < 1e-6
 
 
+def _half_plane_slope(par, t):
+    """The half-plane's kernel of (D14) at t - r, |t| >= 1: sgn/2 when it is stationary,
+    sgn(c2) N(c2 u) H(c2 u) of (D14b) when it moves (pointwise, no moments)."""
+    c2 = par.half_plane_scale
+    if c2 == 0.0:
+        return lambda r: 0.5 * np.sign(t)
+    return lambda r: np.sign(c2) * (cylinder_slope(c2 * (t - r)) if c2 * (t - r) != 0.0
+                                    else 0.5)
+
+
 def brute_force_slope_mismatch_chebyshev(sol, t):
     """G(t) for |t| >= 1 by adaptive quadrature of the terms of (D14) in
     theta = arccos r, for the Chebyshev representation: p dr = phi sin^2(theta) dtheta
@@ -53,15 +63,15 @@ def brute_force_slope_mismatch_chebyshev(sol, t):
         return quad(lambda th: f(np.cos(th), th), 0.0, np.pi, **opts)[0]
 
     nh = lambda r: d * cylinder_slope(c * (t - r))  # noqa: E731
-    sg = np.sign(t)
+    hp = _half_plane_slope(par, t)
     if abs(t) == 1.0:
         cauchy = over_theta(lambda r, th: phi(r) * (t + r)) / np.pi
     else:
         cauchy = over_theta(lambda r, th: phi(r) * np.sin(th) ** 2 / (t - r)) / np.pi
-    kp = over_theta(lambda r, th: phi(r) * np.sin(th) ** 2 * (nh(r) + 0.5 * sg))
+    kp = over_theta(lambda r, th: phi(r) * np.sin(th) ** 2 * (nh(r) + hp(r)))
     # q = psi/sqrt(1-r^2) + eta p
     kq = over_theta(lambda r, th: (psi(r) + sol.eta * phi(r) * np.sin(th) ** 2)
-                    * (nh(r) - 0.5 * sg))
+                    * (nh(r) - hp(r)))
     L, sig = sol.load_ratio, sol.sigma_over_delta
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
 
@@ -92,16 +102,16 @@ def brute_force_slope_mismatch(sol, t):
         return cosine_value(b_cos, tau) * stretch_derivative(tau)
 
     nh = lambda r: d * cylinder_slope(c * (t - r))
-    sg = np.sign(t)
+    hp = _half_plane_slope(par, t)
     if abs(t) == 1.0:  # sin^2 T / (t - cos T) = t (1 + t cos T) at an edge
         cauchy = over_tau(lambda r, tt, tau: cosine_value(a_cos, tau) * stretch_derivative(tau)
                           * t * (1.0 + t * np.cos(tt))) / np.pi
     else:
         cauchy = over_tau(lambda r, tt, tau: p_dr(r, tt, tau) / (t - r)) / np.pi
-    kp = over_tau(lambda r, tt, tau: p_dr(r, tt, tau) * (nh(r) + 0.5 * sg))
+    kp = over_tau(lambda r, tt, tau: p_dr(r, tt, tau) * (nh(r) + hp(r)))
     # q = q' + eta p
     kq = over_tau(lambda r, tt, tau: (q_dr(r, tt, tau) + sol.eta * p_dr(r, tt, tau))
-                  * (nh(r) - 0.5 * sg))
+                  * (nh(r) - hp(r)))
     L, sig = sol.load_ratio, sol.sigma_over_delta
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
 
@@ -127,12 +137,22 @@ GAP_CASES = [
 ]
 
 
+#: A half-plane moving through the contact (section 5b), each direction on each side:
+#: its kernel acts on the side its material reaches first and vanishes on the other.
+MOVING_GAP_CASES = [
+    (dict(pe=2, fhpe=0.4, K2_over_K1=3, k2_over_k1=0.5, speed_ratio=0.7, lam=0.3), 1.3),
+    (dict(pe=2, fhpe=0.4, K2_over_K1=3, k2_over_k1=0.5, speed_ratio=0.7, lam=0.3), -1.3),
+    (dict(pe=2, fhpe=0.4, K2_over_K1=3, k2_over_k1=0.5, speed_ratio=-1.5, lam=0.3), -3.0),
+    (dict(pe=2, fhpe=0.4, K2_over_K1=3, k2_over_k1=0.5, speed_ratio=-1.5, lam=0.3), 1.02),
+]
+
+
 @pytest.mark.parametrize("case,s,method", [c + ("product",) for c in GAP_CASES]
-                         + [c + ("graded",) for c in GAP_CASES[:2]])
+                         + [c + ("graded",) for c in GAP_CASES[:2] + MOVING_GAP_CASES])
 def test_gap_closed_form_matches_quadrature(case, s, method):
     """The gap (Chebyshev: Cauchy moments in closed form; graded: logarithmic moments;
     both: E antiderivative, exact sgn) equals nested adaptive quadrature of the slope
-    mismatch to 1e-9 (abs, quadrature tolerance)."""
+    mismatch to 1e-9 (abs, quadrature tolerance); with a moving half-plane too."""
     sol = solve(n=24, method=method, **case)
     ref = brute_force_gap(sol, s)
     assert abs(sol.gap_at(s)[0] - ref) < 1e-9 * max(1.0, abs(ref))

@@ -49,7 +49,8 @@ def _summary(sol) -> str:
     lines = [
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
-        f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}",
+        f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}"
+        + (f", v2/v1 = {par.speed_ratio:g}" if par.speed_ratio else ""),
         f"  {sol.status}: {sol.estimate_message} (n {'chosen' if sol.auto_n else 'given'})",
         f"  P_H/P         = {sol.load_ratio:.10g}",
         f"  lambda        = {sol.lam:.10g}",
@@ -89,6 +90,12 @@ def _problem_options(required: bool):
                      help="Diffusivity ratio k2/k1 > 0 [default: K2/K1]."),
         click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
                      help="Distortivity ratio delta1/delta2 >= 0."),
+        click.option("--speed-ratio", "speed_ratio", type=float, default=0.0,
+                     show_default=True,
+                     help="v2/v1: the half-plane's surface speed through the contact over the "
+                          "cylinder's, positive in the same direction; 0 is a stationary "
+                          "half-plane. Pe is made with v1, fHPe with the sliding speed "
+                          "|v1 - v2|."),
         click.option("--lam", type=float, default=None,
                      help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma."),
         click.option("--sigma", type=float, default=None,
@@ -151,13 +158,13 @@ def _physical_options(required: bool):
               help="Half-width over cylinder radius, > 0: also say whether the theory applies "
                    "(small contact, slopes and strains).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, n,
-              tol, method, check, delta_over_r, as_json):
+def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, lam, sigma,
+              n, tol, method, check, delta_over_r, as_json):
     """Solve one case in dimensionless form."""
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
-                delta1_over_delta2=delta1_over_delta2, lam=lam,
+                delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
                 check_convergence=check, progress=_Progress())
     app = None
@@ -181,7 +188,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
 @cli.command("boundary")
 @click.option("--along", required=True,
               help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
-                   "delta1-over-delta2; or, with --cylinder and --half-plane, load, speed, "
+                   "delta1-over-delta2, speed-ratio; or, with --cylinder and --half-plane, load, speed, "
                    "radius or friction.")
 @click.option("--from", "start", required=True,
               help="Start of the path (physical parameters in SI units or with units).")
@@ -197,7 +204,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma, 
               show_default=True, help="Discretisation method (dimensionless paths).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
-                 lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
+                 speed_ratio, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
                  friction, tol, n, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
     from .studies.boundaries import SPELLINGS as names, follow
@@ -209,7 +216,8 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
     if cylinder is not None or half_plane is not None or along in _PHYSICAL_UNITS:
         path = _physical_path(along, start, stop, physical, materials_file, lam, tol, n,
                               {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
-                               "k2_over_k1": k2_over_k1, "sigma": sigma}, bar)
+                               "k2_over_k1": k2_over_k1, "sigma": sigma,
+                               "speed_ratio": speed_ratio or None}, bar)
         method = path.method
     else:
         for name, value in physical.items():
@@ -221,8 +229,9 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                              f", got {along!r}")
         name = names[along]
         given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
-                 "delta1_over_delta2": delta1_over_delta2, "lam": lam,
-                 "sigma_over_delta": sigma}
+                 "delta1_over_delta2": delta1_over_delta2,
+                 "speed_ratio": speed_ratio or None,  # 0, the default, is left out
+                 "lam": lam, "sigma_over_delta": sigma}
         fixed = {k: v for k, v in given.items() if v is not None and k != name}
         for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
             if k != name and k not in fixed:
@@ -441,12 +450,14 @@ def _run_map(spec, out, workers, title, command):
               help="Run on the Dask cluster whose scheduler is at this address "
                    "(tcp://host:port) instead.")
 @_physical_options(required=False)
-def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, sigma,
+def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
+            lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
             materials_file, radius, load, speed, friction):
     """The solution over a grid of two parameters, and where it stops being valid.
 
-    Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2;
+    Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
+    speed-ratio;
     with --cylinder, load, speed and radius in SI units (an operating map).
     Interrupted, the same command resumes; finished work is kept beside --out.
     """
@@ -458,6 +469,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                load, speed, friction, lam, tol,
                                dict(pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
                                     k2_over_k1=k2_over_k1, sigma=sigma,
+                                    speed_ratio=speed_ratio or None,
                                     delta_over_r=delta_over_r))
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
@@ -472,7 +484,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
         spec = MapSpec(parse_axis("--x", x_spec), parse_axis("--y", y_spec),
                        {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                         "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                        "lam": lam, "sigma_over_delta": sigma},
+                        "speed_ratio": speed_ratio or None, "lam": lam,
+                        "sigma_over_delta": sigma},
                        method=method, tol=tol, delta_over_r=delta_over_r)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "

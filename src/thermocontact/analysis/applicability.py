@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.green_functions import cylinder_slope
+from ..discretisation.operator import distortion_operators
 
 __all__ = ["AMBIENT_TEMPERATURE", "Applicability", "MAX_HALF_WIDTH_OVER_RADIUS",
            "MAX_SLOPE", "MAX_STRAIN", "applicability", "surface_slopes"]
@@ -111,15 +111,12 @@ def surface_slopes(sol, points=201):
     """
     par, rep = sol.parameters, sol.representation
     s = np.cos(np.pi * (np.arange(points, 0, -1) - 0.5) / points)
-    eta, c, d, F = par.eta, par.cylinder_scale, par.delta1_over_delta2, par.fhpe
     cb, _ = rep.cauchy(s)
     elastic = (cb @ sol.phi) / np.pi
-    thermal_1 = np.zeros_like(s)
-    if d and F:
-        nh_b, nh_s = rep.integrate(lambda u: cylinder_slope(c * u), s, scale=c)
-        thermal_1 = F * d * ((1.0 + eta) * (nh_b @ sol.phi) + nh_s @ sol.psi)
-    sg_b, sg_s = rep.sign(s)
-    thermal_2 = F * 0.5 * ((1.0 - eta) * (sg_b @ sol.phi) - sg_s @ sol.psi)
+    F = par.fhpe
+    (cyl_b, cyl_s), (hp_b, hp_s) = distortion_operators(par, rep, s)
+    thermal_1 = F * (cyl_b @ sol.phi + cyl_s @ sol.psi)
+    thermal_2 = F * (hp_b @ sol.phi + hp_s @ sol.psi)
     return s, elastic, thermal_1, thermal_2
 
 

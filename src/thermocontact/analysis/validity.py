@@ -20,7 +20,7 @@ import numpy as np
 
 from ..numerics.edge_graded import MIN_BLOCK
 from ..numerics.extrema import interpolated_minimum, polish_minimum
-from ..physics.green_functions import cylinder_displacement, cylinder_slope
+from ..physics.green_functions import cylinder_displacement, cylinder_slope, moving_slope
 from ..problem.parameters import Parameters
 
 __all__ = ["Validity", "assess", "gap"]
@@ -266,47 +266,63 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
                  for i in range(0, s.size, GAP_BLOCK)]
         return np.concatenate([g for g, _ in parts]), parts[0][1]
     F = par.fhpe
-    c = par.cylinder_scale
-    d = par.delta1_over_delta2
     cauchy_left, cauchy_right = rep.cauchy_edges(phi)
     L = load_ratio
     eta = par.eta
+    # The moving bodies' slope kernels sgn(c) N(c u) H(c u), each with its weight on
+    # the heat it receives: the cylinder d (p + q) with c > 0, a moving half-plane
+    # (p - q) with c2 of either sign (section 5b); a stationary half-plane's
+    # sgn(u)/2 is integrated exactly below.
+    c2 = par.half_plane_scale
+    moving = []
+    if par.delta1_over_delta2:
+        moving.append(("cylinder", par.cylinder_scale, par.delta1_over_delta2, 1.0))
+    if c2:
+        moving.append(("half-plane", c2, 1.0, -1.0))
 
-    def against_p_plus_q(key, kernel, points, scale=None):
-        # integral K (p + q) dr with p + q = (1 + eta) p + q'; the row operators
-        # depend only on the representation, c and the points, so sweeps reuse them.
+    def against(key, kernel, points, scale, sign):
+        # integral K (p + sign q) dr with q = q' + eta p; the row operators depend
+        # only on the representation, the kernel's scale and the points, so sweeps
+        # reuse them.
         points = np.asarray(points, dtype=float)
-        ib, iq = rep.rows((key, c, points.tobytes()),
-                          lambda: rep.integrate(kernel, points, scale=scale))
-        return (1.0 + eta) * (ib @ phi) + iq @ psi
+        ib, iq = rep.rows((key, scale, points.tobytes()),
+                          lambda: rep.integrate(kernel, points, scale=abs(scale)))
+        return (1.0 + sign * eta) * (ib @ phi) + sign * (iq @ psi)
 
-    # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).
-    nh_edge = (against_p_plus_q("nh", lambda u: cylinder_slope(c * u), [1.0], c)[0]
-               if d else 0.0)
-    g_right_edge = cauchy_right - F * (d * nh_edge + 0.5 * (1.0 - lam)) - (2 / np.pi) * L * (sigma + 1.0)
-    g_left_edge = cauchy_left + F * 0.5 * (1.0 - lam) - (2 / np.pi) * L * (sigma - 1.0)
+    # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).  A moving
+    # body's kernel vanishes at the edge its material reaches last (c > 0: s = -1).
+    thermal_edges = [0.0, 0.0] if c2 else [-0.5 * (1.0 - lam), 0.5 * (1.0 - lam)]
+    for name, c, weight, sign in moving:
+        edge = 1.0 if c > 0.0 else -1.0
+        slope = against("slope " + name, lambda u, c=c: moving_slope(u, c), [edge], c, sign)
+        thermal_edges[c > 0.0] += weight * float(slope[0])
+    g_left_edge = cauchy_left - F * thermal_edges[0] - (2 / np.pi) * L * (sigma - 1.0)
+    g_right_edge = cauchy_right - F * thermal_edges[1] - (2 / np.pi) * L * (sigma + 1.0)
 
     out = np.zeros_like(s)
     # Work with the distance tt = |s| - 1 past the edge (exact in floating point
-    # near the edge) so that no O(1) quantity is formed and cancelled there.
-    right = s > 1.0
-    if np.any(right):
-        tt = s[right] - 1.0
-        jc = rep.cauchy_outside(phi, tt, right=True)
-        jt = 0.5 * (1.0 - lam) * tt
-        if d:
-            # E(c(1 - r)) - E(c(1 + tt - r)) as a kernel of u = s - r = 1 + tt - r.
-            h = c * tt[:, None]
-            drop = lambda u: _displacement_drop(c * u - h, h)
-            jt = jt + (d / c) * against_p_plus_q("drop", drop, 1.0 + tt, c)
-        j = jc - F * jt - g_right_edge * tt
-        out[right] = sigma * tt + tt * (1.0 + 0.5 * tt) - np.pi / (2 * L) * j
-    left = s < -1.0
-    if np.any(left):
-        tt = -1.0 - s[left]
-        jc = rep.cauchy_outside(phi, tt, right=False)
-        j = jc + F * 0.5 * (1.0 - lam) * tt - g_left_edge * tt
-        out[left] = -sigma * tt + tt * (1.0 + 0.5 * tt) + np.pi / (2 * L) * j
+    # near the edge) so that no O(1) quantity is formed and cancelled there.  Each
+    # part of j is an integral over the interval between the edge and s, in
+    # increasing t (from s to -1 on the left).
+    for side, edge_residual in ((1.0, g_right_edge), (-1.0, g_left_edge)):
+        on = side * s > 1.0
+        if not np.any(on):
+            continue
+        tt = side * s[on] - 1.0
+        jc = rep.cauchy_outside(phi, tt, right=side > 0.0)
+        jt = 0.0 if c2 else side * 0.5 * (1.0 - lam) * tt
+        for name, c, weight, sign in moving:
+            if c * side < 0.0:
+                continue  # the body's material has not yet reached this side
+            # The kernel's antiderivative is -E(c u)/|c|: the integral is
+            # side [E(|c|(1 -+ r)) - E(|c|(1 -+ r) + |c| tt)] / |c|, a kernel of
+            # u = s - r in which |c| (1 -+ r) = c u - |c| tt on either side.
+            h = abs(c) * tt[:, None]
+            drop = lambda u, c=c, h=h: _displacement_drop(c * u - h, h)
+            jt = jt + side * (weight / abs(c)) * against("drop " + name, drop,
+                                                         side * (1.0 + tt), c, sign)
+        j = jc - F * jt - edge_residual * tt
+        out[on] = side * sigma * tt + tt * (1.0 + 0.5 * tt) - side * np.pi / (2 * L) * j
     return out, (float(g_left_edge), float(g_right_edge))
 
 

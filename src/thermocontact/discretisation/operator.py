@@ -10,10 +10,44 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
+from ..physics.green_functions import (cylinder_slope, cylinder_temperature_gradient_regular,
+                                       moving_slope)
 from ..problem.parameters import Parameters
 
-__all__ = ["contact_operators", "heat_operators"]
+__all__ = ["contact_operators", "distortion_operators", "heat_operators"]
+
+
+def distortion_operators(par: Parameters, rep, s, aux=None):
+    """Each body's thermal-distortion term of (D14) at points ``s``, on ``(phi, psi)``.
+
+    The cylinder's ``d integral N(c u) H(u) (p + q) dr`` and the half-plane's
+    ``integral S2(u) (p - q) dr`` (``p + q`` and ``p - q`` are twice the heat each
+    receives), with ``q = q' + eta p``; ``S2 = sgn(u)/2`` for the stationary
+    half-plane and ``sgn(c2) N(c2 u) H(c2 u)`` for one moving through the contact
+    (``c2 = R Pe != 0``, derivation section 5b).  Their sum times ``F`` is the
+    thermal part of the contact equation.
+
+    Returns
+    -------
+    cylinder, half_plane : pair of ndarray, shape (k, n)
+        Each ``(on phi, on psi)``.
+    """
+    eta = par.eta
+    c = par.cylinder_scale
+    d = par.delta1_over_delta2
+    c2 = par.half_plane_scale
+    if c2:
+        s2_b, s2_s = rep.integrate(lambda u: moving_slope(u, c2), s, scale=abs(c2), aux=aux)
+    else:
+        sg_b, sg_s = rep.sign(s, aux)
+        s2_b, s2_s = 0.5 * sg_b, 0.5 * sg_s
+    half_plane = ((1.0 - eta) * s2_b, -s2_s)
+    if d:
+        nh_b, nh_s = rep.integrate(lambda u: cylinder_slope(c * u), s, scale=c, aux=aux)
+        cylinder = (d * (1.0 + eta) * nh_b, d * nh_s)
+    else:
+        cylinder = (np.zeros_like(s2_b), np.zeros_like(s2_s))
+    return cylinder, half_plane
 
 
 def contact_operators(par: Parameters, rep, s, aux=None):
@@ -27,7 +61,9 @@ def contact_operators(par: Parameters, rep, s, aux=None):
       ``K_p = d N(c u) H(u) + sgn(u)/2`` and ``K_q = d N(c u) H(u) - sgn(u)/2``;
       with ``q = q' + eta p``:
       ``Tp = d (1 + eta) NH_p + (1 - eta) sgn_p / 2`` and ``Tq = d NH_q - sgn_q / 2``,
-      where ``d = delta1/delta2`` and ``c = Pe k2/k1``.
+      where ``d = delta1/delta2`` and ``c = Pe k2/k1``.  A half-plane moving
+      through the contact (``c2 = R Pe != 0``, derivation section 5b) replaces
+      ``sgn(u)/2`` by ``sgn(c2) N(c2 u) H(c2 u)``.
 
     Parameters
     ----------
@@ -45,18 +81,11 @@ def contact_operators(par: Parameters, rep, s, aux=None):
     Tq : ndarray, shape (k, n)
         On ``psi``.
     """
-    eta = par.eta
-    c = par.cylinder_scale
-    d = par.delta1_over_delta2
     cb, _ = rep.cauchy(s, aux)
-    sg_b, sg_s = rep.sign(s, aux)
-    if d:
-        nh_b, nh_s = rep.integrate(lambda u: cylinder_slope(c * u), s, scale=c, aux=aux)
-    else:
-        nh_b = nh_s = 0.0
+    (cyl_b, cyl_s), (hp_b, hp_s) = distortion_operators(par, rep, s, aux)
     C = cb / np.pi
-    Tp = d * (1.0 + eta) * nh_b + 0.5 * (1.0 - eta) * sg_b
-    Tq = d * nh_s - 0.5 * sg_s
+    Tp = cyl_b + hp_b
+    Tq = cyl_s + hp_s
     return C, Tp, Tq
 
 
@@ -67,7 +96,10 @@ def heat_operators(par: Parameters, rep, s, aux=None):
     ``Hq = (PV integral q'/(s - r) + rho/(1 + rho) integral q' M_c) / pi`` and
     ``Hp = 2 rho/(1 + rho)^2 integral p M_c / pi``, where
     ``M_c(u) = c M(c u) - 1/u`` is the regular part of the cylinder's temperature
-    gradient (a logarithm at ``u = 0``) and ``rho = K2/K1``.
+    gradient (a logarithm at ``u = 0``) and ``rho = K2/K1``.  A half-plane moving
+    through the contact (``c2 = R Pe != 0``) adds its own regular part ``M_c2``:
+    ``rho M_c`` becomes ``rho M_c + M_c2`` on ``q'`` and ``M_c`` becomes
+    ``M_c - M_c2`` on ``p`` (derivation eq. D18b).
 
     Returns
     -------
@@ -79,6 +111,12 @@ def heat_operators(par: Parameters, rep, s, aux=None):
     mr_b, mr_s = rep.integrate(lambda u: cylinder_temperature_gradient_regular(u, c), s,
                                scale=c, logarithmic=True, aux=aux)
     Hq = (cs + (rho / (1.0 + rho)) * mr_s) / np.pi
+    c2 = par.half_plane_scale
+    if c2:
+        m2_b, m2_s = rep.integrate(lambda u: cylinder_temperature_gradient_regular(u, c2), s,
+                                   scale=abs(c2), logarithmic=True, aux=aux)
+        Hq = Hq + m2_s / ((1.0 + rho) * np.pi)
+        mr_b = mr_b - m2_b
     # 2 rho/(1 + rho)^2 written so that no power overflows for extreme ratios.
     Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mr_b / np.pi
     return Hp, Hq

@@ -23,6 +23,7 @@ __all__ = [
     "cylinder_temperature_gradient",
     "cylinder_temperature_gradient_regular",
     "half_plane_slope",
+    "moving_slope",
 ]
 
 
@@ -197,3 +198,26 @@ def half_plane_slope(u):
     ndarray
     """
     return 0.5 * np.sign(np.asarray(u, dtype=float))
+
+
+def moving_slope(u, scale):
+    """Slope kernel ``sgn(c) N(c u) H(c u)`` of a moving half-plane's distortion.
+
+    A body whose surface moves through the contact toward ``-x`` (``c > 0``, the
+    cylinder) or ``+x`` (``c < 0``) has outward slope
+    ``dw/dx = -delta * integral q(xi) sgn(c) N(c u) H(c u) dxi`` with ``u = s - r``
+    and ``c = v Delta/(2 k)`` signed (derivation eq. D7 and, for ``c < 0``, its
+    mirror image, section 5b).  ``cylinder_slope(c u)`` is the case ``c > 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        Separation ``s - r`` in contact coordinates.
+    scale : float
+        Signed ``c``, non-zero.
+
+    Returns
+    -------
+    ndarray
+    """
+    return np.sign(scale) * cylinder_slope(scale * np.asarray(u, dtype=float))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .validation import InputError, check_nonnegative, check_positive
+from .validation import InputError, check_finite, check_nonnegative, check_positive
 
 __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
 
@@ -44,13 +44,21 @@ class Parameters:
     delta1_over_delta2 : float, optional
         Distortivity ratio ``delta1/delta2 >= 0``; 0 is a cylinder that does not
         distort.  Default 1.
+    speed_ratio : float, optional
+        ``R = v2/v1``: the half-plane's surface speed through the contact over the
+        cylinder's, positive in the same direction (derivation section 5b); 0, the
+        default, is the paper's stationary half-plane.  Any real number but 1
+        with ``fhpe > 0`` (pure rolling makes no frictional heat).
 
     Notes
     -----
-    Derived groups used by the equations (derivation section 5):
-    ``c = Pe k2/k1``, the scale of the cylinder's kernels, and
-    ``eta = (1 - K2/K1) / (1 + K2/K1)``, the share of the pressure in the heat-flux
-    difference that removes the Cauchy part of the heat equation's pressure term.
+    Derived groups used by the equations (derivation sections 5, 5b):
+    ``c = Pe k2/k1``, the scale of the cylinder's kernels; ``c2 = R Pe``, the signed
+    scale of the moving half-plane's; and ``eta = (1 - K2/K1) / (1 + K2/K1)``, the
+    share of the pressure in the heat-flux difference that removes the Cauchy part
+    of the heat equation's pressure term.  ``Pe = v1 Delta/(2 k2)`` is made with
+    the cylinder's surface speed and ``fHPe = f H |v1 - v2| Delta/(2 k2)`` with the
+    sliding speed, which makes the heat, so both are today's at ``R = 0``.
     """
 
     pe: float
@@ -58,6 +66,7 @@ class Parameters:
     K2_over_K1: float
     k2_over_k1: float | None = None
     delta1_over_delta2: float = 1.0
+    speed_ratio: float = 0.0
 
     def __post_init__(self):
         object.__setattr__(self, "pe", check_positive("pe", self.pe))
@@ -72,6 +81,16 @@ class Parameters:
             "delta1_over_delta2",
             check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
         )
+        object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
+        c2 = abs(self.speed_ratio) * self.pe
+        if c2 != 0.0 and not C_MIN <= c2 <= C_MAX:
+            raise InputError(
+                f"|speed_ratio| * pe (the half-plane's kernel scale) must be 0 or in "
+                f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c2:.3g} (pe = {self.pe:.3g}, "
+                f"speed_ratio = {self.speed_ratio:.3g})")
+        if self.speed_ratio == 1.0 and self.fhpe > 0.0:
+            raise InputError("speed_ratio 1 is pure rolling, which makes no frictional "
+                             f"heat: fhpe must be 0 there, got {self.fhpe:g}")
         c = self.pe * self.k2_over_k1
         if not C_MIN <= c <= C_MAX:
             raise InputError(
@@ -83,6 +102,12 @@ class Parameters:
     def cylinder_scale(self) -> float:
         """``c = Pe k2/k1``: the cylinder kernels' argument is ``c (s - r)``."""
         return self.pe * self.k2_over_k1
+
+    @property
+    def half_plane_scale(self) -> float:
+        """``c2 = R Pe``, signed: the moving half-plane's kernels' argument is
+        ``c2 (s - r)``; 0 for the stationary half-plane."""
+        return self.speed_ratio * self.pe
 
     @property
     def eta(self) -> float:

@@ -202,6 +202,9 @@ class Model:
         Diffusivity ratio ``> 0``; defaults to ``K2_over_K1``.
     delta1_over_delta2 : float, optional
         Distortivity ratio ``>= 0`` (default 1).
+    speed_ratio : float, optional
+        ``R = v2/v1``, the half-plane's surface speed through the contact over the
+        cylinder's (default 0, the stationary half-plane; derivation section 5b).
     method : str, optional
         A key of :data:`~thermocontact.discretisation.methods.METHODS`.
     n : int, optional
@@ -220,8 +223,9 @@ class Model:
     """
 
     def __init__(self, pe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-                 method=DEFAULT_METHOD, n=None, tol=DEFAULT_TOL):
-        self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2)
+                 speed_ratio=0.0, method=DEFAULT_METHOD, n=None, tol=DEFAULT_TOL):
+        self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
+                                     speed_ratio)
         self.method = check_method(method)
         self.n = None if n is None else check_n(n)
         self.tol = check_positive("tol", tol)
@@ -238,7 +242,9 @@ class Model:
     def __repr__(self):
         p = self.parameters
         return (f"Model(pe={p.pe:g}, K2_over_K1={p.K2_over_K1:g}, k2_over_k1={p.k2_over_k1:g}, "
-                f"delta1_over_delta2={p.delta1_over_delta2:g}, method={self.method!r}, "
+                f"delta1_over_delta2={p.delta1_over_delta2:g}, "
+                + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "")
+                + f"method={self.method!r}, "
                 f"n={self.n}, tol={self.tol:g})")
 
     def __eq__(self, other):
@@ -252,14 +258,14 @@ class Model:
         """The assembled blocks at ``n``."""
         if n not in self._blocks:
             p = self.parameters
-            key = (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2, n)
+            key = (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2,
+                   p.speed_ratio, n)
             self._blocks[n] = ASSEMBLIES.get(key, lambda: METHODS[self.method].assemble(p, n))
         return self._blocks[n]
 
     def parameters_at(self, fhpe) -> Parameters:
         """The full parameters at ``fhpe``."""
-        p = self.parameters
-        return Parameters(p.pe, fhpe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2)
+        return replace(self.parameters, fhpe=fhpe)
 
     def solve_at(self, n: int, fhpe, *, lam=None, sigma_over_delta=None,
                  check_validity=True, polish=True) -> ContactSolution:
@@ -352,7 +358,7 @@ class Model:
 
 
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-          lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
+          speed_ratio=0.0, lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
           tol=DEFAULT_TOL, check_convergence=False, progress=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
@@ -365,6 +371,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         ``Pe > 0``, ``f H Pe >= 0`` and the conductivity ratio ``> 0``.
     k2_over_k1, delta1_over_delta2 : float, optional
         Diffusivity (default ``K2_over_K1``) and distortivity (default 1) ratios.
+    speed_ratio : float, optional
+        ``R = v2/v1`` (default 0, the stationary half-plane).
     lam, sigma_over_delta : float
         Exactly one: the heat partition or the contact offset.
     n : int, optional
@@ -398,6 +406,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     """
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
-                  delta1_over_delta2=delta1_over_delta2, method=method, n=n, tol=tol)
+                  delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
+                  method=method, n=n, tol=tol)
     return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
                        check_convergence=check_convergence, progress=progress, _stacklevel=3)

@@ -137,8 +137,8 @@ class MapSpec:
     fixed : dict
         The other inputs of :func:`~thermocontact.solvers.single_patch.solve`
         (``pe``, ``fhpe``, ``K2_over_K1``, optionally ``k2_over_k1`` and
-        ``delta1_over_delta2``, and ``lam`` or ``sigma_over_delta`` unless an axis
-        is one of them).
+        ``delta1_over_delta2`` and ``speed_ratio``, and ``lam`` or
+        ``sigma_over_delta`` unless an axis is one of them).
     method : str
     tol : float
         Error target of every point.
@@ -180,7 +180,7 @@ class MapSpec:
             for yv in (self.y.start, self.y.stop):
                 kw = {**fixed, self.x.name: xv, self.y.name: yv}
                 Parameters(kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
-                           kw.get("delta1_over_delta2", 1.0))
+                           kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0))
 
     @property
     def inner(self) -> str:
