@@ -152,32 +152,38 @@ def test_temperature_mismatch_falls_with_n():
     assert mismatch[2] < 1e-8 * 881
 
 
-def test_temperature_against_carslaw_jaeger_quadrature():
-    """The cylinder's surface temperature equals an independent adaptive quadrature of
-    the Carslaw-Jaeger moving line source, T1(x) = (1/(pi K1)) int q1(xi)
-    exp(-u) K0(|u|) dxi, u = v(x - xi)/(2 k1), over the solution's own q1 (to 1e-8
-    relative)."""
-    p = problem(load=5e4, speed=2.0)
+@pytest.mark.parametrize("speed2", [0.0, -1.5])
+def test_temperature_against_carslaw_jaeger_quadrature(speed2):
+    """Each moving body's surface temperature equals an independent adaptive quadrature
+    of the Carslaw-Jaeger moving line source, T(x) = (1/(pi K)) int q(xi) exp(-u)
+    K0(|u|) dxi, u = v(x - xi)/(2 k) with its own signed speed, over the solution's own
+    flux (to 1e-8 relative): the cylinder's; with the half-plane moving toward +x
+    (section 5b), the half-plane's too, over its own incoming temperature."""
+    p = problem(load=5e4, speed=2.0, speed2=speed2)
     d = 4e-5
     sol = solve(**p.to_dimensionless(d), n=48)
     s = np.array([-0.6, 0.1, 0.8])
-    t1, _, _ = _temperatures(p, sol, d, s)
+    t1, t2, _, incoming = _temperatures(p, sol, d, s)
     basis = sol.representation
-    eta, c = sol.eta, sol.parameters.cylinder_scale
-    scale = p.friction * p.speed * p.load / (np.pi * STEEL.K)
-    for si, ti in zip(s, t1):
-        kern = lambda r: np.exp(-c * (si - r)) * k0(abs(c * (si - r)))
-        # q1 = ((1 + eta) sqrt(1-r^2) phi + psi / sqrt(1-r^2)) / 2
-        # In theta = arccos r (no square roots at the edges), split at the source
-        # point's logarithm; asked for 1e-10 relative, 100 times below the assertion.
-        def f(th):
-            r = np.cos(th)
-            return 0.5 * kern(r) * ((1 + eta) * basis.phi_at(sol.phi, r) * np.sin(th) ** 2
-                                    + basis.psi_at(sol.psi, r))
-        opts = dict(limit=400, epsabs=1e-12, epsrel=1e-10)
-        ts = np.arccos(si)
-        ref = quad(f, 0.0, ts, **opts)[0] + quad(f, ts, np.pi, **opts)[0]
-        assert abs(ti / (scale * ref) - 1) < 1e-8
+    eta = sol.eta
+    bodies = [(t1, sol.parameters.cylinder_scale, STEEL.K, 1.0)]
+    if speed2:
+        bodies.append((t2 - incoming, sol.parameters.half_plane_scale, IRON.K, -1.0))
+    scale = p.friction * p.sliding_speed * p.load / np.pi
+    for temps, c, K, sign in bodies:
+        for si, ti in zip(s, temps):
+            kern = lambda r: np.exp(-c * (si - r)) * k0(abs(c * (si - r)))
+            # q1, q2 = ((1 +- eta) sqrt(1-r^2) phi +- psi / sqrt(1-r^2)) / 2
+            # In theta = arccos r (no square roots at the edges), split at the source
+            # point's logarithm; asked for 1e-10 relative, 100 times below the assertion.
+            def f(th):
+                r = np.cos(th)
+                return 0.5 * kern(r) * ((1 + sign * eta) * basis.phi_at(sol.phi, r)
+                                        * np.sin(th) ** 2 + sign * basis.psi_at(sol.psi, r))
+            opts = dict(limit=400, epsabs=1e-12, epsrel=1e-10)
+            ts = np.arccos(si)
+            ref = quad(f, 0.0, ts, **opts)[0] + quad(f, ts, np.pi, **opts)[0]
+            assert abs(ti / (scale / K * ref) - 1) < 1e-8
 
 
 ARGS = ["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--friction", "0",

@@ -98,3 +98,91 @@ def test_command_line_speed_ratio(capsys):
         assert main(args + ["--speed-ratio", bad]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "speed" in err[0] and "Traceback" not in err[0]
+
+
+def _jaeger(b, prob, body, s):
+    """Jaeger's high-Peclet surface temperature of body 1 or 2 for the computed flux:
+    (1/K) sqrt(k/(pi |v|)) times the integral of q over the material upstream of x,
+    in contact units f |v1 - v2| P / K sqrt(1/(2 pi |c|)) integral q / sqrt(|r - s|) dr."""
+    from scipy.integrate import quad
+
+    sol = b.solution
+    par, rep, eta = sol.parameters, sol.representation, sol.parameters.eta
+    at = lambda f, r: f(np.array([r]))[0]  # noqa: E731
+    if body == 1:  # enters at s = +1; q1 sqrt(1 - r), smooth
+        K, c, lo, hi = prob.cylinder.K, par.cylinder_scale, s, 1.0
+        f = lambda r: 0.5 * ((1 + eta) * (1 - r) * np.sqrt(1 + r) * at(lambda x: rep.phi_at(sol.phi, x), r)  # noqa: E731
+                             + at(lambda x: rep.psi_at(sol.psi, x), r) / np.sqrt(1 + r))
+    else:  # moving toward +x, enters at s = -1; q2 sqrt(1 + r)
+        K, c, lo, hi = prob.half_plane.K, par.half_plane_scale, -1.0, s
+        f = lambda r: 0.5 * ((1 - eta) * (1 + r) * np.sqrt(1 - r) * at(lambda x: rep.phi_at(sol.phi, x), r)  # noqa: E731
+                             - at(lambda x: rep.psi_at(sol.psi, x), r) / np.sqrt(1 - r))
+    integral = quad(f, lo, hi, weight="alg", wvar=(-0.5, -0.5), epsabs=1e-9, epsrel=1e-8)[0]
+    unit = prob.friction * prob.sliding_speed * prob.load / K
+    return unit * np.sqrt(1.0 / (2.0 * np.pi * abs(c))) * integral
+
+
+def test_flash_temperatures_of_both_bodies_approach_jaeger():
+    """Steel on steel, surfaces through the contact at +30 and -20 m/s (then 4 times
+    faster): both bodies' temperature rises, each over its own incoming temperature,
+    approach Jaeger's high-Peclet asymptote for the computed flux at the rate 1/c of
+    its next term (c = 167 and 664 for the cylinder, -112 and -442 for the half-plane;
+    relative to the flash temperature, 7.5e-3 and 1.9e-3, 1.1e-2 and 2.8e-3)."""
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.physical_contact import PhysicalProblem, contact
+
+    steel = get_material("steel")
+    errors = []
+    for scale in (1.0, 4.0):
+        prob = PhysicalProblem(steel, steel, 0.02, 2e5, 30.0 * scale, 0.1, 0.2,
+                               speed2=-20.0 * scale)
+        b = contact(prob).primary
+        s = (b.x[1:-1] - b.offset) / b.half_width
+        pick = np.arange(10, s.size - 10, 45)
+        t1 = b.temperature_cylinder[1:-1][pick]
+        t2 = b.temperature_half_plane[1:-1][pick] - b.half_plane_incoming_temperature
+        j1 = np.array([_jaeger(b, prob, 1, x) for x in s[pick]])
+        j2 = np.array([_jaeger(b, prob, 2, x) for x in s[pick]])
+        flash = b.flash_temperature
+        errors.append((np.max(abs(t1 - j1)) / flash, np.max(abs(t2 - j2)) / flash))
+        assert b.flash_temperature >= t1.max() > 0.5 * b.flash_temperature
+    (e1, e2), (f1, f2) = errors
+    assert e1 / f1 > 3.0 and e2 / f2 > 3.0  # first order in 1/c
+    assert f1 < 3e-3 and f2 < 4e-3
+
+
+def test_identical_bodies_at_opposite_speeds_enter_at_one_temperature():
+    """With equal and opposite surface speeds, equal shares of the heat (lam = 0) are
+    what equal incoming temperatures give: the implied difference vanishes, and the
+    contact is centred.  Another partition implies a difference."""
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.physical_contact import PhysicalProblem, contact
+
+    steel = get_material("steel")
+    b = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, 0.0, speed2=-10.0)).primary
+    assert abs(b.half_plane_incoming_temperature) < 1e-9 * b.flash_temperature
+    assert abs(b.offset) < 1e-12 * b.half_width
+    b = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, 0.2, speed2=-10.0)).primary
+    assert b.half_plane_incoming_temperature > 0.05 * b.flash_temperature
+    assert b.heat_cylinder + b.heat_half_plane == pytest.approx(0.3 * 2e5 * 20.0, rel=1e-14)
+
+
+def test_contact_command_takes_the_half_planes_speed(capsys):
+    import json
+
+    args = ["contact", "--cylinder", "steel", "--half-plane", "steel", "--radius", "20mm",
+            "--load", "200kN/m", "--speed", "10", "--friction", "0.1", "--lam", "0"]
+    assert main(args + ["--speed2", "-36km/h", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["inputs"]["speed2"] == -10.0 and abs(rec["offset"]) < 1e-15
+    assert rec["fhpe"] == pytest.approx(2 * rec["pe"] * 0.1 * _H("steel", "steel"), rel=1e-12)
+    assert main(args + ["--speed2", "3 kg"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "speed2" in err[0]
+
+
+def _H(cyl, half):
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.physical_contact import PhysicalProblem
+
+    return PhysicalProblem(get_material(cyl), get_material(half), 1.0, 1.0, 1.0, 0.1, 0.0).H

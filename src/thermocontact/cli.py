@@ -543,6 +543,7 @@ def _branch_record(b) -> dict:
         "valid": b.valid, "flash_temperature": b.flash_temperature,
         "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
         "temperature_mismatch": b.temperature_mismatch,
+        "half_plane_incoming_temperature": b.half_plane_incoming_temperature,
         "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
         "reason": v.reason, "strictly_valid": v.strictly_valid,
@@ -576,7 +577,7 @@ def contact_record(res) -> dict:
         "inputs": {
             "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
             "radius": prob.radius, "load": prob.load, "speed": prob.speed,
-            "friction": prob.friction, "lam": prob.lam,
+            "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
         },
         "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
                  "surface temperature), W/m",
@@ -591,7 +592,9 @@ def _contact_summary(res) -> str:
     prob = res.problem
     lines = [
         f"thermocontact {__version__}: {prob.cylinder.name} cylinder (R = {prob.radius:g} m) "
-        f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}",
+        + (f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}" if not prob.speed2 else
+           f"at {prob.speed:g} m/s on {prob.half_plane.name} at {prob.speed2:g} m/s "
+           f"(sliding speed {prob.sliding_speed:g} m/s)"),
         f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}",
         f"  Hertz: half-width {prob.hertz_half_width:.4g} m, peak pressure "
         f"{prob.hertz_peak_pressure:.4g} Pa",
@@ -609,6 +612,10 @@ def _contact_summary(res) -> str:
             f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
             f"{'met' if b.converged else 'NOT met'})",
         ]
+        if b.half_plane_incoming_temperature is not None:
+            dt = b.half_plane_incoming_temperature
+            lines.append(f"    the heat partition implies the half-plane enters {abs(dt):.4g} K "
+                         f"{'above' if dt >= 0 else 'below'} the cylinder's temperature")
         if b.solution.validity.reason != "valid":
             lines.append(f"    {b.solution.validity.reason}")
         if b.applicable:
@@ -623,13 +630,17 @@ def _contact_summary(res) -> str:
 @cli.command("contact")
 @_physical_options(required=True)
 @click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--speed2", default="0", show_default=True,
+              help="Speed of the half-plane's surface through the contact (m/s, or with "
+                   "units), positive in the cylinder's direction; --speed is then the "
+                   "cylinder's surface speed and the heat is made at |speed - speed2|.")
 @click.option("--tol", type=float, default=1e-6, show_default=True, help="Error target of P_H/P per branch.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, lam,
-                tol, as_json, csv_file, plot_file):
+                speed2, tol, as_json, csv_file, plot_file):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from .io.files import check_output_file
     from .problem.materials import get_material, load_materials
@@ -649,7 +660,8 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     prob = PhysicalProblem(
         get_material(cylinder, materials_file), get_material(half_plane, materials_file),
         parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
-        parse_quantity(speed, "m/s", "speed"), friction, lam)
+        parse_quantity(speed, "m/s", "speed"), friction, lam,
+        parse_quantity(speed2, "m/s", "speed2"))
     tol = check_positive("tol", tol)
     from .execution.executors import side_process
     from .execution.progress import ProgressLine

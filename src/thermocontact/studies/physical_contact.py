@@ -63,11 +63,16 @@ class PhysicalProblem:
     load : float
         Normal load per unit length P, N/m.
     speed : float
-        Sliding speed v, m/s.
+        Speed of the cylinder's surface through the contact v1 > 0, m/s (the sliding
+        speed when the half-plane is stationary).
     friction : float
         Coulomb coefficient f >= 0.
     lam : float
         Heat partition (Q1 - Q2)/(Q1 + Q2).
+    speed2 : float, optional
+        Speed of the half-plane's surface through the contact v2, m/s, positive in
+        the cylinder's direction (derivation section 5b); 0, the default, is a
+        stationary half-plane.  The frictional heat is ``f p |v1 - v2|``.
     """
 
     cylinder: Material
@@ -77,6 +82,7 @@ class PhysicalProblem:
     speed: float
     friction: float
     lam: float
+    speed2: float = 0.0
 
     def __post_init__(self):
         for name in ("cylinder", "half_plane"):
@@ -87,6 +93,7 @@ class PhysicalProblem:
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
         object.__setattr__(self, "lam", check_finite("lam", self.lam))
+        object.__setattr__(self, "speed2", check_finite("speed2", self.speed2))
         # A derived group out of the solver's range is reported with the inputs it
         # comes from, not only as the dimensionless group.
         dh = self.hertz_half_width
@@ -98,7 +105,9 @@ class PhysicalProblem:
             raise InputError(
                 f"the inputs are out of the solver's range at the Hertz half-width "
                 f"{dh:.3g} m: {exc}; it follows from radius {self.radius:.3g} m, load "
-                f"{self.load:.3g} N/m, speed {self.speed:.3g} m/s, friction {self.friction:g} "
+                f"{self.load:.3g} N/m, speed {self.speed:.3g} m/s"
+                + (f", speed2 {self.speed2:.3g} m/s" if self.speed2 else "") +
+                f", friction {self.friction:g} "
                 f"and the materials' E, nu, K and k ({self.cylinder.name}: E = "
                 f"{self.cylinder.E:.3g} Pa, k = {self.cylinder.k:.3g} m^2/s; "
                 f"{self.half_plane.name}: E = {self.half_plane.E:.3g} Pa, "
@@ -124,13 +133,23 @@ class PhysicalProblem:
         """``p0 = 2 P / (pi Delta_H)``, Pa."""
         return 2.0 * self.load / (np.pi * self.hertz_half_width)
 
+    @property
+    def speed_ratio(self) -> float:
+        """``R = v2/v1``."""
+        return self.speed2 / self.speed
+
+    @property
+    def sliding_speed(self) -> float:
+        """``|v1 - v2|``, m/s: the speed that makes the heat."""
+        return abs(self.speed - self.speed2)
+
     def pe(self, half_width):
-        """``Pe = v Delta / (2 k2)``."""
+        """``Pe = v1 Delta / (2 k2)``."""
         return self.speed * half_width / (2.0 * self.half_plane.k)
 
     def fhpe(self, half_width):
-        """``fHPe`` at half-width ``Delta``."""
-        return self.friction * self.H * self.pe(half_width)
+        """``fHPe = f H |v1 - v2| Delta / (2 k2)`` at half-width ``Delta`` (D13b)."""
+        return self.friction * self.H * abs(1.0 - self.speed_ratio) * self.pe(half_width)
 
     @property
     def pe_hertz(self) -> float:
@@ -146,7 +165,8 @@ class PhysicalProblem:
         """The dimensionless problems of every trial half-width."""
         c, h = self.cylinder, self.half_plane
         return Ray(h.K / c.K, h.k / c.k, c.distortivity / h.distortivity,
-                   self.friction * self.H, self.lam)
+                   self.friction * self.H * abs(1.0 - self.speed_ratio), self.lam,
+                   speed_ratio=self.speed_ratio)
 
     def hertz_load(self, half_width):
         """``P_H = pi Delta^2 / (2 A R)``, N/m."""
@@ -156,13 +176,16 @@ class PhysicalProblem:
         """Dimensionless parameters at half-width ``Delta``."""
         c, h = self.cylinder, self.half_plane
         return Parameters(self.pe(half_width), self.fhpe(half_width), h.K / c.K, h.k / c.k,
-                          c.distortivity / h.distortivity)
+                          c.distortivity / h.distortivity, self.speed_ratio)
 
     def to_dimensionless(self, half_width) -> dict:
         """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
         p = self.parameters(half_width)
-        return dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
-                    delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
+        out = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
+                   delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
+        if p.speed_ratio:
+            out["speed_ratio"] = p.speed_ratio
+        return out
 
 
 @dataclass(frozen=True)
@@ -173,8 +196,10 @@ class Branch:
     positive toward the leading edge (where the cylinder's surface enters).
     Temperatures are rises above the temperature of the cylinder's material as
     it enters the contact; the half-plane's equals the cylinder's in the contact
-    (perfect thermal contact), its far-field level being set by the bodies'
-    boundary conditions outside this 2-D model.
+    (perfect thermal contact).  A stationary half-plane's far-field level is set by
+    the bodies' boundary conditions outside this 2-D model; a moving half-plane's
+    incoming temperature, over the cylinder's, is the one the heat partition
+    implies (``half_plane_incoming_temperature``).
     """
 
     half_width: float
@@ -192,6 +217,7 @@ class Branch:
     heat_cylinder: float
     heat_half_plane: float
     temperature_mismatch: float
+    half_plane_incoming_temperature: float | None
     error_estimate: float
     converged: bool
     x: np.ndarray = field(repr=False)
@@ -251,28 +277,54 @@ def _scan_range(prob: PhysicalProblem):
 
 
 def _cylinder_temperature(prob: PhysicalProblem, sol: ContactSolution, s):
-    """The cylinder's surface temperature rise at ``s`` (derivation D24)."""
+    """The cylinder's surface temperature rise at ``s`` (derivation D8)."""
+    return _moving_temperature(prob, sol, s, body=1)
+
+
+def _moving_temperature(prob: PhysicalProblem, sol: ContactSolution, s, body):
+    """A moving body's surface temperature rise over its own incoming temperature at
+    ``s``: Carslaw and Jaeger's (D8) over the heat it receives, with its own signed
+    kernel scale (the cylinder's ``c``, the half-plane's ``c2``; section 5b)."""
     par = sol.parameters
-    c, eta = par.cylinder_scale, par.eta
-    # q1 = ((1 + eta) p + q')/2, in units f v P / Delta.
+    c = par.cylinder_scale if body == 1 else par.half_plane_scale
+    K = prob.cylinder.K if body == 1 else prob.half_plane.K
+    sign = 1.0 if body == 1 else -1.0
+    # q1, q2 = ((1 +- eta) p +- q')/2, in units f |v1 - v2| P / Delta.
     ib, iq = sol.representation.integrate(lambda u: cylinder_temperature(c * u), s)
-    return (prob.friction * prob.speed * prob.load / (np.pi * prob.cylinder.K) * 0.5
-            * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi))
+    return (prob.friction * prob.sliding_speed * prob.load / (np.pi * K) * 0.5
+            * ((1 + sign * par.eta) * (ib @ sol.phi) + sign * (iq @ sol.psi)))
 
 
 def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
-    """Surface temperature rises of both bodies over the contact (derivation D24, D25)."""
+    """Surface temperature rises of both bodies over the contact (derivation D8, D12),
+    the half-plane's level set by continuity with the cylinder in the contact.
+
+    Returns
+    -------
+    t1, t2 : ndarray
+    mismatch : float
+        The largest departure of ``t1 - t2`` from its mean over the contact (zero
+        for the exact solution: perfect thermal contact).
+    incoming : float or None
+        For a moving half-plane, its incoming temperature over the cylinder's that the
+        heat partition implies (each moving body's rise is over its own incoming
+        temperature; section 5b); None for a stationary half-plane, whose level the
+        2-D model leaves free.
+    """
     rep = sol.representation
     eta = sol.parameters.eta
-    f, v, P = prob.friction, prob.speed, prob.load
     t1 = _cylinder_temperature(prob, sol, s)
-    # q2 = ((1 - eta) p - q')/2, in units f v P / Delta.
-    lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s)
-    t2 = -f * v * P / (np.pi * prob.half_plane.K) * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi)
-    # The half-plane's level is fixed by continuity with the cylinder in the contact.
-    shift = np.mean(t1 - t2)
+    if sol.parameters.half_plane_scale:
+        t2 = _moving_temperature(prob, sol, s, body=2)
+    else:
+        # q2 = ((1 - eta) p - q')/2, in units f |v1 - v2| P / Delta.
+        lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s)
+        t2 = (-prob.friction * prob.sliding_speed * prob.load / (np.pi * prob.half_plane.K)
+              * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi))
+    shift = float(np.mean(t1 - t2))
     t2 = t2 + shift
-    return t1, t2, float(np.max(np.abs(t1 - t2)))
+    return (t1, t2, float(np.max(np.abs(t1 - t2))),
+            shift if sol.parameters.half_plane_scale else None)
 
 
 def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
@@ -286,7 +338,7 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
     s = np.cos(np.linspace(np.pi, 0.0, 201))
     p = prob.load / half_width * sol.pressure_at(s)
     s_in = s[1:-1]
-    t1, t2, mismatch = _temperatures(prob, sol, half_width, s_in)
+    t1, t2, mismatch, incoming = _temperatures(prob, sol, half_width, s_in)
     # Peak pressure and flash temperature: the maxima of the closed forms, not of
     # the samples (edges included for the temperature, which is finite there).
     ip = int(np.argmax(p))
@@ -299,7 +351,7 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
                                   it)
     offset = sol.sigma_over_delta * half_width
     lam = sol.lam
-    q = prob.friction * prob.speed * prob.load
+    q = prob.friction * prob.sliding_speed * prob.load
     return Branch(
         half_width=float(half_width), offset=float(offset),
         a=float(offset - half_width), b=float(offset + half_width),
@@ -309,6 +361,7 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
         flash_temperature=float(-neg_flash),
         heat_cylinder=0.5 * q * (1.0 + lam), heat_half_plane=0.5 * q * (1.0 - lam),
         temperature_mismatch=mismatch,
+        half_plane_incoming_temperature=incoming,
         error_estimate=float(sol.error_estimate),
         converged=bool(sol.error_estimate <= tol),
         x=offset + half_width * s, pressure=p,
@@ -455,7 +508,7 @@ def _primary(problem: PhysicalProblem, along: str):
     found = []  # (x, Pe_H, ln Pe, slope of h there)
 
     def at(n, x):
-        prob = dataclasses.replace(problem, **{along: x})
+        prob = _moved(problem, along, x)
         ray, pe_h = prob.ray(), prob.pe_hertz
         if ray.fh == 0.0:
             return ray.solve_at(pe_h, n, check_validity=True)
@@ -496,6 +549,14 @@ def _primary(problem: PhysicalProblem, along: str):
     return at
 
 
+def _moved(problem: PhysicalProblem, along: str, value) -> PhysicalProblem:
+    """``problem`` with ``along`` at ``value``; along the speed both surfaces' speeds
+    scale together (the ratio v2/v1, and so the ray, is kept)."""
+    if along == "speed":
+        return dataclasses.replace(problem, speed=value, speed2=value * problem.speed_ratio)
+    return dataclasses.replace(problem, **{along: value})
+
+
 def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAULT_TOL,
                  rtol=1e-9, points=17, n=None, event_rtol=EVENT_RTOL, progress=None) -> Path:
     """Follow the contact of ``problem`` along load, speed, radius or friction and
@@ -509,7 +570,8 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
     Parameters
     ----------
     problem : PhysicalProblem
-        The fixed inputs (its value of ``along`` is replaced).
+        The fixed inputs (its value of ``along`` is replaced; along the speed, with a
+        moving half-plane, both speeds scale together).
     along : {"load", "speed", "radius", "friction"}
     start, stop : float
         SI units; load, speed and radius positive, friction non-negative.
@@ -527,10 +589,12 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
     for name, value in (("start", start), ("stop", stop)):
         check = check_nonnegative if along == "friction" else check_positive
         check(name, value)
-        dataclasses.replace(problem, **{along: value})  # validated as a problem
+        _moved(problem, along, value)  # validated as a problem
     fixed = {"cylinder": problem.cylinder.name, "half_plane": problem.half_plane.name,
              **{k: getattr(problem, k) for k in ("radius", "load", "speed", "friction", "lam")
                 if k != along}}
+    if problem.speed2:
+        fixed["speed_ratio"] = problem.speed_ratio
     return trace(_primary(problem, along), along, fixed, start, stop, tol=tol, rtol=rtol,
                  points=points, log=ALONG[along], n=n, event_rtol=event_rtol,
                  progress=progress)
