@@ -50,7 +50,9 @@ def _summary(sol) -> str:
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
         f"k2/k1 = {par.k2_over_k1:g}, delta1/delta2 = {par.delta1_over_delta2:g}"
-        + (f", v2/v1 = {par.speed_ratio:g}" if par.speed_ratio else ""),
+        + (f", v2/v1 = {par.speed_ratio:g}" if par.speed_ratio else "")
+        + (f", beta f = {par.beta_f:g} (edge exponents {1 - par.edge_exponent:.4g}, "
+           f"{par.edge_exponent:.4g})" if par.beta_f else ""),
         f"  {sol.status}: {sol.estimate_message} (n {'chosen' if sol.auto_n else 'given'})",
         f"  P_H/P         = {sol.load_ratio:.10g}",
         f"  lambda        = {sol.lam:.10g}",
@@ -96,6 +98,11 @@ def _problem_options(required: bool):
                           "cylinder's, positive in the same direction; 0 is a stationary "
                           "half-plane. Pe is made with v1, fHPe with the sliding speed "
                           "|v1 - v2|."),
+        click.option("--beta-f", "beta_f", type=float, default=0.0, show_default=True,
+                     help="B = beta f, beta = [(1 - 2 nu1)/mu1 - (1 - 2 nu2)/mu2]/A (the "
+                          "paper's eq. 10): the Dundurs term -(B/2) p of the contact "
+                          "equation; 0 drops it, as the paper does. |B| <= 20; graded "
+                          "methods only."),
         click.option("--lam", type=float, default=None,
                      help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma."),
         click.option("--sigma", type=float, default=None,
@@ -158,13 +165,14 @@ def _physical_options(required: bool):
               help="Half-width over cylinder radius, > 0: also say whether the theory applies "
                    "(small contact, slopes and strains).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, lam, sigma,
-              n, tol, method, check, delta_over_r, as_json):
+def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
+              sigma, n, tol, method, check, delta_over_r, as_json):
     """Solve one case in dimensionless form."""
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
-                delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, lam=lam,
+                delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
+                lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
                 check_convergence=check, progress=_Progress())
     app = None
@@ -188,7 +196,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
 @cli.command("boundary")
 @click.option("--along", required=True,
               help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
-                   "delta1-over-delta2, speed-ratio; or, with --cylinder and --half-plane, load, speed, "
+                   "delta1-over-delta2, speed-ratio, beta-f; or, with --cylinder and --half-plane, load, speed, "
                    "radius or friction.")
 @click.option("--from", "start", required=True,
               help="Start of the path (physical parameters in SI units or with units).")
@@ -204,7 +212,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
               show_default=True, help="Discretisation method (dimensionless paths).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
-                 speed_ratio, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
+                 speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
                  friction, tol, n, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
     from .studies.boundaries import SPELLINGS as names, follow
@@ -217,7 +225,8 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         path = _physical_path(along, start, stop, physical, materials_file, lam, tol, n,
                               {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                                "k2_over_k1": k2_over_k1, "sigma": sigma,
-                               "speed_ratio": speed_ratio or None}, bar)
+                               "speed_ratio": speed_ratio or None,
+                               "beta_f": beta_f or None}, bar)
         method = path.method
     else:
         for name, value in physical.items():
@@ -231,6 +240,7 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
                  "delta1_over_delta2": delta1_over_delta2,
                  "speed_ratio": speed_ratio or None,  # 0, the default, is left out
+                 "beta_f": beta_f or None,
                  "lam": lam, "sigma_over_delta": sigma}
         fixed = {k: v for k, v in given.items() if v is not None and k != name}
         for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
@@ -451,13 +461,13 @@ def _run_map(spec, out, workers, title, command):
                    "(tcp://host:port) instead.")
 @_physical_options(required=False)
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
-            lam, sigma,
+            beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
             materials_file, radius, load, speed, friction):
     """The solution over a grid of two parameters, and where it stops being valid.
 
     Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
-    speed-ratio;
+    speed-ratio, beta-f;
     with --cylinder, load, speed and radius in SI units (an operating map).
     Interrupted, the same command resumes; finished work is kept beside --out.
     """
@@ -470,6 +480,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                dict(pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
                                     k2_over_k1=k2_over_k1, sigma=sigma,
                                     speed_ratio=speed_ratio or None,
+                                    beta_f=beta_f or None,
                                     delta_over_r=delta_over_r))
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
@@ -484,7 +495,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
         spec = MapSpec(parse_axis("--x", x_spec), parse_axis("--y", y_spec),
                        {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                         "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                        "speed_ratio": speed_ratio or None, "lam": lam,
+                        "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
+                        "lam": lam,
                         "sigma_over_delta": sigma},
                        method=method, tol=tol, delta_over_r=delta_over_r)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())

@@ -387,17 +387,22 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     """
     psi_edges = rep.psi_edges(psi)
     k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
+    # The pressure's exponents at the edges (-1, +1): 1/2, or those of the Dundurs
+    # term (D14e).  A tensile layer opens where k > 0 and the edge term's exponent,
+    # 1/2, is not above the edge's own (D22, D22b).
+    b = par.free_term
+    exponents = np.array([1.0 - rep.alpha, rep.alpha])
+    layer = (k_log > 0.0) & (exponents >= 0.5)
 
     sp, phis = rep.phi_samples(phi, 2049)
-    p = np.sqrt(np.clip(1.0 - sp * sp, 0.0, None)) * phis
+    p = rep.pressure_weight(sp) * phis
     ip = int(np.argmin(p))
-    # Where an edge coefficient is positive, phi -> -infinity at that edge (D22): the
-    # pressure margin is taken outside the tolerated layer, which the edge margin
-    # covers.
+    # Where a layer opens, phi -> -infinity at that edge (D22): the pressure margin
+    # is taken outside the tolerated layer, which the edge margin covers.
     keep = np.ones(sp.size, dtype=bool)
-    if k_log[0] > 0.0:
+    if layer[0]:
         keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
-    if k_log[1] > 0.0:
+    if layer[1]:
         keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
     sp_in, phis_in = sp[keep], phis[keep]
     iphi = int(np.argmin(phis_in))
@@ -411,8 +416,8 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     # The side's points are the same geometric sequence moved out to start at the
     # tolerated width: sampled margins (polish=False) are interpolated in the index,
     # which wants the spacing even in ln(|s| - 1).
-    for side, k in ((-1.0, k_log[0]), (1.0, k_log[1])):
-        if k > 0.0:
+    for side, opens in ((-1.0, layer[0]), (1.0, layer[1])):
+        if opens:
             on_side = np.sign(so) == side
             t = np.sort(np.abs(so[on_side]) - 1.0)
             t = t * (EDGE_LAYER_TOLERANCE / t[0])
@@ -420,7 +425,9 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
             so = np.sort(np.concatenate([so[~on_side], side * (1.0 + t)]))
     g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
     ig = int(np.argmin(g))
-    margin = g / (np.abs(so) - 1.0) ** 1.5
+    # g ~ (|s| - 1)^(1 + exponent) outside each edge (3/2 without the Dundurs term).
+    power = np.where(so > 0.0, 1.0 + exponents[1], 1.0 + exponents[0])
+    margin = g / (np.abs(so) - 1.0) ** power
     im = int(np.argmin(margin))
     # The gap vanishes at both edges by construction: include them in the minimum.
     if g[ig] > 0.0:
@@ -434,10 +441,12 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     order = np.argsort(y)
     y, ms = y[order], margin[on_side][order]
 
+    side_power = 1.0 + exponents[int(side > 0.0)]
+
     def gap_margin(yy):
         tt = np.exp(yy)
         gg, _ = gap(par, rep, phi, psi, load_ratio, sigma, lam, side * (1.0 + tt))
-        return gg / tt**1.5
+        return gg / tt**side_power
 
     y_min, gap_min = _least(gap_margin, y, ms, int(np.argmin(ms)), polish)
     gap_min_at = float(side * (1.0 + np.exp(y_min)))
@@ -445,15 +454,31 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     # The bracket a + k ln e of (D22) at e = _EDGE_DEPTH from each edge, carried to
     # the tolerated depth along its known logarithmic slope.
     e = _EDGE_DEPTH
-    p_near = rep.pressure_matrix(np.array([-1.0 + e, 1.0 - e])) @ phi / np.sqrt(e)
-    a_edge = p_near - k_log * np.log(e)
-    # Without a positive coefficient there is no layer: the margin is the bracket
-    # itself where positive (continuous through k = 0 then), else 0 (a tensile edge
-    # without a layer is the pressure margin's to judge).
-    edge_margins = np.where(k_log > 0.0, a_edge + k_log * np.log(EDGE_LAYER_TOLERANCE),
-                            np.maximum(a_edge, 0.0))
-    log_widths = np.where(k_log > 0.0, -np.maximum(a_edge, 0.0) / np.where(k_log > 0.0, k_log, 1.0),
-                          -np.inf)
+    near = np.array([-1.0 + e, 1.0 - e])
+    # The bracket of p/(1 -+ s)^exponent at depth e.
+    p_near = (rep.pressure_matrix(near) @ phi) / e**exponents
+    if b == 0.0:
+        a_edge = p_near - k_log * np.log(e)
+        # Without a positive coefficient there is no layer: the margin is the bracket
+        # itself where positive (continuous through k = 0 then), else 0 (a tensile edge
+        # without a layer is the pressure margin's to judge).
+        edge_margins = np.where(layer, a_edge + k_log * np.log(EDGE_LAYER_TOLERANCE),
+                                np.maximum(a_edge, 0.0))
+        log_widths = np.where(layer, -np.maximum(a_edge, 0.0) / np.where(layer, k_log, 1.0),
+                              -np.inf)
+    else:
+        # p = (1 -+ s)^exponent [a + kappa (1 -+ s)^(1/2 - exponent)],
+        # kappa = -+ pi k / b (D22b): the
+        # bracket read at depth e, carried to the tolerated depth along that power.
+        kappa = np.array([np.pi, -np.pi]) * k_log / b
+        rise = 0.5 - exponents
+        a_edge = p_near - kappa * e**rise
+        edge_margins = np.where(layer, a_edge + kappa * EDGE_LAYER_TOLERANCE**rise,
+                                np.maximum(a_edge, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(layer & (a_edge > 0.0), -kappa / a_edge, 1.0)
+            log_widths = np.where(layer & (a_edge > 0.0) & (ratio > 0.0),
+                                  np.log(np.abs(ratio)) / -rise, np.where(layer, 0.0, -np.inf))
 
     positive = bool(load_ratio > 0.0)
     sound = positive and phi_min >= 0.0 and gap_min >= 0.0
@@ -473,5 +498,5 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
         edge_slope_residual=residual,
         edge_layer_log_widths=(float(log_widths[0]), float(log_widths[1])),
         edge_margins=(float(edge_margins[0]), float(edge_margins[1])),
-        strictly_valid=bool(sound and np.all(k_log <= 0.0)),
+        strictly_valid=bool(sound and not np.any(layer)),
     )

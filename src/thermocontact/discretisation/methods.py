@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..problem.parameters import Parameters
+from ..problem.validation import InputError
 from .representations import Chebyshev, ChebyshevSampled, EdgeGraded
 from .system import Blocks, assemble
 
@@ -46,9 +47,25 @@ class Method:
     order_cap: float = 5.0
     estimate_is_bound: bool = True
 
+    @property
+    def edge_exponents(self) -> bool:
+        """Whether the representation carries edge exponents other than 1/2 (the
+        Dundurs term, derivation section 5c)."""
+        return self.representation is EdgeGraded
+
+    def check(self, par: Parameters) -> None:
+        """Refuse parameters the method cannot represent."""
+        if par.edge_exponent != 0.5 and not self.edge_exponents:
+            raise InputError(f"beta_f != 0 needs a method whose pressure carries the edge "
+                             f"exponents it makes (graded or graded-collocation), got "
+                             f"method {self.name!r}")
+
     def assemble(self, par: Parameters, n: int) -> Blocks:
         """The method's blocks for ``par`` (``fhpe`` not used) with ``n`` unknowns per function."""
-        return assemble(par, self.representation(n), self.scheme)
+        self.check(par)
+        rep = (self.representation(n, par.edge_exponent) if self.edge_exponents
+               else self.representation(n))
+        return assemble(par, rep, self.scheme)
 
     __call__ = assemble
 

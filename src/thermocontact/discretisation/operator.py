@@ -61,7 +61,8 @@ def contact_operators(par: Parameters, rep, s, aux=None):
       ``K_p = d N(c u) H(u) + sgn(u)/2`` and ``K_q = d N(c u) H(u) - sgn(u)/2``;
       with ``q = q' + eta p``:
       ``Tp = d (1 + eta) NH_p + (1 - eta) sgn_p / 2`` and ``Tq = d NH_q - sgn_q / 2``,
-      where ``d = delta1/delta2`` and ``c = Pe k2/k1``.  A half-plane moving
+      where ``d = delta1/delta2`` and ``c = Pe k2/k1``.  ``C`` also carries the
+    Dundurs term ``-b p(s)``, ``b = (B/2) sgn(v1 - v2)`` (D14d).  A half-plane moving
       through the contact (``c2 = R Pe != 0``, derivation section 5b) replaces
       ``sgn(u)/2`` by ``sgn(c2) N(c2 u) H(c2 u)``.
 
@@ -84,6 +85,11 @@ def contact_operators(par: Parameters, rep, s, aux=None):
     cb, _ = rep.cauchy(s, aux)
     (cyl_b, cyl_s), (hp_b, hp_s) = distortion_operators(par, rep, s, aux)
     C = cb / np.pi
+    b = par.free_term
+    if b:
+        # The Dundurs term -b p(s) (D14d): with it, the operator on phi is of the
+        # second kind, and the representation carries the edge exponents it makes.
+        C = C - b * rep.pressure_rows(s, aux)
     Tp = cyl_b + hp_b
     Tq = cyl_s + hp_s
     return C, Tp, Tq

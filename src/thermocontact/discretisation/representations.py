@@ -146,32 +146,45 @@ class Representation:
 
     #: Short name used in records.
     name = ""
+    #: Edge exponent of the pressure at ``s = 1`` (``1 - alpha`` at ``s = -1``):
+    #: ``p = w phi`` with ``w = (1 - s)^alpha (1 + s)^(1 - alpha)``.
+    alpha = 0.5
 
     def __init__(self, n: int):
         self.n = int(n)
 
-    # Identity: class and n.  Everything else is recomputed or cached per process.
+    # Identity: class, n (and the edge exponent where it is not 1/2).  Everything
+    # else is recomputed or cached per process.
+    def _identity(self):
+        return (self.n,) if self.alpha == 0.5 else (self.n, self.alpha)
+
     def __reduce__(self):
-        return (type(self), (self.n,))
+        return (type(self), self._identity())
 
     def __eq__(self, other):
-        return type(self) is type(other) and self.n == other.n
+        return type(self) is type(other) and self._identity() == other._identity()
 
     def __hash__(self):
-        return hash((type(self).__name__, self.n))
+        return hash((type(self).__name__,) + self._identity())
 
     def __repr__(self):
-        return f"{type(self).__name__}(n={self.n})"
+        extra = "" if self.alpha == 0.5 else f", alpha={self.alpha!r}"
+        return f"{type(self).__name__}(n={self.n}{extra})"
 
     def rows(self, key, build):
         """A row operator of this representation, cached under ``key``."""
-        return ROWS.get((type(self).__name__, self.n) + tuple(key), build)
+        return ROWS.get((type(self).__name__,) + self._identity() + tuple(key), build)
 
     # Quantities every representation derives the same way.
+    def pressure_weight(self, s):
+        """``w(s) = (1 - s)^alpha (1 + s)^(1 - alpha)``, ``sqrt(1 - s^2)`` when
+        ``alpha = 1/2``: ``p = w phi``."""
+        return graded.pressure_weight(s, self.alpha)
+
     def pressure_at(self, phi, s):
-        """``p(s) = sqrt(1 - s^2) phi(s)`` on ``[-1, 1]``."""
+        """``p(s) = w(s) phi(s)`` on ``[-1, 1]``."""
         s = np.asarray(s, dtype=float)
-        return np.sqrt(np.clip(1.0 - s * s, 0.0, None)) * self.phi_at(phi, s)
+        return self.pressure_weight(s) * self.phi_at(phi, s)
 
     def pressure_matrix(self, s):
         """The matrix ``M`` with ``M @ phi = p(s)``, cached for the points ``s``
@@ -181,6 +194,10 @@ class Representation:
 
     def _pressure_matrix(self, s):
         return np.column_stack([self.pressure_at(e, s) for e in np.eye(self.n)])
+
+    def pressure_rows(self, s, aux=None):
+        """``M`` with ``M @ phi = p(s)`` (``aux``, the points' own coordinate, unused)."""
+        return self.pressure_matrix(s)
 
 
 class _ChebyshevSeries(Representation):
@@ -328,6 +345,15 @@ class EdgeGraded(Representation):
 
     name = "edge-graded"
 
+    def __init__(self, n: int, alpha=0.5):
+        super().__init__(n)
+        # The pressure's edge exponents (section 5c): 1/2 at both edges unless the
+        # Dundurs term makes them alpha and 1 - alpha.
+        self.alpha = float(alpha)
+        if not 0.0 < self.alpha < 1.0:
+            raise ValueError(f"alpha must lie in (0, 1), got {alpha!r}")
+        self._cmap = graded.graded_map(self.alpha)
+
     @property
     def to_cos(self):
         """Matrix taking nodal values to cosine coefficients in ``tau`` (read-only)."""
@@ -336,8 +362,12 @@ class EdgeGraded(Representation):
     def _rule(self, which):
         t = graded.stretch(graded.nodes(self.n))
         r, sin_t = np.cos(t), np.sin(t)
-        wb, ws = graded.weight_integrals(self.n)
+        wb, ws = graded.weight_integrals(self.n, self.alpha)
         w = (wb if which == 0 else ws) @ self.to_cos
+        if which == 0 and self.alpha != 0.5:
+            # w(cos t) from the half-angles, without cancellation next to an edge.
+            a, c = np.sin(0.5 * t), np.cos(0.5 * t)
+            sin_t = 2.0 * a ** (2.0 * self.alpha) * c ** (2.0 - 2.0 * self.alpha)
         return NodeRule(r, w, sin_t)
 
     @cached_property
@@ -368,13 +398,14 @@ class EdgeGraded(Representation):
         within rounding of an edge apart from it), ``from_edge`` as in
         :func:`~thermocontact.numerics.edge_graded.moments`."""
         b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
-                              logarithmic=logarithmic, tau=aux, from_edge=from_edge)
+                              logarithmic=logarithmic, tau=aux, from_edge=from_edge,
+                              cmap=self._cmap)
         to_cos = self.to_cos
         return b @ to_cos, q @ to_cos
 
     def cauchy(self, s, aux=None):
         b, q = graded.moments(lambda u: 1.0 / u, np.asarray(s, dtype=float), self.n,
-                              scale=1.0, cauchy=True, tau=aux)
+                              scale=1.0, cauchy=True, tau=aux, cmap=self._cmap)
         to_cos = self.to_cos
         return b @ to_cos, q @ to_cos
 
@@ -398,8 +429,16 @@ class EdgeGraded(Representation):
 
     def _pressure_matrix(self, s):
         # phi(s) = sum_j (to_cos @ phi)_j cos(j tau(s)): one inversion of tau for all j.
-        weight = np.sqrt(np.clip(1.0 - s * s, 0.0, None))
-        return weight[:, None] * graded.cosine_value(self.to_cos, graded.tau_of(s)).T
+        return (self.pressure_weight(s)[:, None]
+                * graded.cosine_value(self.to_cos, graded.tau_of(s)).T)
+
+    def pressure_rows(self, s, aux=None):
+        """``M`` with ``M @ phi = p(s)``; with ``aux``, the points' ``tau``, no ``tau`` is
+        inverted (the free term of the contact equation at its own points)."""
+        if aux is None:
+            return self.pressure_matrix(s)
+        basis = np.cos(np.outer(np.asarray(aux, dtype=float), np.arange(self.n)))
+        return self.pressure_weight(s)[:, None] * (basis @ self.to_cos)
 
     def psi_at(self, psi, s):
         return graded.cosine_value(self.to_cos @ psi, graded.tau_of(s))

@@ -45,6 +45,10 @@ def polish_minimum(f, x, values, i):
     cheb = np.polynomial.chebyshev.Chebyshev
     k = np.arange(POLISH_POINTS)
     pts = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(np.pi * (k + 0.5) / POLISH_POINTS)
+    if np.unique(pts).size < POLISH_POINTS:
+        # Neighbours a few roundings apart (next to an edge, in s): the samples are
+        # as fine as floating point resolves; nothing to interpolate.
+        return best
     fit = cheb.fit(pts, f(pts), POLISH_POINTS - 1, domain=[lo, hi])
     crit = fit.deriv().roots()
     crit = crit[np.isreal(crit)].real

@@ -12,7 +12,7 @@ __all__ = ["map_figure", "plot_map"]
 
 _LABELS = {"fhpe": "fHPe", "pe": "Pe", "lam": r"$\lambda$", "sigma_over_delta": r"$\sigma/\Delta$",
            "K2_over_K1": "$K_2/K_1$", "k2_over_k1": "$k_2/k_1$",
-           "delta1_over_delta2": r"$\delta_1/\delta_2$", "speed_ratio": "$v_2/v_1$", "load": "load P (N/m)",
+           "delta1_over_delta2": r"$\delta_1/\delta_2$", "speed_ratio": "$v_2/v_1$", "beta_f": r"$\beta f$", "load": "load P (N/m)",
            "speed": "speed v (m/s)", "radius": "radius R (m)", "friction": "friction f",
            "load_ratio": "$P_H/P$", "half_width": "half-width (m)",
            "flash_temperature": "flash temperature (K)", "peak_pressure": "peak pressure (Pa)"}

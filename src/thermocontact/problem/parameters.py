@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from .validation import InputError, check_finite, check_nonnegative, check_positive
 
 __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
@@ -15,6 +17,10 @@ __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
 #: would underflow.
 C_MAX = 1e9
 C_MIN = 1e-100
+#: Largest |beta f|: beta is at most 1 in magnitude for real materials (twice
+#: Dundurs' constant, |beta_D| <= 1/2) and f rarely exceeds 1; at 20 the edge
+#: exponents are 0.984 and 0.016.
+B_MAX = 20.0
 
 
 class SolveError(RuntimeError):
@@ -49,6 +55,11 @@ class Parameters:
         cylinder's, positive in the same direction (derivation section 5b); 0, the
         default, is the paper's stationary half-plane.  Any real number but 1
         with ``fhpe > 0`` (pure rolling makes no frictional heat).
+    beta_f : float, optional
+        ``B = beta f``, with the paper's ``beta`` of eq. 10 (twice Dundurs' second
+        constant): the coupling of the friction traction to the normal displacement,
+        the free term ``-(B/2) p`` of the contact equation (derivation section 5c).
+        0, the default, drops it as the paper does.  ``|B| <= 20``.
 
     Notes
     -----
@@ -67,6 +78,7 @@ class Parameters:
     k2_over_k1: float | None = None
     delta1_over_delta2: float = 1.0
     speed_ratio: float = 0.0
+    beta_f: float = 0.0
 
     def __post_init__(self):
         object.__setattr__(self, "pe", check_positive("pe", self.pe))
@@ -91,6 +103,9 @@ class Parameters:
         if self.speed_ratio == 1.0 and self.fhpe > 0.0:
             raise InputError("speed_ratio 1 is pure rolling, which makes no frictional "
                              f"heat: fhpe must be 0 there, got {self.fhpe:g}")
+        object.__setattr__(self, "beta_f", check_finite("beta_f", self.beta_f))
+        if abs(self.beta_f) > B_MAX:
+            raise InputError(f"beta_f must be in [-{B_MAX:g}, {B_MAX:g}], got {self.beta_f:g}")
         c = self.pe * self.k2_over_k1
         if not C_MIN <= c <= C_MAX:
             raise InputError(
@@ -108,6 +123,19 @@ class Parameters:
         """``c2 = R Pe``, signed: the moving half-plane's kernels' argument is
         ``c2 (s - r)``; 0 for the stationary half-plane."""
         return self.speed_ratio * self.pe
+
+    @property
+    def free_term(self) -> float:
+        """``b = (B/2) sgn(v1 - v2)``: the coefficient of ``-p`` in the contact equation
+        (D14d); the friction on the cylinder points along ``sgn(v1 - v2)``."""
+        return 0.5 * self.beta_f * float(np.sign(1.0 - self.speed_ratio))
+
+    @property
+    def edge_exponent(self) -> float:
+        """``alpha = 1/2 + arctan(b)/pi``: the pressure vanishes as ``(1 - s)^alpha`` at
+        the leading edge and ``(1 + s)^(1 - alpha)`` at the trailing one (D14e)."""
+        b = self.free_term
+        return 0.5 + float(np.arctan(b)) / np.pi if b else 0.5
 
     @property
     def eta(self) -> float:

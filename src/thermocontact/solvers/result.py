@@ -216,7 +216,8 @@ class ContactSolution:
         est = "None" if self.error_estimate is None else f"{self.error_estimate:.1e}"
         return (f"ContactSolution(pe={p.pe:g}, fhpe={p.fhpe:g}, K2_over_K1={p.K2_over_K1:g}, "
                 f"k2_over_k1={p.k2_over_k1:g}, delta1_over_delta2={p.delta1_over_delta2:g}, "
-                + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "") +
+                + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "")
+                + (f"beta_f={p.beta_f:g}, " if p.beta_f else "") +
                 f"method={self.method!r}, n={self.n}, load_ratio={self.load_ratio:.10g}, "
                 f"lam={self.lam:.10g}, sigma_over_delta={self.sigma_over_delta:.10g}, "
                 f"valid={v}, error_estimate={est}, status={self.status!r})")
@@ -243,6 +244,8 @@ class ContactSolution:
             "k2_over_k1": par.k2_over_k1,
             "delta1_over_delta2": par.delta1_over_delta2,
             "speed_ratio": par.speed_ratio,
+            "beta_f": par.beta_f,
+            "edge_exponents": [1.0 - par.edge_exponent, par.edge_exponent],
             "n": self.n,
             "method": self.method,
             "status": self.status,

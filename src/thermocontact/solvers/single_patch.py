@@ -205,6 +205,8 @@ class Model:
     speed_ratio : float, optional
         ``R = v2/v1``, the half-plane's surface speed through the contact over the
         cylinder's (default 0, the stationary half-plane; derivation section 5b).
+    beta_f : float, optional
+        ``B = beta f`` of the Dundurs term (default 0, the paper's omission; section 5c).
     method : str, optional
         A key of :data:`~thermocontact.discretisation.methods.METHODS`.
     n : int, optional
@@ -223,9 +225,10 @@ class Model:
     """
 
     def __init__(self, pe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-                 speed_ratio=0.0, method=DEFAULT_METHOD, n=None, tol=DEFAULT_TOL):
+                 speed_ratio=0.0, beta_f=0.0, method=DEFAULT_METHOD, n=None,
+                 tol=DEFAULT_TOL):
         self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
-                                     speed_ratio)
+                                     speed_ratio, beta_f)
         self.method = check_method(method)
         self.n = None if n is None else check_n(n)
         self.tol = check_positive("tol", tol)
@@ -244,6 +247,7 @@ class Model:
         return (f"Model(pe={p.pe:g}, K2_over_K1={p.K2_over_K1:g}, k2_over_k1={p.k2_over_k1:g}, "
                 f"delta1_over_delta2={p.delta1_over_delta2:g}, "
                 + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "")
+                + (f"beta_f={p.beta_f:g}, " if p.beta_f else "")
                 + f"method={self.method!r}, "
                 f"n={self.n}, tol={self.tol:g})")
 
@@ -259,7 +263,7 @@ class Model:
         if n not in self._blocks:
             p = self.parameters
             key = (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2,
-                   p.speed_ratio, n)
+                   p.speed_ratio, p.beta_f, n)
             self._blocks[n] = ASSEMBLIES.get(key, lambda: METHODS[self.method].assemble(p, n))
         return self._blocks[n]
 
@@ -358,7 +362,8 @@ class Model:
 
 
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-          speed_ratio=0.0, lam=None, sigma_over_delta=None, n=None, method=DEFAULT_METHOD,
+          speed_ratio=0.0, beta_f=0.0, lam=None, sigma_over_delta=None, n=None,
+          method=DEFAULT_METHOD,
           tol=DEFAULT_TOL, check_convergence=False, progress=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
@@ -373,6 +378,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         Diffusivity (default ``K2_over_K1``) and distortivity (default 1) ratios.
     speed_ratio : float, optional
         ``R = v2/v1`` (default 0, the stationary half-plane).
+    beta_f : float, optional
+        ``B = beta f`` of the Dundurs term (default 0).
     lam, sigma_over_delta : float
         Exactly one: the heat partition or the contact offset.
     n : int, optional
@@ -406,7 +413,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     """
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
-                  delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
+                  delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                   method=method, n=n, tol=tol)
     return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
                        check_convergence=check_convergence, progress=progress, _stacklevel=3)

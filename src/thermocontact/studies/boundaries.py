@@ -2,7 +2,7 @@
 
 A solution is followed along one of the dimensionless parameters (``fhpe``,
 ``pe``, ``lam``, ``sigma_over_delta``, ``K2_over_K1``, ``k2_over_k1``,
-``delta1_over_delta2``, ``speed_ratio``) from ``start`` to ``stop``.  The resolution ``n`` is chosen
+``delta1_over_delta2``, ``speed_ratio``, ``beta_f``) from ``start`` to ``stop``.  The resolution ``n`` is chosen
 once, by the refinement driver at the path's ends and middle; the path is sampled
 with step control (an interval is halved while a margin comes closer to zero than
 its change across the interval, so that a margin that dips below zero and back
@@ -30,11 +30,12 @@ __all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "estimate_events", 
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
-         "delta1_over_delta2", "speed_ratio")
+         "delta1_over_delta2", "speed_ratio", "beta_f")
 #: The command line's spellings of :data:`ALONG`.
 SPELLINGS = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
              "K2-over-K1": "K2_over_K1", "k2-over-k1": "k2_over_k1",
-             "delta1-over-delta2": "delta1_over_delta2", "speed-ratio": "speed_ratio"}
+             "delta1-over-delta2": "delta1_over_delta2", "speed-ratio": "speed_ratio",
+             "beta-f": "beta_f"}
 #: Margins, each >= 0 exactly when its inequality holds.
 MARGINS = ("load", "pressure", "gap", "edge")
 #: An event's error estimate (against n/2) is brought below this fraction of its
@@ -121,7 +122,8 @@ def model_for(kw: dict, method=DEFAULT_METHOD, tol=DEFAULT_TOL, n=None) -> Model
     closure are the solve's)."""
     return Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw.get("k2_over_k1"),
                  delta1_over_delta2=kw.get("delta1_over_delta2", 1.0),
-                 speed_ratio=kw.get("speed_ratio", 0.0), method=method, n=n, tol=tol)
+                 speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
+                 method=method, n=n, tol=tol)
 
 
 def closure(kw: dict) -> dict:

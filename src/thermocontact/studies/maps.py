@@ -180,7 +180,8 @@ class MapSpec:
             for yv in (self.y.start, self.y.stop):
                 kw = {**fixed, self.x.name: xv, self.y.name: yv}
                 Parameters(kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
-                           kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0))
+                           kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0),
+                           kw.get("beta_f", 0.0))
 
     @property
     def inner(self) -> str:

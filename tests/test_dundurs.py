@@ -1,0 +1,103 @@
+"""The Dundurs term -(B/2) p of the contact equation (derivation section 5c): the
+closed-form isothermal sliding contact, the edge exponents built into the
+representation, the direction of sliding, and the edge terms of dissimilar
+distortivities."""
+
+import numpy as np
+import pytest
+
+from thermocontact import solve
+from thermocontact.cli import main
+from thermocontact.problem.validation import InputError
+
+
+def closed_form(B):
+    """Isothermal sliding (F = 0) with b = B/2 (D14f): alpha = 1/2 + arctan(b)/pi,
+    sigma/Delta = 1 - 2 alpha, P_H/P = 1/(4 alpha (1 - alpha))."""
+    alpha = 0.5 + np.arctan(0.5 * B) / np.pi
+    return alpha, 1.0 - 2.0 * alpha, 1.0 / (4.0 * alpha * (1.0 - alpha))
+
+
+@pytest.mark.parametrize("B", [0.6, -1.4, 3.0])
+def test_isothermal_sliding_is_the_closed_form(B):
+    """Exact at every n (the representation carries the exact solution's weight):
+    load ratio and offset to 1e-12, the pressure C (1 - s)^alpha (1 + s)^(1 - alpha)
+    to 2e-10 (measured 2.6e-12 at B = 0.6, 2.5e-11 at -1.4 and 1.2e-10 at 3: the
+    moments of a weight with the powers tau^(6 alpha + 5) at the edges, which the
+    panel rules integrate less exactly than the entire weight of B = 0)."""
+    alpha, sigma, L = closed_form(B)
+    for n in (8, 32):
+        sol = solve(5, 0.0, 10, beta_f=B, lam=-1, n=n)
+        assert abs(sol.load_ratio - L) < 1e-12 and abs(sol.sigma_over_delta - sigma) < 1e-12
+        s = np.array([-0.999999, -0.5, 0.3, 0.999999])
+        C = np.sin(np.pi * alpha) / (2 * np.pi * alpha * (1 - alpha))
+        exact = C * (1 - s) ** alpha * (1 + s) ** (1 - alpha)
+        assert np.max(abs(sol.pressure_at(s) - exact)) < 2e-10
+        assert sol.validity.valid
+
+
+def test_sliding_direction_reverses_the_term():
+    """The friction on the cylinder points along v1 - v2: with the half-plane's
+    surface faster (R = 2) the isothermal contact is the mirror image."""
+    alpha, sigma, L = closed_form(0.8)
+    sol = solve(5, 0.0, 10, beta_f=0.8, speed_ratio=2.0, lam=0.0)
+    assert abs(sol.sigma_over_delta + sigma) < 1e-12 and abs(sol.load_ratio - L) < 1e-12
+    assert sol.parameters.edge_exponent == pytest.approx(1.0 - alpha, abs=1e-15)
+
+
+def test_thermal_contact_keeps_its_fast_convergence():
+    """With B the edge exponents are built in, so the default method converges as fast
+    as without: n = 32 agrees with n = 128 to 1e-12 (Pe = 5, K2/K1 = 10, fHPe = 0.3)."""
+    for B in (0.5, -0.5):
+        kw = dict(pe=5, fhpe=0.3, K2_over_K1=10, lam=1.0, beta_f=B)
+        assert abs(solve(n=32, **kw).load_ratio - solve(n=128, **kw).load_ratio) < 1e-12
+        auto = solve(**kw)
+        assert auto.n <= 32 and auto.error_estimate < 1e-8
+
+
+def test_small_term_is_continuous():
+    kw = dict(pe=5, fhpe=0.2, K2_over_K1=10, lam=-1)
+    base, small = solve(**kw), solve(beta_f=1e-9, **kw)
+    assert 0.0 < abs(small.load_ratio - base.load_ratio) < 1e-8
+    assert abs(small.sigma_over_delta - base.sigma_over_delta) < 1e-8
+
+
+def test_edge_term_of_dissimilar_distortivities():
+    """With delta1 != delta2 the logarithm of (D22) becomes kappa (1 -+ s)^(1/2),
+    kappa = -+ pi k / b (D22b): p/(1 -+ s)^exponent - kappa (1 -+ s)^(1/2 - exponent)
+    tends to a constant at both edges (at 1e-5 and 1e-6 within 2e-5), whereas
+    without the kappa term it would move by 0.23 between those depths."""
+    sol = solve(5, 0.3, 10, delta1_over_delta2=0.5, beta_f=1.0, lam=-1.0, n=256)
+    rep, v = sol.representation, sol.validity
+    kappa = np.array([np.pi, -np.pi]) * np.array(v.edge_log_coefficients) / sol.parameters.free_term
+    for side, exponent, k in ((-1, 1 - rep.alpha, kappa[0]), (1, rep.alpha, kappa[1])):
+        e = np.array([1e-5, 1e-6])
+        p = rep.pressure_matrix(side * (1 - e)) @ sol.phi
+        bracket = p / e**exponent - k * e ** (0.5 - exponent)
+        assert abs(bracket[0] - bracket[1]) < 2e-5 * abs(bracket[1])
+    assert v.valid and v.strictly_valid
+
+
+def test_tensile_layer_width_under_the_term():
+    """delta1/delta2 = 2, B = 1: heat into the less distortive body at the leading
+    edge, whose exponent 0.648 exceeds the edge term's 1/2, opens a tensile layer; its
+    width w from the bracket brackets the pressure's sign change (negative at w/2,
+    positive at 2w), and the verdict holds it against the tolerated 1e-6."""
+    sol = solve(5, 0.3, 10, delta1_over_delta2=2.0, beta_f=1.0, lam=-1.0)
+    v = sol.validity
+    w = np.exp(v.edge_layer_log_widths[1])
+    assert 1e-6 < w < 1e-4 and not v.valid and "tensile layer" in v.reason
+    p = sol.representation.pressure_matrix(1.0 - np.array([0.5 * w, 2 * w])) @ sol.phi
+    assert p[0] < 0.0 < p[1]
+    assert v.edge_layer_log_widths[0] == -np.inf  # exponent 0.352 < 1/2: no layer
+
+
+def test_methods_without_exponents_refuse_the_term(capsys):
+    with pytest.raises(InputError, match="beta_f != 0 needs"):
+        solve(5, 0.2, 10, beta_f=0.5, lam=-1, method="galerkin")
+    args = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1"]
+    for bad in (["--beta-f", "0.5", "--method", "product"], ["--beta-f", "25"],
+                ["--beta-f", "inf"]):
+        assert main(args + bad) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "beta" in err[0]
