@@ -101,3 +101,50 @@ def test_methods_without_exponents_refuse_the_term(capsys):
         assert main(args + bad) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "beta" in err[0]
+
+
+def test_beta_of_two_materials_is_twice_dundurs_constant():
+    """beta of the paper's eq. 10 equals -2 beta_D with Dundurs' own form
+    beta_D = [mu1 (kappa2 - 1) - mu2 (kappa1 - 1)] / [mu1 (kappa2 + 1) + mu2 (kappa1 + 1)],
+    kappa = 3 - 4 nu (plane strain), i.e. twice Dundurs' constant of the bodies
+    labelled the other way; zero for one material, odd under exchange."""
+    from thermocontact.problem.materials import dundurs_beta, get_material
+
+    names = ["steel", "cast-iron", "copper", "aluminium-alloy", "alumina"]
+    for a in names:
+        for b in names:
+            m1, m2 = get_material(a), get_material(b)
+            k1, k2 = 3 - 4 * m1.nu, 3 - 4 * m2.nu
+            beta_d = ((m1.mu * (k2 - 1) - m2.mu * (k1 - 1))
+                      / (m1.mu * (k2 + 1) + m2.mu * (k1 + 1)))
+            assert dundurs_beta(m1, m2) == pytest.approx(-2 * beta_d, abs=1e-14)
+            assert dundurs_beta(m1, m2) == pytest.approx(-dundurs_beta(m2, m1), abs=1e-15)
+            assert abs(dundurs_beta(m1, m2)) <= 1.0
+
+
+def test_physical_contact_keeps_the_term_by_default(capsys):
+    """copper on steel, f = 0.3: beta f from the materials enters the solve; the
+    paper's model (--no-dundurs) drops it; the dimensionless map refuses the flag."""
+    import json
+
+    from thermocontact.problem.materials import dundurs_beta, get_material
+
+    args = ["contact", "--cylinder", "copper", "--half-plane", "steel", "--radius", "50mm",
+            "--load", "5kN/m", "--speed", "10", "--friction", "0.3", "--lam", "0", "--json"]
+    assert main(args) == 0
+    on = json.loads(capsys.readouterr().out)
+    assert main(args + ["--no-dundurs"]) == 0
+    off = json.loads(capsys.readouterr().out)
+    B = dundurs_beta(get_material("copper"), get_material("steel")) * 0.3
+    assert on["beta_f"] == pytest.approx(B, rel=1e-14) and off["beta_f"] == 0.0
+    sol = solve(on["pe"], on["fhpe"], get_material("steel").K / get_material("copper").K,
+                k2_over_k1=get_material("steel").k / get_material("copper").k,
+                delta1_over_delta2=(get_material("copper").distortivity
+                                    / get_material("steel").distortivity),
+                beta_f=B, lam=0.0)
+    half = on["half_width"]
+    assert on["offset"] == pytest.approx(sol.sigma_over_delta * half, rel=1e-6)
+    assert abs(on["offset"] - off["offset"]) > 0.1 * abs(off["offset"])
+    assert main(["map", "--x", "fhpe:0:0.5:3", "--y", "pe:1:5:3", "--K2-over-K1", "10",
+                 "--lam", "1", "--no-dundurs", "--out", "x.nc"]) == 2
+    assert "--dundurs belongs to an operating map" in capsys.readouterr().err

@@ -138,6 +138,10 @@ def _physical_options(required: bool):
                      help=f"Sliding speed (m/s, or 72km/h){unless}."),
         click.option("--friction", type=float, required=required, default=None,
                      help=f"Coefficient of friction >= 0{unless}."),
+        click.option("--dundurs/--no-dundurs", default=None,
+                     help="Keep (default) or drop, as the paper does, the Dundurs term "
+                          "-(beta f/2) p, beta from the two materials' nu and E "
+                          "(derivation section 5c)."),
     ]
 
     def deco(func):
@@ -213,12 +217,12 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
-                 friction, tol, n, method, as_json):
+                 friction, dundurs, tol, n, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
     from .studies.boundaries import SPELLINGS as names, follow
 
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
-                "load": load, "speed": speed, "friction": friction}
+                "load": load, "speed": speed, "friction": friction, "dundurs": dundurs}
     tol = check_positive("tol", tol)
     bar = _StageProgress(f"boundary along {along}")
     if cylinder is not None or half_plane is not None or along in _PHYSICAL_UNITS:
@@ -338,12 +342,13 @@ def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, di
     friction = ends[0] if along == "friction" else physical["friction"]
     prob = PhysicalProblem(get_material(physical["cylinder"], materials_file),
                            get_material(physical["half_plane"], materials_file),
-                           values["radius"], values["load"], values["speed"], friction, lam)
+                           values["radius"], values["load"], values["speed"], friction, lam,
+                           dundurs=physical.get("dundurs") is not False)
     return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
 
 
 def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,
-                    speed, friction, lam, tol, dimensionless):
+                    speed, friction, lam, tol, dimensionless, dundurs=None):
     from .problem.materials import get_material, load_materials
     from .problem.units import parse_quantity
     from .studies.operating_maps import OperatingSpec, parse_physical_axis
@@ -366,7 +371,7 @@ def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius
             raise InputError(f"--{axis.name} must not be given: it is an axis")
     return OperatingSpec(get_material(cylinder, materials_file),
                          get_material(half_plane, materials_file), friction, lam, x, y, fixed,
-                         tol=check_positive("tol", tol))
+                         tol=check_positive("tol", tol), dundurs=dundurs is not False)
 
 
 def _workers(workers, scheduler):
@@ -463,7 +468,7 @@ def _run_map(spec, out, workers, title, command):
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
-            materials_file, radius, load, speed, friction):
+            materials_file, radius, load, speed, friction, dundurs):
     """The solution over a grid of two parameters, and where it stops being valid.
 
     Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
@@ -481,14 +486,14 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                     k2_over_k1=k2_over_k1, sigma=sigma,
                                     speed_ratio=speed_ratio or None,
                                     beta_f=beta_f or None,
-                                    delta_over_r=delta_over_r))
+                                    delta_over_r=delta_over_r), dundurs)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
                  f"lambda = {spec.lam:g}, {fixed} (SI)\nvalid where not shaded; theory not "
                  f"applicable where hatched")
     else:
         for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
-                            ("--friction", friction)):
+                            ("--friction", friction), ("--dundurs", dundurs)):
             if value is not None:
                 raise InputError(f"{name} belongs to an operating map: give --cylinder and "
                                  f"--half-plane too")
@@ -590,7 +595,9 @@ def contact_record(res) -> dict:
             "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
             "radius": prob.radius, "load": prob.load, "speed": prob.speed,
             "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
+            "dundurs": prob.dundurs,
         },
+        "beta_f": prob.beta_f,
         "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
                  "surface temperature), W/m",
         "version": __version__,
@@ -607,7 +614,9 @@ def _contact_summary(res) -> str:
         + (f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}" if not prob.speed2 else
            f"at {prob.speed:g} m/s on {prob.half_plane.name} at {prob.speed2:g} m/s "
            f"(sliding speed {prob.sliding_speed:g} m/s)"),
-        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}",
+        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}, "
+        + (f"beta f = {prob.beta_f:.4g} (Dundurs term)" if prob.dundurs
+           else "Dundurs term dropped"),
         f"  Hertz: half-width {prob.hertz_half_width:.4g} m, peak pressure "
         f"{prob.hertz_peak_pressure:.4g} Pa",
     ]
@@ -651,8 +660,8 @@ def _contact_summary(res) -> str:
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
-def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, lam,
-                speed2, tol, as_json, csv_file, plot_file):
+def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
+                lam, speed2, tol, as_json, csv_file, plot_file):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from .io.files import check_output_file
     from .problem.materials import get_material, load_materials
@@ -673,7 +682,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         get_material(cylinder, materials_file), get_material(half_plane, materials_file),
         parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
         parse_quantity(speed, "m/s", "speed"), friction, lam,
-        parse_quantity(speed2, "m/s", "speed2"))
+        parse_quantity(speed2, "m/s", "speed2"), dundurs=dundurs is not False)
     tol = check_positive("tol", tol)
     from .execution.executors import side_process
     from .execution.progress import ProgressLine

@@ -134,7 +134,7 @@ class Validity:
         for m, lw, at in zip(self.edge_margins, self.edge_layer_log_widths, (-1.0, 1.0)):
             if m < 0.0:
                 out.append(f"tensile layer {_width(lw)} half-widths wide inside the "
-                           f"{_edge_name(at)} (edge log term, derivation section 8; "
+                           f"{_edge_name(at)} (edge term, derivation sections 8 and 5c; "
                            f"tolerated: {EDGE_LAYER_TOLERANCE:g})")
         return tuple(out)
 

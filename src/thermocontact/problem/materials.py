@@ -52,6 +52,7 @@ else:  # pragma: no cover - exercised on Python 3.10 only
 __all__ = [
     "Material",
     "MaterialError",
+    "dundurs_beta",
     "get_material",
     "list_materials",
     "load_materials",
@@ -410,6 +411,14 @@ def _parse_inline(spec: str) -> Material:
             raise MaterialError(f"{where}: key '{key}' given twice")
         table[key] = value
     return _build(name, table, where)
+
+
+def dundurs_beta(cylinder: Material, half_plane: Material) -> float:
+    """The paper's ``beta = [(1 - 2 nu1)/mu1 - (1 - 2 nu2)/mu2] / A`` (its eq. 10;
+    in magnitude twice Dundurs' second constant), ``A = (1 - nu1)/mu1 + (1 - nu2)/mu2``; in
+    ``[-1, 1]``, 0 for a pair of one material (derivation section 5c)."""
+    num = (1.0 - 2.0 * cylinder.nu) / cylinder.mu - (1.0 - 2.0 * half_plane.nu) / half_plane.mu
+    return num / ((1.0 - cylinder.nu) / cylinder.mu + (1.0 - half_plane.nu) / half_plane.mu)
 
 
 def get_material(spec, user_file=None) -> Material:

@@ -18,7 +18,7 @@ __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
 C_MAX = 1e9
 C_MIN = 1e-100
 #: Largest |beta f|: beta is at most 1 in magnitude for real materials (twice
-#: Dundurs' constant, |beta_D| <= 1/2) and f rarely exceeds 1; at 20 the edge
+#: Dundurs' constant in magnitude, |beta_D| <= 1/2) and f rarely exceeds 1; at 20 the edge
 #: exponents are 0.984 and 0.016.
 B_MAX = 20.0
 
@@ -56,8 +56,8 @@ class Parameters:
         default, is the paper's stationary half-plane.  Any real number but 1
         with ``fhpe > 0`` (pure rolling makes no frictional heat).
     beta_f : float, optional
-        ``B = beta f``, with the paper's ``beta`` of eq. 10 (twice Dundurs' second
-        constant): the coupling of the friction traction to the normal displacement,
+        ``B = beta f``, with the paper's ``beta`` of eq. 10 (in magnitude twice
+        Dundurs' second constant): the coupling of the friction traction to the normal displacement,
         the free term ``-(B/2) p`` of the contact equation (derivation section 5c).
         0, the default, drops it as the paper does.  ``|B| <= 20``.
 

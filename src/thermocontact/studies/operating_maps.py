@@ -30,7 +30,7 @@ import numpy as np
 from .._version import __version__
 from ..analysis.applicability import (AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS,
                                       MAX_SLOPE, MAX_STRAIN, surface_slopes)
-from ..problem.materials import Material
+from ..problem.materials import Material, dundurs_beta
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
@@ -68,6 +68,8 @@ class OperatingSpec:
         The third of load, speed, radius (SI).
     tol : float
         Error target of every ray sample.
+    dundurs : bool
+        Keep the Dundurs term of the two materials (default), as ``contact`` does.
     """
 
     cylinder: Material
@@ -78,6 +80,7 @@ class OperatingSpec:
     y: Axis
     fixed: dict
     tol: float = 1e-6
+    dundurs: bool = True
 
     def __post_init__(self):
         check_nonnegative("friction", self.friction)
@@ -102,7 +105,7 @@ class OperatingSpec:
     def problem(self, **values) -> PhysicalProblem:
         kw = {**self.fixed, **values}
         return PhysicalProblem(self.cylinder, self.half_plane, kw["radius"], kw["load"],
-                               kw["speed"], self.friction, self.lam)
+                               kw["speed"], self.friction, self.lam, dundurs=self.dundurs)
 
     def grid(self):
         """``(load, speed, radius)`` arrays of shape ``(y.count, x.count)``."""
@@ -133,14 +136,15 @@ class OperatingSpec:
     def ratios(self) -> dict:
         c, h = self.cylinder, self.half_plane
         return {"K2_over_K1": h.K / c.K, "k2_over_k1": h.k / c.k,
-                "delta1_over_delta2": c.distortivity / h.distortivity}
+                "delta1_over_delta2": c.distortivity / h.distortivity,
+                "beta_f": dundurs_beta(c, h) * self.friction if self.dundurs else 0.0}
 
     def manifest(self) -> dict:
         return {"kind": "thermocontact operating map", "version": __version__,
                 "cylinder": self.cylinder.name, "half_plane": self.half_plane.name,
                 "friction": self.friction, "lam": self.lam, "x": self.x.spec,
                 "y": self.y.spec, "fixed": self.fixed, "tol": self.tol,
-                "fields": "slopes and strains"}
+                "dundurs": self.dundurs, "fields": "slopes and strains"}
 
 
 def _ray(task) -> Ray:

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..analysis.applicability import Applicability, applicability
 from ..physics.green_functions import cylinder_temperature
-from ..problem.materials import Material
+from ..problem.materials import Material, dundurs_beta
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..numerics.extrema import polish_minimum
@@ -73,6 +73,9 @@ class PhysicalProblem:
         Speed of the half-plane's surface through the contact v2, m/s, positive in
         the cylinder's direction (derivation section 5b); 0, the default, is a
         stationary half-plane.  The frictional heat is ``f p |v1 - v2|``.
+    dundurs : bool, optional
+        Keep the Dundurs term ``-(beta f/2) p`` with ``beta`` of the two materials
+        (default; derivation section 5c), or drop it as the paper does.
     """
 
     cylinder: Material
@@ -83,6 +86,7 @@ class PhysicalProblem:
     friction: float
     lam: float
     speed2: float = 0.0
+    dundurs: bool = True
 
     def __post_init__(self):
         for name in ("cylinder", "half_plane"):
@@ -134,6 +138,11 @@ class PhysicalProblem:
         return 2.0 * self.load / (np.pi * self.hertz_half_width)
 
     @property
+    def beta_f(self) -> float:
+        """``B = beta f`` of the materials (0 with ``dundurs=False``)."""
+        return dundurs_beta(self.cylinder, self.half_plane) * self.friction if self.dundurs else 0.0
+
+    @property
     def speed_ratio(self) -> float:
         """``R = v2/v1``."""
         return self.speed2 / self.speed
@@ -166,7 +175,7 @@ class PhysicalProblem:
         c, h = self.cylinder, self.half_plane
         return Ray(h.K / c.K, h.k / c.k, c.distortivity / h.distortivity,
                    self.friction * self.H * abs(1.0 - self.speed_ratio), self.lam,
-                   speed_ratio=self.speed_ratio)
+                   speed_ratio=self.speed_ratio, beta_f=self.beta_f)
 
     def hertz_load(self, half_width):
         """``P_H = pi Delta^2 / (2 A R)``, N/m."""
@@ -176,7 +185,7 @@ class PhysicalProblem:
         """Dimensionless parameters at half-width ``Delta``."""
         c, h = self.cylinder, self.half_plane
         return Parameters(self.pe(half_width), self.fhpe(half_width), h.K / c.K, h.k / c.k,
-                          c.distortivity / h.distortivity, self.speed_ratio)
+                          c.distortivity / h.distortivity, self.speed_ratio, self.beta_f)
 
     def to_dimensionless(self, half_width) -> dict:
         """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
@@ -185,6 +194,8 @@ class PhysicalProblem:
                    delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
         if p.speed_ratio:
             out["speed_ratio"] = p.speed_ratio
+        if p.beta_f:
+            out["beta_f"] = p.beta_f
         return out
 
 

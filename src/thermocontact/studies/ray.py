@@ -63,6 +63,8 @@ class Ray:
     speed_ratio : float
         ``R = v2/v1`` (0: a stationary half-plane); ``fh`` is then
         ``f H |1 - R|``.
+    beta_f : float
+        ``B = beta f`` of the Dundurs term (section 5c).
     """
 
     K2_over_K1: float
@@ -72,12 +74,13 @@ class Ray:
     lam: float
     method: str = DEFAULT_METHOD
     speed_ratio: float = 0.0
+    beta_f: float = 0.0
 
     def model(self, pe, tol=DEFAULT_TOL, n=None) -> Model:
         """The :class:`Model` at ``Pe``."""
         return Model(pe, self.K2_over_K1, k2_over_k1=self.k2_over_k1,
                      delta1_over_delta2=self.delta1_over_delta2,
-                     speed_ratio=self.speed_ratio, method=self.method, n=n,
+                     speed_ratio=self.speed_ratio, beta_f=self.beta_f, method=self.method, n=n,
                      tol=tol)
 
     def solve_at(self, pe, n, check_validity=False, polish=True):
