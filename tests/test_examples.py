@@ -21,7 +21,8 @@ def _command_and_output(text: str):
     return shlex.split(command[2:])[1:], output
 
 
-@pytest.mark.parametrize("name", ["electrical_contact.md", "brake_block.md"])
+@pytest.mark.parametrize("name", ["electrical_contact.md", "brake_block.md",
+                                  "gear_rolling_sliding.md"])
 def test_example_prints_what_the_document_shows(name, tmp_path, monkeypatch, capsys):
     args, shown = _command_and_output((EXAMPLES / name).read_text())
     monkeypatch.chdir(tmp_path)  # the --plot file goes there

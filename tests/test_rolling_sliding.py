@@ -186,3 +186,23 @@ def _H(cyl, half):
     from thermocontact.studies.physical_contact import PhysicalProblem
 
     return PhysicalProblem(get_material(cyl), get_material(half), 1.0, 1.0, 1.0, 0.1, 0.0).H
+
+
+@pytest.mark.parametrize("along, start, stop, fixed", [
+    ("speed_ratio", -0.5, -0.1, dict(pe=5, fhpe=0.7, K2_over_K1=10, lam=1.0)),
+    ("beta_f", 0.0, 0.05, dict(pe=5, fhpe=0.66, K2_over_K1=10, lam=1.0)),
+])
+def test_boundaries_along_speed_ratio_and_beta_f(along, start, stop, fixed):
+    """Fig. 4's case (Pe = 5, K2/K1 = 10, lam = 1) near its boundary fHPe = 0.6654:
+    moving the half-plane against the cylinder (R < -0.28) restores the single patch at
+    fHPe = 0.7, and a Dundurs term of B = 0.02 removes it at fHPe = 0.66.  Each event
+    is the zero of the gap margin of plain solves (opposite signs at +-1e-6)."""
+    from thermocontact.studies.boundaries import follow
+
+    path = follow(fixed, along, start, stop, n=32, points=5)
+    (e,) = [e for e in path.events if e.inequality == "gap"]
+    assert e.edge == "leading"
+    before, after = (solve(n=32, **{**fixed, along: e.at + d}).validity.gap_margin
+                     for d in (-1e-6, 1e-6))
+    assert (before > 0.0) == e.valid_before and before * after < 0.0
+    assert e.valid_before and not e.valid_after  # valid below R = -0.28 and B = 0.02
