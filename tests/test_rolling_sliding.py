@@ -161,6 +161,7 @@ def test_identical_bodies_at_opposite_speeds_enter_at_one_temperature():
     steel = get_material("steel")
     b = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, 0.0, speed2=-10.0)).primary
     assert abs(b.half_plane_incoming_temperature) < 1e-9 * b.flash_temperature
+    assert b.flash_temperature_half_plane == pytest.approx(b.flash_temperature, rel=1e-9)
     assert abs(b.offset) < 1e-12 * b.half_width
     b = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, 0.2, speed2=-10.0)).primary
     assert b.half_plane_incoming_temperature > 0.05 * b.flash_temperature

@@ -561,6 +561,7 @@ def _branch_record(b) -> dict:
         "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
         "temperature_mismatch": b.temperature_mismatch,
         "half_plane_incoming_temperature": b.half_plane_incoming_temperature,
+        "flash_temperature_half_plane": b.flash_temperature_half_plane,
         "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
         "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
         "reason": v.reason, "strictly_valid": v.strictly_valid,
@@ -636,7 +637,8 @@ def _contact_summary(res) -> str:
         if b.half_plane_incoming_temperature is not None:
             dt = b.half_plane_incoming_temperature
             lines.append(f"    the heat partition implies the half-plane enters {abs(dt):.4g} K "
-                         f"{'above' if dt >= 0 else 'below'} the cylinder's temperature")
+                         f"{'above' if dt >= 0 else 'below'} the cylinder's temperature; its "
+                         f"flash temperature {b.flash_temperature_half_plane:.4g} K over it")
         if b.solution.validity.reason != "valid":
             lines.append(f"    {b.solution.validity.reason}")
         if b.applicable:

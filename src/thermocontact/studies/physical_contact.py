@@ -239,6 +239,15 @@ class Branch:
     applicability: Applicability | None = field(default=None, repr=False)
 
     @property
+    def flash_temperature_half_plane(self) -> float | None:
+        """A moving half-plane's largest surface temperature rise over its own incoming
+        temperature (``flash_temperature`` is the cylinder's, the two surfaces being at
+        one temperature in the contact); None for a stationary half-plane."""
+        if self.half_plane_incoming_temperature is None:
+            return None
+        return self.flash_temperature - self.half_plane_incoming_temperature
+
+    @property
     def applicable(self) -> bool:
         """Whether the theory applies (:mod:`thermocontact.analysis.applicability`)."""
         return bool(self.applicability is not None and self.applicability.applicable)
