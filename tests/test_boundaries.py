@@ -102,8 +102,9 @@ def test_physical_paths_meet_at_one_pe_hertz(capsys):
 
     prob = PhysicalProblem(get_material("steel"), get_material("cast-iron"), 0.45, 1e5, 1.0,
                            0.35, 1.0, dundurs=False)  # where the event was located
-    (e,) = [e for e in follow_along(prob, "load", 3.9e5, 3.97e5, n=32, points=3).events
-            if e.inequality == "edge"]
+    path = follow_along(prob, "load", 3.9e5, 3.97e5, n=32, points=3)
+    assert path.fixed["dundurs"] is False  # recorded with the path
+    (e,) = [e for e in path.events if e.inequality == "edge"]
     assert e.edge == "leading" and not e.valid_after
     assert 0 < e.error_estimate < 0.01 * e.at
     assert main(["boundary", "--along", "speed", "--from", "1.975", "--to", "1.99", "--cylinder",

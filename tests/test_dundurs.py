@@ -148,3 +148,33 @@ def test_physical_contact_keeps_the_term_by_default(capsys):
     assert main(["map", "--x", "fhpe:0:0.5:3", "--y", "pe:1:5:3", "--K2-over-K1", "10",
                  "--lam", "1", "--no-dundurs", "--out", "x.nc"]) == 2
     assert "--dundurs belongs to an operating map" in capsys.readouterr().err
+
+
+def test_edge_verdict_is_continuous_as_the_term_vanishes():
+    """The bracket of (D22b) becomes the logarithm of (D22) as b -> 0: margins and layer
+    widths for B = 1e-318, 1e-16 and 1e-3 approach those of B = 0 (delta1/delta2 = 2 and
+    0.5, where both edges carry edge terms), without overflow."""
+    for d in (2.0, 0.5):
+        kw = dict(pe=5, fhpe=0.3, K2_over_K1=10, delta1_over_delta2=d, lam=0.2, n=64)
+        ref = solve(**kw).validity
+        for B, rel in ((1e-318, 1e-12), (1e-16, 1e-12), (1e-3, 0.2)):
+            v = solve(beta_f=B, **kw).validity
+            assert v.valid == ref.valid and v.strictly_valid == ref.strictly_valid
+            assert np.allclose(v.edge_margins, ref.edge_margins, rtol=rel)
+            finite = np.isfinite(ref.edge_layer_log_widths)
+            assert np.array_equal(finite, np.isfinite(v.edge_layer_log_widths))
+            assert np.allclose(np.array(v.edge_layer_log_widths)[finite],
+                               np.array(ref.edge_layer_log_widths)[finite], rtol=rel)
+
+
+def test_layer_at_an_edge_whose_exponent_is_below_one_half():
+    """delta1/delta2 = 0, B = -0.2: the leading edge's exponent is 0.468 < 1/2, so the
+    pressure's (1 - s)^0.468 term governs at the very edge; its coefficient is negative
+    there and the bracket, positive further in, vanishes at 2.7e-8 half-widths: a
+    tolerated layer, whose width brackets the pressure's sign change."""
+    sol = solve(5, 0.3, 10, k2_over_k1=10, delta1_over_delta2=0.0, lam=0.8, beta_f=-0.2, n=256)
+    v = sol.validity
+    w = np.exp(v.edge_layer_log_widths[1])
+    assert 1e-8 < w < 1e-7 and v.valid and not v.strictly_valid
+    p = sol.representation.pressure_matrix(1.0 - np.array([0.5 * w, 2 * w])) @ sol.phi
+    assert p[0] < 0.0 < p[1]

@@ -207,3 +207,19 @@ def test_boundaries_along_speed_ratio_and_beta_f(along, start, stop, fixed):
                      for d in (-1e-6, 1e-6))
     assert (before > 0.0) == e.valid_before and before * after < 0.0
     assert e.valid_before and not e.valid_after  # valid below R = -0.28 and B = 0.02
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--along", "speed-ratio", "--from", "0.5", "--to", "1.5", "--fhpe", "0.2"],
+     "must not reach 1"),
+    (["--along", "fhpe", "--from", "0", "--to", "0.3", "--beta-f", "0.5", "--method", "product"],
+     "beta_f != 0 needs"),
+])
+def test_paths_refuse_what_no_point_can_solve(args, words, capsys):
+    """A path through pure rolling, or with a method that cannot carry the Dundurs
+    term's exponents, is refused in one line before any sample (not reported as a path
+    of failed samples)."""
+    base = ["boundary", "--pe", "5", "--K2-over-K1", "10", "--lam", "0"]
+    assert main(base + args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and words in err[0]

@@ -46,6 +46,12 @@ class _Progress:
 def _summary(sol) -> str:
     par = sol.parameters
     v = sol.validity
+    alpha = par.edge_exponent
+    if alpha == 0.5:
+        weight, power = "p/sqrt(1-s^2)", "1.5"
+    else:  # the Dundurs term's exponents (derivation section 5c)
+        weight = f"p/((1-s)^{alpha:.4g} (1+s)^{1 - alpha:.4g})"
+        power = f"{1 + (alpha if v.gap_margin_at > 0 else 1 - alpha):.4g}"
     lines = [
         f"thermocontact {__version__}: method {sol.method}, n = {sol.n}",
         f"  Pe = {par.pe:g}, fHPe = {par.fhpe:g}, K2/K1 = {par.K2_over_K1:g}, "
@@ -63,9 +69,9 @@ def _summary(sol) -> str:
     lines += [
         f"  valid         = {v.valid}" + ("" if v.reason == "valid" else f"  ({v.reason})"),
         f"  min pressure  = {v.min_pressure:.4g} at s = {v.min_pressure_at:.4f}"
-        f"  (margin p/sqrt(1-s^2) = {v.pressure_margin:.4g} at s = {v.pressure_margin_at:.4f})",
+        f"  (margin {weight} = {v.pressure_margin:.4g} at s = {v.pressure_margin_at:.4f})",
         f"  min gap       = {v.min_gap:.4g} Delta^2/R at s = {v.min_gap_at:.4f}"
-        f"  (margin g/(|s|-1)^1.5 = {v.gap_margin:.4g} at s = {v.gap_margin_at:.4f})",
+        f"  (margin g/(|s|-1)^{power} = {v.gap_margin:.4g} at s = {v.gap_margin_at:.4f})",
         f"  load positive = {v.positive_load}",
     ]
     return "\n".join(lines)

@@ -364,6 +364,57 @@ def _least(f, x, values, i, polish):
     return polish_minimum(f, x, values, i)
 
 
+def _expm1_over(r, x):
+    """``expm1(r x)/r``, ``x`` at ``r = 0``: the bracket's edge term per unit ``k``."""
+    return x if r == 0.0 else np.expm1(r * x) / r
+
+
+def _edge_terms(par: Parameters, rep, phi, psi):
+    """The pressure's bracket at each edge and the tensile layer it opens (D22, D22b).
+
+    Near an edge, at depth ``e = 1 -+ s``, ``p/e^x = a + k t E(r, ln e)`` with the
+    edge's exponent ``x`` (1/2, or the Dundurs term's), ``r = 1/2 - x``,
+    ``E(r, y) = expm1(r y)/r`` (``y`` at ``r = 0``), ``k`` the coefficient of (D22) and
+    ``t = arctan(b)/b`` (1 at ``b = 0``): with the Dundurs term the logarithm is
+    ``kappa ((1 -+ s)^(1/2) - ...)``, ``kappa r = k t`` (D22b), and as ``b -> 0`` it
+    becomes the logarithm continuously.  The bracket is monotone in ``ln e``; a layer
+    opens where it is negative at the edge itself, and its width is the depth where it
+    vanishes.  ``a`` is read off the solution at depth :data:`_EDGE_DEPTH`.
+
+    Returns
+    -------
+    k_log, exponents, margins, log_widths : ndarray, shape (2,)
+        At ``s = -1`` and ``+1``.
+    layer : ndarray of bool, shape (2,)
+    """
+    b = par.free_term
+    k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * rep.psi_edges(psi) / np.pi
+    t = float(np.arctan(b) / b) if b else 1.0
+    exponents = np.array([1.0 - rep.alpha, rep.alpha])
+    e = _EDGE_DEPTH
+    near = np.array([-1.0 + e, 1.0 - e])
+    p_near = rep.pressure_matrix(near) @ phi
+    margins, log_widths, layer = np.zeros(2), np.full(2, -np.inf), np.zeros(2, dtype=bool)
+    for i in range(2):
+        r, kt = 0.5 - exponents[i], k_log[i] * t
+        a = p_near[i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
+        # The bracket at the edge itself: -inf * sign(k) unless r > 0, where E -> -1/r.
+        at_edge = a - kt / r if r > 0.0 else (-np.inf * np.sign(kt) if kt else a)
+        if kt and at_edge < 0.0:  # without an edge term a tensile edge is no layer
+            layer[i] = True
+            margins[i] = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
+            # Depth where a + kt E(r, y) = 0: y = -a/kt, or log1p(-a r/kt)/r.
+            if a <= 0.0:
+                log_widths[i] = 0.0  # tensile from the whole edge region inward
+            else:
+                log_widths[i] = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
+        else:
+            # No layer: the bracket where positive, else 0 (a tensile edge without a
+            # layer is the pressure margin's to judge).
+            margins[i] = max(a, 0.0)
+    return k_log, exponents, margins, log_widths, layer
+
+
 def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> Validity:
     """Evaluate every contact inequality of a discrete solution.
 
@@ -385,14 +436,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     -------
     Validity
     """
-    psi_edges = rep.psi_edges(psi)
-    k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi
-    # The pressure's exponents at the edges (-1, +1): 1/2, or those of the Dundurs
-    # term (D14e).  A tensile layer opens where k > 0 and the edge term's exponent,
-    # 1/2, is not above the edge's own (D22, D22b).
-    b = par.free_term
-    exponents = np.array([1.0 - rep.alpha, rep.alpha])
-    layer = (k_log > 0.0) & (exponents >= 0.5)
+    k_log, exponents, edge_margins, log_widths, layer = _edge_terms(par, rep, phi, psi)
 
     sp, phis = rep.phi_samples(phi, 2049)
     p = rep.pressure_weight(sp) * phis
@@ -450,35 +494,6 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
 
     y_min, gap_min = _least(gap_margin, y, ms, int(np.argmin(ms)), polish)
     gap_min_at = float(side * (1.0 + np.exp(y_min)))
-
-    # The bracket a + k ln e of (D22) at e = _EDGE_DEPTH from each edge, carried to
-    # the tolerated depth along its known logarithmic slope.
-    e = _EDGE_DEPTH
-    near = np.array([-1.0 + e, 1.0 - e])
-    # The bracket of p/(1 -+ s)^exponent at depth e.
-    p_near = (rep.pressure_matrix(near) @ phi) / e**exponents
-    if b == 0.0:
-        a_edge = p_near - k_log * np.log(e)
-        # Without a positive coefficient there is no layer: the margin is the bracket
-        # itself where positive (continuous through k = 0 then), else 0 (a tensile edge
-        # without a layer is the pressure margin's to judge).
-        edge_margins = np.where(layer, a_edge + k_log * np.log(EDGE_LAYER_TOLERANCE),
-                                np.maximum(a_edge, 0.0))
-        log_widths = np.where(layer, -np.maximum(a_edge, 0.0) / np.where(layer, k_log, 1.0),
-                              -np.inf)
-    else:
-        # p = (1 -+ s)^exponent [a + kappa (1 -+ s)^(1/2 - exponent)],
-        # kappa = -+ pi k / b (D22b): the
-        # bracket read at depth e, carried to the tolerated depth along that power.
-        kappa = np.array([np.pi, -np.pi]) * k_log / b
-        rise = 0.5 - exponents
-        a_edge = p_near - kappa * e**rise
-        edge_margins = np.where(layer, a_edge + kappa * EDGE_LAYER_TOLERANCE**rise,
-                                np.maximum(a_edge, 0.0))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(layer & (a_edge > 0.0), -kappa / a_edge, 1.0)
-            log_widths = np.where(layer & (a_edge > 0.0) & (ratio > 0.0),
-                                  np.log(np.abs(ratio)) / -rise, np.where(layer, 0.0, -np.inf))
 
     positive = bool(load_ratio > 0.0)
     sound = positive and phi_min >= 0.0 and gap_min >= 0.0

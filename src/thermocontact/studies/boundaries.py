@@ -347,6 +347,17 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     Path
     """
     along = check_choice("along", along, ALONG)
+    start, stop = check_finite("start", start), check_finite("stop", stop)
+    # The path's ends are problems the method accepts (every parameter's range is an
+    # interval, so the ends check them all): a refusal is one error, not a failed sample.
+    for x in (start, stop):
+        model = model_for({**fixed, along: x}, method)
+        METHODS[method].check(model.parameters_at(fixed.get("fhpe", x if along == "fhpe" else 0.0)))
+    if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
+            fixed.get("fhpe", 0.0) > 0.0):
+        raise InputError("a path along speed_ratio must not reach 1 with fhpe > 0: pure "
+                         "rolling makes no heat and reverses the friction there; follow "
+                         "each side of 1 on its own")
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
                  method=method, tol=tol, rtol=rtol, points=points, n=n, event_rtol=event_rtol,
                  progress=progress)

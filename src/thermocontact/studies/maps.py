@@ -179,9 +179,10 @@ class MapSpec:
         for xv in (self.x.start, self.x.stop):
             for yv in (self.y.start, self.y.stop):
                 kw = {**fixed, self.x.name: xv, self.y.name: yv}
-                Parameters(kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
-                           kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0),
-                           kw.get("beta_f", 0.0))
+                METHODS[self.method].check(Parameters(
+                    kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
+                    kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0),
+                    kw.get("beta_f", 0.0)))
 
     @property
     def inner(self) -> str:
@@ -423,10 +424,12 @@ _DESCRIPTIONS = {
     "lam": "heat partition (Q1 - Q2)/(Q1 + Q2)",
     "valid": "1 where every contact inequality holds",
     "applicable": "1 where the theory applies, 0 where not, -1 not assessed (no delta_over_r)",
-    "pressure_margin": "least p/sqrt(1 - s^2) over the contact (< 0: tensile)",
-    "gap_margin": "least g/(|s| - 1)^1.5 outside the contact (< 0: interpenetration)",
-    "edge_margin": "least edge-layer margin (derivation section 8; < 0: tensile layer "
-                   "wider than 1e-6 half-widths)",
+    "pressure_margin": "least p/sqrt(1 - s^2) over the contact, or p/((1 - s)^alpha "
+                       "(1 + s)^(1 - alpha)) with the Dundurs term (< 0: tensile)",
+    "gap_margin": "least g/(|s| - 1)^1.5 outside the contact, or ^(1 + the edge's "
+                  "exponent) with the Dundurs term (< 0: interpenetration)",
+    "edge_margin": "least edge-layer margin (derivation sections 8 and 5c; < 0: tensile "
+                   "layer wider than 1e-6 half-widths)",
     "error_estimate": "estimated error of P_H/P and sigma/Delta",
     "n": "unknowns per function",
     "status": "converged, not converged, or failed",

@@ -615,6 +615,7 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
                 if k != along}}
     if problem.speed2:
         fixed["speed_ratio"] = problem.speed_ratio
+    fixed["dundurs"] = problem.dundurs
     return trace(_primary(problem, along), along, fixed, start, stop, tol=tol, rtol=rtol,
                  points=points, log=ALONG[along], n=n, event_rtol=event_rtol,
                  progress=progress)
