@@ -69,3 +69,21 @@ def test_bad_operating_maps_are_refused():
                       parse_physical_axis("--y", "speed:1:2:3"), {})
     with pytest.raises(InputError, match="load must be > 0"):
         spec(x="load:-1:2:3")
+
+
+def test_rolling_sliding_operating_map_equals_contact():
+    """With the half-plane's surface at R = 2/3 of the cylinder's (steel gear teeth,
+    slide-to-roll ratio 0.4, f = 0.3) one ray still covers the plane: a point of a 2 x 2 map
+    equals `contact` with speed2 = R v (half-width and flash temperature to 1e-6, the
+    latter at the sliding speed)."""
+    steel = get_material("steel")
+    s = OperatingSpec(steel, steel, 0.3, 0.1, parse_physical_axis("--x", "load:1e5:3e5:2:log"),
+                      parse_physical_axis("--y", "speed:3:12:2:log"), {"radius": 0.015},
+                      speed_ratio=2 / 3)
+    ds = compute_operating_map(s, workers=2)
+    point = ds.isel(load=1, speed=1)
+    P, v = float(point["load"]), float(point["speed"])
+    ref = contact(PhysicalProblem(steel, steel, 0.015, P, v, 0.3, 0.1, speed2=v * 2 / 3)).primary
+    assert float(point.half_width) == pytest.approx(ref.half_width, rel=1e-6)
+    assert float(point.flash_temperature) == pytest.approx(ref.flash_temperature, rel=1e-6)
+    assert s.manifest()["speed_ratio"] == 2 / 3

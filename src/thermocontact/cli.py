@@ -103,7 +103,7 @@ def _problem_options(required: bool):
                      help="v2/v1: the half-plane's surface speed through the contact over the "
                           "cylinder's, positive in the same direction; 0 is a stationary "
                           "half-plane. Pe is made with v1, fHPe with the sliding speed "
-                          "|v1 - v2|."),
+                          "|v1 - v2|. With --cylinder (boundary, map), --speed is v1."),
         click.option("--beta-f", "beta_f", type=float, default=0.0, show_default=True,
                      help="B = beta f, beta = [(1 - 2 nu1)/mu1 - (1 - 2 nu2)/mu2]/A (the "
                           "paper's eq. 10): the Dundurs term -(B/2) p of the contact "
@@ -327,6 +327,8 @@ def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, di
     if along not in _PHYSICAL_UNITS:
         raise InputError(f"--along must be one of {sorted(_PHYSICAL_UNITS)} with --cylinder, "
                          f"got {along!r}")
+    # v2/v1 belongs to both variants: the half-plane's surface at R times the cylinder's.
+    speed_ratio = dimensionless.pop("speed_ratio", None) or 0.0
     for name, value in dimensionless.items():
         if value is not None:
             raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless path, "
@@ -349,6 +351,7 @@ def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, di
     prob = PhysicalProblem(get_material(physical["cylinder"], materials_file),
                            get_material(physical["half_plane"], materials_file),
                            values["radius"], values["load"], values["speed"], friction, lam,
+                           speed2=values["speed"] * speed_ratio,
                            dundurs=physical.get("dundurs") is not False)
     return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
 
@@ -359,6 +362,7 @@ def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius
     from .problem.units import parse_quantity
     from .studies.operating_maps import OperatingSpec, parse_physical_axis
 
+    speed_ratio = dimensionless.pop("speed_ratio", None) or 0.0
     for name, value in dimensionless.items():
         if value is not None:
             raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless map, "
@@ -377,7 +381,8 @@ def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius
             raise InputError(f"--{axis.name} must not be given: it is an axis")
     return OperatingSpec(get_material(cylinder, materials_file),
                          get_material(half_plane, materials_file), friction, lam, x, y, fixed,
-                         tol=check_positive("tol", tol), dundurs=dundurs is not False)
+                         tol=check_positive("tol", tol), dundurs=dundurs is not False,
+                         speed_ratio=speed_ratio)
 
 
 def _workers(workers, scheduler):

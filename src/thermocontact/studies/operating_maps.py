@@ -70,6 +70,10 @@ class OperatingSpec:
         Error target of every ray sample.
     dundurs : bool
         Keep the Dundurs term of the two materials (default), as ``contact`` does.
+    speed_ratio : float
+        ``R = v2/v1``: the half-plane's surface moves at ``R`` times the cylinder's
+        (section 5b); the speed axis is the cylinder's surface speed, and the heat is
+        made at ``|1 - R|`` times it.  One ray still covers the plane.
     """
 
     cylinder: Material
@@ -81,11 +85,13 @@ class OperatingSpec:
     fixed: dict
     tol: float = 1e-6
     dundurs: bool = True
+    speed_ratio: float = 0.0
 
     def __post_init__(self):
         check_nonnegative("friction", self.friction)
         check_finite("lam", self.lam)
         check_positive("tol", self.tol)
+        object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
         if self.x.name == self.y.name:
             raise InputError(f"--y must name a parameter other than --x's, got "
                              f"{self.y.name!r} twice")
@@ -105,7 +111,8 @@ class OperatingSpec:
     def problem(self, **values) -> PhysicalProblem:
         kw = {**self.fixed, **values}
         return PhysicalProblem(self.cylinder, self.half_plane, kw["radius"], kw["load"],
-                               kw["speed"], self.friction, self.lam, dundurs=self.dundurs)
+                               kw["speed"], self.friction, self.lam,
+                               speed2=kw["speed"] * self.speed_ratio, dundurs=self.dundurs)
 
     def grid(self):
         """``(load, speed, radius)`` arrays of shape ``(y.count, x.count)``."""
@@ -126,7 +133,8 @@ class OperatingSpec:
     @property
     def fh(self) -> float:
         """``f H``: the ray's slope ``fHPe/Pe``."""
-        return self.friction * self.half_plane.k * self.half_plane.distortivity / self.compliance
+        return (self.friction * self.half_plane.k * self.half_plane.distortivity
+                / self.compliance * abs(1.0 - self.speed_ratio))
 
     def fractions(self) -> tuple:
         """Each body's compliance over their sum ``A``."""
@@ -137,14 +145,16 @@ class OperatingSpec:
         c, h = self.cylinder, self.half_plane
         return {"K2_over_K1": h.K / c.K, "k2_over_k1": h.k / c.k,
                 "delta1_over_delta2": c.distortivity / h.distortivity,
-                "beta_f": dundurs_beta(c, h) * self.friction if self.dundurs else 0.0}
+                "beta_f": dundurs_beta(c, h) * self.friction if self.dundurs else 0.0,
+                "speed_ratio": self.speed_ratio}
 
     def manifest(self) -> dict:
         return {"kind": "thermocontact operating map", "version": __version__,
                 "cylinder": self.cylinder.name, "half_plane": self.half_plane.name,
                 "friction": self.friction, "lam": self.lam, "x": self.x.spec,
                 "y": self.y.spec, "fixed": self.fixed, "tol": self.tol,
-                "dundurs": self.dundurs, "fields": "slopes and strains"}
+                "dundurs": self.dundurs, "speed_ratio": self.speed_ratio,
+                "fields": "slopes and strains"}
 
 
 def _ray(task) -> Ray:
@@ -353,7 +363,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
                                        r) / Lr * d
         fields["peak_pressure"][idx] = P / d * _local(lp, ray["peak"], r)
         fields["mean_pressure"][idx] = P / (2.0 * d)
-        flash = spec.friction * v * P / (np.pi * K1) * _local(lp, ray["flash"], r)
+        # Heat at the sliding speed |1 - R| v (section 5b).
+        flash = (spec.friction * v * abs(1.0 - spec.speed_ratio) * P / (np.pi * K1)
+                 * _local(lp, ray["flash"], r))
         fields["flash_temperature"][idx] = flash
         fields["load_ratio"][idx] = Lr
         fields["pe"][idx] = pe
