@@ -178,3 +178,16 @@ def test_layer_at_an_edge_whose_exponent_is_below_one_half():
     assert 1e-8 < w < 1e-7 and v.valid and not v.strictly_valid
     p = sol.representation.pressure_matrix(1.0 - np.array([0.5 * w, 2 * w])) @ sol.phi
     assert p[0] < 0.0 < p[1]
+
+
+def test_margins_are_continuous_where_a_layer_appears():
+    """delta1/delta2 = 0, B = -1, Pe = 1: between fHPe = 0.979 and 0.980 a layer opens
+    at the leading edge (exponent below 1/2); the margins move by less than 1e-2 and
+    the verdict holds, the tolerated band being excluded from the pressure and gap
+    margins wherever an edge term exists."""
+    a, b = (solve(1, F, 10, delta1_over_delta2=0.0, lam=0.0, beta_f=-1.0, n=64).validity
+            for F in (0.979, 0.980))
+    assert a.edge_layer_log_widths[1] == -np.inf < b.edge_layer_log_widths[1]
+    for name in ("pressure", "gap", "edge"):
+        assert abs(a.margins()[name] - b.margins()[name]) < 1e-2
+    assert a.valid and b.valid

@@ -75,3 +75,14 @@ def test_bad_operating_maps_are_refused():
                       parse_physical_axis("--y", "speed:1:2:3"), {})
     with pytest.raises(InputError, match="load must be > 0"):
         spec(x="load:-1:2:3")
+
+
+def test_manifest_holds_the_materials_values():
+    """A materials file may redefine a name: the manifest carries the values, so a map
+    made with other properties under the same name is refused, not resumed."""
+    import dataclasses
+
+    soft = dataclasses.replace(CU, E=60e9)
+    assert spec().manifest() != OperatingSpec(
+        soft, ST, 0.2, -1.0, parse_physical_axis("--x", "load:1e3:1e5:2:log"),
+        parse_physical_axis("--y", "speed:0.1:10:2:log"), {"radius": 0.01}).manifest()

@@ -210,8 +210,8 @@ def test_boundaries_along_speed_ratio_and_beta_f(along, start, stop, fixed):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["--along", "speed-ratio", "--from", "0.5", "--to", "1.5", "--fhpe", "0.2"],
-     "must not reach 1"),
+    (["--along", "speed-ratio", "--from", "0.5", "--to", "1.5", "--fhpe", "0.2",
+      "--beta-f", "0.2"], "must not reach 1"),
     (["--along", "fhpe", "--from", "0", "--to", "0.3", "--beta-f", "0.5", "--method", "product"],
      "beta_f != 0 needs"),
 ])

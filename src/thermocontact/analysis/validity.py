@@ -57,24 +57,29 @@ class Validity:
         Coefficients ``k-`` and ``k+`` of the terms ``k sqrt(1 -+ s) ln(1 -+ s)``
         in the pressure at ``s = -1`` and ``+1``:
         ``k = sqrt(2) fHPe (1 - delta1/delta2) psi(+-1) / pi`` (derivation section
-        8).  A positive ``k`` makes the pressure tensile in a layer just inside
-        that edge however fine the discretisation (heat flowing at the edge into
-        the less distortive body); zero when ``delta1 = delta2``.
+        8); zero when ``delta1 = delta2``.  Without the Dundurs term a positive
+        ``k`` makes the pressure tensile in a layer just inside that edge however
+        fine the discretisation (heat flowing at the edge into the less distortive
+        body).  With it the logarithm becomes ``kappa (1 -+ s)^(1/2)``,
+        ``kappa = -+ pi k/b``, and whether a layer opens depends also on the edge's
+        exponent (D22b, D22c).
     edge_slope_residual : tuple of float
         Slope mismatch ``G`` of the discrete solution at ``s = -1`` and ``+1``
         (zero for the exact solution; a measure of discretisation error).
     edge_layer_log_widths : tuple of float
-        Natural logarithm of the width, in half-widths, of the tensile layer that
-        a positive edge coefficient opens inside each edge: ``-a/k`` from
-        ``p ~ sqrt(1 -+ s) (a + k ln(1 -+ s))`` (D22); ``-inf`` where ``k <= 0``
-        (the widths themselves, :attr:`edge_layer_widths`, underflow below 1e-308).
+        Natural logarithm of the width, in half-widths, of the tensile layer inside
+        each edge: the depth where the bracket of (D22c) vanishes (``-a/k`` from
+        ``p ~ sqrt(1 -+ s) (a + k ln(1 -+ s))`` without the Dundurs term); ``-inf``
+        where no layer opens (the widths themselves, :attr:`edge_layer_widths`,
+        underflow below 1e-308).
     edge_margins : tuple of float
-        ``a + k ln(EDGE_LAYER_TOLERANCE)`` at each edge where ``k > 0``: the bracket
-        of (D22) at the tolerated depth, >= 0 exactly when the layer is no wider
-        than :data:`EDGE_LAYER_TOLERANCE`; ``max(a, 0)`` where ``k <= 0`` (no layer).
+        The bracket of (D22c) at the tolerated depth, where the edge carries a term
+        (``k != 0``): >= 0 exactly when no layer wider than
+        :data:`EDGE_LAYER_TOLERANCE` opens (floored at 0 where none opens);
+        ``max(a, 0)`` where ``k = 0``.
     strictly_valid : bool
-        ``valid`` with every edge coefficient required to be ``<= 0`` (no tensile
-        layer of any width), the criterion of Comninou and Dundurs.
+        ``valid`` with no tensile layer of any width, the criterion of Comninou
+        and Dundurs (without the Dundurs term: every edge coefficient ``<= 0``).
     margin_change : float or None
         The largest change of the three margins from the solution at ``n/2``: an
         estimate of their error (None when not compared).
@@ -386,6 +391,9 @@ def _edge_terms(par: Parameters, rep, phi, psi):
     k_log, exponents, margins, log_widths : ndarray, shape (2,)
         At ``s = -1`` and ``+1``.
     layer : ndarray of bool, shape (2,)
+        Where a layer opens.  Wherever an edge term exists (``k != 0``) the
+        pressure and gap margins are taken outside the tolerated width, layer or not,
+        so that they stay continuous where a layer appears.
     """
     b = par.free_term
     k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * rep.psi_edges(psi) / np.pi
@@ -408,8 +416,12 @@ def _edge_terms(par: Parameters, rep, phi, psi):
                 log_widths[i] = 0.0  # tensile from the whole edge region inward
             else:
                 log_widths[i] = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
+        elif kt:
+            # No layer yet: the bracket at the tolerated depth where positive, the value
+            # it takes there when a layer opens (so the margin is continuous).
+            margins[i] = max(a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE)), 0.0)
         else:
-            # No layer: the bracket where positive, else 0 (a tensile edge without a
+            # No edge term: the bracket where positive, else 0 (a tensile edge without a
             # layer is the pressure margin's to judge).
             margins[i] = max(a, 0.0)
     return k_log, exponents, margins, log_widths, layer
@@ -437,6 +449,9 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     Validity
     """
     k_log, exponents, edge_margins, log_widths, layer = _edge_terms(par, rep, phi, psi)
+    # The edges whose term can open a layer: their tolerated width is the edge
+    # margin's to judge, not the pressure's or the gap's.
+    band = (k_log != 0.0) | layer
 
     sp, phis = rep.phi_samples(phi, 2049)
     p = rep.pressure_weight(sp) * phis
@@ -444,9 +459,9 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     # Where a layer opens, phi -> -infinity at that edge (D22): the pressure margin
     # is taken outside the tolerated layer, which the edge margin covers.
     keep = np.ones(sp.size, dtype=bool)
-    if layer[0]:
+    if band[0]:
         keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
-    if layer[1]:
+    if band[1]:
         keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
     sp_in, phis_in = sp[keep], phis[keep]
     iphi = int(np.argmin(phis_in))
@@ -460,7 +475,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     # The side's points are the same geometric sequence moved out to start at the
     # tolerated width: sampled margins (polish=False) are interpolated in the index,
     # which wants the spacing even in ln(|s| - 1).
-    for side, opens in ((-1.0, layer[0]), (1.0, layer[1])):
+    for side, opens in ((-1.0, band[0]), (1.0, band[1])):
         if opens:
             on_side = np.sign(so) == side
             t = np.sort(np.abs(so[on_side]) - 1.0)

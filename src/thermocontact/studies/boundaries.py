@@ -354,10 +354,12 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
         model = model_for({**fixed, along: x}, method)
         METHODS[method].check(model.parameters_at(fixed.get("fhpe", x if along == "fhpe" else 0.0)))
     if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
-            fixed.get("fhpe", 0.0) > 0.0):
-        raise InputError("a path along speed_ratio must not reach 1 with fhpe > 0: pure "
-                         "rolling makes no heat and reverses the friction there; follow "
-                         "each side of 1 on its own")
+            fixed.get("beta_f", 0.0)):
+        # The friction, and with it the Dundurs term, reverses at pure rolling: the
+        # solution jumps there (without the term it is continuous through R = 1).
+        raise InputError("a path along speed_ratio must not reach 1 with beta_f != 0: the "
+                         "friction, and the Dundurs term with it, reverses at pure rolling; "
+                         "follow each side of 1 on its own")
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
                  method=method, tol=tol, rtol=rtol, points=points, n=n, event_rtol=event_rtol,
                  progress=progress)

@@ -154,7 +154,16 @@ class OperatingSpec:
                 "friction": self.friction, "lam": self.lam, "x": self.x.spec,
                 "y": self.y.spec, "fixed": self.fixed, "tol": self.tol,
                 "dundurs": self.dundurs, "speed_ratio": self.speed_ratio,
+                # The values, not only the names: a materials file may redefine a name.
+                "materials": [_material_values(self.cylinder),
+                              _material_values(self.half_plane)],
                 "fields": "slopes and strains"}
+
+
+def _material_values(m: Material) -> dict:
+    """The numbers of a material that enter a map."""
+    return {"E": m.E, "nu": m.nu, "alpha": m.alpha, "K": m.K, "k": m.k,
+            "max_temperature": m.max_temperature}
 
 
 def _ray(task) -> Ray:
