@@ -154,7 +154,7 @@ def test_flash_temperatures_of_both_bodies_approach_jaeger():
 def test_identical_bodies_at_opposite_speeds_enter_at_one_temperature():
     """With equal and opposite surface speeds, equal shares of the heat (lam = 0) are
     what equal incoming temperatures give: the implied difference vanishes, and the
-    contact is centred.  Another partition implies a difference."""
+    contact is centred.  Another partition implies a difference, odd in lam."""
     from thermocontact.problem.materials import get_material
     from thermocontact.studies.physical_contact import PhysicalProblem, contact
 
@@ -166,6 +166,14 @@ def test_identical_bodies_at_opposite_speeds_enter_at_one_temperature():
     b = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, 0.2, speed2=-10.0)).primary
     assert b.half_plane_incoming_temperature > 0.05 * b.flash_temperature
     assert b.heat_cylinder + b.heat_half_plane == pytest.approx(0.3 * 2e5 * 20.0, rel=1e-14)
+    # Mirrored with the bodies exchanged, lam -> -lam: the implied difference changes
+    # sign, and each body's flash temperature over its own incoming temperature is the
+    # other's (to 1e-6 relative, the branch's error target).
+    m = contact(PhysicalProblem(steel, steel, 0.02, 2e5, 10.0, 0.3, -0.2, speed2=-10.0)).primary
+    assert m.half_plane_incoming_temperature == pytest.approx(
+        -b.half_plane_incoming_temperature, rel=1e-6)
+    assert m.flash_temperature_half_plane == pytest.approx(b.flash_temperature, rel=1e-6)
+    assert m.offset == pytest.approx(-b.offset, rel=1e-6)
 
 
 def test_contact_command_takes_the_half_planes_speed(capsys):

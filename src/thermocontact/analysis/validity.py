@@ -451,7 +451,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     k_log, exponents, edge_margins, log_widths, layer = _edge_terms(par, rep, phi, psi)
     # The edges whose term can open a layer: their tolerated width is the edge
     # margin's to judge, not the pressure's or the gap's.
-    band = (k_log != 0.0) | layer
+    band = k_log != 0.0  # (a layer needs an edge term)
 
     sp, phis = rep.phi_samples(phi, 2049)
     p = rep.pressure_weight(sp) * phis

@@ -25,8 +25,8 @@ from ..problem.validation import InputError, check_choice, check_finite, check_i
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "closure", "estimate_events", "follow",
-           "locate_events", "model_for", "trace", "validity_margins"]
+__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "check_problem", "closure", "estimate_events",
+           "follow", "locate_events", "model_for", "trace", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
@@ -124,6 +124,12 @@ def model_for(kw: dict, method=DEFAULT_METHOD, tol=DEFAULT_TOL, n=None) -> Model
                  delta1_over_delta2=kw.get("delta1_over_delta2", 1.0),
                  speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
                  method=method, n=n, tol=tol)
+
+
+def check_problem(kw: dict, method=DEFAULT_METHOD) -> None:
+    """Refuse, in one error, inputs ``kw`` (those of ``solve``) that are out of range or
+    that ``method`` cannot represent (the Dundurs term's exponents)."""
+    METHODS[method].check(model_for(kw, method).parameters_at(kw.get("fhpe", 0.0)))
 
 
 def closure(kw: dict) -> dict:
@@ -351,8 +357,7 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     # The path's ends are problems the method accepts (every parameter's range is an
     # interval, so the ends check them all): a refusal is one error, not a failed sample.
     for x in (start, stop):
-        model = model_for({**fixed, along: x}, method)
-        METHODS[method].check(model.parameters_at(fixed.get("fhpe", x if along == "fhpe" else 0.0)))
+        check_problem({**fixed, along: x}, method)
     if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
             fixed.get("beta_f", 0.0)):
         # The friction, and with it the Dundurs term, reverses at pure rolling: the

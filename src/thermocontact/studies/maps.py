@@ -32,9 +32,9 @@ from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.executors import run
 from ..io.chunks import ChunkStore
 from ..io.files import atomic_path
-from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
+from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
-from .boundaries import ALONG, SPELLINGS, closure, locate_events, model_for
+from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
 
 __all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "read_map",
            "run_chunks", "write_map"]
@@ -179,10 +179,7 @@ class MapSpec:
         for xv in (self.x.start, self.x.stop):
             for yv in (self.y.start, self.y.stop):
                 kw = {**fixed, self.x.name: xv, self.y.name: yv}
-                METHODS[self.method].check(Parameters(
-                    kw["pe"], kw["fhpe"], kw["K2_over_K1"], kw.get("k2_over_k1"),
-                    kw.get("delta1_over_delta2", 1.0), kw.get("speed_ratio", 0.0),
-                    kw.get("beta_f", 0.0)))
+                check_problem(kw, self.method)
 
     @property
     def inner(self) -> str:

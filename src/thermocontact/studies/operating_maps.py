@@ -30,7 +30,7 @@ import numpy as np
 from .._version import __version__
 from ..analysis.applicability import (AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS,
                                       MAX_SLOPE, MAX_STRAIN, surface_slopes)
-from ..problem.materials import Material, dundurs_beta
+from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
@@ -130,23 +130,20 @@ class OperatingSpec:
         return speed * np.sqrt(2.0 * self.compliance * radius * load / np.pi) / (
             2.0 * self.half_plane.k)
 
+    def ray(self) -> Ray:
+        """The dimensionless problems of the whole plane: those of any of its points
+        (:meth:`PhysicalProblem.ray`, which does not depend on load, speed or radius)."""
+        return self.problem(**{self.x.name: self.x.start, self.y.name: self.y.start}).ray()
+
     @property
     def fh(self) -> float:
-        """``f H``: the ray's slope ``fHPe/Pe``."""
-        return (self.friction * self.half_plane.k * self.half_plane.distortivity
-                / self.compliance * abs(1.0 - self.speed_ratio))
+        """The ray's slope ``fHPe/Pe``: ``f H |1 - R|``."""
+        return self.ray().fh
 
     def fractions(self) -> tuple:
         """Each body's compliance over their sum ``A``."""
         return (self.cylinder.compliance / self.compliance,
                 self.half_plane.compliance / self.compliance)
-
-    def ratios(self) -> dict:
-        c, h = self.cylinder, self.half_plane
-        return {"K2_over_K1": h.K / c.K, "k2_over_k1": h.k / c.k,
-                "delta1_over_delta2": c.distortivity / h.distortivity,
-                "beta_f": dundurs_beta(c, h) * self.friction if self.dundurs else 0.0,
-                "speed_ratio": self.speed_ratio}
 
     def manifest(self) -> dict:
         return {"kind": "thermocontact operating map", "version": __version__,
@@ -164,10 +161,6 @@ def _material_values(m: Material) -> dict:
     """The numbers of a material that enter a map."""
     return {"E": m.E, "nu": m.nu, "alpha": m.alpha, "K": m.K, "k": m.k,
             "max_temperature": m.max_temperature}
-
-
-def _ray(task) -> Ray:
-    return Ray(**task["ratios"], fh=task["fh"], lam=task["lam"])
 
 
 def _shape(sol):
@@ -211,8 +204,9 @@ def evaluate_ray(task) -> dict:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ConvergenceWarning)
-                sol = _ray(task).model(pe, tol=task["tol"]).solve(task["fh"] * pe,
-                                                                 lam=task["lam"], polish=False)
+                ray = task["ray"]
+                sol = ray.model(pe, tol=task["tol"]).solve(ray.fh * pe, lam=ray.lam,
+                                                           polish=False)
             peak, flash = _shape(sol)
             rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), peak, flash,
                    *_slope_factors(sol, task["fractions"]),
@@ -233,8 +227,7 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     kept in ``store_path`` as they finish)."""
     count = max(8, int(math.ceil(RAY_PER_DECADE * math.log10(pe_hi / pe_lo))) + 1)
     pes = np.geomspace(pe_lo, pe_hi, count)
-    base = {"ratios": spec.ratios(), "tol": spec.tol, "fh": spec.fh, "lam": spec.lam,
-            "fractions": spec.fractions()}
+    base = {"ray": spec.ray(), "tol": spec.tol, "fractions": spec.fractions()}
     tasks = [{**base, "pe": [float(p) for p in pes[i:i + RAY_CHUNK]]}
              for i in range(0, count, RAY_CHUNK)]
     manifest = {**spec.manifest(), "pe": [pe_lo, pe_hi, count], "chunk": RAY_CHUNK}
@@ -249,7 +242,7 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     events = []
 
     def at_n(m, pe):
-        return _ray(base).solve_at(pe, m, check_validity=True, polish=False)
+        return base["ray"].solve_at(pe, m, check_validity=True, polish=False)
     xtol = lambda p, q: 1e-10 * max(abs(p), abs(q))  # noqa: E731
     for i in np.flatnonzero(ray["valid"][:-1] != ray["valid"][1:]):
         if "failed" in (ray["status"][i], ray["status"][i + 1]):
