@@ -20,7 +20,7 @@ import numpy as np
 
 from ..numerics.edge_graded import MIN_BLOCK
 from ..numerics.extrema import interpolated_minimum, polish_minimum
-from ..physics.green_functions import cylinder_displacement, cylinder_slope, moving_slope
+from ..physics.green_functions import cylinder_displacement_drop, moving_slope
 from ..problem.parameters import Parameters
 
 __all__ = ["Validity", "assess", "gap"]
@@ -208,28 +208,6 @@ def _edge_name(s: float) -> str:
     return "leading edge" if s > 0.0 else "trailing edge"
 
 
-def _displacement_drop(a, h):
-    """``E(a) - E(a + h)`` elementwise for ``a, h >= 0``.
-
-    The difference has an absolute error of about ``eps E(a)``, which enters the gap
-    multiplied by ``F d / c``: below ``1e-10`` of the gap's ``(|s| - 1)^{3/2}``
-    term for ``h >= 1e-3``.  For ``h < 1e-3`` the drop is the integral of
-    ``N H = -E'`` over ``[a, a + h]`` by 2-point Gauss–Legendre (relative error
-    about ``h^4 / 4320``, 3e-15 at ``h = 1e-3``), accurate however close to the edge.
-    """
-    a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
-    small = h < 1e-3
-    out = np.empty(a.shape)
-    big = ~small
-    out[big] = cylinder_displacement(a[big]) - cylinder_displacement(a[big] + h[big])
-    if np.any(small):
-        x, wq = np.polynomial.legendre.leggauss(2)
-        hs = h[small][:, None]
-        pts = a[small][:, None] + 0.5 * hs * (1.0 + x[None, :])
-        out[small] = 0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)
-    return out
-
-
 #: Points per block of :func:`gap`: no more than the moments take in one block.
 GAP_BLOCK = MIN_BLOCK
 
@@ -323,7 +301,7 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
             # side [E(|c|(1 -+ r)) - E(|c|(1 -+ r) + |c| tt)] / |c|, a kernel of
             # u = s - r in which |c| (1 -+ r) = c u - |c| tt on either side.
             h = abs(c) * tt[:, None]
-            drop = lambda u, c=c, h=h: _displacement_drop(c * u - h, h)
+            drop = lambda u, c=c, h=h: cylinder_displacement_drop(c * u - h, h)
             jt = jt + side * (weight / abs(c)) * against("drop " + name, drop,
                                                          side * (1.0 + tt), c, sign)
         j = jc - F * jt - edge_residual * tt

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics.green_functions import (cylinder_slope, cylinder_temperature_gradient_regular,
+from ..physics.green_functions import (cylinder_displacement_drop, cylinder_slope,
+                                       cylinder_temperature, cylinder_temperature_gradient_regular,
                                        moving_slope)
 from ..problem.parameters import Parameters
 
-__all__ = ["contact_operators", "distortion_operators", "heat_operators"]
+__all__ = ["contact_operators", "distortion_operators", "heat_operators", "outside_operators"]
 
 
 def distortion_operators(par: Parameters, rep, s, aux=None):
@@ -50,7 +51,7 @@ def distortion_operators(par: Parameters, rep, s, aux=None):
     return cylinder, half_plane
 
 
-def contact_operators(par: Parameters, rep, s, aux=None):
+def contact_operators(par: Parameters, rep, s, aux=None, *, own=True):
     """Operators of the contact equation (D14) at points ``s``.
 
     ``(C - F Tp) phi - F Tq psi = (2/pi) (L sigma + L s)`` with
@@ -74,6 +75,9 @@ def contact_operators(par: Parameters, rep, s, aux=None):
     s : ndarray, shape (k,)
     aux : ndarray, optional
         The representation's own coordinate of the points (``tau``).
+    own : bool, optional
+        Whether the points lie in this contact (default): the Dundurs term is
+        local, so it is left out for points of another zone.
 
     Returns
     -------
@@ -86,7 +90,7 @@ def contact_operators(par: Parameters, rep, s, aux=None):
     (cyl_b, cyl_s), (hp_b, hp_s) = distortion_operators(par, rep, s, aux)
     C = cb / np.pi
     b = par.free_term
-    if b:
+    if b and own:
         # The Dundurs term -b p(s) (D14d): with it, the operator on phi is of the
         # second kind, and the representation carries the edge exponents it makes.
         C = C - b * rep.pressure_rows(s, aux)
@@ -126,3 +130,68 @@ def heat_operators(par: Parameters, rep, s, aux=None):
     # 2 rho/(1 + rho)^2 written so that no power overflows for extreme ratios.
     Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mr_b / np.pi
     return Hp, Hq
+
+
+def outside_operators(par: Parameters, rep, side: float, tt):
+    """The left sides of (D14) and (D18) integrated from an edge outward.
+
+    ``I(tt) = integral from e to e + side tt`` of each left side over ``s``, for the
+    edge ``e = side`` (``+1`` leading, ``-1`` trailing) and distances ``tt >= 0``
+    past it: the gap's slope mismatch (D20-D21) and the temperature difference's
+    change, both from the undifferentiated Green's functions (derivation section
+    14).  The Cauchy kernels integrate to ``ln|(s - r)/(e - r)|``, the cylinder's
+    slope kernel to ``[E(c(e - r)) - E(c(s - r))]/c`` (D5), the stationary
+    half-plane's ``sgn(u)/2`` to ``tt/2`` on either side, and the regular part of
+    the cylinder's temperature gradient ``c M(c u) - 1/u`` to
+    ``-[exp(-c u) K0(c|u|) + ln|u|]`` (D8-D10).  Every kernel is a function of the
+    distance ``e - r`` to the edge, formed without cancellation.
+
+    Parameters
+    ----------
+    par : Parameters
+        A stationary half-plane (``speed_ratio = 0``).
+    rep : Representation
+        One that integrates kernels of the distance to an edge (``from_edge``).
+    side : {-1.0, 1.0}
+    tt : array_like, shape (k,)
+
+    Returns
+    -------
+    C, Tp, Tq : ndarray, shape (k, n)
+        ``I`` of the contact equation's left side is ``(C - F Tp) phi - F Tq psi``.
+    Hp, Hq : ndarray, shape (k, n)
+        ``I`` of the heat equation's (D18) is ``Hp phi + Hq psi``.
+    """
+    if par.half_plane_scale:
+        raise ValueError("outside_operators: a stationary half-plane only")
+    tt = np.atleast_1d(np.asarray(tt, dtype=float))
+    points = side * (1.0 + tt)
+    col = tt[:, None]
+    eta, rho, c, d = par.eta, par.K2_over_K1, par.cylinder_scale, par.delta1_over_delta2
+
+    def edge_integral(name, kernel, scale=1.0):
+        # The kernels depend on tt row by row: cached by the points and the scale.
+        return rep.rows(("outside " + name, side, scale, points.tobytes()),
+                        lambda: rep.integrate(kernel, points, scale=scale, from_edge=True))
+
+    # ln|(s - r)/(e - r)| with e - r = e_r (the argument): log1p(side tt / e_r).
+    lb, lq = edge_integral("log", lambda e: np.log1p(side * col / e))
+    C = lb / np.pi
+    half = 0.5 * tt[:, None]
+    Tp = (1.0 - eta) * half * rep.pressure_rule.weights[None, :]
+    Tq = -half * rep.flux_rule.weights[None, :]
+    if d and side > 0.0:
+        # Only downstream of the cylinder's material, which enters at s = +1.
+        db, dq = edge_integral("drop", lambda e: cylinder_displacement_drop(c * e, c * col), c)
+        Tp = Tp + d * (1.0 + eta) * db / c
+        Tq = Tq + d * dq / c
+
+    def temperature_change(e):
+        # -[T(c(e + side tt)) + ln|e + side tt|] + [T(c e) + ln|e|], T = exp(-u) K0(|u|).
+        far = e + side * col
+        return (cylinder_temperature(c * e) - cylinder_temperature(c * far)
+                - np.log1p(side * col / e))
+    mb, mq = edge_integral("temperature", temperature_change, c)
+    Hq = (lq + (rho / (1.0 + rho)) * mq) / np.pi
+    Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mb / np.pi
+    return C, Tp, Tq, Hp, Hq

@@ -32,7 +32,7 @@ from ..problem.parameters import Parameters
 from .operator import contact_operators, heat_operators
 from .representations import Representation, range_projections
 
-__all__ = ["Blocks", "assemble"]
+__all__ = ["Blocks", "assemble", "equation_points"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,15 +91,29 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     Blocks
     """
     n = rep.n
+    (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
+    C, Tp, Tq = contact_operators(par, rep, sc, ac)
+    Hp, Hq = heat_operators(par, rep, sh, ah)
+    if p1 is None:
+        return Blocks(rep, C, Tp, Tq, Hp, Hq, np.ones(n + 1), sc)
+    return Blocks(rep, p1 @ C, p1 @ Tp, p1 @ Tq, p2 @ Hp, p2 @ Hq, p1.sum(axis=1), p1 @ sc)
+
+
+def equation_points(rep: Representation, scheme: str):
+    """Where the contact and heat equations are evaluated, and how they are reduced.
+
+    Returns
+    -------
+    (s, aux, P) for the contact equation, then for the heat equation
+        The points, their own coordinate in the representation (``tau``, or None)
+        and the projection ``P`` applied to the rows evaluated there (None for
+        collocation, whose rows are the equations themselves).
+    """
     if scheme == "collocation":
         (sk, ak), (sh, ah) = rep.collocation_points()
-        C, Tp, Tq = contact_operators(par, rep, sk, ak)
-        Hp, Hq = heat_operators(par, rep, sh, ah)
-        return Blocks(rep, C, Tp, Tq, Hp, Hq, np.ones(n + 1), sk)
+        return (sk, ak, None), (sh, ah, None)
     if scheme == "projection":
-        x, p1, p2 = range_projections(n)
+        x, p1, p2 = range_projections(rep.n)
         s, aux = rep.projection_points(x)
-        C, Tp, Tq = contact_operators(par, rep, s, aux)
-        Hp, Hq = heat_operators(par, rep, s, aux)
-        return Blocks(rep, p1 @ C, p1 @ Tp, p1 @ Tq, p2 @ Hp, p2 @ Hq, p1.sum(axis=1), p1 @ s)
+        return (s, aux, p1), (s, aux, p2)
     raise ValueError(f"scheme must be 'collocation' or 'projection', got {scheme!r}")

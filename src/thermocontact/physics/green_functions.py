@@ -18,6 +18,7 @@ from scipy.special import i0e, i1e, k0e, k1e
 
 __all__ = [
     "cylinder_displacement",
+    "cylinder_displacement_drop",
     "cylinder_slope",
     "cylinder_temperature",
     "cylinder_temperature_gradient",
@@ -221,3 +222,25 @@ def moving_slope(u, scale):
     ndarray
     """
     return np.sign(scale) * cylinder_slope(scale * np.asarray(u, dtype=float))
+
+
+def cylinder_displacement_drop(a, h):
+    """``E(a) - E(a + h)`` elementwise for ``a, h >= 0``: the slope kernel integrated.
+
+    The difference has an absolute error of about ``eps E(a)``, which enters the gap
+    multiplied by ``F d / c``: below ``1e-10`` of the gap's ``(|s| - 1)^{3/2}``
+    term for ``h >= 1e-3``.  For ``h < 1e-3`` the drop is the integral of
+    ``N H = -E'`` over ``[a, a + h]`` by 2-point Gauss–Legendre (relative error
+    about ``h^4 / 4320``, 3e-15 at ``h = 1e-3``), accurate however close to the edge.
+    """
+    a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
+    small = h < 1e-3
+    out = np.empty(a.shape)
+    big = ~small
+    out[big] = cylinder_displacement(a[big]) - cylinder_displacement(a[big] + h[big])
+    if np.any(small):
+        x, wq = np.polynomial.legendre.leggauss(2)
+        hs = h[small][:, None]
+        pts = a[small][:, None] + 0.5 * hs * (1.0 + x[None, :])
+        out[small] = 0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)
+    return out

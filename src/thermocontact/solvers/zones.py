@@ -1,0 +1,427 @@
+"""Contact sets of several zones, each edge an unknown (derivation section 14).
+
+The contact set is a union of intervals ``a_j < X < b_j`` in units of the Hertz
+half-width ``l`` of the actual load (``l^2 = 2 P R A / pi``).  On each zone the
+contact equation (D14) and the heat equation (D18) hold with every zone's pressure
+and heat flux acting on it; outside, no heat crosses and the gap is open.  The
+load and the heat partition ``lam`` close the problem, and between neighbouring
+zones the gap and the temperature difference ``T1 - T2`` return to the values they
+have on the zone before (both bodies touch, and perfect thermal contact holds, on
+every zone with one rigid approach and one temperature difference).
+
+For given edges the problem is linear.  Each zone's pressure, bounded at both of
+its edges, satisfies its ``n + 1`` contact rows only if two numbers vanish, the
+defects ``mu_j``, ``nu_j`` of a term ``(2/pi)(mu_j + nu_j s)`` added to its right
+side; Newton's method moves the edges until every defect vanishes.  With one zone
+this is the single-patch problem with the half-width fixed by the load
+(``P_H/P = Delta^2``, ``Pe = Pe_l Delta``, ``fHPe = fHPe_l Delta``,
+``sigma/Delta = centre/Delta``), solved by the same blocks.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from numpy.polynomial import Polynomial
+from scipy.linalg import LinAlgError, lu_factor, lu_solve
+from scipy.linalg.lapack import dgecon
+
+from .._version import __version__
+from ..analysis.zone_validity import ZoneValidity, assess_zones
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..discretisation.operator import contact_operators, heat_operators, outside_operators
+from ..discretisation.system import equation_points
+from ..problem.parameters import Parameters, SolveError
+from ..problem.validation import InputError, check_range
+
+__all__ = ["CYLINDER", "ZoneModel", "ZoneSolution", "zone_system"]
+
+#: The cylinder's initial gap, ``X^2/2`` in units of ``l^2/R``.
+CYLINDER = Polynomial([0.0, 0.0, 0.5])
+#: Newton's stopping test on the largest defect.
+DEFECT_TOL = 1e-11
+#: Systems whose reciprocal condition number is below this are refused.
+RCOND_MIN = 1e-13
+
+
+def _edges(edges) -> np.ndarray:
+    e = np.asarray(edges, dtype=float)
+    if e.ndim == 1:
+        e = e.reshape(-1, 2)
+    if e.ndim != 2 or e.shape[1] != 2 or e.shape[0] < 1:
+        raise InputError("edges must be pairs (a, b) of each zone, e.g. [[-1, 1]]")
+    flat = e.ravel()
+    if not np.all(np.isfinite(flat)) or np.any(np.diff(flat) <= 0.0):
+        raise InputError(f"edges must be finite and increasing, a1 < b1 < a2 < ..., got "
+                         f"{flat.tolist()}")
+    return e
+
+
+def zone_parameters(par: Parameters, half: float) -> Parameters:
+    """The single-patch parameters of a zone of half-width ``half`` (units of ``l``)."""
+    return replace(par, pe=par.pe * half, fhpe=par.fhpe * half)
+
+
+@dataclass(frozen=True)
+class ZoneSystem:
+    """The linear system of one contact set: ``(A0 + F A1) x = b``.
+
+    The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
+    ``psi``, then each zone's defects ``(mu, nu)``.
+    """
+
+    A0: np.ndarray
+    A1: np.ndarray
+    b: np.ndarray
+    zones: int
+    n: int
+
+
+def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER) -> ZoneSystem:
+    """Assemble the equations of a contact set with given edges (derivation section 14).
+
+    Rows: each zone's contact equation (``n + 1``), each zone's heat equation
+    (``n - 1``), the load, the heat partition, and for each gap between zones the
+    gap's return (D23a) and the temperature difference's return (D23b).
+
+    Parameters
+    ----------
+    par : Parameters
+        ``pe = Pe_l`` and ``fhpe = fHPe_l`` in units of the Hertz half-width.
+    edges : ndarray, shape (m, 2)
+    lam : float
+    rep : Representation
+        An edge-graded one (the kernels between zones are integrated from an edge).
+    scheme : {"collocation", "projection"}
+    profile : numpy.polynomial.Polynomial
+        The initial gap in units of ``l^2/R`` against ``X`` (default ``X^2/2``).
+    """
+    m, n = len(edges), rep.n
+    centre = edges.mean(axis=1)
+    half = 0.5 * (edges[:, 1] - edges[:, 0])
+    zpar = [zone_parameters(par, h) for h in half]
+    (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
+
+    def reduce(P, M):
+        return M if P is None else P @ M
+
+    size = 2 * m * n + 2 * m
+    A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
+    phi = [slice(j * n, (j + 1) * n) for j in range(m)]
+    psi = [slice((m + j) * n, (m + j + 1) * n) for j in range(m)]
+    slope = profile.deriv()
+    for i in range(m):
+        rc = slice(i * (n + 1), (i + 1) * (n + 1))
+        rh = slice(m * (n + 1) + i * (n - 1), m * (n + 1) + (i + 1) * (n - 1))
+        xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
+        for j in range(m):
+            own = i == j
+            s_c = sc if own else (xc - centre[j]) / half[j]
+            s_h = sh if own else (xh - centre[j]) / half[j]
+            C, Tp, Tq = contact_operators(zpar[j], rep, s_c, ac if own else None, own=own)
+            # Zone j's thermal terms in units of l carry its half-width (section 14).
+            A0[rc, phi[j]] = reduce(p1, C)
+            A1[rc, phi[j]] = -half[j] * reduce(p1, Tp)
+            A1[rc, psi[j]] = -half[j] * reduce(p1, Tq)
+            Hp, Hq = heat_operators(zpar[j], rep, s_h, ah if own else None)
+            A0[rh, phi[j]] = reduce(p2, Hp)
+            A0[rh, psi[j]] = reduce(p2, Hq)
+        b[rc] = (2.0 / np.pi) * reduce(p1, slope(xc))
+        A0[rc, 2 * m * n + 2 * i] = -(2.0 / np.pi) * reduce(p1, np.ones_like(sc))
+        A0[rc, 2 * m * n + 2 * i + 1] = -(2.0 / np.pi) * reduce(p1, sc)
+
+    wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
+    load, part = 2 * m * n, 2 * m * n + 1
+    for j in range(m):
+        A0[load, phi[j]] = half[j] * wp
+        A0[part, phi[j]] = half[j] * par.eta * wp
+        A0[part, psi[j]] = half[j] * wq
+    b[load], b[part] = 1.0, lam
+    for k in range(m - 1):
+        lo, hi = edges[k, 1], edges[k + 1, 0]
+        rg, rt = 2 * m * n + 2 + k, 2 * m * n + 1 + m + k
+        for j in range(m):
+            C, Tp, Tq, Hp, Hq = region_integral(zpar[j], rep, edges[j], half[j], lo, hi)
+            A0[rg, phi[j]] += half[j] * C
+            A1[rg, phi[j]] -= half[j] ** 2 * Tp
+            A1[rg, psi[j]] -= half[j] ** 2 * Tq
+            A0[rt, phi[j]] += half[j] * Hp
+            A0[rt, psi[j]] += half[j] * Hq
+        b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
+    return ZoneSystem(A0, A1, b, m, n)
+
+
+def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
+    """Rows of the integrals over ``lo < X < hi`` (outside the zone) of its terms.
+
+    ``integral`` of the zone's contact-equation and heat-equation left sides over
+    ``X``, per unit ``ds`` (multiply by ``half`` for ``dX``): the differences of
+    :func:`~thermocontact.discretisation.operator.outside_operators` at the two
+    ends, measured from the zone's edge on that side.
+    """
+    a, b = edge_pair
+    if lo >= b:
+        side, t_lo, t_hi = 1.0, (lo - b) / half, (hi - b) / half
+    else:
+        side, t_lo, t_hi = -1.0, (a - lo) / half, (a - hi) / half
+    ops = outside_operators(zpar, rep, side, np.array([t_lo, t_hi]))
+    # From lo to hi: I(t_hi) - I(t_lo) on the right; on the left the integral from
+    # the edge outward runs from hi to lo, so the same difference holds with the
+    # orientation of I: integral_lo^hi = I(t_hi) - I(t_lo) as well.
+    return tuple(M[1] - M[0] for M in ops)
+
+
+def _solve_linear(system: ZoneSystem, F: float):
+    A = system.A0 + F * system.A1
+    b = system.b.copy()
+    scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
+    A *= scale[:, None]
+    b *= scale
+    try:
+        lu = lu_factor(A, check_finite=True)
+    except (LinAlgError, ValueError) as exc:
+        raise SolveError(f"the contact set's linear system could not be factorised ({exc})"
+                         ) from None
+    rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
+    if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
+        raise SolveError(f"the contact set's linear system is singular (reciprocal "
+                         f"condition number {rcond:.1e})")
+    x = lu_solve(lu, b)
+    if not np.all(np.isfinite(x)):
+        raise SolveError("the contact set's linear solve produced non-finite values")
+    return x, float(rcond)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ZoneSolution:
+    """A contact set of one or more zones, in units of the Hertz half-width ``l``.
+
+    Positions ``X = x/l`` from the undeformed cylinder's lowest point, the leading
+    edge at larger ``X``; pressures in units of ``P/l`` (unit integral over the
+    contact set), heat fluxes in units of ``f v P/l``.
+
+    Attributes
+    ----------
+    parameters : Parameters
+        ``pe = Pe_l``, ``fhpe = fHPe_l``.
+    lam : float
+    edges : ndarray, shape (m, 2)
+        ``(a_j, b_j)`` of each zone, ascending.
+    phi, psi : ndarray, shape (m, n)
+        Each zone's unknowns at the representation's nodes (in its own ``s``).
+    representation : Representation
+    method : str
+    defect : float
+        The largest defect left by Newton's method (zero for the exact edges).
+    iterations : int
+    rcond : float
+    validity : ZoneValidity or None
+    profile : Polynomial
+    """
+
+    parameters: Parameters
+    lam: float
+    edges: np.ndarray
+    phi: np.ndarray
+    psi: np.ndarray
+    representation: object
+    method: str
+    defect: float
+    iterations: int
+    rcond: float
+    validity: ZoneValidity | None = None
+    profile: Polynomial = field(default_factory=lambda: CYLINDER)
+
+    @property
+    def n(self) -> int:
+        return self.representation.n
+
+    @property
+    def zones(self) -> int:
+        return len(self.edges)
+
+    @property
+    def half_widths(self) -> np.ndarray:
+        return 0.5 * (self.edges[:, 1] - self.edges[:, 0])
+
+    @property
+    def centres(self) -> np.ndarray:
+        return self.edges.mean(axis=1)
+
+    @property
+    def loads(self) -> np.ndarray:
+        """Each zone's share of the load."""
+        return self.half_widths * (self.phi @ self.representation.pressure_rule.weights)
+
+    @property
+    def heat_partitions(self) -> np.ndarray:
+        """Each zone's share of ``lam``: ``integral (q1 - q2) dX`` over it."""
+        rep = self.representation
+        return self.half_widths * (self.psi @ rep.flux_rule.weights
+                                   + self.parameters.eta * (self.phi @ rep.pressure_rule.weights))
+
+    def pressure_at(self, X):
+        """The pressure ``p l/P`` at ``X`` (zero outside the zones)."""
+        X = np.asarray(X, dtype=float)
+        out = np.zeros(X.shape)
+        for (a, b), c, h, ph in zip(self.edges, self.centres, self.half_widths, self.phi):
+            inside = (X >= a) & (X <= b)
+            if np.any(inside):
+                out[inside] = self.representation.pressure_at(ph, (X[inside] - c) / h)
+        return out
+
+    def pressure_samples(self, count=401):
+        """``X`` and the pressure at ``count`` points of each zone (denser toward edges)."""
+        rep = self.representation
+        xs, ps = [], []
+        for c, h, ph in zip(self.centres, self.half_widths, self.phi):
+            s, f = rep.phi_samples(ph, count)
+            xs.append(c + h * s)
+            ps.append(rep.pressure_weight(s) * f)
+        return np.concatenate(xs), np.concatenate(ps)
+
+    @property
+    def peak_pressures(self) -> np.ndarray:
+        return np.array([p.max() for p in np.split(self.pressure_samples()[1], self.zones)])
+
+    @property
+    def valid(self):
+        return None if self.validity is None else self.validity.valid
+
+    def single_patch(self):
+        """With one zone: ``(P_H/P, sigma/Delta)`` of the equivalent single patch."""
+        if self.zones != 1:
+            raise ValueError("single_patch: the contact set has more than one zone")
+        h, c = self.half_widths[0], self.centres[0]
+        return float(h * h), float(c / h)
+
+    def zone_records(self) -> list[dict]:
+        return [{"a": float(a), "b": float(b), "load": float(w), "peak_pressure": float(pk)}
+                for (a, b), w, pk in zip(self.edges, self.loads, self.peak_pressures)]
+
+    def to_dict(self) -> dict:
+        p = self.parameters
+        return {
+            "version": __version__,
+            "pe_hertz": p.pe, "fhpe_hertz": p.fhpe, "K2_over_K1": p.K2_over_K1,
+            "k2_over_k1": p.k2_over_k1, "delta1_over_delta2": p.delta1_over_delta2,
+            "beta_f": p.beta_f, "lam": self.lam, "method": self.method, "n": self.n,
+            "valid": self.valid,
+            "zones": self.zone_records(),
+            "defect": self.defect, "iterations": self.iterations,
+            "complementarity": None if self.validity is None else self.validity.to_dict(),
+        }
+
+    def __repr__(self):
+        z = ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in self.edges)
+        return (f"ZoneSolution(zones={z}, loads={np.round(self.loads, 4).tolist()}, "
+                f"valid={self.valid}, n={self.n})")
+
+
+class ZoneModel:
+    """The contact-set problem with the materials' ratios fixed; solve it at any load.
+
+    Parameters
+    ----------
+    K2_over_K1 : float
+    k2_over_k1 : float, optional
+        Defaults to ``K2_over_K1``.
+    delta1_over_delta2 : float, optional
+    beta_f : float, optional
+        The Dundurs term (section 5c); the half-plane is stationary.
+    method : str, optional
+        ``"graded"`` or ``"graded-collocation"``.
+    n : int, optional
+        Unknowns per function per zone (default 32).
+    profile : Polynomial, optional
+        The initial gap against ``X`` in units of ``l^2/R`` (default ``X^2/2``, the
+        cylinder); e.g. a profile with two minima makes two zones without heat.
+    """
+
+    def __init__(self, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0, beta_f=0.0,
+                 method=DEFAULT_METHOD, n=32, profile=CYLINDER):
+        self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2, 0.0,
+                               beta_f)
+        if method not in METHODS or not METHODS[method].edge_exponents:
+            raise InputError(f"method must be 'graded' or 'graded-collocation' for contact "
+                             f"sets, got {method!r}")
+        self.method = method
+        self.n = int(n)
+        self.profile = profile if isinstance(profile, Polynomial) else Polynomial(profile)
+
+    def parameters(self, pe, fhpe) -> Parameters:
+        return replace(self.base, pe=pe, fhpe=fhpe)
+
+    def representation(self):
+        m = METHODS[self.method]
+        return m.representation(self.n, self.base.edge_exponent)
+
+    def system(self, edges, pe, fhpe, lam) -> ZoneSystem:
+        return zone_system(self.parameters(pe, fhpe), _edges(edges), lam,
+                           self.representation(), METHODS[self.method].scheme, self.profile)
+
+    def defects(self, edges, pe, fhpe, lam):
+        """The defects ``(mu_1, nu_1, ...)`` and the linear solution at these edges."""
+        system = self.system(edges, pe, fhpe, lam)
+        x, rcond = _solve_linear(system, fhpe)
+        m, n = system.zones, system.n
+        return x[2 * m * n:], x, rcond
+
+    def jacobian(self, edges, pe, fhpe, lam, defects=None):
+        """Derivatives of the defects with respect to the edges, by differences."""
+        e = _edges(edges).ravel()
+        d0 = self.defects(e, pe, fhpe, lam)[0] if defects is None else defects
+        half = np.repeat(0.5 * (e[1::2] - e[0::2]), 2)
+        J = np.empty((d0.size, e.size))
+        for k in range(e.size):
+            h = 1e-7 * max(half[k], 1e-3)
+            ek = e.copy()
+            ek[k] += h
+            J[:, k] = (self.defects(ek, pe, fhpe, lam)[0] - d0) / h
+        return J
+
+    def solve(self, edges, pe, fhpe, lam, *, max_iter=40, check_validity=True,
+              polish=True) -> ZoneSolution:
+        """Newton's method on the edges from ``edges`` to zero defects.
+
+        Raises
+        ------
+        SolveError
+            When Newton's method does not converge (the message says how far it got).
+        """
+        check_range("pe_hertz", pe, 1e-12, 1e6)
+        check_range("fhpe_hertz", fhpe, 0.0, 1e6)
+        lam = check_range("lam", lam, -1e6, 1e6)
+        e = _edges(edges).ravel().copy()
+        J = None
+        for it in range(max_iter + 1):
+            d, x, rcond = self.defects(e, pe, fhpe, lam)
+            err = float(np.max(np.abs(d)))
+            if err < DEFECT_TOL:
+                break
+            if it == max_iter:
+                raise SolveError(f"the edges did not converge in {max_iter} Newton steps "
+                                 f"(largest defect {err:.2e})")
+            J = self.jacobian(e, pe, fhpe, lam, d)
+            try:
+                step = -np.linalg.solve(J, d)
+            except np.linalg.LinAlgError:
+                raise SolveError("the edges' Newton matrix is singular: a fold or a "
+                                 "degenerate contact set") from None
+            # Keep the order of the edges: no zone or gap shrinks by more than half.
+            lengths = np.diff(e)
+            change = np.diff(step)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                limit = np.where(change < 0.0, -0.5 * lengths / change, np.inf)
+            e = e + min(1.0, float(np.min(limit))) * step
+        par = self.parameters(pe, fhpe)
+        m, n = len(e) // 2, self.n
+        edges2 = e.reshape(m, 2)
+        phi = x[:m * n].reshape(m, n)
+        psi = x[m * n:2 * m * n].reshape(m, n)
+        rep = self.representation()
+        validity = (assess_zones(par, rep, edges2, phi, psi, self.profile, polish=polish)
+                    if check_validity else None)
+        return ZoneSolution(par, float(lam), edges2, phi, psi, rep, self.method, err, it,
+                            rcond, validity, self.profile)

@@ -1,0 +1,100 @@
+"""Contact sets of several zones (derivation section 14)."""
+
+import numpy as np
+import pytest
+from numpy.polynomial import Polynomial
+
+from thermocontact.discretisation.operator import outside_operators
+from thermocontact.discretisation.representations import EdgeGraded
+from thermocontact.problem.parameters import Parameters
+from thermocontact.solvers.single_patch import Model
+from thermocontact.solvers.zones import ZoneModel
+
+
+def test_outside_integrals_against_mpmath():
+    """The Cauchy kernel's integral from an edge outward (the kernel of
+    outside_operators), against mpmath quadrature of ln|(s - r)/(e - r)| q'(r) in
+    r = cos t (no moment machinery)."""
+    mp = pytest.importorskip("mpmath")
+    rep = EdgeGraded(24)
+    psi = np.random.default_rng(1).standard_normal(24)
+    for side, tt in ((1.0, 0.3), (-1.0, 0.02)):
+        lb, lq = rep.integrate(lambda e: np.log1p(side * tt / e), [side * (1 + tt)],
+                               scale=1.0, from_edge=True)
+
+        def f(t):
+            r = np.cos(float(t))
+            e = 2 * np.sin(float(t) / 2) ** 2 if side > 0 else -2 * np.cos(float(t) / 2) ** 2
+            return float(np.log1p(side * tt / e)) * rep.psi_at(psi, r)
+        ref = mp.quad(f, [0, 1e-8, 1e-4, 1e-2, 0.5, np.pi / 2, np.pi - 0.5, np.pi - 1e-2,
+                          np.pi - 1e-4, np.pi])
+        assert (lq @ psi)[0] == pytest.approx(float(ref), rel=1e-9, abs=1e-12)
+
+
+def test_outside_integrals_are_the_operators_integrated():
+    """d/dtt of the integrated contact operator is the contact operator outside
+    (central differences of the closed forms against contact_operators)."""
+    from thermocontact.discretisation.operator import contact_operators, heat_operators
+    par = Parameters(5.0, 0.3, 10.0, 10.0, 0.5)
+    rep = EdgeGraded(24)
+    rng = np.random.default_rng(2)
+    phi, psi = rng.standard_normal(24), rng.standard_normal(24)
+    h = 1e-3
+    for side in (1.0, -1.0):
+        for tt in (0.2, 0.7):
+            # A fourth-order central difference in tt.
+            ops = outside_operators(par, rep, side, tt + h * np.array([-2, -1, 1, 2]))
+            stencil = np.array([1.0, -8.0, 8.0, -1.0]) / (12 * h)
+            s = np.array([side * (1 + tt)])
+            C, Tp, Tq = contact_operators(par, rep, s)
+            Hp, Hq = heat_operators(par, rep, s)
+            for M, ref, v in ((ops[0], C, phi), (ops[1], Tp, phi), (ops[2], Tq, psi),
+                              (ops[3], Hp, phi), (ops[4], Hq, psi)):
+                deriv = side * stencil @ (M @ v)
+                assert deriv == pytest.approx((ref @ v)[0], rel=1e-7, abs=1e-10)
+
+
+@pytest.mark.parametrize("d, lam", [(1.0, 1.0), (0.5, -0.3)])
+def test_one_zone_is_the_single_patch(d, lam):
+    """One zone reproduces the core at Pe = Pe_l Delta, fHPe = fHPe_l Delta: P_H/P is
+    Delta^2 and sigma/Delta the centre over Delta, to 1e-10 (the same blocks)."""
+    pe_l, f_l = 5.0, 0.2
+    sol = ZoneModel(10.0, delta1_over_delta2=d, n=32).solve([[-0.9, 0.8]], pe_l, f_l, lam)
+    L, sigma = sol.single_patch()
+    D = sol.half_widths[0]
+    core = Model(pe_l * D, 10.0, delta1_over_delta2=d, n=32).solve_at(32, f_l * D, lam=lam)
+    assert L == pytest.approx(core.load_ratio, abs=1e-10)
+    assert sigma == pytest.approx(core.sigma_over_delta, abs=1e-10)
+    # The margins are the core's in units of l: the gap's times Delta^(1/2), the
+    # pressure's over Delta.
+    v, vc = sol.validity, core.validity
+    assert v.valid == vc.valid
+    assert v.pressure_margin == pytest.approx(vc.pressure_margin / D, rel=1e-7)
+    assert v.gap_margin == pytest.approx(vc.gap_margin * D**0.5, rel=1e-6)
+
+
+def test_no_heat_is_hertz():
+    sol = ZoneModel(10.0, n=16).solve([[-1.3, 0.7]], 2.0, 0.0, 0.5)
+    np.testing.assert_allclose(sol.edges, [[-1.0, 1.0]], atol=1e-12)
+    X = np.linspace(-0.999, 0.999, 41)
+    np.testing.assert_allclose(sol.pressure_at(X), (2 / np.pi) * np.sqrt(1 - X * X), atol=1e-12)
+    assert sol.valid
+
+
+def test_two_zones_of_a_quartic_profile_against_the_closed_form():
+    """g0 = A (X^2 - c^2)^2: p = (8A/pi)|X| sqrt((X^2 - a^2)(b^2 - X^2)) on two zones with
+    a^2 + b^2 = 2c^2 and b^2 - a^2 = 1/sqrt(A) (section 14)."""
+    A, c = 1 / 32, 2.0
+    prof = A * Polynomial([-c * c, 0, 1]) ** 2
+    sol = ZoneModel(10.0, n=32, profile=prof).solve([[-2.6, -1.4], [1.3, 2.7]], 1.0, 0.0, 0.0)
+    a = np.sqrt(c * c - 0.5 / np.sqrt(A))
+    b = np.sqrt(c * c + 0.5 / np.sqrt(A))
+    np.testing.assert_allclose(sol.edges, [[-b, -a], [a, b]], atol=1e-12)
+    np.testing.assert_allclose(sol.loads, [0.5, 0.5], atol=1e-12)
+    s = np.cos(np.linspace(0.01, np.pi - 0.01, 60))
+    for centre, half, phi in zip(sol.centres, sol.half_widths, sol.phi):
+        X = centre + half * s
+        exact = (8 * A / np.pi) * np.abs(X) * np.sqrt((X * X - a * a) * (b * b - X * X))
+        np.testing.assert_allclose(sol.representation.pressure_at(phi, s), exact, atol=1e-12)
+    assert sol.valid
+    assert sol.validity.gap_margin > 0
