@@ -149,3 +149,64 @@ def test_two_zones_without_symmetry_confirmed_by_the_second_method():
     np.testing.assert_allclose(el.zones, sol.edges, atol=0.51 * el.h)
     np.testing.assert_allclose(el.loads, sol.loads, atol=1e-5)
     assert sol.loads[0] == pytest.approx(0.579331, abs=1e-6)
+
+
+def test_zones_command_solves_and_reports(capsys):
+    """`thermocontact zones --json`: one zone followed from Hertz's, the record's keys,
+    the zone equal to the single patch at the same load (P_H/P = Delta^2)."""
+    import json
+
+    from thermocontact.cli import main
+    args = ["zones", "--pe-hertz", "5.43", "--fhpe-hertz", "0.5", "--K2-over-K1", "10",
+            "--lam", "1", "-n", "24", "--json"]
+    assert main(args) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["status"] == "solved" and rec["valid"] is True
+    assert {"status", "message", "valid", "zones", "complementarity"} <= rec.keys()
+    (zone,) = rec["zones"]
+    assert zone["load"] == pytest.approx(1.0, abs=1e-12)
+    D = 0.5 * (zone["b"] - zone["a"])
+    core = Model(5.43 * D, 10.0, n=24).solve_at(24, 0.5 * D, lam=1.0)
+    assert D * D == pytest.approx(core.load_ratio, abs=1e-10)
+    assert rec["complementarity"]["pressure_margin"] > 0
+    assert rec["complementarity"]["gap_margin"] > 0
+
+
+def test_past_the_boundary_no_single_zone_and_no_nucleated_zone(capsys):
+    """Path (a) past the paper's boundary (Pe = 5, K2/K1 = 10, lam = 1): the single zone
+    followed from Hertz's fails where the core's boundary says (fHPe_l = 0.665362 /
+    sqrt(P_H/P) = 0.72295), the gap closing just ahead of the leading edge, and a zone
+    nucleated there does not hold (Newton's method shrinks it to nothing or merges it
+    into the main zone)."""
+    from thermocontact.studies.contact_sets import find_contact_set
+    res = find_contact_set(5.43, 0.75, 10.0, lam=1.0, n=16)
+    assert res.status == "no steady solution"
+    assert res.event["fhpe_hertz"] == pytest.approx(0.72295, rel=2e-4)
+    assert res.event["failure"].startswith("gap margin")
+    assert res.solution is not None and res.solution.valid is False
+    nucleated = [a for a in res.attempts if a["tried"] == "zone where the gap closed"]
+    assert len(nucleated) == 2
+    assert all(a["result"].startswith("no convergence (Newton's method leaves this contact "
+                                      "set") for a in nucleated)
+
+
+def test_contact_zones_in_physical_units(capsys):
+    """`contact --zones`: the same contact set in metres, newtons and pascals, with
+    what the theory needs (here: strains far beyond the elastic range)."""
+    import json
+
+    from thermocontact.cli import main
+    assert main(["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius",
+                 "450mm", "--load", "200kN/m", "--speed", "72km/h", "--friction", "0.35",
+                 "--lam", "-1", "--zones", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    (zone,) = rec["zones"]
+    assert zone["load"] == pytest.approx(2e5, rel=1e-12)
+    # The single patch's first branch of the same problem (docs/examples): a = 1.334 mm.
+    assert zone["a"] == pytest.approx(1.334e-3, rel=1e-3)
+    assert rec["theory_applicable"] is False
+    assert any("strain" in r for r in rec["theory_reasons"])
+    assert main(["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius",
+                 "450mm", "--load", "200kN/m", "--speed", "72km/h", "--friction", "0.35",
+                 "--lam", "-1", "--zones", "--speed2", "1"]) == 2
+    assert "stationary half-plane" in capsys.readouterr().err

@@ -661,6 +661,45 @@ def _contact_summary(res) -> str:
     return "\n".join(lines)
 
 
+@cli.command("zones")
+@click.option("--pe-hertz", "pe_hertz", type=float, required=True,
+              help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load.")
+@click.option("--fhpe-hertz", "fhpe_hertz", type=float, required=True,
+              help="fHPe_l = f H Pe_l >= 0.")
+@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
+              help="Conductivity ratio K2/K1 > 0.")
+@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
+@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
+              help="Distortivity ratio >= 0.")
+@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("-n", "n", type=int, default=32, show_default=True,
+              help="Unknowns per function per zone, in [8, 256].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, n,
+              as_json):
+    """The contact set at one load: one zone or several, or why there is none.
+
+    Lengths in units of the Hertz half-width l of the load, from the undeformed
+    cylinder's lowest point (the leading edge at larger x); loads as fractions of P,
+    pressures in units of P/l.
+    """
+    from .studies.contact_sets import find_contact_set
+
+    res = find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+                           delta1_over_delta2=delta1_over_delta2, n=n)
+    if as_json:
+        click.echo(json.dumps(res.to_dict(), allow_nan=False))
+        return
+    lines = [f"status: {res.status}: {res.message}"]
+    if res.solution is not None:
+        lines.append(f"  valid: {res.solution.valid} ({res.solution.validity.reason})")
+        for k, z in enumerate(res.solution.zone_records(), 1):
+            lines.append(f"  zone {k}: {z['a']:.6f} < x/l < {z['b']:.6f}, load "
+                         f"{z['load']:.6f} P, peak pressure {z['peak_pressure']:.6f} P/l")
+    click.echo("\n".join(lines))
+
+
 @cli.command("contact")
 @_physical_options(required=True)
 @click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
@@ -673,8 +712,11 @@ def _contact_summary(res) -> str:
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
+@click.option("--zones", "zones", is_flag=True,
+              help="The contact set at this load, of one zone or several (derivation "
+                   "section 14), instead of the single patch's branches.")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
-                lam, speed2, tol, as_json, csv_file, plot_file):
+                lam, speed2, tol, as_json, csv_file, plot_file, zones):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from .io.files import check_output_file
     from .problem.materials import get_material, load_materials
@@ -697,6 +739,27 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         parse_quantity(speed, "m/s", "speed"), friction, lam,
         parse_quantity(speed2, "m/s", "speed2"), dundurs=dundurs is not False)
     tol = check_positive("tol", tol)
+    if zones:
+        if csv_file is not None or plot_file is not None:
+            raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
+        from .studies.contact_sets import physical_contact_set
+
+        rec = physical_contact_set(prob)
+        if as_json:
+            click.echo(json.dumps(rec, allow_nan=False))
+            return
+        lines = [f"status: {rec['status']}: {rec['message']}",
+                 f"  Hertz half-width {rec['hertz_half_width']:.6g} m"]
+        for k, z in enumerate(rec["zones"], 1):
+            lines.append(f"  zone {k}: {z['a']:.6g} m < x < {z['b']:.6g} m, load "
+                         f"{z['load']:.6g} N/m, peak pressure {z['peak_pressure']:.6g} Pa")
+        lines.append(f"  valid: {rec['valid']}")
+        lines.append("  theory applicable (contact size, strains; slopes and temperatures "
+                     "not checked for contact sets): "
+                     + ("yes" if rec["theory_applicable"] else
+                        "NO: " + "; ".join(rec["theory_reasons"])))
+        click.echo("\n".join(lines))
+        return
     from .execution.executors import side_process
     from .execution.progress import ProgressLine
 

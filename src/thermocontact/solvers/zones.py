@@ -374,8 +374,11 @@ class ZoneModel:
         d0 = self.defects(e, pe, fhpe, lam)[0] if defects is None else defects
         half = np.repeat(0.5 * (e[1::2] - e[0::2]), 2)
         J = np.empty((d0.size, e.size))
+        lengths = np.diff(e)
         for k in range(e.size):
-            h = 1e-7 * max(half[k], 1e-3)
+            # A step well inside the zone and the gap either side of the edge.
+            near = lengths[max(k - 1, 0):k + 1].min()
+            h = min(1e-7 * max(half[k], 1e-3), 1e-3 * near)
             ek = e.copy()
             ek[k] += h
             J[:, k] = (self.defects(ek, pe, fhpe, lam)[0] - d0) / h
@@ -415,6 +418,13 @@ class ZoneModel:
             with np.errstate(divide="ignore", invalid="ignore"):
                 limit = np.where(change < 0.0, -0.5 * lengths / change, np.inf)
             e = e + min(1.0, float(np.min(limit))) * step
+            lengths = np.diff(e)
+            if np.min(lengths) < 1e-6 * (e[-1] - e[0]):
+                k = int(np.argmin(lengths))
+                what = (f"zone {k // 2 + 1} shrinks to nothing" if k % 2 == 0 else
+                        f"zones {k // 2 + 1} and {k // 2 + 2} merge")
+                raise SolveError(f"Newton's method leaves this contact set: {what} "
+                                 f"(largest defect {err:.2e})")
         par = self.parameters(pe, fhpe)
         m, n = len(e) // 2, self.n
         edges2 = e.reshape(m, 2)

@@ -1,0 +1,248 @@
+"""Which contact set carries a load: from Hertz's zone, followed in fHPe (section 14c).
+
+At ``fHPe_l = 0`` the contact set is Hertz's zone ``[-1, 1]``.  It is followed with
+step control in ``fHPe_l`` at fixed ``Pe_l``, every inequality checked at every
+step.  Where one fails, the event is located by bisection and the contact sets
+that the failure suggests are tried at the target: a zone where the gap closed
+(nucleation), the zone split where the pressure vanished, and the second method's
+contact set (:mod:`thermocontact.solvers.elements`).  The answer is the first
+valid set, or the evidence that none of them is.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..analysis.applicability import MAX_HALF_WIDTH_OVER_RADIUS, MAX_STRAIN
+from ..problem.parameters import SolveError
+from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
+from ..solvers.elements import solve_elements
+from ..solvers.zones import ZoneModel, ZoneSolution
+
+__all__ = ["ContactSetResult", "find_contact_set", "physical_contact_set"]
+
+#: Relative width to which the event of the first failing inequality is located.
+EVENT_TOL = 1e-4
+
+
+@dataclass(frozen=True)
+class ContactSetResult:
+    """The answer for one load: a contact set, or why there is none.
+
+    Attributes
+    ----------
+    status : {"solved", "no steady solution", "not converged"}
+    message : str
+    solution : ZoneSolution or None
+        The valid contact set (``solved``), else the last one found (invalid).
+    event : dict or None
+        Where the single zone followed from Hertz's first fails: ``fhpe_hertz``,
+        the failing inequality and where.
+    attempts : list of dict
+        The other contact sets tried and what became of them.
+    """
+
+    status: str
+    message: str
+    solution: ZoneSolution | None
+    event: dict | None = None
+    attempts: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        rec = {"status": self.status, "message": self.message,
+               "valid": None if self.solution is None else self.solution.valid,
+               "zones": [] if self.solution is None else self.solution.zone_records(),
+               "complementarity": (None if self.solution is None
+                                   or self.solution.validity is None
+                                   else self.solution.validity.to_dict()),
+               "event": self.event, "attempts": self.attempts}
+        if self.solution is not None:
+            rec["n"] = self.solution.n
+            rec["defect"] = self.solution.defect
+        return rec
+
+
+def _first_failure(sol: ZoneSolution) -> str:
+    return sol.validity.failures[0] if sol.validity.failures else "valid"
+
+
+def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
+                     delta1_over_delta2=1.0, beta_f=0.0, n=32, progress=None
+                     ) -> ContactSetResult:
+    """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``).
+
+    Parameters
+    ----------
+    pe_hertz, fhpe_hertz : float
+        ``Pe_l = v l/(2 k2) > 0`` and ``fHPe_l >= 0``.
+    K2_over_K1, k2_over_k1, delta1_over_delta2 : float
+    lam : float
+    beta_f : float, optional
+        The Dundurs term (section 5c); the second method is then not tried.
+    n : int
+        Unknowns per function per zone.
+    progress : callable, optional
+        ``progress(fraction)`` as the continuation advances.
+    """
+    pe = check_positive("pe_hertz", pe_hertz)
+    target = check_nonnegative("fhpe_hertz", fhpe_hertz)
+    lam = check_range("lam", lam, -1e6, 1e6)
+    if not 8 <= int(n) <= 256:
+        raise InputError(f"n must be in [8, 256], got {n!r}")
+    model = ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
+                      delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n))
+
+    def at(edges, F, polish=False):
+        return model.solve(edges, pe, F, lam, polish=polish)
+
+    # Follow the single zone from Hertz's, halving the step where Newton fails.
+    edges, F, sol = np.array([[-1.0, 1.0]]), 0.0, None
+    step = target / 4.0 if target else 0.0
+    sol = at(edges, 0.0)
+    failed_at = None
+    while F < target:
+        trial = min(target, F + step)
+        try:
+            new = at(sol.edges, trial)
+        except SolveError:
+            step *= 0.5
+            if step < 1e-6 * max(target, 1e-3):
+                return ContactSetResult(
+                    "not converged", f"the single zone could not be followed past "
+                    f"fHPe_l = {F:.6g} (Newton's method fails for every step)", sol)
+            continue
+        if not new.valid:
+            failed_at = trial
+            break
+        sol, F = new, trial
+        step *= 1.5
+        if progress is not None:
+            progress(F / target)
+    if failed_at is None:
+        final = at(sol.edges, target, polish=True)
+        if final.valid:
+            return ContactSetResult("solved", "one zone, followed from Hertz's", final)
+        failed_at = target
+
+    # Locate the event between the last valid F and the first invalid one.
+    lo, hi, lo_sol = F, failed_at, sol
+    while hi - lo > EVENT_TOL * max(hi, 1e-9):
+        mid = 0.5 * (lo + hi)
+        try:
+            s_mid = at(lo_sol.edges, mid)
+        except SolveError:
+            break
+        if s_mid.valid:
+            lo, lo_sol = mid, s_mid
+        else:
+            hi = mid
+    bad = at(lo_sol.edges, hi, polish=True)
+    event = {"fhpe_hertz": hi, "failure": _first_failure(bad),
+             "edges": bad.edges.ravel().tolist()}
+    single = at(bad.edges, target, polish=True)
+
+    # The contact sets the failure suggests, tried at the target.
+    v = bad.validity
+    guesses = []
+    (a, b), = bad.edges
+    h = 0.5 * (b - a)
+    if v.gap_margin < 0.0:
+        X0 = v.gap_margin_at
+        for w in (1e-3, 1e-2):
+            width = w * h
+            if X0 > b:
+                gap = X0 - b
+                guesses.append(("zone where the gap closed",
+                                [[a, b], [X0 - min(width, 0.5 * gap), X0 + width]]))
+            else:
+                gap = a - X0
+                guesses.append(("zone where the gap closed",
+                                [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
+    if v.pressure_margin < 0.0 and a < v.pressure_margin_at < b:
+        Xp = v.pressure_margin_at
+        for w in (1e-3, 1e-2):
+            guesses.append(("zone split where the pressure vanished",
+                            [[a, Xp - w * h], [Xp + w * h, b]]))
+    attempts = []
+    try:
+        if beta_f:
+            raise SolveError("not tried: the second method has no Dundurs term")
+        el = solve_elements(model.parameters(pe, target), lam,
+                            domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
+        guesses.append(("the second method's contact set", el.zones.tolist()))
+        attempts.append({"tried": "second method (400 elements)",
+                         "zones": el.zones.ravel().tolist(), "chatter": el.chatter})
+    except SolveError as exc:
+        attempts.append({"tried": "second method (400 elements)", "result": str(exc)})
+    for name, guess in guesses:
+        try:
+            s2 = at(np.array(guess, dtype=float), target, polish=True)
+        except (SolveError, InputError) as exc:
+            attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
+                             "result": f"no convergence ({exc})"})
+            continue
+        attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
+                         "edges": s2.edges.ravel().tolist(),
+                         "loads": s2.loads.tolist(),
+                         "result": s2.validity.reason})
+        if s2.valid:
+            return ContactSetResult("solved", f"{s2.zones} zones ({name}); the single zone "
+                                    f"fails beyond fHPe_l = {hi:.6g}", s2, event, attempts)
+    return ContactSetResult(
+        "no steady solution",
+        f"the single zone followed from Hertz's fails beyond fHPe_l = {hi:.6g} "
+        f"({event['failure']}), and none of the {len(guesses)} other contact sets tried "
+        f"is valid at fHPe_l = {target:.6g} (see attempts)", single, event, attempts)
+
+
+def physical_contact_set(problem, *, n=32, progress=None) -> dict:
+    """:func:`find_contact_set` for a problem in SI units, the answer in SI units.
+
+    Parameters
+    ----------
+    problem : PhysicalProblem
+        With a stationary half-plane.
+
+    Returns
+    -------
+    dict
+        ``status``, ``message``, ``valid``, ``hertz_half_width`` (m) and ``zones``
+        with ``a``, ``b`` (m, from the undeformed cylinder's lowest point, the leading
+        edge at larger x), ``load`` (N/m) and ``peak_pressure`` (Pa); ``dimensionless``
+        holds the answer in units of the Hertz half-width.
+    """
+    if problem.speed2:
+        raise InputError("--zones needs a stationary half-plane (speed2 = 0), got speed2 = "
+                         f"{problem.speed2:g} m/s")
+    ell = problem.hertz_half_width
+    c, h = problem.cylinder, problem.half_plane
+    res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), h.K / c.K, lam=problem.lam,
+                           k2_over_k1=h.k / c.k,
+                           delta1_over_delta2=c.distortivity / h.distortivity,
+                           beta_f=problem.beta_f, n=n, progress=progress)
+    P = problem.load
+    zones = [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
+              "peak_pressure": z["peak_pressure"] * P / ell}
+             for z in (res.solution.zone_records() if res.solution is not None else [])]
+    # What the theory needs that these numbers can say: a contact small against the
+    # radius and small strains (section 11a); slopes and temperatures of contact sets
+    # are not evaluated yet, and the record says so.
+    reasons = []
+    if zones:
+        reach = max(max(abs(z["a"]), abs(z["b"])) for z in zones)
+        if reach > MAX_HALF_WIDTH_OVER_RADIUS * problem.radius:
+            reasons.append(f"contact reaches {reach:.3g} m from the axis > "
+                           f"{MAX_HALF_WIDTH_OVER_RADIUS:g} R: not small against the radius")
+        peak = max(z["peak_pressure"] for z in zones)
+        for name, body in (("cylinder", c), ("half-plane", h)):
+            strain = peak * body.compliance
+            if strain > MAX_STRAIN:
+                reasons.append(f"{name} strain (peak pressure x compliance) {strain:.3g} > "
+                               f"{MAX_STRAIN:g}: not small strains")
+    return {"status": res.status, "message": res.message,
+            "valid": None if res.solution is None else res.solution.valid,
+            "theory_applicable": not reasons, "theory_reasons": reasons,
+            "theory_checked": ["contact size against the radius", "strains"],
+            "hertz_half_width": ell, "zones": zones, "dimensionless": res.to_dict()}
