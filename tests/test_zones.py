@@ -191,22 +191,25 @@ def test_past_the_boundary_no_single_zone_and_no_nucleated_zone(capsys):
 
 
 def test_contact_zones_in_physical_units(capsys):
-    """`contact --zones`: the same contact set in metres, newtons and pascals, with
-    what the theory needs (here: strains far beyond the elastic range)."""
+    """`contact --zones`: the contact set in metres, newtons and pascals, equal to the
+    single patch's valid branch of the same problem (steel on cast iron at 1 m/s)."""
     import json
 
     from thermocontact.cli import main
-    assert main(["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius",
-                 "450mm", "--load", "200kN/m", "--speed", "72km/h", "--friction", "0.35",
-                 "--lam", "-1", "--zones", "--json"]) == 0
+    args = ["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius",
+            "450mm", "--load", "200kN/m", "--speed", "1m/s", "--friction", "0.35",
+            "--lam", "-1"]
+    assert main(args + ["--zones", "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
+    assert main(args + ["--json"]) == 0
+    single = json.loads(capsys.readouterr().out)
+    (branch,) = [b for b in single["branches"] if b["valid"]]
     (zone,) = rec["zones"]
+    assert rec["status"] == "solved" and rec["valid"] is True
     assert zone["load"] == pytest.approx(2e5, rel=1e-12)
-    # The single patch's first branch of the same problem (docs/examples): a = 1.334 mm.
-    assert zone["a"] == pytest.approx(1.334e-3, rel=1e-3)
-    assert rec["theory_applicable"] is False
-    assert any("strain" in r for r in rec["theory_reasons"])
-    assert main(["contact", "--cylinder", "steel", "--half-plane", "cast-iron", "--radius",
-                 "450mm", "--load", "200kN/m", "--speed", "72km/h", "--friction", "0.35",
-                 "--lam", "-1", "--zones", "--speed2", "1"]) == 2
+    assert zone["a"] == pytest.approx(branch["a"], rel=1e-6)
+    assert zone["b"] == pytest.approx(branch["b"], rel=1e-6)
+    assert zone["peak_pressure"] == pytest.approx(branch["peak_pressure"], rel=1e-5)
+    assert rec["theory_applicable"] is True and rec["theory_reasons"] == []
+    assert main(args + ["--zones", "--speed2", "0.5"]) == 2
     assert "stationary half-plane" in capsys.readouterr().err

@@ -32,6 +32,7 @@ from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..discretisation.operator import contact_operators, heat_operators, outside_operators
 from ..discretisation.system import equation_points
+from ..numerics.extrema import polish_minimum
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_range
 
@@ -283,7 +284,15 @@ class ZoneSolution:
 
     @property
     def peak_pressures(self) -> np.ndarray:
-        return np.array([p.max() for p in np.split(self.pressure_samples()[1], self.zones)])
+        """Each zone's largest pressure: the greatest sample, polished on the series."""
+        rep, out = self.representation, []
+        for ph in self.phi:
+            s, f = rep.phi_samples(ph, 401)
+            p = rep.pressure_weight(s) * f
+            i = int(np.argmax(p))
+            _, least = polish_minimum(lambda x, ph=ph: -rep.pressure_at(ph, x), s, -p, i)
+            out.append(-least)
+        return np.array(out)
 
     @property
     def valid(self):

@@ -21,7 +21,7 @@ from ..problem.validation import InputError, check_nonnegative, check_positive, 
 from ..solvers.elements import solve_elements
 from ..solvers.zones import ZoneModel, ZoneSolution
 
-__all__ = ["ContactSetResult", "find_contact_set", "physical_contact_set"]
+__all__ = ["ContactSetResult", "find_contact_set", "follow_contact_set", "physical_contact_set"]
 
 #: Relative width to which the event of the first failing inequality is located.
 EVENT_TOL = 1e-4
@@ -71,7 +71,8 @@ def _first_failure(sol: ZoneSolution) -> str:
 def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                      delta1_over_delta2=1.0, beta_f=0.0, n=32, progress=None
                      ) -> ContactSetResult:
-    """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``).
+    """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``),
+    followed from Hertz's zone along ``fHPe_l`` at fixed ``Pe_l``.
 
     Parameters
     ----------
@@ -88,46 +89,78 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     """
     pe = check_positive("pe_hertz", pe_hertz)
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
+    return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
+                              k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                              beta_f=beta_f, n=n, progress=progress)
+
+
+#: Largest move of any edge in one continuation step, in half-widths of the smallest
+#: zone.
+MAX_EDGE_MOVE = 0.25
+
+
+def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
+                       beta_f=0.0, n=32, progress=None) -> ContactSetResult:
+    """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
+
+    At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there).  The
+    step is halved where Newton's method fails or an edge would move by more than
+    :data:`MAX_EDGE_MOVE` of the smallest zone's half-width (so that no step jumps
+    to another branch), and grown by half
+    where it succeeds.  Events carry ``t``, ``pe_hertz`` and ``fhpe_hertz``.
+    """
     lam = check_range("lam", lam, -1e6, 1e6)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
     model = ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n))
 
-    def at(edges, F, polish=False):
+    def at(edges, t, polish=False):
+        pe, F = path(t)
         return model.solve(edges, pe, F, lam, polish=polish)
 
-    # Follow the single zone from Hertz's, halving the step where Newton fails.
-    edges, F, sol = np.array([[-1.0, 1.0]]), 0.0, None
-    step = target / 4.0 if target else 0.0
-    sol = at(edges, 0.0)
-    failed_at = None
-    while F < target:
-        trial = min(target, F + step)
-        try:
-            new = at(sol.edges, trial)
-        except SolveError:
-            step *= 0.5
-            if step < 1e-6 * max(target, 1e-3):
-                return ContactSetResult(
-                    "not converged", f"the single zone could not be followed past "
-                    f"fHPe_l = {F:.6g} (Newton's method fails for every step)", sol)
-            continue
-        if not new.valid:
-            failed_at = trial
-            break
-        sol, F = new, trial
-        step *= 1.5
-        if progress is not None:
-            progress(F / target)
+    def follow(sol, t, to, stop_when_invalid):
+        # From sol at t toward `to`; stops at the first invalid solution if asked.
+        step = (to - t) / 8.0
+        while t < to:
+            trial = min(to, t + step)
+            try:
+                new = at(sol.edges, trial)
+                moved = new.zones != sol.zones or float(
+                    np.max(np.abs(new.edges - sol.edges))) > MAX_EDGE_MOVE * float(
+                    np.min(sol.half_widths))
+            except SolveError:
+                moved = True
+            if moved:
+                step *= 0.5
+                if step < 1e-7:
+                    return sol, t, None
+                continue
+            if stop_when_invalid and not new.valid:
+                return sol, t, trial
+            sol, t = new, trial
+            step *= 1.5
+            if progress is not None:
+                progress(t)
+        return sol, t, None
+
+    def where(t):
+        pe, F = path(t)
+        return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
+
+    sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
+    if failed_at is None and t < 1.0:
+        return ContactSetResult(
+            "not converged", f"the single zone could not be followed past {where(t)} "
+            f"(Newton's method fails, or jumps, for every step)", sol)
     if failed_at is None:
-        final = at(sol.edges, target, polish=True)
+        final = at(sol.edges, 1.0, polish=True)
         if final.valid:
             return ContactSetResult("solved", "one zone, followed from Hertz's", final)
-        failed_at = target
+        failed_at = 1.0
 
-    # Locate the event between the last valid F and the first invalid one.
-    lo, hi, lo_sol = F, failed_at, sol
+    # Locate the event between the last valid t and the first invalid one.
+    lo, hi, lo_sol = t, failed_at, sol
     while hi - lo > EVENT_TOL * max(hi, 1e-9):
         mid = 0.5 * (lo + hi)
         try:
@@ -139,14 +172,17 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         else:
             hi = mid
     bad = at(lo_sol.edges, hi, polish=True)
-    event = {"fhpe_hertz": hi, "failure": _first_failure(bad),
-             "edges": bad.edges.ravel().tolist()}
-    single = at(bad.edges, target, polish=True)
+    event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
+    # The single zone itself at the end (followed on past the event).
+    single, reached, _ = follow(bad, hi, 1.0, False)
+    single = at(single.edges, reached, polish=True)
+    if reached < 1.0:
+        event["single_zone_followed_to"] = where(reached)
 
-    # The contact sets the failure suggests, tried at the target.
-    v = bad.validity
+    # The contact sets the failure at the end suggests.
+    v = single.validity
     guesses = []
-    (a, b), = bad.edges
+    (a, b), = single.edges
     h = 0.5 * (b - a)
     if v.gap_margin < 0.0:
         X0 = v.gap_margin_at
@@ -169,7 +205,8 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     try:
         if beta_f:
             raise SolveError("not tried: the second method has no Dundurs term")
-        el = solve_elements(model.parameters(pe, target), lam,
+        pe, F = path(reached)
+        el = solve_elements(model.parameters(pe, F), lam,
                             domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
         guesses.append(("the second method's contact set", el.zones.tolist()))
         attempts.append({"tried": "second method (400 elements)",
@@ -178,7 +215,7 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         attempts.append({"tried": "second method (400 elements)", "result": str(exc)})
     for name, guess in guesses:
         try:
-            s2 = at(np.array(guess, dtype=float), target, polish=True)
+            s2 = at(np.array(guess, dtype=float), reached, polish=True)
         except (SolveError, InputError) as exc:
             attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
                              "result": f"no convergence ({exc})"})
@@ -188,13 +225,19 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                          "loads": s2.loads.tolist(),
                          "result": s2.validity.reason})
         if s2.valid:
-            return ContactSetResult("solved", f"{s2.zones} zones ({name}); the single zone "
-                                    f"fails beyond fHPe_l = {hi:.6g}", s2, event, attempts)
+            status = "solved" if reached >= 1.0 else "not converged"
+            return ContactSetResult(status, f"{s2.zones} zones ({name}) at {where(reached)}; "
+                                    f"the single zone fails beyond {where(hi)}", s2, event,
+                                    attempts)
+    end = where(reached)
     return ContactSetResult(
         "no steady solution",
-        f"the single zone followed from Hertz's fails beyond fHPe_l = {hi:.6g} "
-        f"({event['failure']}), and none of the {len(guesses)} other contact sets tried "
-        f"is valid at fHPe_l = {target:.6g} (see attempts)", single, event, attempts)
+        f"the single zone followed from Hertz's fails beyond fHPe_l = {event['fhpe_hertz']:.6g} "
+        f"(Pe_l = {event['pe_hertz']:.6g}; {event['failure']}), and none of the "
+        f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
+        f"{end['fhpe_hertz']:.6g} (see attempts)"
+        + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
+           "that far, where it is returned"), single, event, attempts)
 
 
 def physical_contact_set(problem, *, n=32, progress=None) -> dict:
