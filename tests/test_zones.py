@@ -213,3 +213,48 @@ def test_contact_zones_in_physical_units(capsys):
     assert rec["theory_applicable"] is True and rec["theory_reasons"] == []
     assert main(args + ["--zones", "--speed2", "0.5"]) == 2
     assert "stationary half-plane" in capsys.readouterr().err
+
+
+def test_interface_conductance_limits():
+    """h -> infinity is perfect contact (the temperature equation (D25) undifferentiated
+    against (D18) with its closures: edges to 1e-8); h -> 0 lets no temperature
+    difference drive the heat across, so q = q1 - q2 is set by lam alone: uniform
+    (m = 0) or proportional to the pressure (m = 1)."""
+    pe, F, lam = 5.0, 0.3, 0.6
+    ref = ZoneModel(10.0, n=32).solve([[-1, 1]], pe, F, lam)
+    stiff = ZoneModel(10.0, n=32, conductance=(1e10, 0.0)).solve([[-1.1, 0.9]], pe, F, lam)
+    np.testing.assert_allclose(stiff.edges, ref.edges, atol=1e-8)
+    errors = {}
+    for m in (0.0, 1.0):
+        for n in (32, 64):
+            weak = ZoneModel(10.0, n=n, conductance=(1e-9, m)).solve([[-1, 1]], pe, F, lam)
+            rep, (a, b) = weak.representation, weak.edges[0]
+            s = np.cos(np.linspace(0.3, np.pi - 0.3, 40))
+            # q = q' + eta p with q' = psi/sqrt(1 - s^2).
+            q = (rep.psi_at(weak.psi[0], s) / np.sqrt(1 - s * s)
+                 + weak.parameters.eta * rep.pressure_at(weak.phi[0], s))
+            expected = (lam / (b - a) if m == 0.0 else lam * rep.pressure_at(weak.phi[0], s))
+            errors[m, n] = np.abs(q - expected).max()
+            assert weak.heat_partitions.sum() == pytest.approx(lam, abs=1e-12)
+    # With m = 1 q vanishes like the pressure at the edges, as the representation
+    # does: fast convergence.  With m = 0 q is bounded but not zero at the edges, and
+    # q'/sqrt(1 - s^2) carries that only algebraically (observed order above 2).
+    assert errors[1.0, 32] < 1e-6 and errors[1.0, 64] < 1e-8
+    assert errors[0.0, 64] < 1e-5
+    assert np.log2(errors[0.0, 32] / errors[0.0, 64]) > 2.0
+
+
+def test_conductance_restores_a_single_zone_past_the_boundary(capsys):
+    """Path (a), 10 % past the perfect-contact boundary (Pe_l = 5.976 on the ray
+    fHPe_l = 0.13307 Pe_l): no steady contact set with perfect contact, one valid zone
+    with a conductance that vanishes with the pressure (h0 l/K2 = 10, m = 1)."""
+    import json
+
+    from thermocontact.cli import main
+    args = ["zones", "--pe-hertz", "5.976", "--fhpe-hertz", "0.795", "--K2-over-K1", "10",
+            "--lam", "1", "-n", "16", "--json"]
+    assert main(args + ["--conductance", "10:1"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["status"] == "solved" and rec["valid"] is True and len(rec["zones"]) == 1
+    assert main(args + ["--conductance", "10"]) == 2
+    assert "--conductance must be h0:m" in capsys.readouterr().err

@@ -661,6 +661,21 @@ def _contact_summary(res) -> str:
     return "\n".join(lines)
 
 
+def _conductance(text, what):
+    """``"h0:m"`` as ``(h0, m)``, or None."""
+    if text is None:
+        return None
+    parts = text.split(":")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        h0, m = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise InputError(f"--conductance must be h0:m (h0 > 0, {what}; exponent m >= 0), "
+                         f"got {text!r}") from None
+    return h0, m
+
+
 @cli.command("zones")
 @click.option("--pe-hertz", "pe_hertz", type=float, required=True,
               help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load.")
@@ -673,11 +688,15 @@ def _contact_summary(res) -> str:
 @click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
               help="Distortivity ratio >= 0.")
 @click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--conductance", default=None,
+              help="h0:m, an interface conductance h = h0 (p/p_ref)^m with h0 as the Biot "
+                   "number h0 l/K2 at the mean Hertz pressure p_ref = P/(2 l), m >= 0 "
+                   "[default: perfect thermal contact].")
 @click.option("-n", "n", type=int, default=32, show_default=True,
               help="Unknowns per function per zone, in [8, 256].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam, n,
-              as_json):
+def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam,
+              conductance, n, as_json):
     """The contact set at one load: one zone or several, or why there is none.
 
     Lengths in units of the Hertz half-width l of the load, from the undeformed
@@ -687,7 +706,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     from .studies.contact_sets import find_contact_set
 
     res = find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
-                           delta1_over_delta2=delta1_over_delta2, n=n)
+                           delta1_over_delta2=delta1_over_delta2, n=n,
+                           conductance=_conductance(conductance, "the Biot number h0 l/K2"))
     if as_json:
         click.echo(json.dumps(res.to_dict(), allow_nan=False))
         return
@@ -715,8 +735,12 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--zones", "zones", is_flag=True,
               help="The contact set at this load, of one zone or several (derivation "
                    "section 14), instead of the single patch's branches.")
+@click.option("--conductance", default=None,
+              help="With --zones: h0:m, an interface conductance h = h0 (p/p_ref)^m, h0 in "
+                   "W/(m^2 K) at the mean Hertz pressure p_ref, m >= 0 [default: perfect "
+                   "thermal contact].")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
-                lam, speed2, tol, as_json, csv_file, plot_file, zones):
+                lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from .io.files import check_output_file
     from .problem.materials import get_material, load_materials
@@ -739,12 +763,16 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         parse_quantity(speed, "m/s", "speed"), friction, lam,
         parse_quantity(speed2, "m/s", "speed2"), dundurs=dundurs is not False)
     tol = check_positive("tol", tol)
+    if conductance is not None and not zones:
+        raise InputError("--conductance needs --zones (the single patch assumes perfect "
+                         "thermal contact)")
     if zones:
         if csv_file is not None or plot_file is not None:
             raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
         from .studies.contact_sets import physical_contact_set
 
-        rec = physical_contact_set(prob)
+        rec = physical_contact_set(prob, conductance=_conductance(conductance,
+                                                                  "in W/(m^2 K)"))
         if as_json:
             click.echo(json.dumps(rec, allow_nan=False))
             return

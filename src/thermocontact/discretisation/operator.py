@@ -15,7 +15,8 @@ from ..physics.green_functions import (cylinder_displacement_drop, cylinder_slop
                                        moving_slope)
 from ..problem.parameters import Parameters
 
-__all__ = ["contact_operators", "distortion_operators", "heat_operators", "outside_operators"]
+__all__ = ["contact_operators", "distortion_operators", "heat_operators", "outside_operators",
+           "temperature_operators"]
 
 
 def distortion_operators(par: Parameters, rep, s, aux=None):
@@ -195,3 +196,31 @@ def outside_operators(par: Parameters, rep, side: float, tt):
     Hq = (lq + (rho / (1.0 + rho)) * mq) / np.pi
     Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mb / np.pi
     return C, Tp, Tq, Hp, Hq
+
+
+def temperature_operators(par: Parameters, rep, s, aux=None):
+    """The surface temperature difference ``T1 - T2`` at points ``s`` (D25).
+
+    ``pi K2 (T1 - T2)/(f v P)`` up to a constant is
+    ``rho integral q1 T(c u) dr + integral q2 ln|u| dr`` with ``T(u) = exp(-u) K0(|u|)``
+    (D8) and the stationary half-plane's logarithm (D12), ``u = s - r``, in units of
+    the contact's half-width (a length unit ``Delta`` adds ``ln(Delta)`` times the heat
+    into the half-plane); ``q1 = ((1 + eta) p + q')/2``, ``q2 = ((1 - eta) p - q')/2``.
+    The undifferentiated form of the heat equation, for contact with an interface
+    conductance (derivation section 15).
+
+    Returns
+    -------
+    Up, Uq : ndarray, shape (k, n)
+        On ``phi`` and ``psi``.
+    """
+    if par.half_plane_scale:
+        raise ValueError("temperature_operators: a stationary half-plane only")
+    rho, c, eta = par.K2_over_K1, par.cylinder_scale, par.eta
+    tb, tq = rep.integrate(lambda u: cylinder_temperature(c * u), s, scale=c,
+                           logarithmic=True, aux=aux)
+    lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0, logarithmic=True,
+                           aux=aux)
+    Up = 0.5 * rho * (1.0 + eta) * tb + 0.5 * (1.0 - eta) * lb
+    Uq = 0.5 * rho * tq - 0.5 * lq
+    return Up, Uq

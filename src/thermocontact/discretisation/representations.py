@@ -443,6 +443,13 @@ class EdgeGraded(Representation):
     def psi_at(self, psi, s):
         return graded.cosine_value(self.to_cos @ psi, graded.tau_of(s))
 
+    def flux_rows(self, s, aux):
+        """``M`` with ``M @ psi = q'(s) = psi(s)/sqrt(1 - s^2)`` at interior points given
+        with their ``tau`` (``aux``): no ``tau`` inverted, ``sqrt(1 - s^2) = sin T(tau)``."""
+        aux = np.asarray(aux, dtype=float)
+        basis = np.cos(np.outer(aux, np.arange(self.n)))
+        return (basis @ self.to_cos) / np.sin(graded.stretch(aux))[:, None]
+
     def psi_edges(self, psi):
         b = self.to_cos @ psi
         return np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])

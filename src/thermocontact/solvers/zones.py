@@ -30,7 +30,9 @@ from scipy.linalg.lapack import dgecon
 from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
-from ..discretisation.operator import contact_operators, heat_operators, outside_operators
+from ..discretisation.operator import (contact_operators, heat_operators, outside_operators,
+                                       temperature_operators)
+from ..discretisation.representations import range_projections
 from ..discretisation.system import equation_points
 from ..numerics.extrema import polish_minimum
 from ..problem.parameters import Parameters, SolveError
@@ -44,6 +46,38 @@ CYLINDER = Polynomial([0.0, 0.0, 0.5])
 DEFECT_TOL = 1e-11
 #: Systems whose reciprocal condition number is below this are refused.
 RCOND_MIN = 1e-13
+
+
+#: Iterations of the interface conductance's dependence on the pressure.
+MAX_PICARD = 200
+
+
+@dataclass(frozen=True)
+class Conductance:
+    """An interface conductance ``h = h0 (p / p_ref)^m`` (derivation section 15).
+
+    Attributes
+    ----------
+    biot0 : float
+        ``h0 l / K2 > 0``: the Biot number of the conductance at the reference
+        pressure, ``p_ref = P/(2 l)`` (the mean Hertz pressure of the load).
+    exponent : float
+        ``m >= 0`` (0: a constant conductance; about 0.95 for plastically deformed
+        asperities, Cooper, Mikic and Yovanovich 1969).
+    """
+
+    biot0: float
+    exponent: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0, 1e-12, 1e15))
+        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
+
+    def biot(self, pressure):
+        """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""
+        if self.exponent == 0.0:
+            return np.full(np.shape(pressure), self.biot0)
+        return self.biot0 * np.maximum(2.0 * np.asarray(pressure), 1e-300) ** self.exponent
 
 
 def _edges(edges) -> np.ndarray:
@@ -69,7 +103,10 @@ class ZoneSystem:
     """The linear system of one contact set: ``(A0 + F A1) x = b``.
 
     The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
-    ``psi``, then each zone's defects ``(mu, nu)``.
+    ``psi``, then each zone's defects ``(mu, nu)``, then (with an interface
+    conductance) the temperature difference's constant.  With a conductance each
+    zone's temperature rows (D25) depend on the Biot numbers at its points
+    (``points``): they are formed by :meth:`matrix` from ``local``.
     """
 
     A0: np.ndarray
@@ -77,14 +114,50 @@ class ZoneSystem:
     b: np.ndarray
     zones: int
     n: int
+    local: tuple = ()
+    points: tuple = ()
+
+    def matrix(self, F, biot=None):
+        A = self.A0 + F * self.A1
+        if not self.local:
+            return A
+        # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its
+        # column stays of order one however small the conductance.
+        scale = max(float(np.max(bi / (1.0 + bi))) for bi in biot)
+        for (rows, P, U, Lq), bi in zip(self.local, biot):
+            # (D25) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
+            # the interface's (pi/2) q by 1/(1 + Bi); either limit stays finite.
+            w = 1.0 / (1.0 + bi)
+            point_rows = (bi * w)[:, None] * U + (0.5 * np.pi * w)[:, None] * Lq
+            point_rows[:, -1] /= scale
+            A[rows] = point_rows if P is None else P @ point_rows
+        return A
 
 
-def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER) -> ZoneSystem:
+def temperature_points(rep, scheme: str):
+    """Where the temperature equation (D25) is evaluated: ``n`` points and the
+    reduction (the first ``n`` projections of the contact equation, or collocation at
+    ``tau = pi (k - 1/2)/n``)."""
+    n = rep.n
+    if scheme == "projection":
+        x, p1, _ = range_projections(n)
+        s, aux = rep.projection_points(x)
+        return s, aux, p1[:n]
+    tau = np.pi * (np.arange(n, 0, -1) - 0.5) / n
+    s, aux = rep.projection_points(tau)
+    return s, aux, None
+
+
+def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER,
+                conductance=False) -> ZoneSystem:
     """Assemble the equations of a contact set with given edges (derivation section 14).
 
     Rows: each zone's contact equation (``n + 1``), each zone's heat equation
     (``n - 1``), the load, the heat partition, and for each gap between zones the
-    gap's return (D23a) and the temperature difference's return (D23b).
+    gap's return (D23a) and the temperature difference's return (D23b).  With an
+    interface conductance (``conductance=True``, section 15) each zone's heat rows
+    are instead ``n`` rows of the temperature equation (D25), whose constant is one
+    more unknown, and (D23b) is not needed.
 
     Parameters
     ----------
@@ -97,25 +170,32 @@ def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER)
     scheme : {"collocation", "projection"}
     profile : numpy.polynomial.Polynomial
         The initial gap in units of ``l^2/R`` against ``X`` (default ``X^2/2``).
+    conductance : bool
     """
     m, n = len(edges), rep.n
     centre = edges.mean(axis=1)
     half = 0.5 * (edges[:, 1] - edges[:, 0])
     zpar = [zone_parameters(par, h) for h in half]
     (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
+    if conductance:
+        sh, ah, p2 = temperature_points(rep, scheme)
+    nh = n if conductance else n - 1
 
     def reduce(P, M):
         return M if P is None else P @ M
 
-    size = 2 * m * n + 2 * m
+    size = 2 * m * n + 2 * m + int(conductance)
     A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
     phi = [slice(j * n, (j + 1) * n) for j in range(m)]
     psi = [slice((m + j) * n, (m + j + 1) * n) for j in range(m)]
     slope = profile.deriv()
+    local, points = [], []
     for i in range(m):
         rc = slice(i * (n + 1), (i + 1) * (n + 1))
-        rh = slice(m * (n + 1) + i * (n - 1), m * (n + 1) + (i + 1) * (n - 1))
+        rh = slice(m * (n + 1) + i * nh, m * (n + 1) + (i + 1) * nh)
         xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
+        if conductance:
+            U = np.zeros((sh.size, size))
         for j in range(m):
             own = i == j
             s_c = sc if own else (xc - centre[j]) / half[j]
@@ -125,15 +205,32 @@ def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER)
             A0[rc, phi[j]] = reduce(p1, C)
             A1[rc, phi[j]] = -half[j] * reduce(p1, Tp)
             A1[rc, psi[j]] = -half[j] * reduce(p1, Tq)
-            Hp, Hq = heat_operators(zpar[j], rep, s_h, ah if own else None)
-            A0[rh, phi[j]] = reduce(p2, Hp)
-            A0[rh, psi[j]] = reduce(p2, Hq)
+            if conductance:
+                # (D25) in units of l: zone j's integrals carry Delta_j, and its
+                # logarithm ln(Delta_j) times the heat it puts into the half-plane.
+                Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
+                lg = np.log(half[j])
+                U[:, phi[j]] = half[j] * (Up + 0.5 * (1.0 - par.eta) * lg
+                                          * rep.pressure_rule.weights[None, :])
+                U[:, psi[j]] = half[j] * (Uq - 0.5 * lg * rep.flux_rule.weights[None, :])
+            else:
+                Hp, Hq = heat_operators(zpar[j], rep, s_h, ah if own else None)
+                A0[rh, phi[j]] = reduce(p2, Hp)
+                A0[rh, psi[j]] = reduce(p2, Hq)
+        if conductance:
+            U[:, size - 1] = -1.0
+            # The interface's (pi/2) q = (pi/2)(q' + eta p) at the zone's own points.
+            Lq = np.zeros_like(U)
+            Lq[:, phi[i]] = par.eta * rep.pressure_rows(sh, ah)
+            Lq[:, psi[i]] = rep.flux_rows(sh, ah)
+            local.append((rh, p2, U, Lq))
+            points.append((sh, ah))
         b[rc] = (2.0 / np.pi) * reduce(p1, slope(xc))
         A0[rc, 2 * m * n + 2 * i] = -(2.0 / np.pi) * reduce(p1, np.ones_like(sc))
         A0[rc, 2 * m * n + 2 * i + 1] = -(2.0 / np.pi) * reduce(p1, sc)
 
     wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
-    load, part = 2 * m * n, 2 * m * n + 1
+    load, part = m * (n + 1) + m * nh, m * (n + 1) + m * nh + 1
     for j in range(m):
         A0[load, phi[j]] = half[j] * wp
         A0[part, phi[j]] = half[j] * par.eta * wp
@@ -141,16 +238,17 @@ def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER)
     b[load], b[part] = 1.0, lam
     for k in range(m - 1):
         lo, hi = edges[k, 1], edges[k + 1, 0]
-        rg, rt = 2 * m * n + 2 + k, 2 * m * n + 1 + m + k
+        rg, rt = part + 1 + k, part + m + k
         for j in range(m):
             C, Tp, Tq, Hp, Hq = region_integral(zpar[j], rep, edges[j], half[j], lo, hi)
             A0[rg, phi[j]] += half[j] * C
             A1[rg, phi[j]] -= half[j] ** 2 * Tp
             A1[rg, psi[j]] -= half[j] ** 2 * Tq
-            A0[rt, phi[j]] += half[j] * Hp
-            A0[rt, psi[j]] += half[j] * Hq
+            if not conductance:
+                A0[rt, phi[j]] += half[j] * Hp
+                A0[rt, psi[j]] += half[j] * Hq
         b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
-    return ZoneSystem(A0, A1, b, m, n)
+    return ZoneSystem(A0, A1, b, m, n, tuple(local), tuple(points))
 
 
 def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
@@ -173,8 +271,8 @@ def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
     return tuple(M[1] - M[0] for M in ops)
 
 
-def _solve_linear(system: ZoneSystem, F: float):
-    A = system.A0 + F * system.A1
+def _solve_linear(system: ZoneSystem, F: float, biot=None):
+    A = system.matrix(F, biot)
     b = system.b.copy()
     scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
     A *= scale[:, None]
@@ -349,9 +447,10 @@ class ZoneModel:
     """
 
     def __init__(self, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0, beta_f=0.0,
-                 method=DEFAULT_METHOD, n=32, profile=CYLINDER):
+                 method=DEFAULT_METHOD, n=32, profile=CYLINDER, conductance=None):
         self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2, 0.0,
                                beta_f)
+        self.conductance = None if conductance is None else Conductance(*conductance)
         if method not in METHODS or not METHODS[method].edge_exponents:
             raise InputError(f"method must be 'graded' or 'graded-collocation' for contact "
                              f"sets, got {method!r}")
@@ -368,14 +467,42 @@ class ZoneModel:
 
     def system(self, edges, pe, fhpe, lam) -> ZoneSystem:
         return zone_system(self.parameters(pe, fhpe), _edges(edges), lam,
-                           self.representation(), METHODS[self.method].scheme, self.profile)
+                           self.representation(), METHODS[self.method].scheme, self.profile,
+                           conductance=self.conductance is not None)
 
     def defects(self, edges, pe, fhpe, lam):
-        """The defects ``(mu_1, nu_1, ...)`` and the linear solution at these edges."""
+        """The defects ``(mu_1, nu_1, ...)`` and the linear solution at these edges.
+
+        With a pressure-dependent conductance the linear solve is repeated with the
+        Biot numbers of the last pressure until the pressure settles (section 15).
+        """
         system = self.system(edges, pe, fhpe, lam)
-        x, rcond = _solve_linear(system, fhpe)
         m, n = system.zones, system.n
-        return x[2 * m * n:], x, rcond
+        if self.conductance is None:
+            x, rcond = _solve_linear(system, fhpe)
+            return x[2 * m * n:], x, rcond
+        half = 0.5 * np.diff(_edges(edges), axis=1)[:, 0]
+        rep = self.representation()
+        # The first pressure: the load spread over the zones as Hertz's shape.
+        rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
+        pressure = [(2.0 / (np.pi * half.sum())) * rep.pressure_weight(sh)
+                    for sh, _ in system.points]
+        previous = None
+        for _ in range(MAX_PICARD):
+            x, rcond = _solve_linear(system, fhpe, [self.conductance.biot(p)
+                                                    for p in pressure])
+            phi = x[:m * n].reshape(m, n)
+            pressure = [r @ f for r, f in zip(rows, phi)]
+            if self.conductance.exponent == 0.0:
+                break
+            if previous is not None and np.max(np.abs(phi - previous)) <= 1e-12 * np.max(
+                    np.abs(phi)):
+                break
+            previous = phi
+        else:
+            raise SolveError(f"the interface conductance's pressure did not settle in "
+                             f"{MAX_PICARD} iterations")
+        return x[2 * m * n:2 * m * n + 2 * m], x, rcond
 
     def jacobian(self, edges, pe, fhpe, lam, defects=None):
         """Derivatives of the defects with respect to the edges, by differences."""

@@ -69,8 +69,8 @@ def _first_failure(sol: ZoneSolution) -> str:
 
 
 def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
-                     delta1_over_delta2=1.0, beta_f=0.0, n=32, progress=None
-                     ) -> ContactSetResult:
+                     delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
+                     progress=None) -> ContactSetResult:
     """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``),
     followed from Hertz's zone along ``fHPe_l`` at fixed ``Pe_l``.
 
@@ -82,6 +82,10 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     lam : float
     beta_f : float, optional
         The Dundurs term (section 5c); the second method is then not tried.
+    conductance : (float, float), optional
+        ``(Bi0, m)``: an interface conductance ``h = h0 (p/p_ref)^m`` with
+        ``Bi0 = h0 l/K2`` and ``p_ref = P/(2 l)`` (derivation section 15); default
+        perfect thermal contact.  The second method is then not tried.
     n : int
         Unknowns per function per zone.
     progress : callable, optional
@@ -91,7 +95,7 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
     return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
                               k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                              beta_f=beta_f, n=n, progress=progress)
+                              beta_f=beta_f, conductance=conductance, n=n, progress=progress)
 
 
 #: Largest move of any edge in one continuation step, in half-widths of the smallest
@@ -100,7 +104,8 @@ MAX_EDGE_MOVE = 0.25
 
 
 def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
-                       beta_f=0.0, n=32, progress=None) -> ContactSetResult:
+                       beta_f=0.0, conductance=None, n=32, progress=None
+                       ) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
     At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there).  The
@@ -113,7 +118,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
     model = ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
-                      delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n))
+                      delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n),
+                      conductance=conductance)
 
     def at(edges, t, polish=False):
         pe, F = path(t)
@@ -203,8 +209,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                             [[a, Xp - w * h], [Xp + w * h, b]]))
     attempts = []
     try:
-        if beta_f:
-            raise SolveError("not tried: the second method has no Dundurs term")
+        if beta_f or conductance is not None:
+            raise SolveError("not tried: the second method has no Dundurs term and perfect "
+                             "thermal contact only")
         pe, F = path(reached)
         el = solve_elements(model.parameters(pe, F), lam,
                             domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
@@ -240,13 +247,16 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
            "that far, where it is returned"), single, event, attempts)
 
 
-def physical_contact_set(problem, *, n=32, progress=None) -> dict:
+def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> dict:
     """:func:`find_contact_set` for a problem in SI units, the answer in SI units.
 
     Parameters
     ----------
     problem : PhysicalProblem
         With a stationary half-plane.
+    conductance : (float, float), optional
+        ``(h0, m)``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0`` in
+        W/(m^2 K) at the mean Hertz pressure ``p_ref = P/(2 l)``.
 
     Returns
     -------
@@ -264,7 +274,9 @@ def physical_contact_set(problem, *, n=32, progress=None) -> dict:
     res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), h.K / c.K, lam=problem.lam,
                            k2_over_k1=h.k / c.k,
                            delta1_over_delta2=c.distortivity / h.distortivity,
-                           beta_f=problem.beta_f, n=n, progress=progress)
+                           beta_f=problem.beta_f, n=n, progress=progress,
+                           conductance=None if conductance is None else
+                           (conductance[0] * ell / h.K, conductance[1]))
     P = problem.load
     zones = [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
               "peak_pressure": z["peak_pressure"] * P / ell}
