@@ -33,3 +33,20 @@ def test_figure_writers_leave_no_pyplot_figure(tmp_path):
     distributions_figure([solve(5, 0.2, 10, lam=-1)], str(tmp_path / "d"), "t")
     assert plt.get_fignums() == []
     assert (tmp_path / "d.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_crossing_figure_draws_profiles_and_edges(tmp_path):
+    """The crossing study's picture from its record: a PNG, no pyplot figure left open."""
+    from thermocontact.plotting.zones import crossing_figure
+    from thermocontact.studies.contact_sets import find_contact_set
+    res = find_contact_set(2.0, 0.3, 10.0, lam=1.0, n=12)
+    sol = res.solution
+    x, p = sol.pressure_samples(21)
+    record = {"path": "t", "event": None,
+              "profiles": [{"label": "one", "x": x.tolist(), "pressure": p.tolist(),
+                            "valid": True}],
+              "histories": [{"label": "perfect", "steps": res.history}]}
+    out = tmp_path / "crossing.png"
+    crossing_figure(record, str(out))
+    assert out.stat().st_size > 1000 and len(res.history) >= 2
+    assert plt.get_fignums() == []

@@ -258,3 +258,39 @@ def test_conductance_restores_a_single_zone_past_the_boundary(capsys):
     assert rec["status"] == "solved" and rec["valid"] is True and len(rec["zones"]) == 1
     assert main(args + ["--conductance", "10"]) == 2
     assert "--conductance must be h0:m" in capsys.readouterr().err
+
+
+def test_other_starts_reach_the_same_zone():
+    """Uniqueness evidence as the crossing study records it: from Hertz's zone, the
+    zone widened, narrowed, shifted or split in two, Newton's method returns to the
+    same single zone (or fails); no other valid contact set appears."""
+    from thermocontact.studies.contact_sets import other_starts
+    model = ZoneModel(10.0, n=16)
+    sol = model.solve([[-1, 1]], 5.0, 0.5, 1.0)
+    outcomes = other_starts(model, sol, 1.0)
+    assert len(outcomes) == 6
+    reached = [o for o in outcomes if "edges" in o]
+    assert len(reached) >= 4
+    assert all(o["same"] or not o["valid"] for o in reached)
+    assert sum(o["same"] for o in reached) >= 4
+
+
+def test_conductance_jacobian_is_the_derivative():
+    """The temperature rows' derivative through Bi(p) (Newton's method for m != 0)
+    against a difference of the rows themselves."""
+    model = ZoneModel(10.0, n=16, conductance=(10.0, 1.0))
+    system = model.system([[-1.0, 0.9]], 5.0, 0.5, 1.0)
+    rep = model.representation()
+    rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
+    cond = model.conductance
+    x = np.random.default_rng(3).standard_normal(system.b.size)
+    x[:16] = np.abs(x[:16]) + 1.0  # a positive pressure, away from the clipping
+
+    def rows_times(x):
+        p = [r @ x[:16] for r in rows]
+        return system.matrix(0.5, [cond.biot(q) for q in p], 0.7) @ x, p
+    r0, p = rows_times(x)
+    J = system.matrix(0.5, [cond.biot(q) for q in p], 0.7) + system.conductance_jacobian(
+        x, [cond.biot(q) for q in p], [cond.dbiot(q) for q in p], rows, 0.7)
+    v = 1e-6 * np.random.default_rng(4).standard_normal(x.size)
+    np.testing.assert_allclose(rows_times(x + v)[0] - r0, J @ v, atol=1e-10 * np.abs(J @ v).max())

@@ -5,7 +5,9 @@ the Hertz half-width l of the load), its fH chosen so that the single patch's
 boundary, found by the core along fHPe at the paper's Pe, is crossed.  The single
 zone is followed from Hertz's along the ray to 10 % past the boundary; where it fails
 the contact sets the failure suggests are tried (thermocontact.studies.contact_sets).
-Writes crossing_study.json beside this file.
+The same rays are then followed to 1.1 and 2 times the boundary's Pe_l with
+interface conductances h = C p^m (derivation section 15).  Writes
+crossing_study.json and path_*.png beside this file.
 
     python docs/zones/crossing_study.py
 """
@@ -18,7 +20,10 @@ import numpy as np
 
 from thermocontact import Model
 from thermocontact.studies.boundaries import follow
-from thermocontact.studies.contact_sets import follow_contact_set
+from thermocontact.plotting.zones import crossing_figure
+from thermocontact.problem.parameters import SolveError
+from thermocontact.solvers.zones import ZoneModel
+from thermocontact.studies.contact_sets import follow_contact_set, other_starts
 
 #: (name, Pe at the boundary, K2/K1, k2/k1, delta1/delta2, lam)
 PATHS = [
@@ -28,6 +33,10 @@ PATHS = [
     ("d", 5.0, 10.0, 10.0, 2.0, -1.0),
 ]
 N = 24
+#: (Bi0, m) of the interface conductances tried on each path: Bi0 = h0 l/K2 at the
+#: boundary's load, for a fixed law h = C p^m (so Bi0 grows with the load as
+#: l^(1 + m)).
+CONDUCTANCES = [(100.0, 0.0), (10.0, 0.0), (1.0, 0.0), (100.0, 1.0), (10.0, 1.0), (1.0, 1.0)]
 
 
 def first_event(pe, K, k, d, lam):
@@ -35,6 +44,30 @@ def first_event(pe, K, k, d, lam):
     path = follow({"pe": pe, "K2_over_K1": K, "k2_over_k1": k, "delta1_over_delta2": d,
                    "lam": lam}, "fhpe", 0.0, 4.0)
     return path.events[0]
+
+
+#: The conductances whose profiles and edges are drawn.
+PICTURED = [(10.0, 0.0), (10.0, 1.0)]
+
+
+def profiles(history, pe_l, fH, K, k, d, lam, cond, fractions, label):
+    """The pressure at Pe_l = fraction * pe_l, solved from the nearest step's edges."""
+    out = []
+    for f in fractions:
+        pe = f * pe_l
+        near = min(history, key=lambda h: abs(h["pe_hertz"] - pe))
+        if abs(near["pe_hertz"] - pe) > 0.05 * pe_l:
+            continue
+        c = None if cond is None else (cond[0] * f ** (1.0 + cond[1]), cond[1])
+        try:
+            sol = ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d, n=N, conductance=c).solve(
+                np.reshape(near["edges"], (-1, 2)), pe, fH * pe, lam)
+        except SolveError:
+            continue
+        x, p = sol.pressure_samples(101)
+        out.append({"label": f"{label}, Pe_l = {f:g} Pe_l*", "x": x.tolist(),
+                    "pressure": p.tolist(), "valid": bool(sol.valid)})
+    return out
 
 
 def main():
@@ -57,11 +90,53 @@ def main():
                "status": res.status, "message": res.message, "event": res.event,
                "attempts": res.attempts,
                "zones_at_end": None if res.solution is None else res.solution.zone_records(),
+               "other_starts": None if res.status != "solved" else other_starts(
+                   ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d, n=N), res.solution, lam),
                "seconds": round(time.perf_counter() - t0, 1)}
+        rec["histories"] = [{"label": "perfect contact", "steps": res.history}]
+        rec["profiles"] = profiles(res.history, pe_l, fH, K, k, d, lam, None,
+                                   (0.4, 0.7, 1.0, 1.1), "perfect")
+        rec["with_conductance"] = []
+        if res.status != "solved":
+            for bi, m in CONDUCTANCES:
+                t1 = time.perf_counter()
+                # Bi0 = h0 l/K2 grows with l as Pe_l does: Bi0(Pe_l) = bi Pe_l/pe_l.
+                runs = []
+                for end in (1.1, 2.0):
+                    def pe_at(t, end=end):
+                        return lo + t * (end * pe_l - lo)
+                    # A fixed law h = C p^m: at the mean Hertz pressure, which grows as
+                    # l, Bi0 = h0 l/K2 grows as l^(1 + m), l as Pe_l.
+                    r = follow_contact_set(
+                        lambda t, pe_at=pe_at: (pe_at(t), fH * pe_at(t)),
+                        K, lam=lam, k2_over_k1=k, delta1_over_delta2=d, n=N,
+                        conductance=lambda t, pe_at=pe_at, bi=bi, m=m: (
+                            bi * (pe_at(t) / pe_l) ** (1.0 + m), m))
+                    runs.append({"pe_hertz_end": end * pe_l, "status": r.status,
+                                 "history": r.history,
+                                 "other_starts": None if r.status != "solved" else
+                                 other_starts(ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d,
+                                                        n=N, conductance=(
+                                                            bi * end ** (1.0 + m), m)),
+                                              r.solution, lam),
+                                 "message": r.message, "event": r.event,
+                                 "zones": None if r.solution is None
+                                 else r.solution.zone_records()})
+                rec["with_conductance"].append({"biot0_at_boundary": bi, "m": m, "runs": runs,
+                                                "seconds": round(time.perf_counter() - t1, 1)})
+                if (bi, m) in PICTURED:
+                    label = f"Bi0 = {bi:g}, m = {m:g}"
+                    rec["histories"].append({"label": label, "steps": r.history})
+                    rec["profiles"] += profiles(r.history, pe_l, fH, K, k, d, lam, (bi, m),
+                                                (1.1, 1.5, 2.0), label)
+                print(name, bi, m, [(x["status"], x["event"] and x["event"]["pe_hertz"])
+                                    for x in runs], flush=True)
         print(json.dumps(rec)[:600], flush=True)
         out.append(rec)
-    path = pathlib.Path(__file__).with_name("crossing_study.json")
-    path.write_text(json.dumps(out, indent=1) + "\n")
+    here = pathlib.Path(__file__).parent
+    (here / "crossing_study.json").write_text(json.dumps(out) + "\n")
+    for rec in out:
+        crossing_figure(rec, str(here / f"path_{rec['path']}.png"))
 
 
 if __name__ == "__main__":

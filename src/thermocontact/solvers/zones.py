@@ -48,8 +48,8 @@ DEFECT_TOL = 1e-11
 RCOND_MIN = 1e-13
 
 
-#: Iterations of the interface conductance's dependence on the pressure.
-MAX_PICARD = 200
+#: Newton steps of the interface conductance's dependence on the pressure.
+MAX_PICARD = 50
 
 
 @dataclass(frozen=True)
@@ -78,6 +78,14 @@ class Conductance:
         if self.exponent == 0.0:
             return np.full(np.shape(pressure), self.biot0)
         return self.biot0 * np.maximum(2.0 * np.asarray(pressure), 1e-300) ** self.exponent
+
+    def dbiot(self, pressure):
+        """``dBi/dp`` (0 where the pressure is clipped)."""
+        p2 = 2.0 * np.asarray(pressure)
+        live = p2 > 1e-300
+        out = np.zeros(np.shape(p2))
+        out[live] = 2.0 * self.exponent * self.biot0 * p2[live] ** (self.exponent - 1.0)
+        return out
 
 
 def _edges(edges) -> np.ndarray:
@@ -117,13 +125,13 @@ class ZoneSystem:
     local: tuple = ()
     points: tuple = ()
 
-    def matrix(self, F, biot=None):
+    def matrix(self, F, biot=None, scale=None):
         A = self.A0 + F * self.A1
         if not self.local:
             return A
         # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its
         # column stays of order one however small the conductance.
-        scale = max(float(np.max(bi / (1.0 + bi))) for bi in biot)
+        scale = self.theta_scale(biot) if scale is None else scale
         for (rows, P, U, Lq), bi in zip(self.local, biot):
             # (D25) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
             # the interface's (pi/2) q by 1/(1 + Bi); either limit stays finite.
@@ -132,6 +140,24 @@ class ZoneSystem:
             point_rows[:, -1] /= scale
             A[rows] = point_rows if P is None else P @ point_rows
         return A
+
+    @staticmethod
+    def theta_scale(biot):
+        return max(float(np.max(bi / (1.0 + bi))) for bi in biot)
+
+    def conductance_jacobian(self, x, biot, dbiot, pressure_rows, scale):
+        """The derivative of the temperature rows through ``Bi(p)``: ``(D25)`` times
+        ``Bi/(1 + Bi)`` changes with ``Bi`` by ``(U x - (pi/2) q)/(1 + Bi)^2`` per
+        point, and ``Bi`` with the pressure ``p = pressure_rows @ phi``."""
+        J = np.zeros_like(self.A0)
+        n = self.n
+        for i, ((rows, P, U, Lq), bi, dbi, R) in enumerate(zip(self.local, biot, dbiot,
+                                                               pressure_rows)):
+            ux = U[:, :-1] @ x[:-1] + U[:, -1] * x[-1] / scale
+            dr = (ux - 0.5 * np.pi * (Lq @ x)) / (1.0 + bi) ** 2 * dbi
+            block = dr[:, None] * R
+            J[rows, i * n:(i + 1) * n] = block if P is None else P @ block
+        return J
 
 
 def temperature_points(rep, scheme: str):
@@ -271,9 +297,9 @@ def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
     return tuple(M[1] - M[0] for M in ops)
 
 
-def _solve_linear(system: ZoneSystem, F: float, biot=None):
-    A = system.matrix(F, biot)
-    b = system.b.copy()
+def _solve_linear(system: ZoneSystem, F: float, biot=None, scale=None, A=None, b=None):
+    A = system.matrix(F, biot, scale) if A is None else A.copy()
+    b = system.b.copy() if b is None else b.copy()
     scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
     A *= scale[:, None]
     b *= scale
@@ -487,21 +513,43 @@ class ZoneModel:
         rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
         pressure = [(2.0 / (np.pi * half.sum())) * rep.pressure_weight(sh)
                     for sh, _ in system.points]
-        previous = None
-        for _ in range(MAX_PICARD):
-            x, rcond = _solve_linear(system, fhpe, [self.conductance.biot(p)
-                                                    for p in pressure])
-            phi = x[:m * n].reshape(m, n)
-            pressure = [r @ f for r, f in zip(rows, phi)]
-            if self.conductance.exponent == 0.0:
-                break
-            if previous is not None and np.max(np.abs(phi - previous)) <= 1e-12 * np.max(
-                    np.abs(phi)):
-                break
-            previous = phi
-        else:
-            raise SolveError(f"the interface conductance's pressure did not settle in "
-                             f"{MAX_PICARD} iterations")
+        cond = self.conductance
+        biot = [cond.biot(p) for p in pressure]
+        scale = system.theta_scale(biot)
+        x, rcond = _solve_linear(system, fhpe, biot, scale)
+        if cond.exponent != 0.0:
+            # Newton's method on the whole linear system with Bi following the pressure
+            # (plain repetition oscillates once the heat couples strongly).
+            def residual(x):
+                phi = x[:m * n].reshape(m, n)
+                p = [r @ f for r, f in zip(rows, phi)]
+                bi = [cond.biot(q) for q in p]
+                A = system.matrix(fhpe, bi, scale)
+                return A @ x - system.b, A, p, bi
+            r, A, p, bi = residual(x)
+            norm = np.linalg.norm(r)
+            step = np.inf
+            for _ in range(MAX_PICARD):
+                # Converged when the residual is at rounding level or the step is.
+                if (norm <= 1e-11 * max(1.0, np.linalg.norm(system.b))
+                        or step <= 1e-13 * np.linalg.norm(x)):
+                    break
+                J = A + system.conductance_jacobian(x, bi, [cond.dbiot(q) for q in p], rows,
+                                                    scale)
+                dx, rcond = _solve_linear(system, fhpe, A=J, b=-r)
+                alpha = 1.0
+                while True:
+                    trial = residual(x + alpha * dx)
+                    if np.linalg.norm(trial[0]) < norm or alpha < 1e-4:
+                        break
+                    alpha *= 0.5
+                x = x + alpha * dx
+                step = alpha * np.linalg.norm(dx)
+                r, A, p, bi = trial
+                norm = np.linalg.norm(r)
+            else:
+                raise SolveError(f"the interface conductance's pressure did not settle in "
+                                 f"{MAX_PICARD} Newton steps")
         return x[2 * m * n:2 * m * n + 2 * m], x, rcond
 
     def jacobian(self, edges, pe, fhpe, lam, defects=None):

@@ -21,7 +21,8 @@ from ..problem.validation import InputError, check_nonnegative, check_positive, 
 from ..solvers.elements import solve_elements
 from ..solvers.zones import ZoneModel, ZoneSolution
 
-__all__ = ["ContactSetResult", "find_contact_set", "follow_contact_set", "physical_contact_set"]
+__all__ = ["ContactSetResult", "find_contact_set", "follow_contact_set", "other_starts",
+           "physical_contact_set"]
 
 #: Relative width to which the event of the first failing inequality is located.
 EVENT_TOL = 1e-4
@@ -42,6 +43,9 @@ class ContactSetResult:
         the failing inequality and where.
     attempts : list of dict
         The other contact sets tried and what became of them.
+    history : list of dict
+        Every accepted step of the continuation: ``t``, ``pe_hertz``, ``fhpe_hertz``,
+        ``edges``, ``valid`` (the single zone, past the event too).
     """
 
     status: str
@@ -49,6 +53,7 @@ class ContactSetResult:
     solution: ZoneSolution | None
     event: dict | None = None
     attempts: list = field(default_factory=list)
+    history: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         rec = {"status": self.status, "message": self.message,
@@ -108,7 +113,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                        ) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
-    At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there).  The
+    At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there);
+    ``conductance`` may be a function of ``t`` returning ``(Bi0, m)``.  The
     step is halved where Newton's method fails or an edge would move by more than
     :data:`MAX_EDGE_MOVE` of the smallest zone's half-width (so that no step jumps
     to another branch), and grown by half
@@ -117,13 +123,19 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     lam = check_range("lam", lam, -1e6, 1e6)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
-    model = ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
-                      delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n),
-                      conductance=conductance)
+    def model_at(t):
+        # A conductance may change along the path (a law h = C p^m has a Biot number
+        # at the mean Hertz pressure that grows with the load).
+        cond = conductance(t) if callable(conductance) else conductance
+        return ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
+                         delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n),
+                         conductance=cond)
+
+    model = model_at(0.0)
 
     def at(edges, t, polish=False):
         pe, F = path(t)
-        return model.solve(edges, pe, F, lam, polish=polish)
+        return model_at(t).solve(edges, pe, F, lam, polish=polish)
 
     def follow(sol, t, to, stop_when_invalid):
         # From sol at t toward `to`; stops at the first invalid solution if asked.
@@ -145,6 +157,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             if stop_when_invalid and not new.valid:
                 return sol, t, trial
             sol, t = new, trial
+            history.append(dict(where(t), edges=sol.edges.ravel().tolist(),
+                                valid=bool(sol.valid)))
             step *= 1.5
             if progress is not None:
                 progress(t)
@@ -154,15 +168,17 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         pe, F = path(t)
         return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
 
+    history = []
     sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
     if failed_at is None and t < 1.0:
         return ContactSetResult(
             "not converged", f"the single zone could not be followed past {where(t)} "
-            f"(Newton's method fails, or jumps, for every step)", sol)
+            f"(Newton's method fails, or jumps, for every step)", sol, history=history)
     if failed_at is None:
         final = at(sol.edges, 1.0, polish=True)
         if final.valid:
-            return ContactSetResult("solved", "one zone, followed from Hertz's", final)
+            return ContactSetResult("solved", "one zone, followed from Hertz's", final,
+                                    history=history)
         failed_at = 1.0
 
     # Locate the event between the last valid t and the first invalid one.
@@ -235,7 +251,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             status = "solved" if reached >= 1.0 else "not converged"
             return ContactSetResult(status, f"{s2.zones} zones ({name}) at {where(reached)}; "
                                     f"the single zone fails beyond {where(hi)}", s2, event,
-                                    attempts)
+                                    attempts, history)
     end = where(reached)
     return ContactSetResult(
         "no steady solution",
@@ -244,7 +260,37 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
         f"{end['fhpe_hertz']:.6g} (see attempts)"
         + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
-           "that far, where it is returned"), single, event, attempts)
+           "that far, where it is returned"), single, event, attempts, history)
+
+
+def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
+    """Newton's method from other contact sets at the same load: is the answer unique?
+
+    Starts: Hertz's zone; the zone widened and narrowed by a fifth; split at its
+    centre into two zones; shifted by a quarter of its width either way.  Each outcome:
+    the edges reached, whether valid, and whether they are the given solution's (to
+    1e-8 of ``l``), or why Newton's method failed.
+    """
+    pe, F = sol.parameters.pe, sol.parameters.fhpe
+    (a, b) = sol.edges[0, 0], sol.edges[-1, 1]
+    c, h = 0.5 * (a + b), 0.5 * (b - a)
+    starts = {"Hertz's zone": [[-1.0, 1.0]], "widened": [[c - 1.2 * h, c + 1.2 * h]],
+              "narrowed": [[c - 0.8 * h, c + 0.8 * h]],
+              "split in two": [[a, c - 0.05 * h], [c + 0.05 * h, b]],
+              "shifted upstream": [[a + 0.25 * h, b + 0.25 * h]],
+              "shifted downstream": [[a - 0.25 * h, b - 0.25 * h]]}
+    out = []
+    for name, start in starts.items():
+        try:
+            other = model.solve(start, pe, F, lam)
+        except (SolveError, InputError) as exc:
+            out.append({"start": name, "result": f"no convergence ({exc})"})
+            continue
+        same = other.zones == sol.zones and bool(
+            np.max(np.abs(other.edges - sol.edges)) < 1e-8)
+        out.append({"start": name, "edges": other.edges.ravel().tolist(),
+                    "valid": bool(other.valid), "same": same})
+    return out
 
 
 def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> dict:
