@@ -33,7 +33,7 @@ def crossing_figure(record: dict, path: str) -> None:
     left.set_title(f"path ({record['path']}): pressure along the path", fontsize=9)
     colours = ["k", "C0", "C1", "C2", "C3", "C4", "C5", "C6"]
     for colour, hist in zip(colours, record["histories"]):
-        steps = hist["steps"]
+        steps = sorted(hist["steps"], key=lambda h: h["t"])
         for k in range(len(steps) - 1):
             a, b = steps[k], steps[k + 1]
             style = "-" if a["valid"] and b["valid"] else ":"

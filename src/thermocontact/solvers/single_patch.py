@@ -38,7 +38,9 @@ __all__ = [
     "Model",
     "RCOND_MIN",
     "check_n",
+    "factorise",
     "solve",
+    "solve_equilibrated",
     "solve_system",
 ]
 
@@ -55,15 +57,29 @@ RCOND_MIN = 1e-12
 ASSEMBLIES = BoundedCache("assemblies", 512 * 2**20)
 
 
-def _factor(A):
+def solve_equilibrated(A, b, what="the linear system"):
+    """``x`` with ``A x = b`` and the reciprocal condition number, rows equilibrated
+    first (the heat equation's rows next to an edge grow like n^3 in the graded
+    representation, which would mask the condition number); ``A`` and ``b`` are
+    overwritten."""
+    scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
+    A *= scale[:, None]
+    b *= scale
+    lu, rcond = factorise(A, what)
+    return lu_solve(lu, b), rcond
+
+
+def factorise(A, what="the linear system"):
+    """LU factors of ``A`` and its reciprocal condition number (1-norm); a singular or
+    ill-conditioned ``A`` (below :data:`RCOND_MIN`) raises :class:`SolveError`."""
     try:
         lu = lu_factor(A, check_finite=True)
     except (LinAlgError, ValueError) as exc:
-        raise SolveError(f"the linear system could not be factorised ({exc})") from None
+        raise SolveError(f"{what} could not be factorised ({exc})") from None
     rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
     if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
         raise SolveError(
-            f"the linear system is singular or ill-conditioned (reciprocal condition "
+            f"{what} is singular or ill-conditioned (reciprocal condition "
             f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
             f"well-determined solution"
         )
@@ -142,13 +158,7 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     else:
         A[:np1, 2 * n] = -two_pi * (sigma * one + sk)
 
-    # Equilibrate the rows: the heat equation's rows next to an edge grow like
-    # n^3 in the graded representation, which would mask the condition number.
-    scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
-    A *= scale[:, None]
-    b *= scale
-    lu, rcond = _factor(A)
-    x = lu_solve(lu, b)
+    x, rcond = solve_equilibrated(A, b)
     phi, psi = x[:n], x[n:2 * n]
     if lam is not None:
         L_sigma, L = x[2 * n], x[2 * n + 1]

@@ -24,8 +24,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.polynomial import Polynomial
-from scipy.linalg import LinAlgError, lu_factor, lu_solve
-from scipy.linalg.lapack import dgecon
 
 from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
@@ -37,6 +35,7 @@ from ..discretisation.system import equation_points
 from ..numerics.extrema import polish_minimum
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_range
+from .single_patch import solve_equilibrated
 
 __all__ = ["CYLINDER", "ZoneModel", "ZoneSolution", "zone_system"]
 
@@ -44,8 +43,6 @@ __all__ = ["CYLINDER", "ZoneModel", "ZoneSolution", "zone_system"]
 CYLINDER = Polynomial([0.0, 0.0, 0.5])
 #: Newton's stopping test on the largest defect.
 DEFECT_TOL = 1e-11
-#: Systems whose reciprocal condition number is below this are refused.
-RCOND_MIN = 1e-13
 
 
 #: Newton steps of the interface conductance's dependence on the pressure.
@@ -300,19 +297,7 @@ def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
 def _solve_linear(system: ZoneSystem, F: float, biot=None, scale=None, A=None, b=None):
     A = system.matrix(F, biot, scale) if A is None else A.copy()
     b = system.b.copy() if b is None else b.copy()
-    scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
-    A *= scale[:, None]
-    b *= scale
-    try:
-        lu = lu_factor(A, check_finite=True)
-    except (LinAlgError, ValueError) as exc:
-        raise SolveError(f"the contact set's linear system could not be factorised ({exc})"
-                         ) from None
-    rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
-    if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
-        raise SolveError(f"the contact set's linear system is singular (reciprocal "
-                         f"condition number {rcond:.1e})")
-    x = lu_solve(lu, b)
+    x, rcond = solve_equilibrated(A, b, "the contact set's linear system")
     if not np.all(np.isfinite(x)):
         raise SolveError("the contact set's linear solve produced non-finite values")
     return x, float(rcond)

@@ -195,6 +195,10 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             hi = mid
     bad = at(lo_sol.edges, hi, polish=True)
     event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
+    # The history passes the event where it was located.
+    for s_ev, t_ev in ((lo_sol, lo), (bad, hi)):
+        history.append(dict(where(t_ev), edges=s_ev.edges.ravel().tolist(),
+                            valid=bool(s_ev.valid)))
     # The single zone itself at the end (followed on past the event).
     single, reached, _ = follow(bad, hi, 1.0, False)
     single = at(single.edges, reached, polish=True)
@@ -218,7 +222,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 gap = a - X0
                 guesses.append(("zone where the gap closed",
                                 [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
-    if v.pressure_margin < 0.0 and a < v.pressure_margin_at < b:
+    # (A pressure failing at an edge moves that edge: only an interior one splits.)
+    if v.pressure_margin < 0.0 and a + 0.05 * h < v.pressure_margin_at < b - 0.05 * h:
         Xp = v.pressure_margin_at
         for w in (1e-3, 1e-2):
             guesses.append(("zone split where the pressure vanished",
