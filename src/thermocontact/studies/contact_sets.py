@@ -133,9 +133,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
 
     model = model_at(0.0)
 
-    def at(edges, t, polish=False):
+    def at(edges, t, polish=False, max_iter=40):
         pe, F = path(t)
-        return model_at(t).solve(edges, pe, F, lam, polish=polish)
+        return model_at(t).solve(edges, pe, F, lam, polish=polish, max_iter=max_iter)
 
     def follow(sol, t, to, stop_when_invalid):
         # From sol at t toward `to`; stops at the first invalid solution if asked.
@@ -143,7 +143,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         while t < to:
             trial = min(to, t + step)
             try:
-                new = at(sol.edges, trial)
+                # From the last solution a step converges in a few Newton steps, or is
+                # too long.
+                new = at(sol.edges, trial, max_iter=12)
                 moved = new.zones != sol.zones or float(
                     np.max(np.abs(new.edges - sol.edges))) > MAX_EDGE_MOVE * float(
                     np.min(sol.half_widths))
@@ -151,7 +153,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 moved = True
             if moved:
                 step *= 0.5
-                if step < 1e-7:
+                if step < 1e-4 * (to - t):
                     return sol, t, None
                 continue
             if stop_when_invalid and not new.valid:
