@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analysis.applicability import MAX_HALF_WIDTH_OVER_RADIUS, MAX_STRAIN
+from ..numerics.continuation import arclength
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
@@ -46,6 +47,9 @@ class ContactSetResult:
     history : list of dict
         Every accepted step of the continuation: ``t``, ``pe_hertz``, ``fhpe_hertz``,
         ``edges``, ``valid`` (the single zone, past the event too).
+    folds : list of dict
+        Where the branch followed turns back (pseudo-arclength continuation,
+        :func:`~thermocontact.numerics.continuation.arclength`).
     """
 
     status: str
@@ -54,6 +58,7 @@ class ContactSetResult:
     event: dict | None = None
     attempts: list = field(default_factory=list)
     history: list = field(default_factory=list)
+    folds: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         rec = {"status": self.status, "message": self.message,
@@ -62,7 +67,7 @@ class ContactSetResult:
                "complementarity": (None if self.solution is None
                                    or self.solution.validity is None
                                    else self.solution.validity.to_dict()),
-               "event": self.event, "attempts": self.attempts}
+               "event": self.event, "attempts": self.attempts, "folds": self.folds}
         if self.solution is not None:
             rec["n"] = self.solution.n
             rec["defect"] = self.solution.defect
@@ -154,6 +159,18 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             if moved:
                 step *= 0.5
                 if step < 1e-4 * (to - t):
+                    # Natural steps stall: round the point by pseudo-arclength, which
+                    # passes it or finds the branch turning back (a fold).
+                    outcome, z = around(sol, t, min(to, t + 0.02 * (to - t)))
+                    if outcome == "passed":
+                        try:
+                            sol, t = at(z[:-1].reshape(-1, 2), z[-1]), float(z[-1])
+                        except SolveError:
+                            return sol, t, None
+                        step = (to - t) / 8.0
+                        continue
+                    if outcome == "fold":
+                        folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
                     return sol, t, None
                 continue
             if stop_when_invalid and not new.valid:
@@ -170,9 +187,31 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         pe, F = path(t)
         return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
 
-    history = []
+    def around(sol, t, until):
+        def residual(z):
+            pe, F = path(z[-1])
+            return model_at(z[-1]).defects(z[:-1], pe, F, lam)[0]
+
+        def jacobian(z, F0):
+            pe, F = path(z[-1])
+            h = 1e-7 * max(1.0, abs(z[-1]))
+            return np.column_stack([model_at(z[-1]).jacobian(z[:-1], pe, F, lam, F0),
+                                    (residual(np.append(z[:-1], z[-1] + h)) - F0) / h])
+        try:
+            return arclength(residual, jacobian, np.append(sol.edges.ravel(), t),
+                             until=until, ds=0.02 * float(np.min(sol.half_widths)))
+        except (SolveError, InputError, np.linalg.LinAlgError):
+            return "failed", None
+
+    history, folds = [], []
     sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
     if failed_at is None and t < 1.0:
+        if folds:
+            return ContactSetResult(
+                "no steady solution", f"the single zone's branch folds back at Pe_l = "
+                f"{folds[-1]['pe_hertz']:.6g}, fHPe_l = {folds[-1]['fhpe_hertz']:.6g}: "
+                f"beyond it, along this path, it has no continuation", sol,
+                history=history, folds=folds)
         return ContactSetResult(
             "not converged", f"the single zone could not be followed past {where(t)} "
             f"(Newton's method fails, or jumps, for every step)", sol, history=history)
@@ -258,7 +297,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             status = "solved" if reached >= 1.0 else "not converged"
             return ContactSetResult(status, f"{s2.zones} zones ({name}) at {where(reached)}; "
                                     f"the single zone fails beyond {where(hi)}", s2, event,
-                                    attempts, history)
+                                    attempts, history, folds)
     end = where(reached)
     return ContactSetResult(
         "no steady solution",
@@ -267,7 +306,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
         f"{end['fhpe_hertz']:.6g} (see attempts)"
         + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
-           "that far, where it is returned"), single, event, attempts, history)
+           "that far, where it is returned"), single, event, attempts, history, folds)
 
 
 def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
