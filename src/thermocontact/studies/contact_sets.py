@@ -25,7 +25,8 @@ from ..solvers.zones import ZoneModel, ZoneSolution
 __all__ = ["ContactSetResult", "find_contact_set", "follow_contact_set", "other_starts",
            "physical_contact_set"]
 
-#: Relative width to which the event of the first failing inequality is located.
+#: Relative width to which the event of the first failing inequality is located
+#: (or its least margin to 1e-9 on the invalid side).
 EVENT_TOL = 1e-4
 
 
@@ -222,18 +223,42 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                                     history=history)
         failed_at = 1.0
 
-    # Locate the event between the last valid t and the first invalid one.
+    # Locate the event between the last valid t and the first invalid one, on the
+    # least margin (continuous where the verdict changes, sections 7-8) by the
+    # Illinois variant of regula falsi, which keeps a bracket.
+    def margin(s_):
+        return min(s_.validity.margins().values())
+
     lo, hi, lo_sol = t, failed_at, sol
+    try:
+        m_lo, m_hi = margin(lo_sol), margin(at(lo_sol.edges, hi))
+    except SolveError:
+        m_lo = m_hi = None
+    side = 0
     while hi - lo > EVENT_TOL * max(hi, 1e-9):
-        mid = 0.5 * (lo + hi)
+        if m_lo is None or not m_lo > 0.0 > m_hi:
+            mid = 0.5 * (lo + hi)
+        else:
+            mid = hi - m_hi * (hi - lo) / (m_hi - m_lo)
+            # Keep away from the bracket's ends by a little of its width.
+            mid = min(max(mid, lo + 0.01 * (hi - lo)), hi - 0.01 * (hi - lo))
         try:
             s_mid = at(lo_sol.edges, mid)
         except SolveError:
             break
+        m_mid = margin(s_mid)
         if s_mid.valid:
-            lo, lo_sol = mid, s_mid
+            lo, lo_sol, m_lo = mid, s_mid, m_mid
+            if side == -1 and m_hi is not None:
+                m_hi *= 0.5
+            side = -1
         else:
-            hi = mid
+            hi, m_hi = mid, m_mid
+            if side == 1 and m_lo is not None:
+                m_lo *= 0.5
+            side = 1
+        if m_lo is not None and m_hi is not None and abs(m_hi) < 1e-9:
+            break
     bad = at(lo_sol.edges, hi, polish=True)
     event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
     # The history passes the event where it was located.
@@ -284,7 +309,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         attempts.append({"tried": "second method (400 elements)", "result": str(exc)})
     for name, guess in guesses:
         try:
-            s2 = at(np.array(guess, dtype=float), reached, polish=True)
+            # A contact set that holds converges in a few steps from these guesses.
+            s2 = at(np.array(guess, dtype=float), reached, polish=True, max_iter=15)
         except (SolveError, InputError) as exc:
             attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
                              "result": f"no convergence ({exc})"})
@@ -328,7 +354,7 @@ def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
     out = []
     for name, start in starts.items():
         try:
-            other = model.solve(start, pe, F, lam)
+            other = model.solve(start, pe, F, lam, max_iter=20)
         except (SolveError, InputError) as exc:
             out.append({"start": name, "result": f"no convergence ({exc})"})
             continue
