@@ -1,9 +1,11 @@
 """Operating maps in physical units: one ray answers the whole load-speed plane."""
 
+import numpy as np
 import pytest
 
 from thermocontact.problem.materials import get_material
 from thermocontact.problem.validation import InputError
+from thermocontact.studies.contact_sets import PhysicalConductance
 from thermocontact.studies.operating_maps import (OperatingSpec, compute_operating_map,
                                                   parse_physical_axis)
 from thermocontact.studies.physical_contact import PhysicalProblem, contact
@@ -86,3 +88,94 @@ def test_manifest_holds_the_materials_values():
     assert spec().manifest() != OperatingSpec(
         soft, ST, 0.2, -1.0, parse_physical_axis("--x", "load:1e3:1e5:2:log"),
         parse_physical_axis("--y", "speed:0.1:10:2:log"), {"radius": 0.01}).manifest()
+
+
+def test_contact_sets_over_a_map_equal_the_single_patch_where_it_is_valid(tmp_path):
+    """With --zones every point also gets its contact set, followed from Hertz's zone in
+    the friction heat at the point's load (an independent route: the map's single patch
+    comes from the one ray in Pe, interpolated). Where the single patch is valid (steel on
+    copper, lambda = 1, Pe_H 1.1-3.8), the contact set is that one zone: edges to 1e-8 of
+    the half-width (observed 5e-10), peak pressure to 1e-8 relative, the whole load. The
+    contact sets are kept beside the ray's chunks and a second run reads them back."""
+    s = OperatingSpec(ST, CU, 0.3, 1.0, parse_physical_axis("--x", "speed:2:5:2"),
+                      parse_physical_axis("--y", "load:1e5:2e5:2"), {"radius": 0.01},
+                      zones=True)
+    ds = compute_operating_map(s, store_path=tmp_path / "parts")
+    assert (ds.valid.values == 1).all()
+    assert (ds.zones_status.values == "solved").all() and (ds.zones_count.values == 1).all()
+    assert (ds.zones_valid.values == 1).all()
+    # The heavier load strains the copper beyond 1 %: both say so (the map's only
+    # reason here; both measure strain as peak pressure x compliance).
+    assert ds.applicable.values.tolist() == [[1, 1], [0, 0]]
+    assert (ds.zones_applicable.values == ds.applicable.values).all()
+    d = ds.half_width.values
+    np.testing.assert_allclose(ds.zones_start.values, (ds.offset - ds.half_width).values,
+                               rtol=0, atol=1e-8 * d.min())
+    np.testing.assert_allclose(ds.zones_end.values, (ds.offset + ds.half_width).values,
+                               rtol=0, atol=1e-8 * d.min())
+    np.testing.assert_allclose(ds.zones_peak_pressure.values, ds.peak_pressure.values,
+                               rtol=1e-8)
+    np.testing.assert_allclose(ds.zones_load.values, ds["load"].values[:, None] + 0 * d,
+                               rtol=1e-12)
+    assert sorted(p.name for p in (tmp_path / "parts" / "contact_sets").iterdir()) == [
+        "chunk-000000.json", "chunk-000001.json", "manifest.json"]
+    assert compute_operating_map(s, store_path=tmp_path / "parts").identical(ds)
+
+
+def test_contact_set_options_of_a_map_are_checked():
+    """A conductance needs the contact sets, and one law for every load (a reference
+    pressure unless constant); a moving half-plane has no contact sets yet."""
+    ax = parse_physical_axis("--x", "speed:2:5:2"), parse_physical_axis("--y", "load:1e5:2e5:2")
+    with pytest.raises(InputError, match="--conductance needs --zones"):
+        OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01},
+                      conductance=PhysicalConductance(1e5, 0.0))
+    with pytest.raises(InputError, match="h0:m:p_ref"):
+        OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True,
+                      conductance=PhysicalConductance(1e5, 1.0))
+    with pytest.raises(InputError, match="speed-ratio"):
+        OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True, speed_ratio=-0.5)
+    OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True,
+                  conductance=PhysicalConductance(1e5, 0.0))
+
+
+def test_physical_conductance_in_biot_numbers():
+    """h = h0 (p/p_ref)^m at the mean Hertz pressure P/(2 l), times l/K2: with p_ref that
+    pressure it is h0 l/K2 whatever m; doubling p_ref divides it by 2^m; m = 0 ignores
+    p_ref."""
+    prob = PhysicalProblem(ST, CU, 0.01, 1e5, 3.0, 0.3, 1.0)
+    ell, p_mean = prob.hertz_half_width, prob.load / (2 * prob.hertz_half_width)
+    bi = 2e5 * ell / CU.K
+    assert PhysicalConductance(2e5, 0.95).biot(prob) == (pytest.approx(bi, rel=1e-15), 0.95)
+    assert PhysicalConductance(2e5, 0.95, p_mean).biot(prob)[0] == pytest.approx(bi, rel=1e-14)
+    assert PhysicalConductance(2e5, 0.95, 2 * p_mean).biot(prob)[0] == pytest.approx(
+        bi / 2 ** 0.95, rel=1e-14)
+    assert PhysicalConductance(2e5, 0.0, 1.0).biot(prob)[0] == pytest.approx(bi, rel=1e-15)
+    for bad in ((0.0, 1.0), (1e5, -1.0), (1e5, 1.0, 0.0), (float("nan"), 1.0)):
+        with pytest.raises(InputError, match="conductance"):
+            PhysicalConductance(*bad)
+
+
+@pytest.mark.parametrize("extra,needle", [
+    (["--conductance", "1e5:1"], "--conductance needs --zones"),
+    (["--zones", "--conductance", "1e5:0.95"], "h0:m:p_ref"),
+    (["--zones", "--conductance", "1e5:0.95:-2GPa"], "conductance p_ref must be"),
+    (["--zones", "--conductance", "1e5"], "--conductance must be h0:m[:p_ref]"),
+])
+def test_map_contact_set_options_refused_in_one_line(capsys, tmp_path, extra, needle):
+    from thermocontact.cli import main
+
+    argv = ["map", "--cylinder", "steel", "--half-plane", "copper", "--friction", "0.3",
+            "--lam", "1", "--radius", "0.01", "--x", "speed:2:5:2", "--y", "load:1e5:2e5:2",
+            "--out", str(tmp_path / "m.nc")] + extra
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle in err[0]
+    assert not (tmp_path / "m.nc").exists()
+
+
+def test_dimensionless_map_has_no_contact_sets(capsys, tmp_path):
+    from thermocontact.cli import main
+
+    assert main(["map", "--x", "fhpe:0:0.5:2", "--y", "pe:1:5:2", "--K2-over-K1", "10",
+                 "--lam", "0", "--zones", "--out", str(tmp_path / "m.nc")]) == 2
+    assert "--zones belongs to an operating map" in capsys.readouterr().err

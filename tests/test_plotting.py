@@ -50,3 +50,30 @@ def test_crossing_figure_draws_profiles_and_edges(tmp_path):
     crossing_figure(record, str(out))
     assert out.stat().st_size > 1000 and len(res.history) >= 2
     assert plt.get_fignums() == []
+
+
+def test_map_outlines_where_a_contact_set_holds():
+    """An operating map with contact sets: where one is valid is outlined (dashed) and
+    points of several zones are marked; a map without them draws neither."""
+    import xarray as xr
+
+    from thermocontact.plotting.maps import plot_map
+
+    dims, shape = ("load", "speed"), (3, 4)
+    held = np.array([[1, 1, 1, 0], [1, 1, 0, 0], [1, 0, 0, 0]])
+    base = {"load_ratio": (dims, np.linspace(0.2, 1, 12).reshape(shape)),
+            "valid": (dims, held), "status": (dims, np.full(shape, "solved"))}
+    zones = {"zones_status": (dims, np.where(held == 1, "solved", "no steady solution")),
+             "zones_valid": (dims, held), "zones_count": (dims, 1 + (held == 1) * np.eye(3, 4,
+                                                                                       dtype=int))}
+    coords = {"load": [1e4, 2e4, 3e4], "speed": [1.0, 2.0, 3.0, 4.0]}
+    _, ax = plt.subplots()
+    plot_map(xr.Dataset({**base, **zones}, coords=coords), ax=ax)
+    labels = ax.get_legend_handles_labels()[1]
+    assert "a valid contact set exists inside" in labels and "several zones" in labels
+    marks = [ln for ln in ax.get_lines() if ln.get_label() == "several zones"][0]
+    assert sorted(marks.get_xdata()) == [1.0, 2.0]  # the diagonal where held
+    _, ax = plt.subplots()
+    plot_map(xr.Dataset(base, coords=coords), ax=ax)
+    assert ax.get_legend() is None
+    plt.close("all")

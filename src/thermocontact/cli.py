@@ -357,7 +357,8 @@ def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, di
 
 
 def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,
-                    speed, friction, lam, tol, dimensionless, dundurs=None):
+                    speed, friction, lam, tol, dimensionless, dundurs=None, zones=False,
+                    conductance=None):
     from .problem.materials import get_material, load_materials
     from .problem.units import parse_quantity
     from .studies.operating_maps import OperatingSpec, parse_physical_axis
@@ -382,7 +383,8 @@ def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius
     return OperatingSpec(get_material(cylinder, materials_file),
                          get_material(half_plane, materials_file), friction, lam, x, y, fixed,
                          tol=check_positive("tol", tol), dundurs=dundurs is not False,
-                         speed_ratio=speed_ratio)
+                         speed_ratio=speed_ratio, zones=zones,
+                         conductance=_conductance(conductance, "in W/(m^2 K)", physical=True))
 
 
 def _workers(workers, scheduler):
@@ -454,6 +456,15 @@ def _run_map(spec, out, workers, title, command):
     click.echo(f"wrote {out} and {picture}: {status.size} points ({int(ds['valid'].sum())} "
                f"valid, {unconverged} not converged, {failed} failed), "
                f"{ds.sizes.get('event', 0)} boundary points, in {time.perf_counter() - t0:.1f} s")
+    if "zones_status" in ds:
+        zs = np.asarray(ds["zones_status"].values)
+        counts = np.asarray(ds["zones_count"].values)[zs == "solved"]
+        click.echo(f"contact sets: {int((zs == 'solved').sum())} solved ("
+                   + ", ".join(f"{int((counts == c).sum())} of {c} zone{'s' * (c > 1)}"
+                               for c in sorted(set(counts.tolist())))
+                   + f"), {int((zs == 'no steady solution').sum())} no steady solution, "
+                   f"{int((zs == 'not converged').sum())} not converged, "
+                   f"{int((zs == 'failed').sum())} failed")
 
 
 @cli.command("map")
@@ -476,10 +487,17 @@ def _run_map(spec, out, workers, title, command):
               help="Run on the Dask cluster whose scheduler is at this address "
                    "(tcp://host:port) instead.")
 @_physical_options(required=False)
+@click.option("--zones", "zones", is_flag=True,
+              help="Operating maps: also the contact set, of one zone or several, at every "
+                   "point (what exists past the single patch's boundary).")
+@click.option("--conductance", default=None,
+              help="With --zones: h0:m[:p_ref], an interface conductance h = h0 "
+                   "(p/p_ref)^m, h0 in W/(m^2 K), m >= 0, p_ref in Pa (needed unless "
+                   "m = 0) [default: perfect thermal contact].")
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
-            materials_file, radius, load, speed, friction, dundurs):
+            materials_file, radius, load, speed, friction, dundurs, zones, conductance):
     """The solution over a grid of two parameters, and where it stops being valid.
 
     Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
@@ -497,14 +515,15 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                     k2_over_k1=k2_over_k1, sigma=sigma,
                                     speed_ratio=speed_ratio or None,
                                     beta_f=beta_f or None,
-                                    delta_over_r=delta_over_r), dundurs)
+                                    delta_over_r=delta_over_r), dundurs, zones, conductance)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
                  f"lambda = {spec.lam:g}, {fixed} (SI)\nvalid where not shaded; theory not "
                  f"applicable where hatched")
     else:
         for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
-                            ("--friction", friction), ("--dundurs", dundurs)):
+                            ("--friction", friction), ("--dundurs", dundurs),
+                            ("--zones", zones or None), ("--conductance", conductance)):
             if value is not None:
                 raise InputError(f"{name} belongs to an operating map: give --cylinder and "
                                  f"--half-plane too")
@@ -661,19 +680,28 @@ def _contact_summary(res) -> str:
     return "\n".join(lines)
 
 
-def _conductance(text, what):
-    """``"h0:m"`` as ``(h0, m)``, or None."""
+def _conductance(text, what, physical=False):
+    """``"h0:m"`` as ``(h0, m)``, or None; in SI units ``"h0:m[:p_ref]"`` as a
+    :class:`~.studies.contact_sets.PhysicalConductance`."""
     if text is None:
         return None
     parts = text.split(":")
+    form = "h0:m[:p_ref]" if physical else "h0:m"
     try:
-        if len(parts) != 2:
+        if len(parts) not in ((2, 3) if physical else (2,)):
             raise ValueError
-        h0, m = float(parts[0]), float(parts[1])
+        values = [float(parts[0]), float(parts[1])]
     except ValueError:
-        raise InputError(f"--conductance must be h0:m (h0 > 0, {what}; exponent m >= 0), "
-                         f"got {text!r}") from None
-    return h0, m
+        raise InputError(f"--conductance must be {form} (h0 > 0, {what}; exponent m >= 0"
+                         + ("; p_ref > 0 in Pa or with units" if physical else "")
+                         + f"), got {text!r}") from None
+    if not physical:
+        return tuple(values)
+    from .problem.units import parse_quantity
+    from .studies.contact_sets import PhysicalConductance
+
+    p_ref = parse_quantity(parts[2], "Pa", "conductance p_ref") if len(parts) == 3 else None
+    return PhysicalConductance(*values, p_ref)
 
 
 @cli.command("zones")
@@ -736,9 +764,9 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
               help="The contact set at this load, of one zone or several (derivation "
                    "section 14), instead of the single patch's branches.")
 @click.option("--conductance", default=None,
-              help="With --zones: h0:m, an interface conductance h = h0 (p/p_ref)^m, h0 in "
-                   "W/(m^2 K) at the mean Hertz pressure p_ref, m >= 0 [default: perfect "
-                   "thermal contact].")
+              help="With --zones: h0:m[:p_ref], an interface conductance h = h0 "
+                   "(p/p_ref)^m, h0 in W/(m^2 K), m >= 0, p_ref in Pa (or with units; "
+                   "omitted: the mean Hertz pressure) [default: perfect thermal contact].")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
                 lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
     """Contact width, pressures and temperatures from materials, load and speed."""
@@ -771,8 +799,8 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
             raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
         from .studies.contact_sets import physical_contact_set
 
-        rec = physical_contact_set(prob, conductance=_conductance(conductance,
-                                                                  "in W/(m^2 K)"))
+        rec = physical_contact_set(prob, conductance=_conductance(
+            conductance, "in W/(m^2 K)", physical=True))
         if as_json:
             click.echo(json.dumps(rec, allow_nan=False))
             return

@@ -55,6 +55,20 @@ def plot_map(ds, field="load_ratio", ax=None):
         outside = np.where(np.asarray(ds["applicable"].values) == 0, 1.0, 0.0)
         ax.contourf(x, y, outside, levels=[0.5, 1.5], colors="none", hatches=["////"])
         ax.contour(x, y, outside, levels=[0.5], colors="white", linewidths=0.8)
+    if "zones_status" in ds:
+        # Operating maps with contact sets: where one (of any number of zones) is
+        # valid, outlined; several zones marked.
+        held = ((np.asarray(ds["zones_status"].values) == "solved")
+                & (np.asarray(ds["zones_valid"].values) == 1))
+        if held.any() and not held.all():
+            ax.contour(x, y, held.astype(float), levels=[0.5], colors="tab:red",
+                       linestyles="--", linewidths=1.2)
+            ax.plot([], [], "--", color="tab:red", label="a valid contact set exists inside")
+        several = held & (np.asarray(ds["zones_count"].values) > 1)
+        if several.any():
+            yy, xx = np.meshgrid(y, x, indexing="ij")
+            ax.plot(xx[several], yy[several], "+", color="tab:red", ms=4,
+                    label="several zones")
     failed = np.asarray(ds["status"].values) == "failed"
     if failed.any():
         yy, xx = np.meshgrid(y, x, indexing="ij")
@@ -79,6 +93,7 @@ def plot_map(ds, field="load_ratio", ax=None):
             ax.plot(px[order], py[order], ".-", color="white", ms=3, lw=1.2)
             ax.plot(px[order], py[order], ".", color="black", ms=2,
                     label=f"boundary: {kind}")
+    if ax.get_legend_handles_labels()[1]:
         ax.legend(fontsize=7, loc="best")
     ax.set_xscale("log" if _is_log(ds, "x") else "linear")
     ax.set_yscale("log" if _is_log(ds, "y") else "linear")

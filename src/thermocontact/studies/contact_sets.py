@@ -2,7 +2,7 @@
 
 At ``fHPe_l = 0`` the contact set is Hertz's zone ``[-1, 1]``.  It is followed with
 step control in ``fHPe_l`` at fixed ``Pe_l``, every inequality checked at every
-step.  Where one fails, the event is located by bisection and the contact sets
+step.  Where one fails, the event is located on the least margin and the contact sets
 that the failure suggests are tried at the target: a zone where the gap closed
 (nucleation), the zone split where the pressure vanished, and the second method's
 contact set (:mod:`thermocontact.solvers.elements`).  The answer is the first
@@ -22,8 +22,8 @@ from ..problem.validation import InputError, check_nonnegative, check_positive, 
 from ..solvers.elements import solve_elements
 from ..solvers.zones import ZoneModel, ZoneSolution
 
-__all__ = ["ContactSetResult", "find_contact_set", "follow_contact_set", "other_starts",
-           "physical_contact_set"]
+__all__ = ["ContactSetResult", "PhysicalConductance", "find_contact_set",
+           "follow_contact_set", "other_starts", "physical_contact_set"]
 
 #: Relative width to which the event of the first failing inequality is located
 #: (or its least margin to 1e-9 on the invalid side).
@@ -109,8 +109,8 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                               beta_f=beta_f, conductance=conductance, n=n, progress=progress)
 
 
-#: Largest move of any edge in one continuation step, in half-widths of the smallest
-#: zone.
+#: Largest correction of any edge's predicted position in one continuation step, in
+#: half-widths of the smallest zone.
 MAX_EDGE_MOVE = 0.25
 
 
@@ -120,10 +120,11 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
     At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there);
-    ``conductance`` may be a function of ``t`` returning ``(Bi0, m)``.  The
-    step is halved where Newton's method fails or an edge would move by more than
-    :data:`MAX_EDGE_MOVE` of the smallest zone's half-width (so that no step jumps
-    to another branch), and grown by half
+    ``conductance`` may be a function of ``t`` returning ``(Bi0, m)``.  Each step
+    starts from the edges extrapolated through the last two solutions; it is halved
+    where Newton's method fails or an edge lands farther than
+    :data:`MAX_EDGE_MOVE` of the smallest zone's half-width from that prediction (so
+    that no step jumps to another branch), and grown by half
     where it succeeds.  Events carry ``t``, ``pe_hertz`` and ``fhpe_hertz``.
     """
     lam = check_range("lam", lam, -1e6, 1e6)
@@ -146,14 +147,19 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     def follow(sol, t, to, stop_when_invalid):
         # From sol at t toward `to`; stops at the first invalid solution if asked.
         step = (to - t) / 8.0
+        last = None  # the previous (t, edges), for the secant predictor
         while t < to:
             trial = min(to, t + step)
+            guess = sol.edges
+            if last is not None and last[1].shape == sol.edges.shape:
+                guess = sol.edges + (trial - t) / (t - last[0]) * (sol.edges - last[1])
             try:
-                # From the last solution a step converges in a few Newton steps, or is
-                # too long.
-                new = at(sol.edges, trial, max_iter=12)
+                # From the predicted edges a step converges in a few Newton steps, or
+                # is too long; the correction, not the move, is limited (a zone may
+                # travel many of its widths along a path).
+                new = at(guess, trial, max_iter=12)
                 moved = new.zones != sol.zones or float(
-                    np.max(np.abs(new.edges - sol.edges))) > MAX_EDGE_MOVE * float(
+                    np.max(np.abs(new.edges - guess))) > MAX_EDGE_MOVE * float(
                     np.min(sol.half_widths))
             except SolveError:
                 moved = True
@@ -168,7 +174,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                             sol, t = at(z[:-1].reshape(-1, 2), z[-1]), float(z[-1])
                         except SolveError:
                             return sol, t, None
-                        step = (to - t) / 8.0
+                        step, last = (to - t) / 8.0, None
                         continue
                     if outcome == "fold":
                         folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
@@ -176,6 +182,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 continue
             if stop_when_invalid and not new.valid:
                 return sol, t, trial
+            last = (t, sol.edges)
             sol, t = new, trial
             history.append(dict(where(t), edges=sol.edges.ravel().tolist(),
                                 valid=bool(sol.valid)))
@@ -365,6 +372,51 @@ def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
     return out
 
 
+@dataclass(frozen=True)
+class PhysicalConductance:
+    """An interface conductance ``h = h0 (p/p_ref)^m`` in SI units (section 15).
+
+    Attributes
+    ----------
+    h0 : float
+        W/(m^2 K) at ``p_ref``, > 0.
+    exponent : float
+        ``m`` in [0, 10].
+    p_ref : float or None
+        Pa; None: the mean Hertz pressure ``P/(2 l)`` of each load (a law that then
+        changes with the load, so that a map, whose loads differ, needs a ``p_ref``
+        unless ``m = 0``).
+    """
+
+    h0: float
+    exponent: float = 0.0
+    p_ref: float | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "h0", check_range("conductance h0", self.h0, 0.0, 1e300,
+                                                   open_low=True))
+        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent,
+                                                         0.0, 10.0))
+        if self.p_ref is not None:
+            object.__setattr__(self, "p_ref", check_range(
+                "conductance p_ref", self.p_ref, 0.0, 1e300, open_low=True))
+
+    def biot(self, problem) -> tuple[float, float]:
+        """``(Bi0, m)`` of :class:`~thermocontact.solvers.zones.Conductance` for
+        ``problem``: ``Bi0 = h(P/(2 l)) l/K2``."""
+        ell = problem.hertz_half_width
+        h = self.h0
+        if self.p_ref is not None and self.exponent:
+            h *= (problem.load / (2.0 * ell) / self.p_ref) ** self.exponent
+        return h * ell / problem.half_plane.K, self.exponent
+
+
+def _physical(conductance) -> PhysicalConductance:
+    if isinstance(conductance, PhysicalConductance):
+        return conductance
+    return PhysicalConductance(*conductance)
+
+
 def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> dict:
     """:func:`find_contact_set` for a problem in SI units, the answer in SI units.
 
@@ -372,9 +424,9 @@ def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> d
     ----------
     problem : PhysicalProblem
         With a stationary half-plane.
-    conductance : (float, float), optional
-        ``(h0, m)``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0`` in
-        W/(m^2 K) at the mean Hertz pressure ``p_ref = P/(2 l)``.
+    conductance : PhysicalConductance or tuple, optional
+        ``(h0, m[, p_ref])``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0``
+        in W/(m^2 K), ``p_ref`` in Pa (default: the mean Hertz pressure ``P/(2 l)``).
 
     Returns
     -------
@@ -394,7 +446,7 @@ def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> d
                            delta1_over_delta2=c.distortivity / h.distortivity,
                            beta_f=problem.beta_f, n=n, progress=progress,
                            conductance=None if conductance is None else
-                           (conductance[0] * ell / h.K, conductance[1]))
+                           _physical(conductance).biot(problem))
     P = problem.load
     zones = [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
               "peak_pressure": z["peak_pressure"] * P / ell}

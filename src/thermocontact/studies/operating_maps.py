@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import warnings
 from dataclasses import dataclass
 
@@ -34,6 +35,7 @@ from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
+from .contact_sets import PhysicalConductance, physical_contact_set
 from .maps import Axis, parse_axis, run_chunks
 from .physical_contact import MAX_WIDTH, PhysicalProblem
 from .ray import Ray
@@ -74,6 +76,13 @@ class OperatingSpec:
         ``R = v2/v1``: the half-plane's surface moves at ``R`` times the cylinder's
         (section 5b); the speed axis is the cylinder's surface speed, and the heat is
         made at ``|1 - R|`` times it.  One ray still covers the plane.
+    zones : bool
+        Also find the contact set, of one zone or several, at every point (section
+        14c; a stationary half-plane): past the single patch's boundary it says what
+        exists instead.
+    conductance : PhysicalConductance, optional
+        With ``zones``: an interface conductance (section 15), one law for the whole
+        map (so with a reference pressure unless constant).
     """
 
     cylinder: Material
@@ -86,12 +95,24 @@ class OperatingSpec:
     tol: float = 1e-6
     dundurs: bool = True
     speed_ratio: float = 0.0
+    zones: bool = False
+    conductance: PhysicalConductance | None = None
 
     def __post_init__(self):
         check_nonnegative("friction", self.friction)
+        if self.conductance is not None:
+            if not self.zones:
+                raise InputError("--conductance needs --zones (the single patch assumes "
+                                 "perfect thermal contact)")
+            if self.conductance.exponent and self.conductance.p_ref is None:
+                raise InputError("--conductance must be h0:m:p_ref in an operating map "
+                                 "(one law h = h0 (p/p_ref)^m for every load), got no p_ref")
         check_finite("lam", self.lam)
         check_positive("tol", self.tol)
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
+        if self.zones and self.speed_ratio:
+            raise InputError(f"--zones needs a stationary half-plane (speed-ratio 0), got "
+                             f"{self.speed_ratio:g}")
         if self.x.name == self.y.name:
             raise InputError(f"--y must name a parameter other than --x's, got "
                              f"{self.y.name!r} twice")
@@ -154,7 +175,10 @@ class OperatingSpec:
                 # The values, not only the names: a materials file may redefine a name.
                 "materials": [_material_values(self.cylinder),
                               _material_values(self.half_plane)],
-                "fields": "slopes and strains"}
+                "fields": "slopes and strains",
+                **({"zones": True, "conductance": None if self.conductance is None else
+                    [self.conductance.h0, self.conductance.exponent, self.conductance.p_ref]}
+                   if self.zones else {})}
 
 
 def _material_values(m: Material) -> dict:
@@ -260,6 +284,50 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
     return ray
 
 
+#: Fields of a map's contact sets (``zones_*``), by point.
+ZONE_FIELDS = ("status", "count", "valid", "applicable", "start", "end", "load",
+               "peak_pressure", "message")
+
+
+def evaluate_contact_sets(task) -> dict:
+    """The contact set at each of the task's points (:func:`physical_contact_set`):
+    its status, number of zones, validity, whether the theory applies, the first
+    zone's trailing and the last zone's leading edge (m), the load carried (N/m, the
+    sum over zones: the imposed load where solved), the peak pressure (Pa), and the
+    message."""
+    spec = task["spec"]
+    out = {k: [] for k in ZONE_FIELDS}
+    for load, speed, radius in task["points"]:
+        nan = math.nan
+        try:
+            rec = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
+                                       conductance=spec.conductance)
+            z = rec["zones"]
+            row = (rec["status"], len(z), int(bool(rec["valid"])),
+                   int(bool(rec["theory_applicable"])),
+                   z[0]["a"] if z else nan, z[-1]["b"] if z else nan,
+                   sum(q["load"] for q in z) if z else nan,
+                   max(q["peak_pressure"] for q in z) if z else nan, rec["message"])
+        except (SolveError, InputError) as exc:
+            row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc))
+        for k, v in zip(ZONE_FIELDS, row):
+            out[k].append(v)
+    return out
+
+
+def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path=None):
+    """``zones_*`` fields over the map (:func:`evaluate_contact_sets`), one task per
+    line of constant y, kept in ``store_path`` as they finish."""
+    load, speed, radius = spec.grid()
+    tasks = [{"spec": spec, "points": [(float(load[i, j]), float(speed[i, j]),
+                                        float(radius[i, j])) for j in range(load.shape[1])]}
+             for i in range(load.shape[0])]
+    manifest = {**spec.manifest(), "part": "contact sets"}
+    parts = run_chunks(evaluate_contact_sets, tasks, manifest, store_path, workers=workers,
+                       progress=progress)
+    return {k: np.array([parts[i][k] for i in range(len(tasks))]) for k in ZONE_FIELDS}
+
+
 CURVE_POINTS = 201
 
 
@@ -306,7 +374,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         ``max_slope_*`` and ``max_strain_*`` of the cylinder and the half-plane (as
         ``contact`` measures them), ``valid``, ``applicable`` (size, slopes, strains,
         flash temperature), ``branches``, ``status``, ``reason``; the boundary
-        as values of ``Pe_H`` and as curves in the plane.
+        as values of ``Pe_H`` and as curves in the plane; with ``spec.zones`` the
+        contact sets' ``zones_*`` (:func:`evaluate_contact_sets`).
     """
     import xarray as xr
 
@@ -315,7 +384,20 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     fhpe_min = 0.05
     pe_lo = 0.5 * min(pe_h.min(), fhpe_min / spec.fh if spec.fh > 0 else pe_h.min())
     pe_hi = MAX_WIDTH * pe_h.max()
-    ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=progress,
+    # One progress for both parts: the ray's chunks, then the contact sets' lines.
+    lines = spec.y.count if spec.zones else 0
+    ray_total = [0]  # chunks of the ray still to compute (none when resumed)
+
+    def ray_progress(done, total):
+        ray_total[0] = total
+        if progress is not None:
+            progress(done, total + lines)
+
+    def zone_progress(done, total):
+        if progress is not None:
+            progress(ray_total[0] + done, ray_total[0] + total)
+
+    ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=ray_progress,
                       store_path=store_path)
     lp = np.log(ray["pe"])
 
@@ -410,6 +492,13 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     bx = np.array([c[0] for c in curves]).reshape(len(curves), CURVE_POINTS)
     by = np.array([c[1] for c in curves]).reshape(len(curves), CURVE_POINTS)
     dims = (spec.y.name, spec.x.name)
+    zones = {}
+    if spec.zones:
+        found = contact_set_fields(spec, workers=workers, progress=zone_progress,
+                                   store_path=None if store_path is None else
+                                   os.path.join(store_path, "contact_sets"))
+        zones = {f"zones_{k}": (dims, v.astype(str) if v.dtype.kind in "UO" else v)
+                 for k, v in found.items()}
     ds = xr.Dataset(
         {**{k: (dims, v) for k, v in fields.items()},
          "valid": (dims, valid), "applicable": (dims, applicable),
@@ -423,7 +512,7 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
                                                    dtype=str)),
          "boundary_x": (("event", "curve"), bx), "boundary_y": (("event", "curve"), by),
          "ray_pe": ("ray", ray["pe"]), "ray_load_ratio": ("ray", ray["load_ratio"]),
-         "ray_valid": ("ray", ray["valid"].astype(np.int8))},
+         "ray_valid": ("ray", ray["valid"].astype(np.int8)), **zones},
         coords={spec.y.name: spec.y.values, spec.x.name: spec.x.values})
     ds.attrs.update({"title": "thermocontact operating map", "thermocontact_version": __version__,
                      "cylinder": spec.cylinder.name, "half_plane": spec.half_plane.name,
