@@ -54,7 +54,8 @@ def test_crossing_figure_draws_profiles_and_edges(tmp_path):
 
 def test_map_outlines_where_a_contact_set_holds():
     """An operating map with contact sets: where one is valid is outlined (dashed) and
-    points of several zones are marked; a map without them draws neither."""
+    points of several zones are marked; where one holds everywhere the legend says so;
+    a map without them draws none of it."""
     import xarray as xr
 
     from thermocontact.plotting.maps import plot_map
@@ -76,4 +77,10 @@ def test_map_outlines_where_a_contact_set_holds():
     _, ax = plt.subplots()
     plot_map(xr.Dataset(base, coords=coords), ax=ax)
     assert ax.get_legend() is None
+    everywhere = {"zones_status": (dims, np.full(shape, "solved")),
+                  "zones_valid": (dims, np.ones(shape, int)),
+                  "zones_count": (dims, np.ones(shape, int))}
+    _, ax = plt.subplots()
+    plot_map(xr.Dataset({**base, **everywhere}, coords=coords), ax=ax)
+    assert "a valid contact set exists at every point" in ax.get_legend_handles_labels()[1]
     plt.close("all")

@@ -294,3 +294,26 @@ def test_conductance_jacobian_is_the_derivative():
         x, [cond.biot(q) for q in p], [cond.dbiot(q) for q in p], rows, 0.7)
     v = 1e-6 * np.random.default_rng(4).standard_normal(x.size)
     np.testing.assert_allclose(rows_times(x + v)[0] - r0, J @ v, atol=1e-10 * np.abs(J @ v).max())
+
+
+def test_a_stalled_path_is_followed_again_with_twice_the_unknowns(monkeypatch):
+    """Where the continuation cannot follow the path with n unknowns per zone it is
+    followed once more with 2n, and the answer says both; a path that fails for a
+    physical reason (no steady solution) is not repeated."""
+    from thermocontact.studies import contact_sets as cs
+    calls = []
+
+    def follow(path, *args, n, **kwargs):
+        calls.append(n)
+        if n < 20:
+            return cs.ContactSetResult("not converged", "stalled at fHPe_l = 0.5", None)
+        return cs.ContactSetResult("solved", "one zone", None)
+    monkeypatch.setattr(cs, "follow_contact_set", follow)
+    res = cs.find_contact_set(5.0, 1.0, 10.0, lam=1.0, n=12)
+    assert calls == [12, 24] and res.status == "solved"
+    assert res.message == "one zone (with n = 24: with n = 12, stalled at fHPe_l = 0.5)"
+    calls.clear()
+    monkeypatch.setattr(cs, "follow_contact_set", lambda *a, n, **k: calls.append(n) or
+                        cs.ContactSetResult("no steady solution", "gap closes", None))
+    assert cs.find_contact_set(5.0, 1.0, 10.0, lam=1.0, n=12).status == "no steady solution"
+    assert calls == [12]

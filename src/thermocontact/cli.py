@@ -518,8 +518,13 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                                     delta_over_r=delta_over_r), dundurs, zones, conductance)
         fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
-                 f"lambda = {spec.lam:g}, {fixed} (SI)\nvalid where not shaded; theory not "
-                 f"applicable where hatched")
+                 f"lambda = {spec.lam:g}, {fixed} (SI)\nsingle patch (perfect contact) "
+                 f"valid where not shaded; theory not applicable where hatched")
+        if spec.zones:
+            c = spec.conductance
+            title += "\ncontact sets, " + ("perfect contact" if c is None else (
+                f"h = {c.h0:g} W/m2K" + (f" (p/{c.p_ref:g} Pa)^{c.exponent:g}"
+                                         if c.exponent else "")))
     else:
         for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
                             ("--friction", friction), ("--dundurs", dundurs),

@@ -64,6 +64,9 @@ def plot_map(ds, field="load_ratio", ax=None):
             ax.contour(x, y, held.astype(float), levels=[0.5], colors="tab:red",
                        linestyles="--", linewidths=1.2)
             ax.plot([], [], "--", color="tab:red", label="a valid contact set exists inside")
+        else:
+            ax.plot([], [], " ", label="a valid contact set exists at "
+                    + ("every point" if held.all() else "no point"))
         several = held & (np.asarray(ds["zones_count"].values) > 1)
         if several.any():
             yy, xx = np.meshgrid(y, x, indexing="ij")

@@ -11,7 +11,7 @@ valid set, or the evidence that none of them is.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -98,15 +98,27 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         ``Bi0 = h0 l/K2`` and ``p_ref = P/(2 l)`` (derivation section 15); default
         perfect thermal contact.  The second method is then not tried.
     n : int
-        Unknowns per function per zone.
+        Unknowns per function per zone; where the path cannot be followed with them,
+        followed again with twice as many (once; the message says so).
     progress : callable, optional
         ``progress(fraction)`` as the continuation advances.
     """
     pe = check_positive("pe_hertz", pe_hertz)
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
-    return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
-                              k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                              beta_f=beta_f, conductance=conductance, n=n, progress=progress)
+
+    def attempt(n_):
+        return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
+                                  k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                                  beta_f=beta_f, conductance=conductance, n=n_,
+                                  progress=progress)
+    res = attempt(n)
+    if res.status == "not converged" and 2 * int(n) <= 256:
+        # An under-resolved zone (narrow, or at a high Peclet number) can stall the
+        # continuation where a finer one passes.
+        again = attempt(2 * int(n))
+        return replace(again, message=f"{again.message} (with n = {2 * int(n)}: with n = "
+                                      f"{int(n)}, {res.message})")
+    return res
 
 
 #: Largest correction of any edge's predicted position in one continuation step, in
