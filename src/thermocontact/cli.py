@@ -453,9 +453,11 @@ def _run_map(spec, out, workers, title, command):
     status = np.asarray(ds["status"].values)
     failed = int((status == "failed").sum())
     unconverged = int((status == "not converged").sum())
+    events = ds.sizes.get("event", 0)
     click.echo(f"wrote {out} and {picture}: {status.size} points ({int(ds['valid'].sum())} "
                f"valid, {unconverged} not converged, {failed} failed), "
-               f"{ds.sizes.get('event', 0)} boundary points, in {time.perf_counter() - t0:.1f} s")
+               f"{events} boundary point{'s' * (events != 1)}, "
+               f"in {time.perf_counter() - t0:.1f} s")
     if "zones_status" in ds:
         zs = np.asarray(ds["zones_status"].values)
         counts = np.asarray(ds["zones_count"].values)[zs == "solved"]
