@@ -157,6 +157,18 @@ def _physical_options(required: bool):
     return deco
 
 
+def _contact_set_options(zones_help: str, p_ref_help: str):
+    """``--zones`` and ``--conductance`` of the physical commands (``contact``, ``map``),
+    which differ only in what the flag adds and what an omitted ``p_ref`` means."""
+    zones = click.option("--zones", "zones", is_flag=True, help=zones_help)
+    conductance = click.option(
+        "--conductance", default=None,
+        help="With --zones: h0:m[:p_ref], an interface conductance h = h0 (p/p_ref)^m, h0 "
+             "in W/(m^2 K), m >= 0, p_ref in Pa or with units (" + p_ref_help + ") "
+             "[default: perfect thermal contact].")
+    return lambda func: zones(conductance(func))
+
+
 @cli.command("solve")
 @_problem_options(required=True)
 @click.option("-n", "n", type=int, default=None,
@@ -489,13 +501,9 @@ def _run_map(spec, out, workers, title, command):
               help="Run on the Dask cluster whose scheduler is at this address "
                    "(tcp://host:port) instead.")
 @_physical_options(required=False)
-@click.option("--zones", "zones", is_flag=True,
-              help="Operating maps: also the contact set, of one zone or several, at every "
-                   "point (what exists past the single patch's boundary).")
-@click.option("--conductance", default=None,
-              help="With --zones: h0:m[:p_ref], an interface conductance h = h0 "
-                   "(p/p_ref)^m, h0 in W/(m^2 K), m >= 0, p_ref in Pa (needed unless "
-                   "m = 0) [default: perfect thermal contact].")
+@_contact_set_options("Operating maps: also the contact set, of one zone or several, at "
+                      "every point (what exists past the single patch's boundary).",
+                      "needed unless m = 0")
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
@@ -767,13 +775,9 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
-@click.option("--zones", "zones", is_flag=True,
-              help="The contact set at this load, of one zone or several (derivation "
-                   "section 14), instead of the single patch's branches.")
-@click.option("--conductance", default=None,
-              help="With --zones: h0:m[:p_ref], an interface conductance h = h0 "
-                   "(p/p_ref)^m, h0 in W/(m^2 K), m >= 0, p_ref in Pa (or with units; "
-                   "omitted: the mean Hertz pressure) [default: perfect thermal contact].")
+@_contact_set_options("The contact set at this load, of one zone or several (derivation "
+                      "section 14), instead of the single patch's branches.",
+                      "omitted: the mean Hertz pressure")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
                 lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
     """Contact width, pressures and temperatures from materials, load and speed."""
