@@ -81,14 +81,20 @@ def test_no_heat_is_hertz():
     assert sol.valid
 
 
-def test_two_zones_of_a_quartic_profile_against_the_closed_form():
-    """g0 = A (X^2 - c^2)^2: p = (8A/pi)|X| sqrt((X^2 - a^2)(b^2 - X^2)) on two zones with
-    a^2 + b^2 = 2c^2 and b^2 - a^2 = 1/sqrt(A) (section 14)."""
+@pytest.fixture(scope="module")
+def quartic():
+    """Two zones of the isothermal initial gap g0 = A (X^2 - c^2)^2 (A = 1/32, c = 2),
+    solved, with the closed form's edges a, b (section 14)."""
     A, c = 1 / 32, 2.0
     prof = A * Polynomial([-c * c, 0, 1]) ** 2
     sol = ZoneModel(10.0, n=32, profile=prof).solve([[-2.6, -1.4], [1.3, 2.7]], 1.0, 0.0, 0.0)
-    a = np.sqrt(c * c - 0.5 / np.sqrt(A))
-    b = np.sqrt(c * c + 0.5 / np.sqrt(A))
+    return sol, prof, A, np.sqrt(c * c - 0.5 / np.sqrt(A)), np.sqrt(c * c + 0.5 / np.sqrt(A))
+
+
+def test_two_zones_of_a_quartic_profile_against_the_closed_form(quartic):
+    """g0 = A (X^2 - c^2)^2: p = (8A/pi)|X| sqrt((X^2 - a^2)(b^2 - X^2)) on two zones with
+    a^2 + b^2 = 2c^2 and b^2 - a^2 = 1/sqrt(A) (section 14)."""
+    sol, prof, A, a, b = quartic
     np.testing.assert_allclose(sol.edges, [[-b, -a], [a, b]], atol=1e-12)
     np.testing.assert_allclose(sol.loads, [0.5, 0.5], atol=1e-12)
     s = np.cos(np.linspace(0.01, np.pi - 0.01, 60))
@@ -98,6 +104,32 @@ def test_two_zones_of_a_quartic_profile_against_the_closed_form():
         np.testing.assert_allclose(sol.representation.pressure_at(phi, s), exact, atol=1e-12)
     assert sol.valid
     assert sol.validity.gap_margin > 0
+
+
+def test_gap_of_two_zones_against_direct_quadrature(quartic):
+    """The gap outside two zones (D23a, section 14) against the slope mismatch
+    g0'(Y) - (1/2) int p(xi)/(Y - xi) dxi of the closed-form pressure integrated by
+    quadrature from the region's edge (the factor 1/2 is Hertz's: with p = (2/pi)
+    sqrt(1 - xi^2) it gives the slope X of X^2/2 inside); open between and beyond the
+    zones."""
+    from scipy.integrate import quad
+
+    from thermocontact.analysis.zone_validity import zone_gap
+    sol, prof, A, a, b = quartic
+
+    def p(x):
+        return (8 * A / np.pi) * abs(x) * np.sqrt(max((x * x - a * a) * (b * b - x * x), 0.0))
+
+    def slope(Y):
+        held = sum(quad(lambda x: p(x) / (Y - x), lo, hi, epsabs=1e-14, epsrel=1e-13,
+                        limit=200)[0] for lo, hi in ((-b, -a), (a, b)))
+        return prof.deriv()(Y) - 0.5 * held
+    for X0, X in ((a, [0.5 * a, 0.0]), (b, [1.05 * b, 2 * b])):
+        gap = zone_gap(sol.parameters, sol.representation, sol.edges, sol.phi, sol.psi,
+                       prof, np.array(X), X0)
+        ref = [quad(slope, X0, x, epsabs=1e-13, epsrel=1e-12, limit=200)[0] for x in X]
+        np.testing.assert_allclose(gap, ref, rtol=1e-11, atol=1e-12)
+        assert np.all(gap > 0)
 
 
 def test_element_antiderivatives():
