@@ -107,7 +107,7 @@ def test_two_zones_of_a_quartic_profile_against_the_closed_form(quartic):
 
 
 def test_gap_of_two_zones_against_direct_quadrature(quartic):
-    """The gap outside two zones (D23a, section 14) against the slope mismatch
+    """The gap outside two zones (D31a, section 14) against the slope mismatch
     g0'(Y) - (1/2) int p(xi)/(Y - xi) dxi of the closed-form pressure integrated by
     quadrature from the region's edge (the factor 1/2 is Hertz's: with p = (2/pi)
     sqrt(1 - xi^2) it gives the slope X of X^2/2 inside); open between and beyond the
@@ -247,8 +247,35 @@ def test_contact_zones_in_physical_units(capsys):
     assert "stationary half-plane" in capsys.readouterr().err
 
 
+def test_conductance_in_si_units(capsys, tmp_path):
+    """h = h0 (p/p_ref)^m as a Biot number at the mean Hertz pressure P/(2 l):
+    Bi0 = h0 (P/(2 l p_ref))^m l/K2 (p_ref omitted: the mean Hertz pressure itself);
+    one outside the solved range is refused naming h0 and its allowed range, by
+    `contact` and, before any point is computed, by `map`."""
+    from thermocontact.cli import main
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.contact_sets import PhysicalConductance
+    from thermocontact.studies.physical_contact import PhysicalProblem
+    prob = PhysicalProblem(get_material("steel"), get_material("copper"), 0.01, 3e5, 40.0,
+                           0.3, 1.0)
+    ell, K2 = prob.hertz_half_width, get_material("copper").K
+    p_mean = 3e5 / (2 * ell)
+    assert PhysicalConductance(5e6, 0.95, 2e9).biot(prob) == pytest.approx(
+        (5e6 * (p_mean / 2e9) ** 0.95 * ell / K2, 0.95), rel=1e-14)
+    assert PhysicalConductance(5e6, 0.95).biot(prob)[0] == pytest.approx(5e6 * ell / K2,
+                                                                          rel=1e-14)
+    args = ["--cylinder", "steel", "--half-plane", "copper", "--friction", "0.3", "--lam",
+            "1", "--radius", "0.01", "--zones", "--conductance", "1e300:0"]
+    assert main(["contact", "--load", "3e5", "--speed", "40"] + args) == 2
+    assert "conductance h0 = 1e+300 W/(m^2 K)" in capsys.readouterr().err
+    assert main(["map", "--x", "speed:5:40:3", "--y", "load:3e4:3e5:3", "--out",
+                 str(tmp_path / "never.nc")] + args) == 2
+    err = capsys.readouterr().err
+    assert "h0 must be in [" in err and len(err.strip().splitlines()) == 1
+
+
 def test_interface_conductance_limits():
-    """h -> infinity is perfect contact (the temperature equation (D25) undifferentiated
+    """h -> infinity is perfect contact (the temperature equation (D33) undifferentiated
     against (D18) with its closures: edges to 1e-8); h -> 0 lets no temperature
     difference drive the heat across, so q = q1 - q2 is set by lam alone: uniform
     (m = 0) or proportional to the pressure (m = 1)."""
@@ -288,6 +315,9 @@ def test_conductance_restores_a_single_zone_past_the_boundary(capsys):
     assert main(args + ["--conductance", "10:1"]) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["status"] == "solved" and rec["valid"] is True and len(rec["zones"]) == 1
+    assert main(args) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["status"] == "no steady solution" and rec["valid"] is False
     assert main(args + ["--conductance", "10"]) == 2
     assert "--conductance must be h0:m" in capsys.readouterr().err
 
@@ -298,13 +328,13 @@ def test_other_starts_reach_the_same_zone():
     same single zone (or fails); no other valid contact set appears."""
     from thermocontact.studies.contact_sets import other_starts
     model = ZoneModel(10.0, n=16)
-    sol = model.solve([[-1, 1]], 5.0, 0.5, 1.0)
-    outcomes = other_starts(model, sol, 1.0)
+    sol = model.solve([[-1.3, 0.7]], 5.0, 0.5, 1.0)
+    outcomes = {o["start"]: o for o in other_starts(model, sol, 1.0)}
     assert len(outcomes) == 6
-    reached = [o for o in outcomes if "edges" in o]
-    assert len(reached) >= 4
-    assert all(o["same"] or not o["valid"] for o in reached)
-    assert sum(o["same"] for o in reached) >= 4
+    split = outcomes.pop("split in two")
+    assert all(o["same"] and o["valid"] for o in outcomes.values())
+    # The split: one part shrinks to nothing (or Newton's method reaches the zone).
+    assert split.get("same", True) or not split["valid"]
 
 
 def test_conductance_jacobian_is_the_derivative():
@@ -349,3 +379,15 @@ def test_a_stalled_path_is_followed_again_with_twice_the_unknowns(monkeypatch):
                         cs.ContactSetResult("no steady solution", "gap closes", None))
     assert cs.find_contact_set(5.0, 1.0, 10.0, lam=1.0, n=12).status == "no steady solution"
     assert calls == [12]
+
+
+def test_a_set_found_short_of_the_point_is_not_the_answer():
+    """Where the path stops short (not converged, a fold), the last set followed is
+    reported as such, never as the answer's zones or validity at the point asked for."""
+    from thermocontact.studies.contact_sets import ContactSetResult
+    hertz = ZoneModel(10.0, n=8).solve([[-1.0, 1.0]], 2.0, 0.0, 1.0)
+    rec = ContactSetResult("not converged", "stalled", hertz, reached=0.3).to_dict()
+    assert rec["valid"] is None and rec["zones"] == [] and rec["complementarity"] is None
+    assert rec["last_followed"]["t"] == 0.3 and rec["last_followed"]["valid"] is True
+    done = ContactSetResult("solved", "one zone", hertz).to_dict()
+    assert done["valid"] is True and len(done["zones"]) == 1 and "last_followed" not in done

@@ -755,9 +755,9 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
         click.echo(json.dumps(res.to_dict(), allow_nan=False))
         return
     lines = [f"status: {res.status}: {res.message}"]
-    if res.solution is not None:
-        lines.append(f"  valid: {res.solution.valid} ({res.solution.validity.reason})")
-        for k, z in enumerate(res.solution.zone_records(), 1):
+    if res.answer is not None:
+        lines.append(f"  valid: {res.answer.valid} ({res.answer.validity.reason})")
+        for k, z in enumerate(res.answer.zone_records(), 1):
             lines.append(f"  zone {k}: {z['a']:.6f} < x/l < {z['b']:.6f}, load "
                          f"{z['load']:.6f} P, peak pressure {z['peak_pressure']:.6f} P/l")
     click.echo("\n".join(lines))

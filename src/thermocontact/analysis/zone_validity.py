@@ -129,7 +129,7 @@ def zone_gap(par: Parameters, rep, edges, phi, psi, profile, X, X0, residuals=No
 
     ``g(X) = g0(X) - g0(X0) - (pi/2) sum_j Delta_j [I_j(X) - I_j(X0)]`` with ``I_j`` zone
     ``j``'s contact-equation left side integrated from its edge on that side
-    (D23a; section 14).
+    (D31a; section 14).
     """
     X = np.atleast_1d(np.asarray(X, dtype=float))
     half = 0.5 * (edges[:, 1] - edges[:, 0])

@@ -199,7 +199,7 @@ def outside_operators(par: Parameters, rep, side: float, tt):
 
 
 def temperature_operators(par: Parameters, rep, s, aux=None):
-    """The surface temperature difference ``T1 - T2`` at points ``s`` (D25).
+    """The surface temperature difference ``T1 - T2`` at points ``s`` (D33).
 
     ``pi K2 (T1 - T2)/(f v P)`` up to a constant is
     ``rho integral q1 T(c u) dr + integral q2 ln|u| dr`` with ``T(u) = exp(-u) K0(|u|)``

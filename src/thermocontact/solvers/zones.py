@@ -2,8 +2,8 @@
 
 The contact set is a union of intervals ``a_j < X < b_j`` in units of the Hertz
 half-width ``l`` of the actual load (``l^2 = 2 P R A / pi``).  On each zone the
-contact equation (D14) and the heat equation (D18) hold with every zone's pressure
-and heat flux acting on it; outside, no heat crosses and the gap is open.  The
+contact equation (D14; D31 in units of l) and the heat equation (D18) hold with every
+zone's pressure and heat flux acting on it; outside, no heat crosses and the gap is open.  The
 load and the heat partition ``lam`` close the problem, and between neighbouring
 zones the gap and the temperature difference ``T1 - T2`` return to the values they
 have on the zone before (both bodies touch, and perfect thermal contact holds, on
@@ -49,6 +49,11 @@ DEFECT_TOL = 1e-11
 MAX_PICARD = 50
 
 
+#: The Biot numbers ``h l/K2`` of an interface conductance that are solved: from
+#: nearly insulating to perfect contact to rounding (section 15).
+BIOT_RANGE = (1e-12, 1e15)
+
+
 @dataclass(frozen=True)
 class Conductance:
     """An interface conductance ``h = h0 (p / p_ref)^m`` (derivation section 15).
@@ -67,7 +72,8 @@ class Conductance:
     exponent: float = 0.0
 
     def __post_init__(self):
-        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0, 1e-12, 1e15))
+        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
+                                                      *BIOT_RANGE))
         object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
 
     def biot(self, pressure):
@@ -110,7 +116,7 @@ class ZoneSystem:
     The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
     ``psi``, then each zone's defects ``(mu, nu)``, then (with an interface
     conductance) the temperature difference's constant.  With a conductance each
-    zone's temperature rows (D25) depend on the Biot numbers at its points
+    zone's temperature rows (D33) depend on the Biot numbers at its points
     (``points``): they are formed by :meth:`matrix` from ``local``.
     """
 
@@ -130,7 +136,7 @@ class ZoneSystem:
         # column stays of order one however small the conductance.
         scale = self.theta_scale(biot) if scale is None else scale
         for (rows, P, U, Lq), bi in zip(self.local, biot):
-            # (D25) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
+            # (D33) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
             # the interface's (pi/2) q by 1/(1 + Bi); either limit stays finite.
             w = 1.0 / (1.0 + bi)
             point_rows = (bi * w)[:, None] * U + (0.5 * np.pi * w)[:, None] * Lq
@@ -143,7 +149,7 @@ class ZoneSystem:
         return max(float(np.max(bi / (1.0 + bi))) for bi in biot)
 
     def conductance_jacobian(self, x, biot, dbiot, pressure_rows, scale):
-        """The derivative of the temperature rows through ``Bi(p)``: ``(D25)`` times
+        """The derivative of the temperature rows through ``Bi(p)``: ``(D33)`` times
         ``Bi/(1 + Bi)`` changes with ``Bi`` by ``(U x - (pi/2) q)/(1 + Bi)^2`` per
         point, and ``Bi`` with the pressure ``p = pressure_rows @ phi``."""
         J = np.zeros_like(self.A0)
@@ -158,7 +164,7 @@ class ZoneSystem:
 
 
 def temperature_points(rep, scheme: str):
-    """Where the temperature equation (D25) is evaluated: ``n`` points and the
+    """Where the temperature equation (D33) is evaluated: ``n`` points and the
     reduction (the first ``n`` projections of the contact equation, or collocation at
     ``tau = pi (k - 1/2)/n``)."""
     n = rep.n
@@ -177,10 +183,10 @@ def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER,
 
     Rows: each zone's contact equation (``n + 1``), each zone's heat equation
     (``n - 1``), the load, the heat partition, and for each gap between zones the
-    gap's return (D23a) and the temperature difference's return (D23b).  With an
+    gap's return (D31a) and the temperature difference's return (D31b).  With an
     interface conductance (``conductance=True``, section 15) each zone's heat rows
-    are instead ``n`` rows of the temperature equation (D25), whose constant is one
-    more unknown, and (D23b) is not needed.
+    are instead ``n`` rows of the temperature equation (D33), whose constant is one
+    more unknown, and (D31b) is not needed.
 
     Parameters
     ----------
@@ -229,7 +235,7 @@ def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER,
             A1[rc, phi[j]] = -half[j] * reduce(p1, Tp)
             A1[rc, psi[j]] = -half[j] * reduce(p1, Tq)
             if conductance:
-                # (D25) in units of l: zone j's integrals carry Delta_j, and its
+                # (D33) in units of l: zone j's integrals carry Delta_j, and its
                 # logarithm ln(Delta_j) times the heat it puts into the half-plane.
                 Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
                 lg = np.log(half[j])

@@ -20,7 +20,7 @@ from ..numerics.continuation import arclength
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
-from ..solvers.zones import ZoneModel, ZoneSolution
+from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
 
 __all__ = ["ContactSetResult", "PhysicalConductance", "find_contact_set",
            "follow_contact_set", "other_starts", "physical_contact_set"]
@@ -39,7 +39,8 @@ class ContactSetResult:
     status : {"solved", "no steady solution", "not converged"}
     message : str
     solution : ZoneSolution or None
-        The valid contact set (``solved``), else the last one found (invalid).
+        The valid contact set (``solved``), else the last one found: invalid, or at an
+        earlier point of the path (``reached < 1``).
     event : dict or None
         Where the single zone followed from Hertz's first fails: ``fhpe_hertz``,
         the failing inequality and where.
@@ -51,6 +52,8 @@ class ContactSetResult:
     folds : list of dict
         Where the branch followed turns back (pseudo-arclength continuation,
         :func:`~thermocontact.numerics.continuation.arclength`).
+    reached : float
+        The path parameter of ``solution`` (1 at the point asked for).
     """
 
     status: str
@@ -60,18 +63,30 @@ class ContactSetResult:
     attempts: list = field(default_factory=list)
     history: list = field(default_factory=list)
     folds: list = field(default_factory=list)
+    reached: float = 1.0
+
+    @property
+    def answer(self) -> ZoneSolution | None:
+        """The contact set at the point asked for (valid or not), or None where the
+        path stopped short of it: a set found earlier on the path says nothing about
+        validity there."""
+        return self.solution if self.reached >= 1.0 else None
 
     def to_dict(self) -> dict:
+        sol = self.answer
         rec = {"status": self.status, "message": self.message,
-               "valid": None if self.solution is None else self.solution.valid,
-               "zones": [] if self.solution is None else self.solution.zone_records(),
-               "complementarity": (None if self.solution is None
-                                   or self.solution.validity is None
-                                   else self.solution.validity.to_dict()),
+               "valid": None if sol is None else sol.valid,
+               "zones": [] if sol is None else sol.zone_records(),
+               "complementarity": (None if sol is None or sol.validity is None
+                                   else sol.validity.to_dict()),
                "event": self.event, "attempts": self.attempts, "folds": self.folds}
-        if self.solution is not None:
-            rec["n"] = self.solution.n
-            rec["defect"] = self.solution.defect
+        if sol is not None:
+            rec["n"] = sol.n
+            rec["defect"] = sol.defect
+        elif self.solution is not None:
+            rec["last_followed"] = {"t": self.reached,
+                                    "zones": self.solution.zone_records(),
+                                    "valid": self.solution.valid}
         return rec
 
 
@@ -207,6 +222,10 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         pe, F = path(t)
         return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
 
+    def point(t):
+        pe, F = path(t)
+        return f"Pe_l = {pe:.6g}, fHPe_l = {F:.6g}"
+
     def around(sol, t, until):
         def residual(z):
             pe, F = path(z[-1])
@@ -231,10 +250,11 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 "no steady solution", f"the single zone's branch folds back at Pe_l = "
                 f"{folds[-1]['pe_hertz']:.6g}, fHPe_l = {folds[-1]['fhpe_hertz']:.6g}: "
                 f"beyond it, along this path, it has no continuation", sol,
-                history=history, folds=folds)
+                history=history, folds=folds, reached=t)
         return ContactSetResult(
-            "not converged", f"the single zone could not be followed past {where(t)} "
-            f"(Newton's method fails, or jumps, for every step)", sol, history=history)
+            "not converged", f"the single zone could not be followed past {point(t)} "
+            f"(Newton's method fails, or jumps, for every step)", sol, history=history,
+            reached=t)
     if failed_at is None:
         final = at(sol.edges, 1.0, polish=True)
         if final.valid:
@@ -340,9 +360,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                          "result": s2.validity.reason})
         if s2.valid:
             status = "solved" if reached >= 1.0 else "not converged"
-            return ContactSetResult(status, f"{s2.zones} zones ({name}) at {where(reached)}; "
-                                    f"the single zone fails beyond {where(hi)}", s2, event,
-                                    attempts, history, folds)
+            return ContactSetResult(status, f"{s2.zones} zones ({name}) at {point(reached)}; "
+                                    f"the single zone fails beyond {point(hi)}", s2, event,
+                                    attempts, history, folds, reached)
     end = where(reached)
     return ContactSetResult(
         "no steady solution",
@@ -351,7 +371,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
         f"{end['fhpe_hertz']:.6g} (see attempts)"
         + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
-           "that far, where it is returned"), single, event, attempts, history, folds)
+           "that far, where it is returned"), single, event, attempts, history, folds,
+        reached)
 
 
 def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
@@ -417,10 +438,24 @@ class PhysicalConductance:
         """``(Bi0, m)`` of :class:`~thermocontact.solvers.zones.Conductance` for
         ``problem``: ``Bi0 = h(P/(2 l)) l/K2``."""
         ell = problem.hertz_half_width
-        h = self.h0
-        if self.p_ref is not None and self.exponent:
-            h *= (problem.load / (2.0 * ell) / self.p_ref) ** self.exponent
-        return h * ell / problem.half_plane.K, self.exponent
+        with np.errstate(over="ignore", under="ignore"):
+            factor = ell / problem.half_plane.K  # Bi0 / h0
+            if self.p_ref is not None and self.exponent:
+                factor *= (problem.load / (2.0 * ell) / self.p_ref) ** self.exponent
+            bi = self.h0 * factor
+        lo, hi = BIOT_RANGE
+        if not (np.isfinite(factor) and factor > 0.0):
+            raise InputError(f"conductance p_ref = {self.p_ref:g} Pa makes h at the mean "
+                             f"Hertz pressure {'infinite' if factor > 0 else 'zero'}: "
+                             f"give a p_ref near the contact pressures")
+        if not lo <= bi <= hi:
+            raise InputError(f"conductance h0 = {self.h0:g} W/(m^2 K) gives a Biot number "
+                             f"h l/K2 = {bi:.3g} at load {problem.load:g} N/m, outside "
+                             f"[{lo:g}, {hi:g}]: h0 must be in [{lo / factor:.3g}, "
+                             f"{hi / factor:.3g}] W/(m^2 K) here" + (
+                                 f" with p_ref = {self.p_ref:g} Pa, m = {self.exponent:g}"
+                                 if self.p_ref is not None and self.exponent else ""))
+        return bi, self.exponent
 
 
 def _physical(conductance) -> PhysicalConductance:
@@ -462,7 +497,7 @@ def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> d
     P = problem.load
     zones = [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
               "peak_pressure": z["peak_pressure"] * P / ell}
-             for z in (res.solution.zone_records() if res.solution is not None else [])]
+             for z in (res.answer.zone_records() if res.answer is not None else [])]
     # What the theory needs that these numbers can say: a contact small against the
     # radius and small strains (section 11a); slopes and temperatures of contact sets
     # are not evaluated yet, and the record says so.
@@ -479,7 +514,7 @@ def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> d
                 reasons.append(f"{name} strain (peak pressure x compliance) {strain:.3g} > "
                                f"{MAX_STRAIN:g}: not small strains")
     return {"status": res.status, "message": res.message,
-            "valid": None if res.solution is None else res.solution.valid,
+            "valid": None if res.answer is None else res.answer.valid,
             "theory_applicable": not reasons, "theory_reasons": reasons,
             "theory_checked": ["contact size against the radius", "strains"],
             "hertz_half_width": ell, "zones": zones, "dimensionless": res.to_dict()}

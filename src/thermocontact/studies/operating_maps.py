@@ -127,7 +127,10 @@ class OperatingSpec:
         # Every corner must be a problem the solver accepts.
         for xv in (self.x.start, self.x.stop):
             for yv in (self.y.start, self.y.stop):
-                self.problem(**{self.x.name: xv, self.y.name: yv})
+                corner = self.problem(**{self.x.name: xv, self.y.name: yv})
+                # The Biot number is monotone in load and radius: corners bound it.
+                if self.conductance is not None:
+                    self.conductance.biot(corner)
 
     def problem(self, **values) -> PhysicalProblem:
         kw = {**self.fixed, **values}
