@@ -770,7 +770,10 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
               help="Speed of the half-plane's surface through the contact (m/s, or with "
                    "units), positive in the cylinder's direction; --speed is then the "
                    "cylinder's surface speed and the heat is made at |speed - speed2|.")
-@click.option("--tol", type=float, default=1e-6, show_default=True, help="Error target of P_H/P per branch.")
+@click.option("--tol", type=float, default=1e-6, show_default=True,
+              help="Error target of P_H/P per branch (with --zones not used: contact sets "
+                   "are solved with 32 unknowns per function per zone, doubled where the "
+                   "path stalls).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
