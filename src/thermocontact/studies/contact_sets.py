@@ -90,6 +90,11 @@ class ContactSetResult:
         return rec
 
 
+def _point(where: dict) -> str:
+    """A point of a path, ``{"pe_hertz": .., "fhpe_hertz": ..}``, for a message."""
+    return f"Pe_l = {where['pe_hertz']:.6g}, fHPe_l = {where['fhpe_hertz']:.6g}"
+
+
 def _first_failure(sol: ZoneSolution) -> str:
     return sol.validity.failures[0] if sol.validity.failures else "valid"
 
@@ -222,10 +227,6 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         pe, F = path(t)
         return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
 
-    def point(t):
-        pe, F = path(t)
-        return f"Pe_l = {pe:.6g}, fHPe_l = {F:.6g}"
-
     def around(sol, t, until):
         def residual(z):
             pe, F = path(z[-1])
@@ -247,14 +248,13 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     if failed_at is None and t < 1.0:
         if folds:
             return ContactSetResult(
-                "no steady solution", f"the single zone's branch folds back at Pe_l = "
-                f"{folds[-1]['pe_hertz']:.6g}, fHPe_l = {folds[-1]['fhpe_hertz']:.6g}: "
-                f"beyond it, along this path, it has no continuation", sol,
-                history=history, folds=folds, reached=t)
+                "no steady solution", f"the single zone's branch folds back at "
+                f"{_point(folds[-1])}: beyond it, along this path, it has no continuation",
+                sol, history=history, folds=folds, reached=t)
         return ContactSetResult(
-            "not converged", f"the single zone could not be followed past {point(t)} "
-            f"(Newton's method fails, or jumps, for every step)", sol, history=history,
-            reached=t)
+            "not converged", f"the single zone could not be followed past "
+            f"{_point(where(t))} (Newton's method fails, or jumps, for every step)", sol,
+            history=history, reached=t)
     if failed_at is None:
         final = at(sol.edges, 1.0, polish=True)
         if final.valid:
@@ -360,9 +360,10 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                          "result": s2.validity.reason})
         if s2.valid:
             status = "solved" if reached >= 1.0 else "not converged"
-            return ContactSetResult(status, f"{s2.zones} zones ({name}) at {point(reached)}; "
-                                    f"the single zone fails beyond {point(hi)}", s2, event,
-                                    attempts, history, folds, reached)
+            return ContactSetResult(
+                status, f"{s2.zones} zones ({name}) at {_point(where(reached))}; the single "
+                f"zone fails beyond {_point(where(hi))}", s2, event, attempts, history, folds,
+                reached)
     end = where(reached)
     return ContactSetResult(
         "no steady solution",
