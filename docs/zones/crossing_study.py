@@ -7,10 +7,12 @@ zone is followed from Hertz's along the ray to 10 % past the boundary; where it 
 the contact sets the failure suggests are tried (thermocontact.studies.contact_sets).
 The same rays are then followed to 1.1 and 2 times the boundary's Pe_l with
 interface conductances h = C p^m (derivation section 15).  Writes
-crossing_study.json and path_*.png beside this file (about 7 minutes on one core);
-``--table`` prints the summary table of docs/zones.md from the JSON.
+crossing_study.json and path_*.png beside this file (about 7 minutes on one core; the
+paths in parallel with ``--workers N``), keeping each path as it finishes so that an
+interrupted study resumes; ``--table`` prints the summary table of docs/zones.md from
+the JSON.
 
-    python docs/zones/crossing_study.py [--table]
+    python docs/zones/crossing_study.py [--table | --workers N]
 """
 
 import json
@@ -19,8 +21,11 @@ import time
 
 import numpy as np
 
-from thermocontact import Model
+from thermocontact import Model, __version__
+from thermocontact.io.chunks import discard
+from thermocontact.io.files import atomic_write
 from thermocontact.studies.boundaries import follow
+from thermocontact.studies.maps import run_chunks
 from thermocontact.plotting.zones import crossing_figure
 from thermocontact.problem.parameters import SolveError
 from thermocontact.solvers.zones import ZoneModel
@@ -82,71 +87,85 @@ def _rounded(obj):
     return obj
 
 
-def main():
-    out = []
-    for name, pe, K, k, d, lam in PATHS:
-        t0 = time.perf_counter()
-        ev = first_event(pe, K, k, d, lam)
-        # On a 'load' event P_H/P -> 0: stop just before it.
-        f_star = ev.at if ev.inequality != "load" else 0.99 * ev.at
-        L = Model(pe, K, k2_over_k1=k, delta1_over_delta2=d).solve(f_star, lam=lam).load_ratio
-        fH = f_star / pe
-        pe_l = pe / np.sqrt(L)
-        lo, hi = 0.2 * pe_l, 1.1 * pe_l
-        res = follow_contact_set(lambda t: (lo + t * (hi - lo), fH * (lo + t * (hi - lo))),
-                                 K, lam=lam, k2_over_k1=k, delta1_over_delta2=d, n=N)
-        rec = {"path": name, "pe": pe, "K2_over_K1": K, "k2_over_k1": k,
-               "delta1_over_delta2": d, "lam": lam, "n": N,
-               "core_event": {"fhpe": ev.at, "inequality": ev.inequality, "load_ratio": L},
-               "fH": fH, "pe_hertz_at_core_event": pe_l, "ray": [lo, hi],
-               "status": res.status, "message": res.message, "event": res.event,
-               "attempts": res.attempts,
-               "zones_at_end": None if res.solution is None else res.solution.zone_records(),
-               "other_starts": None if res.status != "solved" else other_starts(
-                   ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d, n=N), res.solution, lam),
-               "seconds": round(time.perf_counter() - t0, 1)}
-        rec["histories"] = [{"label": "perfect contact", "steps": res.history}]
-        rec["profiles"] = profiles(res.history, pe_l, fH, K, k, d, lam, None,
-                                   (0.4, 0.7, 1.0, 1.1), "perfect")
-        rec["with_conductance"] = []
-        # Also where perfect contact holds (path d): does a resistance break it?
-        for bi, m in CONDUCTANCES:
-            t1 = time.perf_counter()
-            runs = []
-            for end in (1.1, 2.0):
-                def pe_at(t, end=end):
-                    return lo + t * (end * pe_l - lo)
-                # A fixed law h = C p^m: at the mean Hertz pressure, which grows as
-                # l, Bi0 = h0 l/K2 grows as l^(1 + m), l as Pe_l.
-                r = follow_contact_set(
-                    lambda t, pe_at=pe_at: (pe_at(t), fH * pe_at(t)),
-                    K, lam=lam, k2_over_k1=k, delta1_over_delta2=d, n=N,
-                    conductance=lambda t, pe_at=pe_at, bi=bi, m=m: (
-                        bi * (pe_at(t) / pe_l) ** (1.0 + m), m))
-                runs.append({"pe_hertz_end": end * pe_l, "status": r.status,
-                             "other_starts": None if r.status != "solved" else
-                             other_starts(ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d,
-                                                    n=N, conductance=(
-                                                        bi * end ** (1.0 + m), m)),
-                                          r.solution, lam),
-                             "message": r.message, "event": r.event,
-                             "zones": None if r.solution is None
-                             else r.solution.zone_records()})
-            rec["with_conductance"].append({"biot0_at_boundary": bi, "m": m, "runs": runs,
-                                            "seconds": round(time.perf_counter() - t1, 1)})
-            if (bi, m) in PICTURED:
-                label = f"Bi0 = {bi:g}, m = {m:g}"
-                rec["histories"].append({"label": label, "steps": r.history})
-                rec["profiles"] += profiles(r.history, pe_l, fH, K, k, d, lam, (bi, m),
-                                            (1.1, 1.5, 2.0), label)
-            print(name, bi, m, [(x["status"], x["event"] and x["event"]["pe_hertz"])
-                                for x in runs], flush=True)
-        print(json.dumps(rec)[:600], flush=True)
-        out.append(rec)
+def study_path(spec):
+    """One path's record: the single zone from Hertz's along the ray, the contact sets
+    past its event, and the conductances' runs."""
+    name, pe, K, k, d, lam = spec
+    t0 = time.perf_counter()
+    ev = first_event(pe, K, k, d, lam)
+    # On a 'load' event P_H/P -> 0: stop just before it.
+    f_star = ev.at if ev.inequality != "load" else 0.99 * ev.at
+    L = Model(pe, K, k2_over_k1=k, delta1_over_delta2=d).solve(f_star, lam=lam).load_ratio
+    fH = f_star / pe
+    pe_l = pe / np.sqrt(L)
+    lo, hi = 0.2 * pe_l, 1.1 * pe_l
+    res = follow_contact_set(lambda t: (lo + t * (hi - lo), fH * (lo + t * (hi - lo))),
+                             K, lam=lam, k2_over_k1=k, delta1_over_delta2=d, n=N)
+    rec = {"path": name, "pe": pe, "K2_over_K1": K, "k2_over_k1": k,
+           "delta1_over_delta2": d, "lam": lam, "n": N,
+           "core_event": {"fhpe": ev.at, "inequality": ev.inequality, "load_ratio": L},
+           "fH": fH, "pe_hertz_at_core_event": pe_l, "ray": [lo, hi],
+           "status": res.status, "message": res.message, "event": res.event,
+           "attempts": res.attempts,
+           "zones_at_end": None if res.solution is None else res.solution.zone_records(),
+           "other_starts": None if res.status != "solved" else other_starts(
+               ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d, n=N), res.solution, lam),
+           "seconds": round(time.perf_counter() - t0, 1)}
+    rec["histories"] = [{"label": "perfect contact", "steps": res.history}]
+    rec["profiles"] = profiles(res.history, pe_l, fH, K, k, d, lam, None,
+                               (0.4, 0.7, 1.0, 1.1), "perfect")
+    rec["with_conductance"] = []
+    # Also where perfect contact holds (path d): does a resistance break it?
+    for bi, m in CONDUCTANCES:
+        t1 = time.perf_counter()
+        runs = []
+        for end in (1.1, 2.0):
+            def pe_at(t, end=end):
+                return lo + t * (end * pe_l - lo)
+            # A fixed law h = C p^m: at the mean Hertz pressure, which grows as
+            # l, Bi0 = h0 l/K2 grows as l^(1 + m), l as Pe_l.
+            r = follow_contact_set(
+                lambda t, pe_at=pe_at: (pe_at(t), fH * pe_at(t)),
+                K, lam=lam, k2_over_k1=k, delta1_over_delta2=d, n=N,
+                conductance=lambda t, pe_at=pe_at, bi=bi, m=m: (
+                    bi * (pe_at(t) / pe_l) ** (1.0 + m), m))
+            runs.append({"pe_hertz_end": end * pe_l, "status": r.status,
+                         "other_starts": None if r.status != "solved" else
+                         other_starts(ZoneModel(K, k2_over_k1=k, delta1_over_delta2=d,
+                                                n=N, conductance=(
+                                                    bi * end ** (1.0 + m), m)),
+                                      r.solution, lam),
+                         "message": r.message, "event": r.event,
+                         "zones": None if r.solution is None
+                         else r.solution.zone_records()})
+        rec["with_conductance"].append({"biot0_at_boundary": bi, "m": m, "runs": runs,
+                                        "seconds": round(time.perf_counter() - t1, 1)})
+        if (bi, m) in PICTURED:
+            label = f"Bi0 = {bi:g}, m = {m:g}"
+            rec["histories"].append({"label": label, "steps": r.history})
+            rec["profiles"] += profiles(r.history, pe_l, fH, K, k, d, lam, (bi, m),
+                                        (1.1, 1.5, 2.0), label)
+        print(name, bi, m, [(x["status"], x["event"] and x["event"]["pe_hertz"])
+                            for x in runs], flush=True)
+    print(json.dumps(rec)[:600], flush=True)
+    return rec
+
+
+def main(workers=1):
+    """Every path, each kept in a folder beside this file as it finishes (an
+    interrupted study, run again, computes only the paths missing), then the JSON and
+    the pictures, each written whole."""
     here = pathlib.Path(__file__).parent
-    (here / "crossing_study.json").write_text(json.dumps(_rounded(out)) + "\n")
+    manifest = {"kind": "thermocontact crossing study", "version": __version__, "n": N,
+                "paths": PATHS, "conductances": CONDUCTANCES}
+    parts = here / ".crossing_study.parts"
+    done = run_chunks(study_path, PATHS, manifest, parts, workers=workers)
+    out = [done[i] for i in range(len(PATHS))]
+    with atomic_write(here / "crossing_study.json") as fh:
+        fh.write(json.dumps(_rounded(out)) + "\n")
     for rec in out:
         crossing_figure(rec, str(here / f"path_{rec['path']}.png"))
+    discard(parts)
 
 
 
@@ -177,5 +196,7 @@ if __name__ == "__main__":
 
     if sys.argv[1:] == ["--table"]:
         print(table())
+    elif sys.argv[1:2] == ["--workers"] and len(sys.argv) == 3:
+        main(int(sys.argv[2]))
     else:
         main()
