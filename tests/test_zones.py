@@ -264,6 +264,24 @@ def test_conductance_in_si_units(capsys, tmp_path):
         (5e6 * (p_mean / 2e9) ** 0.95 * ell / K2, 0.95), rel=1e-14)
     assert PhysicalConductance(5e6, 0.95).biot(prob)[0] == pytest.approx(5e6 * ell / K2,
                                                                           rel=1e-14)
+    # The h0 range the refusal states is the solved Biot range at this load: its ends
+    # are accepted, a little beyond them refused.
+    import re
+
+    from thermocontact.problem.validation import InputError
+    from thermocontact.solvers.zones import BIOT_RANGE
+    with pytest.raises(InputError) as err:
+        PhysicalConductance(1e300, 0.95, 2e9).biot(prob)
+    lo, hi = map(float, re.search(r"h0 must be in \[(\S+), (\S+)\]", str(err.value)).groups())
+    factor = (p_mean / 2e9) ** 0.95 * ell / K2
+    # (printed to three digits)
+    np.testing.assert_allclose([lo * factor, hi * factor], BIOT_RANGE, rtol=5e-3)
+    for h0, ok in ((lo * 1.01, True), (hi * 0.99, True), (lo * 0.99, False), (hi * 1.01, False)):
+        if ok:
+            PhysicalConductance(h0, 0.95, 2e9).biot(prob)
+        else:
+            with pytest.raises(InputError):
+                PhysicalConductance(h0, 0.95, 2e9).biot(prob)
     args = ["--cylinder", "steel", "--half-plane", "copper", "--friction", "0.3", "--lam",
             "1", "--radius", "0.01", "--zones", "--conductance", "1e300:0"]
     assert main(["contact", "--load", "3e5", "--speed", "40"] + args) == 2
