@@ -11,7 +11,7 @@ import thermocontact
 PACKAGE = pathlib.Path(thermocontact.__file__).parent
 #: Lowest layer first, as drawn in docs/architecture.md.
 LAYERS = ("_version", "problem", "io", "execution", "physics", "numerics", "discretisation", "analysis",
-          "solvers", "studies", "plotting", "figures", "cli", "__main__")
+          "solvers", "studies", "plotting", "figures", "api", "cli", "__main__")
 
 
 def _layer(module: str) -> str:

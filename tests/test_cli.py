@@ -81,27 +81,27 @@ def test_summary(capsys):
 
 
 BAD = [
-    (["--pe", "0"], "pe"),
-    (["--pe", "-3"], "pe"),
-    (["--pe", "nan"], "pe"),
-    (["--pe", "inf"], "pe"),
-    (["--fhpe", "-0.1"], "fhpe"),
-    (["--K2-over-K1", "0"], "K2_over_K1"),
-    (["--k2-over-k1", "-1"], "k2_over_k1"),
-    (["--delta1-over-delta2", "-1"], "delta1_over_delta2"),
-    (["-n", "2"], "n must be an integer in [4, 1024]"),
-    (["-n", "100000"], "n must be an integer in [4, 1024]"),
+    (["--pe", "0"], "--pe must be"),
+    (["--pe", "-3"], "--pe must be"),
+    (["--pe", "nan"], "--pe must be"),
+    (["--pe", "inf"], "--pe must be"),
+    (["--fhpe", "-0.1"], "--fhpe must be"),
+    (["--K2-over-K1", "0"], "--K2-over-K1 must be"),
+    (["--k2-over-k1", "-1"], "--k2-over-k1 must be"),
+    (["--delta1-over-delta2", "-1"], "--delta1-over-delta2 must be"),
+    (["-n", "2"], "-n must be an integer in [4, 1024]"),
+    (["-n", "100000"], "-n must be an integer in [4, 1024]"),
     (["--K2-over-K1", "1e300"], "pe * k2_over_k1"),
     (["--pe", "1e308"], "pe * k2_over_k1"),
-    (["--lam", "1e300"], "lam must be in"),
-    (["--lam", "nan"], "lam"),
+    (["--lam", "1e300"], "--lam must be in"),
+    (["--lam", "nan"], "--lam must be"),
     (["--pe", "abc"], "--pe"),
 ]
 
 
 @pytest.mark.parametrize("change,needle", BAD)
 def test_bad_input_one_line(capsys, change, needle):
-    """Each bad value: exit status 2, one line on stderr naming the parameter, no stdout."""
+    """Each bad value: exit status 2, one line on stderr naming the flag, no stdout."""
     args = dict(zip(BASE[1::2], BASE[2::2]))
     args["--lam"] = "-1"
     for k, v in zip(change[::2], change[1::2]):

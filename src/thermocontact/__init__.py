@@ -16,6 +16,12 @@ from ._version import __version__
 
 #: Public name -> module that defines it.
 _EXPORTS = {
+    "Axis": ".problem.axes",
+    "boundary": ".api",
+    "contact": ".api",
+    "contact_set": ".api",
+    "operating_map": ".api",
+    "parameter_map": ".api",
     "Validity": ".analysis.validity",
     "DEFAULT_METHOD": ".discretisation.methods",
     "METHODS": ".discretisation.methods",

@@ -96,8 +96,9 @@ def _problem_options(required: bool):
                      help=f"Conductivity ratio K2/K1 > 0{unless}."),
         click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
                      help="Diffusivity ratio k2/k1 > 0 [default: K2/K1]."),
-        click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
-                     help="Distortivity ratio delta1/delta2 >= 0."),
+        click.option("--delta1-over-delta2", type=float, default=None,
+                     help="Distortivity ratio delta1/delta2 >= 0 [default: 1; dimensionless "
+                          "problems only]."),
         click.option("--speed-ratio", "speed_ratio", type=float, default=0.0,
                      show_default=True,
                      help="v2/v1: the half-plane's surface speed through the contact over the "
@@ -193,7 +194,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
-                delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
+                delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                 lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
                 check_convergence=check, progress=_Progress())
@@ -237,48 +238,21 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
                  friction, dundurs, tol, n, method, as_json):
     """Every change of validity along one parameter, located to 1e-9 relative."""
-    from .studies.boundaries import SPELLINGS as names, follow
+    from .api import PHYSICAL_ALONG, boundary
 
-    physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
-                "load": load, "speed": speed, "friction": friction, "dundurs": dundurs}
-    tol = check_positive("tol", tol)
     bar = _StageProgress(f"boundary along {along}")
-    if cylinder is not None or half_plane is not None or along in _PHYSICAL_UNITS:
-        path = _physical_path(along, start, stop, physical, materials_file, lam, tol, n,
-                              {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
-                               "k2_over_k1": k2_over_k1, "sigma": sigma,
-                               "speed_ratio": speed_ratio or None,
-                               "beta_f": beta_f or None}, bar)
-        method = path.method
-    else:
-        for name, value in physical.items():
-            if value is not None:
-                raise InputError(f"--{name.replace('_', '-')} belongs to a physical path: "
-                                 f"give --cylinder and --half-plane too")
-        if along not in names:
-            raise InputError(f"--along must be one of {sorted(names) + sorted(_PHYSICAL_UNITS)}"
-                             f", got {along!r}")
-        name = names[along]
-        given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
-                 "delta1_over_delta2": delta1_over_delta2,
-                 "speed_ratio": speed_ratio or None,  # 0, the default, is left out
-                 "beta_f": beta_f or None,
-                 "lam": lam, "sigma_over_delta": sigma}
-        fixed = {k: v for k, v in given.items() if v is not None and k != name}
-        for k, option in (("pe", "--pe"), ("fhpe", "--fhpe"), ("K2_over_K1", "--K2-over-K1")):
-            if k != name and k not in fixed:
-                raise InputError(f"--{option.lstrip('-')} must be given (it is not the "
-                                 f"parameter followed)".replace("----", "--"))
-        closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
-        if len(closures) != 1:
-            raise InputError("give exactly one of --lam and --sigma, or follow one of them")
-        path = follow(fixed, name, _number("--from", start), _number("--to", stop),
-                      method=method, tol=tol, n=n, progress=bar)
+    path = boundary(along, start, stop, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
+                    k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
+                    cylinder=cylinder, half_plane=half_plane, radius=radius, load=load,
+                    speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
+                    method=method, tol=tol, n=n, progress=bar)
+    method = path.method
     bar.close()
     if as_json:
         click.echo(json.dumps(path.to_dict(), allow_nan=False))
         return
-    unit = _PHYSICAL_UNITS.get(along, "")
+    unit = PHYSICAL_ALONG.get(along, "")
     click.echo(f"thermocontact {__version__}: along {along} from {path.x[0]:g} to "
                f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n}"
                + (f"; events at n = {path.event_n}" if path.event_n != path.n else "") + ")")
@@ -290,17 +264,6 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                f" (discretisation error estimate {e.error_estimate:.1e})")
         click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
                    f"{e.inequality}{where}; valid {e.valid_before} -> {e.valid_after}")
-
-
-#: Physical parameters a path may follow, and their SI units.
-_PHYSICAL_UNITS = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
-
-
-def _number(option, text) -> float:
-    try:
-        return float(text)
-    except ValueError:
-        raise InputError(f"{option} must be a number, got {text!r}") from None
 
 
 class _StageProgress:
@@ -327,76 +290,6 @@ class _StageProgress:
     def close(self):
         if self.line is not None:
             self.line.close()
-
-
-def _physical_path(along, start, stop, physical, materials_file, lam, tol, n, dimensionless,
-                   progress=None):
-    """The path of ``boundary`` along a physical parameter."""
-    from .problem.materials import get_material, load_materials
-    from .problem.units import parse_quantity
-    from .studies.physical_contact import PhysicalProblem, follow_along
-
-    if along not in _PHYSICAL_UNITS:
-        raise InputError(f"--along must be one of {sorted(_PHYSICAL_UNITS)} with --cylinder, "
-                         f"got {along!r}")
-    # v2/v1 belongs to both variants: the half-plane's surface at R times the cylinder's.
-    speed_ratio = dimensionless.pop("speed_ratio", None) or 0.0
-    for name, value in dimensionless.items():
-        if value is not None:
-            raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless path, "
-                             f"not to one with --cylinder")
-    for name in ("cylinder", "half_plane", "radius", "load", "speed", "friction"):
-        if name != along and physical[name] is None:
-            raise InputError(f"--{name.replace('_', '-')} must be given (it is not the "
-                             f"parameter followed)")
-    if lam is None:
-        raise InputError("--lam must be given")
-    if materials_file is not None:
-        load_materials(materials_file)
-    unit = _PHYSICAL_UNITS[along]
-    ends = [parse_quantity(v, unit, o) if unit else _number(o, v)
-            for o, v in (("--from", start), ("--to", stop))]
-    units = {"radius": "m", "load": "N/m", "speed": "m/s"}
-    values = {k: (parse_quantity(physical[k], u, k) if k != along else ends[0])
-              for k, u in units.items()}
-    friction = ends[0] if along == "friction" else physical["friction"]
-    prob = PhysicalProblem(get_material(physical["cylinder"], materials_file),
-                           get_material(physical["half_plane"], materials_file),
-                           values["radius"], values["load"], values["speed"], friction, lam,
-                           speed2=values["speed"] * speed_ratio,
-                           dundurs=physical.get("dundurs") is not False)
-    return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
-
-
-def _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius, load,
-                    speed, friction, lam, tol, dimensionless, dundurs=None, zones=False,
-                    conductance=None):
-    from .problem.materials import get_material, load_materials
-    from .problem.units import parse_quantity
-    from .studies.operating_maps import OperatingSpec, parse_physical_axis
-
-    speed_ratio = dimensionless.pop("speed_ratio", None) or 0.0
-    for name, value in dimensionless.items():
-        if value is not None:
-            raise InputError(f"--{name.replace('_', '-')} belongs to a dimensionless map, "
-                             f"not to an operating map (--cylinder)")
-    for name, value in (("--cylinder", cylinder), ("--half-plane", half_plane),
-                        ("--friction", friction), ("--lam", lam)):
-        if value is None:
-            raise InputError(f"{name} must be given for an operating map")
-    if materials_file is not None:
-        load_materials(materials_file)
-    units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
-    fixed = {k: parse_quantity(v, u, k) for k, (v, u) in units.items() if v is not None}
-    x, y = parse_physical_axis("--x", x_spec), parse_physical_axis("--y", y_spec)
-    for axis in (x, y):
-        if axis.name in fixed:
-            raise InputError(f"--{axis.name} must not be given: it is an axis")
-    return OperatingSpec(get_material(cylinder, materials_file),
-                         get_material(half_plane, materials_file), friction, lam, x, y, fixed,
-                         tol=check_positive("tol", tol), dundurs=dundurs is not False,
-                         speed_ratio=speed_ratio, zones=zones,
-                         conductance=_conductance(conductance, "in W/(m^2 K)", physical=True))
 
 
 def _workers(workers, scheduler):
@@ -515,18 +408,24 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     with --cylinder, load, speed and radius in SI units (an operating map).
     Interrupted, the same command resumes; finished work is kept beside --out.
     """
+    from .api import map_spec
     from .io.files import check_output_dir, check_output_file
-    from .studies.maps import MapSpec, parse_axis
+    from .studies.maps import parse_axis
+    from .studies.operating_maps import parse_physical_axis
 
-    if cylinder is not None or half_plane is not None:
-        spec = _operating_spec(x_spec, y_spec, cylinder, half_plane, materials_file, radius,
-                               load, speed, friction, lam, tol,
-                               dict(pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
-                                    k2_over_k1=k2_over_k1, sigma=sigma,
-                                    speed_ratio=speed_ratio or None,
-                                    beta_f=beta_f or None,
-                                    delta_over_r=delta_over_r), dundurs, zones, conductance)
-        fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
+    operating = cylinder is not None or half_plane is not None
+    parse = parse_physical_axis if operating else parse_axis
+    spec = map_spec(parse("--x", x_spec), parse("--y", y_spec), pe=pe, fhpe=fhpe,
+                    K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
+                    delta1_over_delta2=None if operating else delta1_over_delta2,
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
+                    delta_over_r=delta_over_r, method=method, cylinder=cylinder,
+                    half_plane=half_plane, friction=friction, radius=radius, load=load,
+                    speed=speed, dundurs=dundurs, materials=materials_file, zones=zones,
+                    conductance=_conductance(conductance, "in W/(m^2 K)", physical=True),
+                    tol=tol)
+    fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
+    if operating:
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
                  f"lambda = {spec.lam:g}, {fixed} (SI)\nsingle patch (perfect contact) "
                  f"valid where not shaded; theory not applicable where hatched")
@@ -536,20 +435,6 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                 f"h = {c.h0:g} W/m2K" + (f" (p/{c.p_ref:g} Pa)^{c.exponent:g}"
                                          if c.exponent else "")))
     else:
-        for name, value in (("--radius", radius), ("--load", load), ("--speed", speed),
-                            ("--friction", friction), ("--dundurs", dundurs),
-                            ("--zones", zones or None), ("--conductance", conductance)):
-            if value is not None:
-                raise InputError(f"{name} belongs to an operating map: give --cylinder and "
-                                 f"--half-plane too")
-        spec = MapSpec(parse_axis("--x", x_spec), parse_axis("--y", y_spec),
-                       {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
-                        "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                        "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
-                        "lam": lam,
-                        "sigma_over_delta": sigma},
-                       method=method, tol=tol, delta_over_r=delta_over_r)
-        fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
         title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "
                  f"applicable where hatched")
     if out.lower().endswith(".zarr"):
@@ -896,6 +781,30 @@ def _refuse_repeated_options(args):
             seen[names[opt]] = opt
 
 
+#: Python names of the library's parameters whose flag is not their click name.
+_FLAG_ALIASES = {"sigma_over_delta": "--sigma", "materials": "--materials", "x": "--x",
+                 "y": "--y", "start": "--from", "stop": "--to"}
+
+
+def _flagged(exc, args) -> str:
+    """The message of a library error with the parameters it names (Python spelling,
+    ``K2_over_K1``) written as the command's flags (``--K2-over-K1``)."""
+    import re
+
+    message = str(exc)
+    command = cli.commands.get(args[0]) if args else None
+    if command is None:
+        return message
+    flags = {p.name: next((o for o in p.opts if o.startswith("--")), p.opts[0])
+             for p in command.params if isinstance(p, click.Option)}
+    for name in getattr(exc, "parameters", ()):
+        flag = flags.get(name) or (_FLAG_ALIASES.get(name)
+                                   if _FLAG_ALIASES.get(name) in flags.values() else None)
+        if flag is not None:
+            message = re.sub(rf"(?<![\w-]){re.escape(name)}(?![\w-])", flag, message)
+    return message
+
+
 def main(argv=None) -> int:
     """Entry point; returns the exit status (0, or 2 for any error)."""
     # The matrices here are small: one BLAS thread is faster than several
@@ -918,7 +827,8 @@ def main(argv=None) -> int:
         click.echo(f"error: {exc.format_message()}", err=True)
         return 2
     except (InputError, SolveError) as exc:
-        click.echo(f"error: {exc}", err=True)
+        click.echo(f"error: {_flagged(exc, sys.argv[1:] if argv is None else list(argv))}",
+                   err=True)
         return 2
     except click.exceptions.Abort:
         click.echo("error: aborted", err=True)

@@ -24,11 +24,31 @@ __all__ = [
 
 
 class InputError(ValueError):
-    """A parameter outside its allowed range; the message names both."""
+    """A parameter outside its allowed range; the message names both.
+
+    Parameters
+    ----------
+    message : str
+        One line, naming the parameters as the Python API spells them.
+    parameters : tuple of str
+        The parameters the message names, so that a front end (the command line)
+        can name them as its users spell them (``K2_over_K1`` as ``--K2-over-K1``).
+    """
+
+    def __init__(self, message, *, parameters=()):
+        super().__init__(message)
+        self.parameters = tuple(parameters)
+
+    def __reduce__(self):  # the parameters survive a trip to a worker process
+        return (_input_error, (type(self), str(self), self.parameters))
+
+
+def _input_error(cls, message, parameters):
+    return cls(message, parameters=parameters)
 
 
 def _fail(name: str, allowed: str, value):
-    raise InputError(f"{name} must be {allowed}, got {value!r}")
+    raise InputError(f"{name} must be {allowed}, got {value!r}", parameters=(name,))
 
 
 def _real(name: str, value, allowed: str) -> float:
@@ -103,5 +123,5 @@ def check_exactly_one(**named) -> str:
     """The name of the one argument that is not None, or :class:`InputError`."""
     given = [k for k, v in named.items() if v is not None]
     if len(given) != 1:
-        raise InputError(f"give exactly one of {' and '.join(named)}")
+        raise InputError(f"give exactly one of {' and '.join(named)}", parameters=tuple(named))
     return given[0]

@@ -33,6 +33,7 @@ from ..execution.executors import run
 from ..io.chunks import ChunkStore
 from ..io.files import atomic_path
 from ..problem.parameters import ConvergenceWarning, SolveError
+from ..problem.axes import MAX_AXIS_POINTS, Axis, checked_axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
 from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
 
@@ -43,8 +44,7 @@ __all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "re
 NAMES = {**SPELLINGS, **{name: name for name in ALONG}}
 #: Axes along which the assembly is kept: a grid line along one is one chunk.
 CHEAP = ("fhpe", "lam", "sigma_over_delta")
-#: Most points on one axis, and in a map.
-MAX_AXIS_POINTS = 4096
+#: Most points in a map (and MAX_AXIS_POINTS on one axis).
 MAX_POINTS = 1_000_000
 #: Default error target of a map's solutions.
 MAP_TOL = 1e-6
@@ -59,29 +59,6 @@ CURVE_DEPTH = 3
 #: Fields of each point, in the dataset's order.
 FIELDS = ("load_ratio", "sigma_over_delta", "lam", "valid", "applicable", "pressure_margin",
           "gap_margin", "edge_margin", "error_estimate", "n", "status", "reason")
-
-
-@dataclass(frozen=True)
-class Axis:
-    """One axis of a grid: ``count`` values from ``start`` to ``stop``."""
-
-    name: str
-    start: float
-    stop: float
-    count: int
-    log: bool = False
-
-    @property
-    def values(self) -> np.ndarray:
-        if self.log:
-            return np.geomspace(self.start, self.stop, self.count)
-        return np.linspace(self.start, self.stop, self.count)
-
-    @property
-    def spec(self) -> str:
-        """The axis as written on the command line."""
-        return (f"{self.name}:{self.start!r}:{self.stop!r}:{self.count}"
-                + (":log" if self.log else ""))
 
 
 def parse_axis(option: str, spec, names=NAMES) -> Axis:
@@ -100,31 +77,26 @@ def parse_axis(option: str, spec, names=NAMES) -> Axis:
     parts = spec.split(":")
     if len(parts) not in (4, 5):
         raise InputError(f"{option} must be {form}, got {spec!r}")
-    name = parts[0].strip()
-    if name not in names:
-        allowed = sorted({k for k in names if "_" not in k} or names)
-        raise InputError(f"{option} parameter must be one of {', '.join(allowed)}, got {name!r}")
+    name = check_axis_name(option, parts[0].strip(), names)
     try:
         start, stop = float(parts[1]), float(parts[2])
     except ValueError:
         raise InputError(f"{option} start and stop must be numbers, got {spec!r}") from None
-    start, stop = check_finite(f"{option} start", start), check_finite(f"{option} stop", stop)
-    if not stop > start:
-        raise InputError(f"{option} stop must be greater than start, got {spec!r}")
     try:
         count = int(parts[3])
     except ValueError:
         raise InputError(f"{option} count must be an integer, got {parts[3]!r}") from None
-    if not 2 <= count <= MAX_AXIS_POINTS:
-        raise InputError(f"{option} count must be 2 to {MAX_AXIS_POINTS}, got {count}")
-    log = False
-    if len(parts) == 5:
-        if parts[4].strip() != "log":
-            raise InputError(f"{option} fifth field must be 'log', got {parts[4]!r}")
-        if not start > 0.0:
-            raise InputError(f"{option} log axis must stay positive (start > 0), got {spec!r}")
-        log = True
-    return Axis(names[name], start, stop, count, log)
+    if len(parts) == 5 and parts[4].strip() != "log":
+        raise InputError(f"{option} fifth field must be 'log', got {parts[4]!r}")
+    return Axis(*checked_axis(option, names[name], start, stop, count, len(parts) == 5))
+
+
+def check_axis_name(option: str, name, names=NAMES) -> str:
+    """``name`` if it is one of ``names``, else :class:`InputError` naming ``option``."""
+    if name not in names:
+        allowed = sorted({k for k in names if "_" not in k} or names)
+        raise InputError(f"{option} parameter must be one of {', '.join(allowed)}, got {name!r}")
+    return name
 
 
 @dataclass(frozen=True)
@@ -155,9 +127,16 @@ class MapSpec:
     chunk_points: int = field(default=256, repr=False)
 
     def __post_init__(self):
+        for key in ("x", "y"):
+            axis = getattr(self, key)
+            if not isinstance(axis, Axis):
+                raise InputError(f"{key} must be an Axis, got {axis!r}")
+            name = NAMES[check_axis_name(key, axis.name)]
+            if name != axis.name:  # "sigma" -> "sigma_over_delta"
+                object.__setattr__(self, key, axis.renamed(name))
         if self.x.name == self.y.name:
-            raise InputError(f"--y must name a parameter other than --x's, got "
-                             f"{self.y.name!r} twice")
+            raise InputError(f"y must name a parameter other than x's, got "
+                             f"{self.y.name!r} twice", parameters=("y", "x"))
         if self.x.count * self.y.count > MAX_POINTS:
             raise InputError(f"the grid must have at most {MAX_POINTS} points, got "
                              f"{self.x.count} x {self.y.count}")
@@ -170,10 +149,11 @@ class MapSpec:
         fixed = {k: check_finite(k, v) for k, v in fixed.items()}
         for k in ("pe", "fhpe", "K2_over_K1"):
             if k not in axes and k not in fixed:
-                raise InputError(f"--{k.replace('_', '-')} must be given (it is not an axis)")
+                raise InputError(f"{k} must be given (it is not an axis)", parameters=(k,))
         closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k in axes]
         if len(closures) != 1:
-            raise InputError("give exactly one of --lam and --sigma, or make one of them an axis")
+            raise InputError("give exactly one of lam and sigma, or make one of them an axis",
+                             parameters=("lam", "sigma"))
         object.__setattr__(self, "fixed", fixed)
         # Every parameter's range is an interval: the grid's corners check them all.
         for xv in (self.x.start, self.x.stop):

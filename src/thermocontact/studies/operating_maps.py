@@ -36,7 +36,8 @@ from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
 from .contact_sets import PhysicalConductance, physical_contact_set
-from .maps import Axis, parse_axis, run_chunks
+from ..problem.axes import PHYSICAL_UNITS
+from .maps import Axis, check_axis_name, parse_axis, run_chunks
 from .physical_contact import MAX_WIDTH, PhysicalProblem
 from .ray import Ray
 from .ray import interpolated_roots as _interpolated_roots
@@ -45,7 +46,7 @@ from .ray import local as _local
 __all__ = ["OperatingSpec", "RAY_PER_DECADE", "compute_operating_map", "ray_samples"]
 
 #: Physical axes of an operating map, and their SI units.
-AXES = {"load": "N/m", "speed": "m/s", "radius": "m"}
+AXES = PHYSICAL_UNITS
 #: Samples of the ray per decade of Pe, and of one chunk.
 RAY_PER_DECADE = 24
 RAY_CHUNK = 16
@@ -99,30 +100,36 @@ class OperatingSpec:
     conductance: PhysicalConductance | None = None
 
     def __post_init__(self):
+        for key in ("x", "y"):
+            axis = getattr(self, key)
+            if not isinstance(axis, Axis):
+                raise InputError(f"{key} must be an Axis, got {axis!r}")
+            check_axis_name(key, axis.name, {k: k for k in AXES})
         check_nonnegative("friction", self.friction)
         if self.conductance is not None:
             if not self.zones:
-                raise InputError("--conductance needs --zones (the single patch assumes "
-                                 "perfect thermal contact)")
+                raise InputError("conductance needs zones (the single patch assumes "
+                                 "perfect thermal contact)", parameters=("conductance", "zones"))
             if self.conductance.exponent and self.conductance.p_ref is None:
-                raise InputError("--conductance must be h0:m:p_ref in an operating map "
-                                 "(one law h = h0 (p/p_ref)^m for every load), got no p_ref")
+                raise InputError("conductance must be h0:m:p_ref in an operating map "
+                                 "(one law h = h0 (p/p_ref)^m for every load), got no p_ref",
+                                 parameters=("conductance",))
         check_finite("lam", self.lam)
         check_positive("tol", self.tol)
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
         if self.zones and self.speed_ratio:
-            raise InputError(f"--zones needs a stationary half-plane (speed-ratio 0), got "
-                             f"{self.speed_ratio:g}")
+            raise InputError(f"zones needs a stationary half-plane (speed_ratio 0), got "
+                             f"{self.speed_ratio:g}", parameters=("zones", "speed_ratio"))
         if self.x.name == self.y.name:
-            raise InputError(f"--y must name a parameter other than --x's, got "
-                             f"{self.y.name!r} twice")
+            raise InputError(f"y must name a parameter other than x's, got "
+                             f"{self.y.name!r} twice", parameters=("y", "x"))
         for axis in (self.x, self.y):
             if not axis.start > 0.0:
-                raise InputError(f"--{'x' if axis is self.x else 'y'} {axis.name} must be "
-                                 f"> 0, got {axis.start!r}")
+                raise InputError(f"{'x' if axis is self.x else 'y'} {axis.name} must be "
+                                 f"> 0, got {axis.start!r}", parameters=("x" if axis is self.x else "y",))
         third = [k for k in AXES if k not in (self.x.name, self.y.name)][0]
         if self.fixed.get(third) is None:
-            raise InputError(f"--{third} must be given (it is not an axis)")
+            raise InputError(f"{third} must be given (it is not an axis)", parameters=(third,))
         object.__setattr__(self, "fixed", {third: check_positive(third, self.fixed[third])})
         # Every corner must be a problem the solver accepts.
         for xv in (self.x.start, self.x.stop):

@@ -1,0 +1,513 @@
+"""The public calls: one per command of the command line.
+
+Each function here is what a command does, from Python: it takes the command's
+inputs as keyword arguments (physical quantities as SI numbers or as strings with
+units, ``"10mm"``, ``"50kN/m"``), checks them, composes the studies beneath and
+returns a result whose ``to_dict()`` is the command's JSON (or, for a map, the
+:class:`xarray.Dataset` the command writes).  Errors name the parameters as spelled
+here; the command line maps them to its flags.
+
+=================================  ===========================================
+command                            call
+=================================  ===========================================
+``thermocontact solve``            :func:`thermocontact.solve`, :class:`thermocontact.Model`
+``thermocontact contact``          :func:`contact`
+``thermocontact contact --zones``  :func:`contact` with ``zones=True``
+``thermocontact zones``            :func:`contact_set`
+``thermocontact boundary``         :func:`boundary`
+``thermocontact map``              :func:`parameter_map`, :func:`operating_map`
+=================================  ===========================================
+"""
+
+from __future__ import annotations
+
+from .discretisation.methods import DEFAULT_METHOD
+from .problem.axes import Axis
+from .problem.validation import InputError, check_positive
+from .solvers.single_patch import DEFAULT_TOL
+
+__all__ = ["Axis", "boundary", "contact", "contact_set", "map_spec", "operating_map",
+           "parameter_map"]
+
+#: Physical parameters a path may follow, and their SI units ("" is dimensionless).
+PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
+
+
+def _materials(cylinder, half_plane, materials):
+    """Both bodies as :class:`~thermocontact.problem.materials.Material`; names and
+    inline specifications are looked up (with ``materials``, a TOML file, first)."""
+    from .problem.materials import Material, get_material, load_materials
+
+    if materials is not None:
+        load_materials(materials)  # read and checked even when both bodies are inline
+    return tuple(m if isinstance(m, Material) else get_material(m, materials)
+                 for m in (cylinder, half_plane))
+
+
+def _quantity(name, value, unit):
+    from .problem.units import parse_quantity
+
+    if value is None:
+        return None
+    return parse_quantity(value, unit, name)
+
+
+def _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam, speed2=0.0,
+                      dundurs=True, materials=None):
+    from .studies.physical_contact import PhysicalProblem
+
+    cyl, half = _materials(cylinder, half_plane, materials)
+    return PhysicalProblem(cyl, half, _quantity("radius", radius, "m"),
+                           _quantity("load", load, "N/m"), _quantity("speed", speed, "m/s"),
+                           friction, lam, _quantity("speed2", speed2, "m/s"),
+                           dundurs=bool(dundurs))
+
+
+def _physical_conductance(conductance):
+    """``None``, a :class:`~thermocontact.studies.contact_sets.PhysicalConductance` or
+    ``(h0, m[, p_ref])`` with ``p_ref`` in Pa or with units."""
+    from .studies.contact_sets import PhysicalConductance
+
+    if conductance is None or isinstance(conductance, PhysicalConductance):
+        return conductance
+    try:
+        h0, m, *rest = conductance
+    except (TypeError, ValueError):
+        raise InputError(f"conductance must be (h0, m[, p_ref]) with h0 in W/(m^2 K), "
+                         f"got {conductance!r}", parameters=("conductance",)) from None
+    if len(rest) > 1:
+        raise InputError(f"conductance must be (h0, m[, p_ref]), got {conductance!r}",
+                         parameters=("conductance",))
+    p_ref = _quantity("conductance p_ref", rest[0], "Pa") if rest else None
+    return PhysicalConductance(h0, m, p_ref)
+
+
+def contact(cylinder, half_plane, *, radius, load, speed, friction, lam, speed2=0.0,
+            dundurs=True, materials=None, tol=1e-6, zones=False, conductance=None,
+            progress=None):
+    """The contact of a cylinder on a half-plane from materials, load and speed.
+
+    ``thermocontact contact`` from Python: every half-width that carries the load
+    (the branches of the single patch, the one of least half-width first), with its
+    pressure, temperatures, validity and whether the theory applies; with
+    ``zones=True`` the contact set of one zone or several instead (derivation
+    section 14), optionally with an interface conductance (section 15).
+
+    Parameters
+    ----------
+    cylinder, half_plane : str or Material
+        A name from the materials table (``"steel"``, ``"copper"``), an inline
+        ``"E=..,nu=..,alpha=..,K=..,k=.."``, or a
+        :class:`~thermocontact.problem.materials.Material`.
+    radius : float or str
+        Cylinder radius R, m (or with units, ``"10mm"``).
+    load : float or str
+        Load per unit length P, N/m (``"50kN/m"``).
+    speed : float or str
+        The cylinder's surface speed through the contact v1 > 0, m/s (``"72km/h"``).
+    friction : float
+        Coefficient of friction f >= 0.
+    lam : float
+        Heat partition (Q1 - Q2)/(Q1 + Q2).
+    speed2 : float or str
+        The half-plane's surface speed v2, m/s, positive in the cylinder's direction;
+        0 (default) is a stationary half-plane.  The heat is made at ``|v1 - v2|``.
+    dundurs : bool
+        Keep the Dundurs term ``-(beta f/2) p`` (default; derivation section 5c).
+    materials : str or path, optional
+        A TOML file adding or overriding materials.
+    tol : float
+        Error target of P_H/P per branch (single patch only).
+    zones : bool
+        The contact set at this load instead of the single patch's branches.
+    conductance : (h0, m[, p_ref]) or PhysicalConductance, optional
+        With ``zones``: ``h = h0 (p/p_ref)^m``, h0 in W/(m^2 K), ``p_ref`` in Pa
+        (default the mean Hertz pressure P/(2 l)).
+    progress : callable, optional
+        ``progress(done, total)`` while the half-widths are followed.
+
+    Returns
+    -------
+    PhysicalContact
+        Or, with ``zones``, the contact set in SI units.  ``to_dict()`` is the JSON
+        of ``thermocontact contact ... --json``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> res = tc.contact("copper", "steel", radius="10mm", load="50kN/m", speed="2m/s",
+    ...                  friction=0.2, lam=-1)
+    >>> round(res.primary.half_width * 1e3, 4)  # mm
+    0.0776
+    """
+    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam,
+                                speed2, dundurs, materials)
+    tol = check_positive("tol", tol)
+    if conductance is not None and not zones:
+        raise InputError("conductance needs zones (the single patch assumes perfect "
+                         "thermal contact)", parameters=("conductance", "zones"))
+    if zones:
+        from .studies.contact_sets import physical_contact_set
+
+        return physical_contact_set(problem, conductance=_physical_conductance(conductance))
+    from .studies.physical_contact import contact as contact_of
+
+    return contact_of(problem, tol=tol, progress=progress)
+
+
+def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
+                delta1_over_delta2=1.0, conductance=None, n=32, progress=None):
+    """The contact set at one load: one zone or several, or why there is none.
+
+    ``thermocontact zones`` from Python (derivation section 14).  Lengths are in
+    units of the Hertz half-width ``l`` of the load, from the undeformed cylinder's
+    lowest point; loads as fractions of P; pressures in P/l.
+
+    Parameters
+    ----------
+    pe_hertz : float
+        ``Pe_l = v l/(2 k2) > 0``.
+    fhpe_hertz : float
+        ``fHPe_l = f H Pe_l >= 0``.
+    K2_over_K1 : float
+        Conductivity ratio > 0.
+    lam : float
+        Heat partition (Q1 - Q2)/(Q1 + Q2).
+    k2_over_k1 : float, optional
+        Diffusivity ratio > 0 (default ``K2_over_K1``).
+    delta1_over_delta2 : float
+        Distortivity ratio >= 0.
+    conductance : (float, float), optional
+        ``(Bi0, m)``: ``h = h0 (p/p_ref)^m`` with the Biot number ``Bi0 = h0 l/K2``
+        at the mean Hertz pressure ``p_ref = P/(2 l)`` (section 15); default perfect
+        thermal contact.
+    n : int
+        Unknowns per function per zone, 8 to 256.
+    progress : callable, optional
+        ``progress(fraction)`` as the continuation advances.
+
+    Returns
+    -------
+    ContactSetResult
+        ``status`` (``"solved"``, ``"no steady solution"`` or ``"not converged"``),
+        ``message``, ``answer``; ``to_dict()`` is the JSON of ``thermocontact zones``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> res = tc.contact_set(5.43, 0.3, 10, lam=1)
+    >>> res.status, len(res.answer.zone_records())
+    ('solved', 1)
+    """
+    from .studies.contact_sets import find_contact_set
+
+    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+                            delta1_over_delta2=delta1_over_delta2, n=n,
+                            conductance=None if conductance is None else tuple(conductance),
+                            progress=progress)
+
+
+#: The dimensionless inputs of a path or a map, as spelled in Python.
+_DIMENSIONLESS = ("pe", "fhpe", "K2_over_K1", "k2_over_k1", "delta1_over_delta2",
+                  "speed_ratio", "beta_f", "lam", "sigma")
+_PHYSICAL = ("cylinder", "half_plane", "radius", "load", "speed", "friction", "dundurs",
+             "materials")
+
+
+def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
+             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
+             cylinder=None, half_plane=None, radius=None, load=None, speed=None,
+             friction=None, dundurs=None, materials=None, method=DEFAULT_METHOD,
+             tol=DEFAULT_TOL, n=None, progress=None):
+    """Every change of validity along one parameter, located to 1e-9 relative.
+
+    ``thermocontact boundary`` from Python.  Dimensionless: give the problem as for
+    :func:`thermocontact.solve` less the parameter followed.  Physical: give
+    ``cylinder`` and ``half_plane`` and the others of :func:`contact` less the one
+    followed (``load``, ``speed``, ``radius`` or ``friction``); the branch of least
+    half-width is followed.
+
+    Parameters
+    ----------
+    along : str
+        Dimensionless: ``"fhpe"``, ``"pe"``, ``"lam"``, ``"sigma"``,
+        ``"K2_over_K1"``, ``"k2_over_k1"``, ``"delta1_over_delta2"``,
+        ``"speed_ratio"``, ``"beta_f"`` (hyphens accepted for underscores);
+        physical: ``"load"`` (N/m), ``"speed"`` (m/s), ``"radius"`` (m),
+        ``"friction"``.
+    start, stop : float or str
+        The path's ends (physical ones in SI units or with units).
+    pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f : float
+        The dimensionless problem (:func:`thermocontact.solve`); ``speed_ratio`` also
+        with the physical one (the half-plane's surface at that multiple of the
+        cylinder's speed).
+    lam, sigma : float
+        The closure: exactly one, unless it is followed (``sigma`` is sigma/Delta;
+        physical paths take ``lam``).
+    cylinder, half_plane, radius, load, speed, friction, dundurs, materials
+        The physical problem, as for :func:`contact`.
+    method : str
+        Discretisation method (dimensionless paths).
+    tol : float
+        Error target for the choice of ``n``.
+    n : int, optional
+        Unknowns per function of the whole path instead of the choice by ``tol``.
+    progress : callable, optional
+        ``progress(stage, done, total)``.
+
+    Returns
+    -------
+    Path
+        ``x``, ``valid``, the margins and ``events``; ``to_dict()`` is the JSON of
+        ``thermocontact boundary``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> path = tc.boundary("fhpe", 0, 1, pe=5, K2_over_K1=10, lam=1)
+    >>> [round(e.at, 4) for e in path.events]
+    [0.6654, 0.702]
+    """
+    tol = check_positive("tol", tol)
+    physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
+                "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
+                "materials": materials}
+    along_name = along.replace("-", "_") if isinstance(along, str) else along
+    if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
+        dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
+                         "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
+                         "beta_f": beta_f or None, "sigma": sigma}
+        return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
+                              dimensionless, tol, n, progress)
+    from .studies.boundaries import SPELLINGS, follow
+    from .studies.maps import NAMES
+
+    for name, value in physical.items():
+        if value is not None:
+            raise InputError(f"{name} belongs to a physical path: give cylinder and "
+                             f"half_plane too", parameters=(name, "cylinder", "half_plane"))
+    if along_name not in NAMES:
+        raise InputError(f"along must be one of {sorted(SPELLINGS) + sorted(PHYSICAL_ALONG)}"
+                         f", got {along!r}", parameters=("along",))
+    name = NAMES[along_name]
+    given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
+             "delta1_over_delta2": delta1_over_delta2,
+             "speed_ratio": speed_ratio or None,  # 0, the default, is left out
+             "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma}
+    fixed = {k: v for k, v in given.items() if v is not None and k != name}
+    for k in ("pe", "fhpe", "K2_over_K1"):
+        if k != name and k not in fixed:
+            raise InputError(f"{k} must be given (it is not the parameter followed)",
+                             parameters=(k,))
+    closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
+    if len(closures) != 1:
+        raise InputError("give exactly one of lam and sigma, or follow one of them",
+                         parameters=("lam", "sigma"))
+    return follow(fixed, name, _number("start", start), _number("stop", stop),
+                  method=method, tol=tol, n=n, progress=progress)
+
+
+def _number(name, value) -> float:
+    from .problem.validation import check_finite
+
+    if isinstance(value, str):
+        try:
+            value = float(value)
+        except ValueError:
+            raise InputError(f"{name} must be a number, got {value!r}",
+                             parameters=(name,)) from None
+    return check_finite(name, value)
+
+
+def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless, tol, n,
+                   progress):
+    """The path of :func:`boundary` along a physical parameter."""
+    from .studies.physical_contact import follow_along
+
+    if along not in PHYSICAL_ALONG:
+        raise InputError(f"along must be one of {sorted(PHYSICAL_ALONG)} with cylinder, "
+                         f"got {along!r}", parameters=("along", "cylinder"))
+    for name, value in dimensionless.items():
+        if value is not None:
+            raise InputError(f"{name} belongs to a dimensionless path, not to one with "
+                             f"cylinder", parameters=(name, "cylinder"))
+    for name in ("cylinder", "half_plane", "radius", "load", "speed", "friction"):
+        if name != along and physical[name] is None:
+            raise InputError(f"{name} must be given (it is not the parameter followed)",
+                             parameters=(name,))
+    if lam is None:
+        raise InputError("lam must be given", parameters=("lam",))
+    unit = PHYSICAL_ALONG[along]
+    ends = [_quantity(o, v, unit) if unit else _number(o, v)
+            for o, v in (("start", start), ("stop", stop))]
+    values = {k: (ends[0] if k == along else physical[k])
+              for k in ("radius", "load", "speed", "friction")}
+    speed = _quantity("speed", values["speed"], "m/s")
+    prob = _physical_problem(physical["cylinder"], physical["half_plane"], values["radius"],
+                             values["load"], speed, values["friction"], lam,
+                             speed2=speed * speed_ratio,
+                             dundurs=physical["dundurs"] is not False,
+                             materials=physical["materials"])
+    return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
+
+
+def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
+                  delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
+                  sigma=None, delta_over_r=None, method=DEFAULT_METHOD, tol=1e-6, workers=1,
+                  store=None, progress=None, command=None):
+    """The single patch over a grid of two dimensionless parameters.
+
+    ``thermocontact map`` from Python: every point solved to ``tol``, and where
+    validity changes located on every grid line by Brent's method (to 1e-9 along the
+    line) and traced between the lines where it bends.
+
+    Parameters
+    ----------
+    x, y : Axis
+        Over two of ``fhpe``, ``pe``, ``lam``, ``sigma``, ``K2_over_K1``,
+        ``k2_over_k1``, ``delta1_over_delta2``, ``speed_ratio``, ``beta_f``.
+    pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam, sigma
+        The other inputs, as for :func:`thermocontact.solve` (exactly one closure,
+        ``lam`` or ``sigma``, unless an axis).
+    delta_over_r : float, optional
+        Half-width over radius: also map whether the theory applies.
+    method : str
+    tol : float
+        Error target of every point.
+    workers : int, executor, dask Client or callable
+        Where the grid lines run (:func:`thermocontact.execution.executors.run`);
+        default in this process.
+    store : str or path, optional
+        A folder keeping finished grid lines: an interrupted call given the same
+        ``store`` resumes (and refuses a store of another map).
+    progress : callable, optional
+        ``progress(done, total)`` in grid lines.
+    command : str, optional
+        Recorded in the dataset's attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        As written by ``thermocontact map --out``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> ds = tc.parameter_map(tc.Axis("fhpe", 0, 0.8, 3), tc.Axis("pe", 1, 10, 2, log=True),
+    ...                       K2_over_K1=10, lam=1)
+    >>> ds["valid"].shape
+    (2, 3)
+    """
+    from .studies.maps import compute_map
+
+    spec = map_spec(x, y, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
+                    delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
+                    beta_f=beta_f, lam=lam, sigma=sigma, delta_over_r=delta_over_r,
+                    method=method, tol=tol)
+    return compute_map(spec, workers=workers, store_path=store, progress=progress,
+                       command=command)
+
+
+def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, load=None,
+                  speed=None, speed_ratio=0.0, dundurs=True, materials=None, tol=1e-6,
+                  zones=False, conductance=None, workers=1, store=None, progress=None,
+                  command=None):
+    """The contact of one material pair over a grid of load, speed or radius.
+
+    ``thermocontact map --cylinder ... --half-plane ...`` from Python.  Load,
+    radius and speed enter only through the Hertz Péclet number, so one ray of
+    dimensionless solutions answers the whole plane.
+
+    Parameters
+    ----------
+    x, y : Axis
+        Two of ``load`` (N/m), ``speed`` (m/s) and ``radius`` (m); ends may carry
+        units (``Axis("load", "1kN/m", "1MN/m", 41, log=True)``).
+    cylinder, half_plane, friction, lam, dundurs, materials
+        As for :func:`contact`.
+    radius, load, speed : float or str
+        The third of them, the one that is not an axis.
+    speed_ratio : float
+        v2/v1: the half-plane's surface speed over the cylinder's (0, stationary).
+    tol : float
+        Error target of every sample of the ray.
+    zones : bool
+        Also the contact set at every point.
+    conductance : (h0, m, p_ref) or PhysicalConductance, optional
+        With ``zones``: one interface conductance law for the whole map.
+    workers, store, progress, command
+        As for :func:`parameter_map`.
+
+    Returns
+    -------
+    xarray.Dataset
+        As written by ``thermocontact map --cylinder ... --out``.
+    """
+    from .studies.operating_maps import compute_operating_map
+
+    spec = map_spec(x, y, cylinder=cylinder, half_plane=half_plane, friction=friction,
+                    lam=lam, radius=radius, load=load, speed=speed, speed_ratio=speed_ratio,
+                    dundurs=dundurs, materials=materials, tol=tol, zones=zones,
+                    conductance=conductance)
+    return compute_operating_map(spec, workers=workers, progress=progress, command=command,
+                                 store_path=store)
+
+
+def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
+             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
+             delta_over_r=None, method=DEFAULT_METHOD, cylinder=None, half_plane=None,
+             friction=None, radius=None, load=None, speed=None, dundurs=None,
+             materials=None, zones=False, conductance=None, tol=1e-6):
+    """What identifies a map, every input checked, nothing computed.
+
+    With ``cylinder`` and ``half_plane``, the
+    :class:`~thermocontact.studies.operating_maps.OperatingSpec` of
+    :func:`operating_map`; otherwise the :class:`~thermocontact.studies.maps.MapSpec`
+    of :func:`parameter_map`.  Its ``manifest()`` tells whether a stored map (or a
+    store of finished grid lines) belongs to the same inputs.  The parameters are
+    those of the two functions; an input of the other kind of map is refused.
+
+    Returns
+    -------
+    MapSpec or OperatingSpec
+    """
+    dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
+                     "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
+                     "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r}
+    physical = {"radius": radius, "load": load, "speed": speed, "friction": friction,
+                "dundurs": dundurs, "materials": materials, "zones": zones or None,
+                "conductance": conductance}
+    if cylinder is None and half_plane is None:
+        from .studies.maps import MapSpec
+
+        for name, value in physical.items():
+            if value is not None:
+                raise InputError(f"{name} belongs to an operating map: give cylinder and "
+                                 f"half_plane too", parameters=(name, "cylinder", "half_plane"))
+        return MapSpec(x, y, {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
+                              "k2_over_k1": k2_over_k1,
+                              "delta1_over_delta2": delta1_over_delta2,
+                              "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
+                              "lam": lam, "sigma_over_delta": sigma},
+                       method=method, tol=tol, delta_over_r=delta_over_r)
+    from .studies.operating_maps import OperatingSpec
+
+    for name, value in dimensionless.items():
+        if value is not None:
+            raise InputError(f"{name} belongs to a dimensionless map, not to an operating "
+                             f"map (cylinder)", parameters=(name, "cylinder"))
+    for name, value in (("cylinder", cylinder), ("half_plane", half_plane),
+                        ("friction", friction), ("lam", lam)):
+        if value is None:
+            raise InputError(f"{name} must be given for an operating map", parameters=(name,))
+    cyl, half = _materials(cylinder, half_plane, materials)
+    units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
+    fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
+    for axis in (x, y):
+        if isinstance(axis, Axis) and axis.name in fixed:
+            raise InputError(f"{axis.name} must not be given: it is an axis",
+                             parameters=(axis.name,))
+    return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
+                         tol=check_positive("tol", tol), dundurs=dundurs is not False,
+                         speed_ratio=speed_ratio or 0.0, zones=bool(zones),
+                         conductance=_physical_conductance(conductance))
