@@ -20,6 +20,7 @@ _EXPORTS = {
     "boundary": ".api",
     "contact": ".api",
     "contact_set": ".api",
+    "map_spec": ".api",
     "operating_map": ".api",
     "parameter_map": ".api",
     "Validity": ".analysis.validity",
