@@ -31,10 +31,10 @@ def test_kernel_moments_match_quadrature(key, tol):
 
 
 def _clear_rules():
-    """Forget every cached rule and geometry, so that a changed _GL takes effect."""
+    """Forget every cached rule and geometry, so that a changed GAUSS_POINTS takes effect."""
     from thermocontact.numerics import edge_graded as graded
 
-    for f in (mm._gauss_legendre, mm._graded_reference, mm._inner_reference, mm.panel_rule,
+    for f in (mm.gauss_legendre, mm._graded_reference, mm.inner_reference, mm.panel_rule,
               graded._common, graded.weight_integrals):
         f.cache_clear()
     graded.GEOMETRY.clear()
@@ -58,7 +58,7 @@ def test_moments_stable_under_refinement(c, monkeypatch):
     _clear_rules()
     first = [both(*k) for k in kernels]
     assert mm.panel_rule(64)[2].size == mm.panel_rule(64)[0] * 16
-    monkeypatch.setattr(mm, "_GL", 24)
+    monkeypatch.setattr(mm, "GAUSS_POINTS", 24)
     _clear_rules()
     assert mm.panel_rule(64)[2].size == mm.panel_rule(64)[0] * 24  # refined for real
     second = [both(*k) for k in kernels]

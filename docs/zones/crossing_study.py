@@ -25,7 +25,7 @@ from thermocontact import Model, __version__
 from thermocontact.io.chunks import discard
 from thermocontact.io.files import atomic_write
 from thermocontact.studies.boundaries import follow
-from thermocontact.studies.maps import run_chunks
+from thermocontact.execution.resumable import run_chunks
 from thermocontact.plotting.zones import crossing_figure
 from thermocontact.problem.parameters import SolveError
 from thermocontact.solvers.zones import ZoneModel
@@ -159,7 +159,8 @@ def main(workers=1):
     manifest = {"kind": "thermocontact crossing study", "version": __version__, "n": N,
                 "paths": PATHS, "conductances": CONDUCTANCES}
     parts = here / ".crossing_study.parts"
-    done = run_chunks(study_path, PATHS, manifest, parts, workers=workers)
+    done = run_chunks(study_path, PATHS, manifest, parts, workers=workers,
+                      what="the crossing study")
     out = [done[i] for i in range(len(PATHS))]
     with atomic_write(here / "crossing_study.json") as fh:
         fh.write(json.dumps(_rounded(out)) + "\n")

@@ -332,7 +332,7 @@ def _outside_grid(par: Parameters, sigma, lam, load_ratio):
 POLISH_BAND = 1e-4
 
 
-def _least(f, x, values, i, polish):
+def least_of(f, x, values, i, polish):
     """The least value near sample ``i``: on the closed form ``f``, or from the samples.
 
     The samples are interpolated in their index (the representations space them
@@ -352,7 +352,7 @@ def _expm1_over(r, x):
     return x if r == 0.0 else np.expm1(r * x) / r
 
 
-def _edge_terms(par: Parameters, rep, phi, psi):
+def edge_terms(par: Parameters, rep, phi, psi):
     """The pressure's bracket at each edge and the tensile layer it opens (D22, D22b).
 
     Near an edge, at depth ``e = 1 -+ s``, ``p/e^x = a + k t E(r, ln e)`` with the
@@ -426,7 +426,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     -------
     Validity
     """
-    k_log, exponents, edge_margins, log_widths, layer = _edge_terms(par, rep, phi, psi)
+    k_log, exponents, edge_margins, log_widths, layer = edge_terms(par, rep, phi, psi)
     # The edges whose term can open a layer: their tolerated width is the edge
     # margin's to judge, not the pressure's or the gap's.
     band = k_log != 0.0  # (a layer needs an edge term)
@@ -443,7 +443,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
         keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
     sp_in, phis_in = sp[keep], phis[keep]
     iphi = int(np.argmin(phis_in))
-    phi_min_at, phi_min = _least(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi, polish)
+    phi_min_at, phi_min = least_of(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi, polish)
 
     so = _outside_grid(par, sigma, lam, load_ratio)
     # Where an edge coefficient is positive the bodies also overlap in a layer just
@@ -485,7 +485,7 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
         gg, _ = gap(par, rep, phi, psi, load_ratio, sigma, lam, side * (1.0 + tt))
         return gg / tt**side_power
 
-    y_min, gap_min = _least(gap_margin, y, ms, int(np.argmin(ms)), polish)
+    y_min, gap_min = least_of(gap_margin, y, ms, int(np.argmin(ms)), polish)
     gap_min_at = float(side * (1.0 + np.exp(y_min)))
 
     positive = bool(load_ratio > 0.0)

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..discretisation.operator import contact_operators, outside_operators
 from ..problem.parameters import Parameters
-from .validity import EDGE_LAYER_TOLERANCE, _edge_terms, _least
+from .validity import EDGE_LAYER_TOLERANCE, edge_terms, least_of
 
 __all__ = ["ZoneValidity", "assess_zones", "zone_gap"]
 
@@ -164,7 +164,7 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
     best_p = (np.inf, 0.0)
     min_p = np.inf
     for j in range(m):
-        k_log, exponents, em, _, layer = _edge_terms(_zone_par(par, half[j]), rep, phi[j],
+        k_log, exponents, em, _, layer = edge_terms(_zone_par(par, half[j]), rep, phi[j],
                                                      psi[j])
         k_all += list(k_log)
         edge_m += list(em)
@@ -179,7 +179,7 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
             keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
         if band[1]:
             keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
-        at, val = _least(lambda x, j=j: rep.phi_at(phi[j], x), sp[keep], f[keep],
+        at, val = least_of(lambda x, j=j: rep.phi_at(phi[j], x), sp[keep], f[keep],
                          int(np.argmin(f[keep])), polish)
         if val < best_p[0]:
             best_p = (val, float(centre[j] + half[j] * at))
@@ -237,7 +237,7 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
         y = np.log(t)
         ms = margin_of(y)
         i = int(np.argmin(ms))
-        y_min, val = _least(margin_of, y, ms, i, polish)
+        y_min, val = least_of(margin_of, y, ms, i, polish)
         if val < best_g[0]:
             best_g = (float(np.squeeze(val)), float(e + direction * np.exp(y_min)))
 

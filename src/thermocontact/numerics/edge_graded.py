@@ -26,7 +26,7 @@ import numpy as np
 
 from . import moments as _moments
 from .cache import BoundedCache, small_cache
-from .moments import (LOG_LEVELS, _gauss_legendre, _inner_reference, chebyshev_lagrange,
+from .moments import (LOG_LEVELS, gauss_legendre, inner_reference, chebyshev_lagrange,
                       levels_for, near_field, outer_panels, panel_rule)
 
 __all__ = [
@@ -281,7 +281,7 @@ class _Side:
         self.rows = np.flatnonzero(self.full), np.flatnonzero(~self.full & (side > 0.0))
         self.inner = np.where(self.full, w, np.minimum(side, w))
         # The panels' points: the same rule as the common panels (moments._GL).
-        xg, wg = _gauss_legendre(_moments._GL)
+        xg, wg = gauss_legendre(_moments.GAUSS_POINTS)
         # Offsets and weights of the outer panels: fixed ones then the row's own.
         edges = w * (h / w) ** (np.arange(_FIXED_OUTER + 1) / _FIXED_OUTER)
         fixed = (edges[:-1, None] + np.diff(edges)[:, None] * xg).ravel()
@@ -303,7 +303,7 @@ class _Side:
         # cos(j tau_s), sin(j tau_s) and the principal value's cancellation between
         # the sides is not disturbed by a recurrence's phase error next to an edge.
         short = self.rows[1]
-        xp = _inner_reference(LOG_LEVELS)[2]  # the innermost interval's 20 points on [0, 1]
+        xp = inner_reference(LOG_LEVELS)[2]  # the innermost interval's 20 points on [0, 1]
         phase = np.concatenate([sign * self.inner[short, None] * xp, d[short]], axis=1)
         phase = phase[..., None] * np.arange(n)
         self.short_cos, self.short_sin = np.cos(phase), np.sin(phase)
@@ -316,7 +316,7 @@ class _Side:
     def inner_parts(self, geo, levels):
         """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix."""
         if levels not in self._inner:
-            ref_tau, om, _, lagr = _inner_reference(levels)
+            ref_tau, om, _, lagr = inner_reference(levels)
             d = self.sign * self.inner[:, None] * ref_tau[None, :]
             wq = self.inner[:, None] * om[None, :]
             u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq, geo.cmap)

@@ -4,7 +4,7 @@ The moments of a convolution kernel ``K(s - r)`` against the bases of the unknow
 are computed by one engine, :func:`thermocontact.numerics.edge_graded.moments`,
 for either coordinate map (the edge-graded variable of derivation section 12 or
 ``t = arccos r``, section 10).  Its pieces live here: a common rule of equal
-panels with ``_GL``-point Gauss–Legendre each (:func:`panel_rule`); the panel
+panels with ``GAUSS_POINTS``-point Gauss–Legendre each (:func:`panel_rule`); the panel
 holding each point and its neighbours, replaced (:func:`near_field`) by an
 innermost interval graded toward the point (:func:`levels_for` halvings; its
 bases interpolated by :func:`chebyshev_lagrange`) and geometric outer panels
@@ -25,11 +25,11 @@ from .cache import small_cache
 __all__ = ["chebyshev_lagrange", "levels_for", "near_field", "outer_panels", "panel_rule",
            "sgn_moments"]
 
-_GL = 16
+GAUSS_POINTS = 16
 
 
 @small_cache(8)
-def _gauss_legendre(m: int):
+def gauss_legendre(m: int):
     x, w = np.polynomial.legendre.leggauss(m)
     return 0.5 * (x + 1.0), 0.5 * w
 
@@ -51,10 +51,10 @@ def _graded_reference(levels: int = 47):
     bps = [0.5**i for i in range(levels + 1)]
     nodes, weights = [], []
     for i, (a, b) in enumerate(zip(bps[1:], bps[:-1])):
-        x, w = _gauss_legendre(_GL if i < 2 else 10)
+        x, w = gauss_legendre(GAUSS_POINTS if i < 2 else 10)
         nodes.append(a + (b - a) * x)
         weights.append((b - a) * w)
-    y, w = _gauss_legendre(_GL)
+    y, w = gauss_legendre(GAUSS_POINTS)
     nodes.append(bps[-1] * y**6)
     weights.append(bps[-1] * 6.0 * y**5 * w)
     return np.concatenate(nodes), np.concatenate(weights)
@@ -80,9 +80,9 @@ def panel_rule(n: int):
     """
     m = max(8, -(-n // 4) + 2)
     h = np.pi / m
-    x, w = _gauss_legendre(_GL)
+    x, w = gauss_legendre(GAUSS_POINTS)
     nodes = (np.arange(m)[:, None] + x[None, :]).ravel() * h
-    return m, h, nodes, np.tile(w, m) * h, np.repeat(np.arange(m), _GL)
+    return m, h, nodes, np.tile(w, m) * h, np.repeat(np.arange(m), GAUSS_POINTS)
 
 
 def near_field(x_s, m, h, panel):
@@ -111,7 +111,7 @@ def outer_panels(side, inner, panels=None):
         Distances from the point and weights (0 for a side of zero length).
     """
     panels = _OUTER if panels is None else panels
-    xg, wg = _gauss_legendre(_GL)
+    xg, wg = gauss_legendre(GAUSS_POINTS)
     ratio = (np.maximum(side, inner) / np.maximum(inner, 1e-300)) ** (1.0 / panels)
     edges = inner[:, None] * ratio[:, None] ** np.arange(panels + 1)[None, :]
     a, b = edges[:, :-1], edges[:, 1:]
@@ -158,7 +158,7 @@ def chebyshev_lagrange(x, points: int):
 
 
 @small_cache(64)
-def _inner_reference(levels: int):
+def inner_reference(levels: int):
     """Graded rule on (0, 1] and the Lagrange basis of ``_P`` Chebyshev points there.
 
     Returns ``tau, omega, x, lagrange`` with ``lagrange[q, p] = l_p(tau_q)``.

@@ -1,7 +1,7 @@
 """Pictures.  Matplotlib is imported here only, inside the functions.
 
 The ``plot_*`` functions draw one result on an Axes (``ax=None``: the current
-one) and return it; they neither solve nor choose a backend.  The ``*_figure``
+one) and return it; they neither solve nor choose a backend.  The ``*new_figure``
 functions compose them on a :class:`matplotlib.figure.Figure` (no pyplot state)
 and save it whole to a file.
 """
@@ -24,7 +24,7 @@ _YLABEL = {
 }
 
 
-def _axes(ax):
+def prepare_axes(ax):
     if ax is None:
         import matplotlib.pyplot as plt
 
@@ -41,14 +41,14 @@ def _stacked(axes):
     return axes
 
 
-def _figure(**kwargs):
+def new_figure(**kwargs):
     # A Figure of its own, outside pyplot: no backend, nothing left open.
     from matplotlib.figure import Figure
 
     return Figure(**kwargs)
 
 
-def _save(fig, path, written=None):
+def save_figure(fig, path, written=None):
     """Save ``fig`` whole (a temporary file, renamed when complete); note it in ``written``."""
     fmt = os.path.splitext(path)[1].lstrip(".").lower()
     with atomic_write(path, "wb") as fh:
@@ -80,7 +80,7 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
     -------
     matplotlib Axes
     """
-    ax = _axes(ax)
+    ax = prepare_axes(ax)
     x = curve.x
     v = _values(curve, y)
     # Insert the boundary points so that the solid and dashed parts meet there.
@@ -103,7 +103,7 @@ def plot_curve(curve, y="load_ratio", ax=None, **kwargs):
 
 def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None, written=None):
     """Write ``stem.png`` and ``stem.svg``: one panel per quantity in ``ys``."""
-    fig = _figure(figsize=(5.5 * len(ys), 4.2))
+    fig = new_figure(figsize=(5.5 * len(ys), 4.2))
     axes = fig.subplots(1, len(ys), squeeze=False)
     for ax, y in zip(axes[0], ys):
         for c in curves:
@@ -124,7 +124,7 @@ def curves_figure(curves, stem, title, ys=("load_ratio",), barber=None, written=
     fig.suptitle(title + "\n(solid: valid; dashed: invalid; x: where validity changes)", fontsize=9)
     fig.tight_layout()
     for ext in (".png", ".svg"):
-        _save(fig, stem + ext, written)
+        save_figure(fig, stem + ext, written)
 
 
 def plot_distributions(sol, axes=None):
@@ -155,7 +155,7 @@ def plot_distributions(sol, axes=None):
 
 def distributions_figure(sols, stem, title, written=None):
     """Write ``stem.png``/``.svg``: pressures (top) and heat fluxes (bottom)."""
-    fig = _figure(figsize=(7, 7))
+    fig = new_figure(figsize=(7, 7))
     axes = fig.subplots(2, 1, sharex=True)
     for sol in sols:
         plot_distributions(sol, axes)
@@ -169,7 +169,7 @@ def distributions_figure(sols, stem, title, written=None):
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     for ext in (".png", ".svg"):
-        _save(fig, stem + ext, written)
+        save_figure(fig, stem + ext, written)
 
 
 def plot_branch(branch, problem, axes=None, label=None):
@@ -208,7 +208,7 @@ def plot_branch(branch, problem, axes=None, label=None):
 def contact_figure(res, path):
     """Write every branch of a physical contact, each in its own coordinates, to ``path``."""
     prob = res.problem
-    fig = _figure(figsize=(7, 6.5))
+    fig = new_figure(figsize=(7, 6.5))
     axes = fig.subplots(2, 1, sharex=True)
     for i, b in enumerate(res.branches):
         plot_branch(b, prob, axes, label=f"branch {i + 1}: half-width {b.half_width:.3g} m "
@@ -226,4 +226,4 @@ def contact_figure(res, path):
                  f"p0 = {prob.hertz_peak_pressure:.3g} Pa", fontsize=8)
     # Fixed margins: tight_layout would draw the figure once more to measure it.
     fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.9, hspace=0.08)
-    _save(fig, path)
+    save_figure(fig, path)

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .curves import _axes, _figure, _save
+from .curves import prepare_axes, new_figure, save_figure
 
 __all__ = ["map_figure", "plot_map"]
 
@@ -38,7 +38,7 @@ def plot_map(ds, field="load_ratio", ax=None):
     -------
     Axes
     """
-    ax = _axes(ax)
+    ax = prepare_axes(ax)
     ydim, xdim = ds[field].dims
     x, y = ds[xdim].values, ds[ydim].values
     z = np.asarray(ds[field].values, dtype=float)
@@ -107,11 +107,11 @@ def plot_map(ds, field="load_ratio", ax=None):
 
 def map_figure(ds, path, field="load_ratio", title=""):
     """Write the map's picture to ``path`` (PNG, SVG or PDF by its extension)."""
-    fig = _figure(figsize=(7, 5.5))
+    fig = new_figure(figsize=(7, 5.5))
     ax = fig.subplots()
     plot_map(ds, field, ax)
     ax.set_title(title or "valid where not shaded; theory not applicable where hatched",
                  fontsize=8)
     fig.tight_layout()
-    _save(fig, path)
+    save_figure(fig, path)
     return path

@@ -4,7 +4,7 @@ the functions only."""
 
 from __future__ import annotations
 
-from .curves import _figure, _save
+from .curves import new_figure, save_figure
 
 __all__ = ["crossing_figure"]
 
@@ -22,7 +22,7 @@ def crossing_figure(record: dict, path: str) -> None:
     path : str
         ``.png``, ``.svg`` or ``.pdf``.
     """
-    fig = _figure(figsize=(10, 4))
+    fig = new_figure(figsize=(10, 4))
     left, right = fig.subplots(1, 2)
     for prof in record["profiles"]:
         style = "-" if prof["valid"] else "--"
@@ -49,4 +49,4 @@ def crossing_figure(record: dict, path: str) -> None:
     right.legend(fontsize=7)
     right.set_title("the zones against the load (dotted: invalid)", fontsize=9)
     fig.tight_layout()
-    _save(fig, path)
+    save_figure(fig, path)

@@ -29,8 +29,7 @@ import numpy as np
 
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
-from ..execution.executors import run
-from ..io.chunks import ChunkStore
+from ..execution.resumable import run_chunks
 from ..io.files import atomic_path
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.axes import MAX_AXIS_POINTS, Axis, checked_axis
@@ -38,7 +37,7 @@ from ..problem.validation import (InputError, check_choice, check_finite, check_
 from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
 
 __all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "read_map",
-           "run_chunks", "write_map"]
+           "write_map"]
 
 #: Parameter names a dimensionless map accepts: the command line's and Python's.
 NAMES = {**SPELLINGS, **{name: name for name in ALONG}}
@@ -476,31 +475,6 @@ def compute_map(spec: MapSpec, *, workers=1, store_path=None, progress=None, com
     chunks = run_chunks(evaluate_chunk, spec.tasks(), spec.manifest(), store_path,
                         workers=workers, progress=progress)
     return _dataset(spec, chunks, command)
-
-
-def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=None) -> dict:
-    """``{index: func(task)}`` for every task, each kept in ``store_path`` as it finishes
-    and read from there when present (a resumed run computes only what is missing).
-
-    Every result goes through its stored (JSON) form, so a resumed run's results equal
-    an uninterrupted run's exactly.
-    """
-    store = None if store_path is None else ChunkStore(store_path, manifest, "the map")
-    chunks = {} if store is None else {i: store.get(i) for i in store.done()}
-    todo = [i for i in range(len(tasks)) if i not in chunks]
-
-    def report(done, total):
-        if progress is not None:
-            progress(len(tasks) - total + done, len(tasks))
-
-    for k, result in run(func, [tasks[i] for i in todo], workers=workers, progress=report):
-        i = todo[k]
-        if store is not None:
-            store.put(i, result)
-            chunks[i] = store.get(i)
-        else:
-            chunks[i] = json.loads(json.dumps(result))
-    return chunks
 
 
 def _engine():

@@ -37,7 +37,8 @@ from ..problem.validation import InputError, check_finite, check_nonnegative, ch
 from .boundaries import estimate_events, locate_events
 from .contact_sets import PhysicalConductance, physical_contact_set
 from ..problem.axes import PHYSICAL_UNITS
-from .maps import Axis, check_axis_name, parse_axis, run_chunks
+from ..execution.resumable import run_chunks
+from .maps import Axis, check_axis_name, parse_axis
 from .physical_contact import MAX_WIDTH, PhysicalProblem
 from .ray import Ray
 from .ray import interpolated_roots as _interpolated_roots

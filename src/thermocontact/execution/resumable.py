@@ -1,0 +1,45 @@
+"""Work cut into chunks that are kept as they finish, so that a run resumes.
+
+A map's grid lines, an operating map's ray samples, a study's paths: each is a list
+of independent tasks whose results are JSON records.  :func:`run_chunks` runs them
+wherever :func:`~.executors.run` sends them and keeps each result in a
+:class:`~thermocontact.io.chunks.ChunkStore` as it arrives; run again with the same
+manifest, it computes only what is missing.
+"""
+
+from __future__ import annotations
+
+import json
+
+from ..io.chunks import ChunkStore
+from .executors import run
+
+__all__ = ["run_chunks"]
+
+
+def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=None,
+               what="the map") -> dict:
+    """``{index: func(task)}`` for every task, each kept in ``store_path`` as it finishes
+    and read from there when present (a resumed run computes only what is missing).
+
+    ``what`` names the run in the refusal of a store that holds another run's work.
+
+    Every result goes through its stored (JSON) form, so a resumed run's results equal
+    an uninterrupted run's exactly.
+    """
+    store = None if store_path is None else ChunkStore(store_path, manifest, what)
+    chunks = {} if store is None else {i: store.get(i) for i in store.done()}
+    todo = [i for i in range(len(tasks)) if i not in chunks]
+
+    def report(done, total):
+        if progress is not None:
+            progress(len(tasks) - total + done, len(tasks))
+
+    for k, result in run(func, [tasks[i] for i in todo], workers=workers, progress=report):
+        i = todo[k]
+        if store is not None:
+            store.put(i, result)
+            chunks[i] = store.get(i)
+        else:
+            chunks[i] = json.loads(json.dumps(result))
+    return chunks
