@@ -212,7 +212,7 @@ def test_inline_name():
         ("E=210e9,nu=0.5,alpha=12e-6,K=50,k=1.4e-5", "nu must be in (-1, 0.5)"),
         ("E=210e9,nu=-1,alpha=12e-6,K=50,k=1.4e-5", "nu must be in (-1, 0.5)"),
         ("E=210e9,nu=0.3,alpha=-12e-6,K=50,k=1.4e-5", "alpha must be > 0"),
-        ("E=210e9,nu=0.3,alpha=12e-6,K=0,k=1.4e-5", "K must be > 0"),
+        ("E=210e9,nu=0.3,alpha=12e-6,K=-1,k=1.4e-5", "K must be >= 0"),
         ("E=210e9,nu=0.3,alpha=12e-6,K=50,k=-1", "k must be > 0"),
         ("E=210e9,nu=0.3,alpha=12e-6,K=50,rho=0,c=450", "rho must be > 0"),
     ],
@@ -235,7 +235,7 @@ def test_inline_out_of_range(spec, param):
         ({"nu": 0.5}, "nu must be in (-1, 0.5)"),
         ({"nu": -1.0}, "nu must be in (-1, 0.5)"),
         ({"alpha": -1e-6}, "alpha must be > 0"),
-        ({"K": -1.0}, "K must be > 0"),
+        ({"K": -1.0}, "K must be >= 0"),
         ({"k": 0.0}, "k must be > 0"),
     ],
 )

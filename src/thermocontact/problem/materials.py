@@ -32,6 +32,7 @@ Examples
 from __future__ import annotations
 
 import difflib
+import math
 import os
 import re
 import sys
@@ -41,7 +42,8 @@ from functools import lru_cache
 from importlib.resources import files
 from pathlib import Path
 
-from .validation import InputError, check_finite, check_positive, check_range
+from .validation import (InputError, check_finite, check_nonnegative, check_positive,
+                         check_range)
 from .units import parse_quantity
 
 if sys.version_info >= (3, 11):
@@ -89,6 +91,10 @@ def _positive(material: str, param: str, value) -> float:
     return _checked(material, check_positive, param, value)
 
 
+def _nonnegative(material: str, param: str, value) -> float:
+    return _checked(material, check_nonnegative, param, value)
+
+
 def _checked(material, check, param, value) -> float:
     """The one wording of :mod:`.validation`, prefixed with the material's name."""
     try:
@@ -112,9 +118,13 @@ class Material:
     alpha : float
         Coefficient of linear thermal expansion, 1/K; finite and > 0.
     K : float
-        Thermal conductivity, W/m/K; finite and > 0.
+        Thermal conductivity, W/m/K; finite and >= 0.  ``K = 0`` is a non-conductor
+        (the limit ``K -> 0`` at a fixed heat capacity): no heat enters it and it
+        does not distort thermally; only the sliding half-planes' instability
+        (``thermocontact tei``) accepts one.
     k : float
-        Thermal diffusivity ``K/(rho c)``, m^2/s; finite and > 0.
+        Thermal diffusivity ``K/(rho c)``, m^2/s; finite and > 0 (>= 0, and not
+        used, when ``K = 0``).
     source : str, optional
         Where the values come from.
     note : str, optional
@@ -151,8 +161,9 @@ class Material:
                                                      open_high=True), "nu", self.nu)
         object.__setattr__(self, "nu", nu)
         object.__setattr__(self, "alpha", _positive(name, "alpha", self.alpha))
-        object.__setattr__(self, "K", _positive(name, "K", self.K))
-        object.__setattr__(self, "k", _positive(name, "k", self.k))
+        object.__setattr__(self, "K", _checked(name, check_nonnegative, "K", self.K))
+        object.__setattr__(self, "k", (_positive if self.K > 0.0 else _nonnegative)(
+            name, "k", self.k))
         object.__setattr__(self, "source", str(self.source))
         object.__setattr__(self, "note", str(self.note))
         if self.max_temperature is not None:
@@ -172,13 +183,28 @@ class Material:
 
     @property
     def distortivity(self) -> float:
-        """Plane-strain distortivity ``delta = alpha (1 + nu)/K``, m/W."""
-        return self.alpha * (1.0 + self.nu) / self.K
+        """Plane-strain distortivity ``delta = alpha (1 + nu)/K``, m/W (``inf`` for a
+        non-conductor, which takes no heat: its distortion ``delta q`` is 0)."""
+        return self.alpha * (1.0 + self.nu) / self.K if self.K > 0.0 else math.inf
 
     @property
     def heat_capacity(self) -> float:
-        """Volumetric heat capacity ``rho c = K/k``, J/m^3/K."""
-        return self.K / self.k
+        """Volumetric heat capacity ``rho c = K/k``, J/m^3/K (nan when ``k = 0``)."""
+        return self.K / self.k if self.k > 0.0 else math.nan
+
+    @property
+    def conducts(self) -> bool:
+        """``K > 0``: heat enters the body."""
+        return self.K > 0.0
+
+    def check_conducts(self, role: str) -> "Material":
+        """This material, or a one-line :class:`MaterialError` naming ``role`` if it is
+        a non-conductor (``K = 0``), which the steady contact cannot carry."""
+        if not self.conducts:
+            raise MaterialError(f"{role} must conduct heat (K > 0), got material "
+                                f"'{self.name}' with K = 0 (a non-conductor: only "
+                                f"'thermocontact tei' accepts one)", parameters=(role,))
+        return self
 
 
 def _normalize(name: str) -> str:

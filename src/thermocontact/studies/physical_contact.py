@@ -93,6 +93,7 @@ class PhysicalProblem:
             if not isinstance(getattr(self, name), Material):
                 raise InputError(f"{name} must be a Material (see thermocontact.problem.materials."
                                  f"get_material), got {getattr(self, name)!r}")
+            getattr(self, name).check_conducts(name)  # K = 0: only the TEI study takes it
         for name in ("radius", "load", "speed"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))

@@ -1,0 +1,311 @@
+"""Thermoelastic instability (TEI) of two sliding half-planes: the dispersion relation.
+
+Two elastic, heat-conducting half-planes in plane strain, the *slider* (body 1,
+``y > 0``) sliding over the *counterface* (body 2, ``y < 0``, at rest in the frame
+used here) with velocity ``U`` along ``x`` (``|U| = V``), friction ``f``.  Every
+perturbation of the uniform sliding state is a sum of modes
+``exp(b t + i m x)``; ``m > 0`` is the wavenumber ``2 pi / L`` and ``b`` the complex
+growth rate in the counterface's frame.  The derivation, with its checks, is the
+last section of ``docs/derivation.md`` (equations T1-T12 cited below).
+
+A body with conductivity ``K = 0`` is a non-conductor (the limit ``K -> 0`` at a
+fixed heat capacity ``rho c``): no heat enters it and it does not distort thermally.
+
+This module holds the physics and the root search on the dispersion relation; the
+second method, a discretisation in depth, is
+:mod:`thermocontact.discretisation.tei_depth`, and the studies (critical speed,
+modes, most unstable wavelength) are :mod:`thermocontact.studies.tei`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.polynomial import polynomial as npoly
+
+from ..problem.materials import Material, dundurs_beta
+from ..problem.validation import InputError, check_nonnegative
+
+__all__ = [
+    "SlidingPair",
+    "dispersion",
+    "high_speed_unstable",
+    "modes",
+    "speed_lower_bound",
+    "surface_kernels",
+]
+
+
+@dataclass(frozen=True)
+class SlidingPair:
+    """Two half-planes sliding over each other, friction and the Dundurs term.
+
+    Parameters
+    ----------
+    slider : Material
+        Body 1, the half-plane that slides.
+    counterface : Material
+        Body 2, at rest in the frame of the dispersion relation.
+    friction : float
+        Coulomb coefficient ``f >= 0``.
+    dundurs : bool, optional
+        Keep (default) the normal displacement that the friction traction ``f p``
+        causes between dissimilar materials (``beta f``, derivation section 5c).
+
+    Raises
+    ------
+    InputError
+        If a body is not a :class:`Material`, ``friction < 0``, or neither body
+        conducts heat.
+    """
+
+    slider: Material
+    counterface: Material
+    friction: float
+    dundurs: bool = True
+
+    def __post_init__(self):
+        for name in ("slider", "counterface"):
+            if not isinstance(getattr(self, name), Material):
+                raise InputError(f"{name} must be a Material, got {getattr(self, name)!r}",
+                                 parameters=(name,))
+        object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
+        object.__setattr__(self, "dundurs", bool(self.dundurs))
+        if self.slider.K == 0.0 and self.counterface.K == 0.0:
+            raise InputError("slider and counterface must not both be non-conducting "
+                             "(K = 0): no heat would enter either body",
+                             parameters=("slider", "counterface"))
+
+    @property
+    def bodies(self) -> tuple[Material, Material]:
+        return self.slider, self.counterface
+
+    @property
+    def compliance(self) -> float:
+        """``A = (1 - nu1)/mu1 + (1 - nu2)/mu2 = 2/E*``, 1/Pa (plane strain)."""
+        return self.slider.compliance + self.counterface.compliance
+
+    @property
+    def beta(self) -> float:
+        """The paper's ``beta`` of the pair, slider as body 1 (0 with ``dundurs=False``)."""
+        return dundurs_beta(self.slider, self.counterface) if self.dundurs else 0.0
+
+    def dundurs_factor(self, velocity) -> complex:
+        """``c = 1 + i sgn(U) beta f / 2`` of the contact condition (T6)."""
+        return 1.0 + 0.5j * math.copysign(1.0, velocity) * self.beta * self.friction
+
+
+def _expansion(mat: Material) -> float:
+    """``alpha (1 + nu) = delta K``, 1/K; 0 for a non-conductor, which does not distort."""
+    return mat.alpha * (1.0 + mat.nu) if mat.K > 0.0 else 0.0
+
+
+def _root(w):
+    """Principal square root, ``Re >= 0``: the field decays into the body (T2)."""
+    return np.sqrt(np.asarray(w, dtype=complex))
+
+
+def surface_kernels(b, wavenumber, velocity, material: Material):
+    """A half-plane's transient surface response to a surface temperature
+    ``Theta exp(b t + i m x)`` (T1-T4).
+
+    Parameters
+    ----------
+    b : complex or array_like
+        Growth rate, 1/s, in the frame where the body's material moves at ``velocity``.
+    wavenumber : float
+        ``m > 0``, 1/m.
+    velocity : float
+        The material's velocity along ``x``, m/s.
+    material : Material
+
+    Returns
+    -------
+    heat : complex ndarray
+        Heat flux into the body per unit surface temperature, ``K gamma``, W/m^2/K.
+    displacement : complex ndarray
+        Outward thermoelastic surface displacement per unit surface temperature,
+        ``2 alpha (1 + nu)/(gamma + m)``, m/K (Maysel's integral, D3); both 0 for a
+        non-conductor.  ``gamma = sqrt(m^2 + (b + i m U)/kappa)``, ``Re gamma > 0``.
+    """
+    b = np.asarray(b, dtype=complex)
+    m = wavenumber
+    if material.K == 0.0:
+        zero = np.zeros(b.shape, dtype=complex)
+        return zero, zero.copy()
+    gamma = _root(m * m + (b + 1j * m * velocity) / material.k)
+    return material.K * gamma, 2.0 * _expansion(material) / (gamma + m)
+
+
+def dispersion(pair: SlidingPair, b, wavenumber, velocity):
+    """The dispersion function ``D(b)``, dimensionless, zero at a mode (T7).
+
+    ``D = (f V m / A) sum_i W_i / sum_i Y_i - (1 + i sgn(U) beta f / 2)``, with
+    ``W_i``, ``Y_i`` the displacement and heat of :func:`surface_kernels`, the
+    slider's material moving at ``U = velocity`` and the counterface's at rest.
+
+    Parameters
+    ----------
+    pair : SlidingPair
+    b : complex or array_like
+        Growth rate in the counterface's frame, 1/s.
+    wavenumber : float
+        ``m = 2 pi / L``, 1/m.
+    velocity : float
+        The slider's signed velocity ``U``, m/s.
+    """
+    h1, w1 = surface_kernels(b, wavenumber, velocity, pair.slider)
+    h2, w2 = surface_kernels(b, wavenumber, 0.0, pair.counterface)
+    coupling = pair.friction * abs(velocity) * wavenumber / pair.compliance
+    return coupling * (w1 + w2) / (h1 + h2) - pair.dundurs_factor(velocity)
+
+
+def speed_lower_bound(pair: SlidingPair, wavenumber) -> float:
+    """A speed below which no mode grows: ``A m (K1 + K2) / (f (a1 + a2))`` (T9),
+    ``a = alpha (1 + nu)`` of each conductor; ``inf`` without friction."""
+    a = _expansion(pair.slider) + _expansion(pair.counterface)
+    if pair.friction == 0.0 or a == 0.0:
+        return math.inf
+    return (pair.compliance * wavenumber * (pair.slider.K + pair.counterface.K)
+            / (pair.friction * a))
+
+
+def _reference(pair: SlidingPair, velocity):
+    """(reference body, its velocity, other body, its velocity): the reference is the
+    counterface unless it does not conduct."""
+    if pair.counterface.K > 0.0:
+        return pair.counterface, 0.0, pair.slider, velocity
+    return pair.slider, velocity, pair.counterface, 0.0
+
+
+def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
+    """Every mode ``b`` of the dispersion relation, fastest growing first (T8).
+
+    With ``z = gamma_r / m`` of a conducting reference body ``r`` (the counterface
+    unless it does not conduct) and ``z_o = sqrt(w(z))`` of the other body, the
+    relation reads ``E0(z) + E1(z) z_o = 0``; every mode is a root of the
+    polynomial ``E0^2 - w E1^2`` (degree 6; 2 with a non-conductor).  The roots with
+    ``Re z > 0`` and ``Re z_o > 0`` that satisfy the unsquared relation are the
+    modes; each is polished by Newton's method on the relation itself.
+
+    Parameters
+    ----------
+    pair : SlidingPair
+    wavenumber : float
+        ``m > 0``, 1/m.
+    velocity : float
+        The slider's signed velocity ``U`` relative to the counterface, m/s.
+    polish : bool, optional
+        Newton steps on the unsquared relation (default).
+
+    Returns
+    -------
+    ndarray of complex
+        Growth rates ``b`` in the counterface's frame, 1/s, by decreasing real part.
+    """
+    m = float(wavenumber)
+    ref, u_ref, other, u_other = _reference(pair, velocity)
+    c = pair.dundurs_factor(velocity)
+    scale = pair.friction * abs(velocity) / (pair.compliance * m * ref.K)
+    g_r = 2.0 * _expansion(ref) * scale
+    P = npoly.Polynomial
+    z = P([0.0, 1.0])
+    one_conductor = other.K == 0.0
+    if one_conductor:
+        # g_r/(z + 1) = c z: a quadratic.
+        poly = g_r - c * z * (z + 1.0)
+        k_ratio = rho = g_o = 0.0
+        p_o = 0.0
+    else:
+        g_o = 2.0 * _expansion(other) * scale
+        rho = other.K / ref.K
+        k_ratio = ref.k / other.k
+        p_o = (u_other - u_ref) / (other.k * m)
+        w = k_ratio * z**2 + (1.0 - k_ratio + 1j * p_o)
+        e1 = g_r - c * (z + 1.0) * (rho + z)
+        e0 = g_o * (z + 1.0) + g_r - c * (z + 1.0) * (rho * w + z)
+        poly = e0**2 - w * e1**2
+    coef = poly.coef
+    # Trailing zeros (an exactly cancelled leading coefficient) are no roots.
+    nz = np.flatnonzero(np.abs(coef) > 1e-300)
+    roots = np.roots(coef[: nz[-1] + 1][::-1]) if nz.size and nz[-1] > 0 else np.array([])
+
+    def other_root(zz):
+        return _root(k_ratio * zz * zz + (1.0 - k_ratio + 1j * p_o))
+
+    def residual(zz):
+        if one_conductor:
+            return g_r / (zz + 1.0) - c * zz, -g_r / (zz + 1.0) ** 2 - c
+        zo = other_root(zz)
+        f = g_o / (zo + 1.0) + g_r / (zz + 1.0) - c * (rho * zo + zz)
+        dzo = k_ratio * zz / zo
+        df = -g_o * dzo / (zo + 1.0) ** 2 - g_r / (zz + 1.0) ** 2 - c * (rho * dzo + 1.0)
+        return f, df
+
+    found = []
+    for zz in roots:
+        if polish:
+            for _ in range(30):
+                f, df = residual(zz)
+                if df == 0 or not np.isfinite(df):
+                    break
+                step = f / df
+                zz = zz - step
+                if abs(step) <= 1e-15 * max(1.0, abs(zz)):
+                    break
+        if not np.isfinite(zz) or zz.real <= 0.0:
+            continue
+        size = abs(c) * abs(zz) + g_r / abs(zz + 1.0)
+        if not one_conductor:
+            zo = other_root(zz)
+            if zo.real <= 0.0:
+                continue
+            size += abs(c) * rho * abs(zo) + g_o / abs(zo + 1.0)
+        if abs(residual(zz)[0]) > 1e-8 * size:
+            continue  # a root of the squared relation only (z_o of the other sign)
+        b = ref.k * m * m * (zz * zz - 1.0) - 1j * m * u_ref
+        if all(abs(b - x) > 1e-9 * max(abs(b), ref.k * m * m) for x in found):
+            found.append(complex(b))
+    found.sort(key=lambda x: (-x.real, x.imag))
+    return np.array(found, dtype=complex)
+
+
+def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
+    """Whether a mode grows at every large enough speed (the limit V -> inf, T10).
+
+    With ``b = V m X``, each body's field becomes a one-dimensional transient one
+    (``gamma_2 ~ sqrt(V X/(kappa_2 m))``, ``gamma_1 ~ sqrt(V (X + i s)/(kappa_1 m))``,
+    ``s = sgn U``) and the relation ``h1/zeta1 + h2/zeta2 = c (e1 zeta1 + e2 zeta2)``,
+    ``zeta2 = sqrt(X)``, ``zeta1 = sqrt(X + i s)``, ``h = 2 f alpha (1 + nu)
+    sqrt(kappa)/A``, ``e = K/sqrt(kappa)``, no longer depends on ``V``.  Squared, it
+    is the cubic ``(X + i s)(h2 - c e2 X)^2 = X (c e1 (X + i s) - h1)^2``.
+    """
+    s = math.copysign(1.0, direction)
+    c = pair.dundurs_factor(s)
+    A = pair.compliance
+
+    def he(mat):
+        if mat.K == 0.0:
+            return 0.0, 0.0
+        return 2.0 * pair.friction * _expansion(mat) * math.sqrt(mat.k) / A, mat.K / math.sqrt(mat.k)
+
+    (h1, e1), (h2, e2) = he(pair.slider), he(pair.counterface)
+    if pair.friction == 0.0:
+        return False
+    if e1 == 0.0 or e2 == 0.0:
+        # One conductor: X = h/(c e) (- i s for the slider); Re X = (h/e)/|c|^2 > 0.
+        return True
+    P = npoly.Polynomial
+    X = P([0.0, 1.0])
+    poly = (X + 1j * s) * (h2 - c * e2 * X) ** 2 - X * (c * e1 * (X + 1j * s) - h1) ** 2
+    for x in np.roots(poly.coef[::-1]):
+        z2, z1 = _root(x), _root(x + 1j * s)
+        if z2.real <= 0.0 or z1.real <= 0.0:
+            continue
+        lhs = h1 / z1 + h2 / z2
+        rhs = c * (e1 * z1 + e2 * z2)
+        if abs(lhs - rhs) <= 1e-8 * (abs(lhs) + abs(rhs)) and x.real > 0.0:
+            return True
+    return False

@@ -1,0 +1,288 @@
+"""Thermoelastic instability of sliding half-planes: critical speed, modes, the most
+unstable wavelength (``thermocontact tei``).
+
+The dispersion relation and its root search are :mod:`thermocontact.physics.tei`;
+the derivation is the last section of ``docs/derivation.md`` (T1-T12).  For two
+half-planes the wavelength enters only through the Péclet number ``V/(kappa m)``,
+so the critical speed is proportional to the wavenumber (T11): longer waves go
+unstable first, and at a given speed the growth rate has a maximum over the
+wavelength.
+
+Examples
+--------
+>>> from thermocontact.studies.tei import tei
+>>> r = tei("steel", "organic-composite-brake-block", 0.4, "50mm")
+>>> round(r.critical_speed, 4), r.stable_at_all_speeds
+(0.3959, False)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
+from ..problem.validation import check_nonnegative, check_positive
+
+__all__ = ["TEIMode", "TEIResult", "critical_speed", "critical_speeds", "growth_rate",
+           "most_unstable_wavelength", "tei", "tei_modes"]
+
+#: Speeds scanned per factor 2 above the lower bound (T9) before Brent's method.
+_PER_OCTAVE = 4
+#: Without a crossing up to this multiple of the lower bound, the high-speed limit
+#: (T10) decides; where it says unstable, the scan goes on to ``_LAST_FACTOR``.
+_SCAN_FACTOR = 1e6
+_LAST_FACTOR = 1e15
+
+
+@dataclass(frozen=True)
+class TEIMode:
+    """One mode ``exp(b t + i m x)`` of the sliding half-planes.
+
+    Attributes
+    ----------
+    growth_rate : float
+        ``Re b``, 1/s; positive for a growing mode.
+    frequency : float
+        Rate at which the pattern's crests pass a fixed point of the counterface,
+        ``migration_speed / wavelength``, Hz, signed as ``migration_speed``.
+    migration_speed : float
+        The pattern's speed relative to the counterface, m/s, positive in the
+        direction the slider moves (``V`` for a pattern fixed on the slider).
+    """
+
+    growth_rate: float
+    frequency: float
+    migration_speed: float
+
+    def to_dict(self) -> dict:
+        return {"growth_rate": self.growth_rate, "frequency": self.frequency,
+                "migration_speed": self.migration_speed}
+
+
+def _mode(b: complex, wavenumber: float) -> TEIMode:
+    # The slider moves toward +x in the frame of the dispersion relation (U = +V).
+    speed = -b.imag / wavenumber
+    return TEIMode(float(b.real), float(speed * wavenumber / (2.0 * math.pi)), float(speed))
+
+
+@dataclass(frozen=True)
+class TEIResult:
+    """The thermoelastic stability of two sliding half-planes at one wavelength.
+
+    Attributes
+    ----------
+    slider, counterface : str
+        The materials' names.
+    friction : float
+    wavelength : float
+        ``L = 2 pi / m``, m.
+    dundurs : bool
+        Whether the Dundurs term ``beta f`` was kept.
+    beta : float
+        ``beta`` of the pair, slider as body 1 (0 when dropped).
+    critical_speed : float or None
+        The lowest sliding speed at which a mode of this wavelength grows, m/s;
+        None when none does at any speed.
+    stable_at_all_speeds : bool
+    migration_speed : float or None
+        The neutral mode's speed relative to the counterface at the critical
+        speed, m/s, positive in the slider's direction.
+    speed : float or None
+        The sliding speed of ``modes``, m/s, if one was given.
+    modes : tuple of TEIMode
+        At ``speed``: every mode of this wavelength, the fastest growing first.
+    most_unstable_wavelength : float or None
+        At ``speed``: the wavelength of largest growth rate, m (None if every
+        wavelength is stable at every speed, or without friction or speed).
+    most_unstable_growth_rate : float or None
+        Its growth rate, 1/s.
+    """
+
+    slider: str
+    counterface: str
+    friction: float
+    wavelength: float
+    dundurs: bool
+    beta: float
+    critical_speed: float | None
+    stable_at_all_speeds: bool
+    migration_speed: float | None
+    speed: float | None = None
+    modes: tuple = field(default=())
+    most_unstable_wavelength: float | None = None
+    most_unstable_growth_rate: float | None = None
+
+    def __repr__(self):
+        vc = ("stable at all speeds" if self.critical_speed is None
+              else f"critical_speed={self.critical_speed:.6g} m/s")
+        at = "" if self.speed is None else f", speed={self.speed:g} m/s, {len(self.modes)} modes"
+        return (f"TEIResult({self.slider} on {self.counterface}, f={self.friction:g}, "
+                f"wavelength={self.wavelength:g} m: {vc}{at})")
+
+    def to_dict(self) -> dict:
+        """The JSON record of ``thermocontact tei``."""
+        out = {"slider": self.slider, "counterface": self.counterface,
+               "friction": self.friction, "wavelength": self.wavelength,
+               "dundurs": self.dundurs, "beta": self.beta,
+               "critical_speed": self.critical_speed,
+               "stable_at_all_speeds": self.stable_at_all_speeds,
+               "migration_speed": self.migration_speed}
+        if self.speed is not None:
+            out.update(speed=self.speed, modes=[m.to_dict() for m in self.modes],
+                       most_unstable_wavelength=self.most_unstable_wavelength,
+                       most_unstable_growth_rate=self.most_unstable_growth_rate)
+        return out
+
+
+def growth_rate(pair: SlidingPair, wavenumber: float, speed: float) -> float:
+    """The largest ``Re b`` of the modes, 1/s; ``-inf`` where there is no mode (every
+    disturbance then decays with the continuous spectrum, ``Re b <= -kappa m^2``)."""
+    b = modes(pair, wavenumber, speed)
+    return float(b[0].real) if b.size else -math.inf
+
+
+def critical_speed(pair: SlidingPair, wavenumber: float):
+    """The lowest speed at which a mode of wavenumber ``m`` grows, and that mode.
+
+    No mode grows below the bound (T9); the speeds above it are scanned
+    geometrically until the largest growth rate changes sign, which Brent's method
+    then locates to 1e-13 relative.  Without a sign change up to 1e6 times the
+    bound, the high-speed limit (T10) decides between a later crossing and
+    stability at every speed.
+
+    Returns
+    -------
+    (float, TEIMode) or (None, None)
+        The critical speed, m/s, and the neutral mode there.
+    """
+    low = speed_lower_bound(pair, wavenumber)
+    if not math.isfinite(low):
+        return None, None
+    floor = -max(pair.slider.k, pair.counterface.k) * wavenumber**2  # no mode: decays
+
+    def sigma(v):
+        s = growth_rate(pair, wavenumber, v)
+        return s if math.isfinite(s) else floor
+
+    ratio = 2.0 ** (1.0 / _PER_OCTAVE)
+    v_prev, v = 0.5 * low, 0.5 * low  # sigma < 0 below the bound
+    last = _SCAN_FACTOR
+    while True:
+        v *= ratio
+        if sigma(v) > 0.0:
+            break
+        v_prev = v
+        if v > last * low:
+            if last == _LAST_FACTOR or not high_speed_unstable(pair):
+                return None, None
+            last = _LAST_FACTOR
+    vc = brentq(sigma, v_prev, v, xtol=1e-300, rtol=1e-13, maxiter=200)
+    b = modes(pair, wavenumber, vc)
+    return float(vc), _mode(b[0], wavenumber)
+
+
+def critical_speeds(pair: SlidingPair, wavelengths) -> np.ndarray:
+    """Critical speed at each wavelength, m/s (``nan`` where stable at all speeds)."""
+    out = []
+    for wl in np.atleast_1d(np.asarray(wavelengths, dtype=float)):
+        vc, _ = critical_speed(pair, 2.0 * math.pi / wl)
+        out.append(math.nan if vc is None else vc)
+    return np.array(out)
+
+
+def tei_modes(pair: SlidingPair, wavenumber: float, speed: float) -> tuple:
+    """Every mode at ``speed``, fastest growing first, as :class:`TEIMode`."""
+    return tuple(_mode(b, wavenumber) for b in modes(pair, wavenumber, speed))
+
+
+def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float):
+    """The wavelength of largest growth rate at ``speed``, and that rate.
+
+    The critical speed is ``P_c kappa m`` (T11), so every wavenumber above
+    ``m_c = speed/(P_c kappa)`` is stable; the growth rate vanishes as ``m -> 0``
+    too (it is ``O(V m)``, T10).  The maximum is bracketed on 60 wavenumbers
+    spaced in ``ln m`` over five decades below ``m_c`` and refined by Brent's method.
+
+    Returns
+    -------
+    (float, float) or (None, None)
+        Wavelength, m, and growth rate, 1/s.
+    """
+    if speed <= 0.0:
+        return None, None
+    vc, _ = critical_speed(pair, wavenumber)
+    if vc is None:
+        return None, None
+    m_c = wavenumber * speed / vc
+    logs = np.linspace(math.log(m_c) - 5.0 * math.log(10.0), math.log(m_c), 61)[:-1]
+    rates = np.array([growth_rate(pair, math.exp(x), speed) for x in logs])
+    i = int(np.argmax(rates))
+    if i == 0:  # still growing toward long waves: not bracketed (not expected, T10)
+        return 2.0 * math.pi / math.exp(logs[0]), float(rates[0])
+    hi = logs[i + 1] if i + 1 < logs.size else math.log(m_c)
+    res = minimize_scalar(lambda x: -growth_rate(pair, math.exp(x), speed),
+                          bracket=(logs[i - 1], logs[i], hi), tol=1e-10)
+    return 2.0 * math.pi / math.exp(res.x), float(-res.fun)
+
+
+def _materials(slider, counterface, materials):
+    from ..problem.materials import Material, get_material, load_materials
+
+    if materials is not None:
+        load_materials(materials)  # read and checked even when both bodies are inline
+    return tuple(m if isinstance(m, Material) else get_material(m, materials)
+                 for m in (slider, counterface))
+
+
+def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
+        materials=None) -> TEIResult:
+    """Thermoelastic instability of two sliding half-planes (``thermocontact tei``).
+
+    Parameters
+    ----------
+    slider, counterface : str or Material
+        The sliding half-plane and the one it slides over: names, inline
+        definitions ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
+        non-conductor; not both.
+    friction : float
+        Coulomb coefficient ``f >= 0``.
+    wavelength : float or str
+        ``L > 0`` of the perturbation, m or with units (``"50mm"``).
+    speed : float or str, optional
+        Sliding speed ``V >= 0``, m/s or with units: adds the modes at that speed
+        and the most unstable wavelength.
+    dundurs : bool, optional
+        Keep the Dundurs term ``beta f`` (default), as ``contact`` does.
+    materials : str or os.PathLike, optional
+        A TOML file of further materials.
+
+    Returns
+    -------
+    TEIResult
+
+    Raises
+    ------
+    InputError
+        A wavelength <= 0, a speed or friction < 0, both bodies non-conducting, an
+        unknown material; the message is one line naming the parameter.
+    """
+    from ..problem.units import parse_quantity
+
+    s, c = _materials(slider, counterface, materials)
+    pair = SlidingPair(s, c, check_nonnegative("friction", friction), dundurs=dundurs)
+    wl = check_positive("wavelength", parse_quantity(wavelength, "m", "wavelength"))
+    m = 2.0 * math.pi / wl
+    vc, neutral = critical_speed(pair, m)
+    extra = {}
+    if speed is not None:
+        v = check_nonnegative("speed", parse_quantity(speed, "m/s", "speed"))
+        mw, rate = most_unstable_wavelength(pair, v, m)
+        extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
+                     most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
+    return TEIResult(s.name, c.name, pair.friction, wl, pair.dundurs, pair.beta, vc,
+                     vc is None, None if neutral is None else neutral.migration_speed,
+                     **extra)
