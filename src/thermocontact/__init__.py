@@ -35,6 +35,7 @@ _EXPORTS = {
     "ContactSolution": ".solvers.result",
     "Model": ".solvers.single_patch",
     "solve": ".solvers.single_patch",
+    "tei": ".studies.tei",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -19,11 +19,11 @@ modes, most unstable wavelength) are :mod:`thermocontact.studies.tei`.
 
 from __future__ import annotations
 
+import cmath
 import math
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.polynomial import polynomial as npoly
 
 from ..problem.materials import Material, dundurs_beta
 from ..problem.validation import InputError, check_nonnegative
@@ -172,6 +172,14 @@ def speed_lower_bound(pair: SlidingPair, wavenumber) -> float:
             / (pair.friction * a))
 
 
+def _padd(*polys):
+    """Sum of coefficient arrays (lowest degree first) of any lengths."""
+    out = np.zeros(max(len(p) for p in polys), dtype=complex)
+    for p in polys:
+        out[: len(p)] += p
+    return out
+
+
 def _reference(pair: SlidingPair, velocity):
     """(reference body, its velocity, other body, its velocity): the reference is the
     counterface unless it does not conduct."""
@@ -210,12 +218,11 @@ def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
     c = pair.dundurs_factor(velocity)
     scale = pair.friction * abs(velocity) / (pair.compliance * m * ref.K)
     g_r = 2.0 * _expansion(ref) * scale
-    P = npoly.Polynomial
-    z = P([0.0, 1.0])
     one_conductor = other.K == 0.0
+    conv = np.convolve  # coefficients lowest degree first
     if one_conductor:
         # g_r/(z + 1) = c z: a quadratic.
-        poly = g_r - c * z * (z + 1.0)
+        coef = np.array([g_r, -c, -c])
         k_ratio = rho = g_o = 0.0
         p_o = 0.0
     else:
@@ -223,22 +230,22 @@ def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
         rho = other.K / ref.K
         k_ratio = ref.k / other.k
         p_o = (u_other - u_ref) / (other.k * m)
-        w = k_ratio * z**2 + (1.0 - k_ratio + 1j * p_o)
-        e1 = g_r - c * (z + 1.0) * (rho + z)
-        e0 = g_o * (z + 1.0) + g_r - c * (z + 1.0) * (rho * w + z)
-        poly = e0**2 - w * e1**2
-    coef = poly.coef
+        w = np.array([1.0 - k_ratio + 1j * p_o, 0.0, k_ratio])
+        zp1 = np.array([1.0, 1.0])
+        e1 = _padd([g_r], -c * conv(zp1, [rho, 1.0]))
+        e0 = _padd(g_o * zp1, [g_r], -c * conv(zp1, _padd(rho * w, [0.0, 1.0])))
+        coef = _padd(conv(e0, e0), -conv(w, conv(e1, e1)))
     # Trailing zeros (an exactly cancelled leading coefficient) are no roots.
     nz = np.flatnonzero(np.abs(coef) > 1e-300)
     roots = np.roots(coef[: nz[-1] + 1][::-1]) if nz.size and nz[-1] > 0 else np.array([])
 
-    def other_root(zz):
-        return _root(k_ratio * zz * zz + (1.0 - k_ratio + 1j * p_o))
+    sqrt = cmath.sqrt  # principal branch, Re >= 0; scalars: a mode takes microseconds
+    shift = complex(1.0 - k_ratio, p_o)
 
     def residual(zz):
         if one_conductor:
             return g_r / (zz + 1.0) - c * zz, -g_r / (zz + 1.0) ** 2 - c
-        zo = other_root(zz)
+        zo = sqrt(k_ratio * zz * zz + shift)
         f = g_o / (zo + 1.0) + g_r / (zz + 1.0) - c * (rho * zo + zz)
         dzo = k_ratio * zz / zo
         df = -g_o * dzo / (zo + 1.0) ** 2 - g_r / (zz + 1.0) ** 2 - c * (rho * dzo + 1.0)
@@ -246,20 +253,21 @@ def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
 
     found = []
     for zz in roots:
+        zz = complex(zz)
         if polish:
             for _ in range(30):
                 f, df = residual(zz)
-                if df == 0 or not np.isfinite(df):
+                if df == 0 or not cmath.isfinite(df):
                     break
                 step = f / df
-                zz = zz - step
+                zz -= step
                 if abs(step) <= 1e-15 * max(1.0, abs(zz)):
                     break
-        if not np.isfinite(zz) or zz.real <= 0.0:
+        if not cmath.isfinite(zz) or zz.real <= 0.0:
             continue
         size = abs(c) * abs(zz) + g_r / abs(zz + 1.0)
         if not one_conductor:
-            zo = other_root(zz)
+            zo = sqrt(k_ratio * zz * zz + shift)
             if zo.real <= 0.0:
                 continue
             size += abs(c) * rho * abs(zo) + g_o / abs(zo + 1.0)
@@ -297,15 +305,18 @@ def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
     if e1 == 0.0 or e2 == 0.0:
         # One conductor: X = h/(c e) (- i s for the slider); Re X = (h/e)/|c|^2 > 0.
         return True
-    P = npoly.Polynomial
-    X = P([0.0, 1.0])
-    poly = (X + 1j * s) * (h2 - c * e2 * X) ** 2 - X * (c * e1 * (X + 1j * s) - h1) ** 2
-    for x in np.roots(poly.coef[::-1]):
+    conv = np.convolve  # lowest degree first
+    left = conv([1j * s, 1.0], conv([h2, -c * e2], [h2, -c * e2]))
+    inner = [c * e1 * 1j * s - h1, c * e1]
+    right = conv([0.0, 1.0], conv(inner, inner))
+    for x in np.roots(_padd(left, -right)[::-1]):
         z2, z1 = _root(x), _root(x + 1j * s)
         if z2.real <= 0.0 or z1.real <= 0.0:
             continue
         lhs = h1 / z1 + h2 / z2
         rhs = c * (e1 * z1 + e2 * z2)
-        if abs(lhs - rhs) <= 1e-8 * (abs(lhs) + abs(rhs)) and x.real > 0.0:
+        # Identical materials below their threshold have X on the imaginary axis
+        # exactly (neutral at leading order, decaying at the next): rounding is no growth.
+        if abs(lhs - rhs) <= 1e-8 * (abs(lhs) + abs(rhs)) and x.real > 1e-10 * max(1.0, abs(x)):
             return True
     return False

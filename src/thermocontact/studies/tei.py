@@ -100,6 +100,9 @@ class TEIResult:
         wavelength is stable at every speed, or without friction or speed).
     most_unstable_growth_rate : float or None
         Its growth rate, 1/s.
+    pair : SlidingPair
+        The problem itself (materials, friction, Dundurs term), for further studies
+        such as the critical speed at other wavelengths.
     """
 
     slider: str
@@ -115,6 +118,7 @@ class TEIResult:
     modes: tuple = field(default=())
     most_unstable_wavelength: float | None = None
     most_unstable_growth_rate: float | None = None
+    pair: SlidingPair | None = field(default=None, repr=False)
 
     def __repr__(self):
         vc = ("stable at all speeds" if self.critical_speed is None
@@ -186,12 +190,15 @@ def critical_speed(pair: SlidingPair, wavenumber: float):
 
 
 def critical_speeds(pair: SlidingPair, wavelengths) -> np.ndarray:
-    """Critical speed at each wavelength, m/s (``nan`` where stable at all speeds)."""
-    out = []
-    for wl in np.atleast_1d(np.asarray(wavelengths, dtype=float)):
-        vc, _ = critical_speed(pair, 2.0 * math.pi / wl)
-        out.append(math.nan if vc is None else vc)
-    return np.array(out)
+    """Critical speed at each wavelength, m/s (``nan`` where stable at all speeds).
+
+    The wavelength enters the dispersion relation only through ``V/(kappa m)``
+    (T11), so one critical speed gives them all: ``V_c(L) = V_c(L0) L0/L``.
+    """
+    wl = np.atleast_1d(np.asarray(wavelengths, dtype=float))
+    wl0 = float(np.exp(np.mean(np.log(wl))))
+    vc, _ = critical_speed(pair, 2.0 * math.pi / wl0)
+    return np.full(wl.shape, math.nan) if vc is None else vc * wl0 / wl
 
 
 def tei_modes(pair: SlidingPair, wavenumber: float, speed: float) -> tuple:
@@ -199,13 +206,17 @@ def tei_modes(pair: SlidingPair, wavenumber: float, speed: float) -> tuple:
     return tuple(_mode(b, wavenumber) for b in modes(pair, wavenumber, speed))
 
 
-def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float):
+def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
+                             critical=None):
     """The wavelength of largest growth rate at ``speed``, and that rate.
 
     The critical speed is ``P_c kappa m`` (T11), so every wavenumber above
     ``m_c = speed/(P_c kappa)`` is stable; the growth rate vanishes as ``m -> 0``
     too (it is ``O(V m)``, T10).  The maximum is bracketed on 60 wavenumbers
     spaced in ``ln m`` over five decades below ``m_c`` and refined by Brent's method.
+
+    ``critical``, the critical speed at ``wavenumber`` if known (m/s), saves its
+    search.
 
     Returns
     -------
@@ -214,7 +225,7 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float)
     """
     if speed <= 0.0:
         return None, None
-    vc, _ = critical_speed(pair, wavenumber)
+    vc = critical if critical is not None else critical_speed(pair, wavenumber)[0]
     if vc is None:
         return None, None
     m_c = wavenumber * speed / vc
@@ -280,9 +291,9 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
     extra = {}
     if speed is not None:
         v = check_nonnegative("speed", parse_quantity(speed, "m/s", "speed"))
-        mw, rate = most_unstable_wavelength(pair, v, m)
+        mw, rate = (None, None) if vc is None else most_unstable_wavelength(pair, v, m, vc)
         extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
                      most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
     return TEIResult(s.name, c.name, pair.friction, wl, pair.dundurs, pair.beta, vc,
                      vc is None, None if neutral is None else neutral.migration_speed,
-                     **extra)
+                     **extra, pair=pair)
