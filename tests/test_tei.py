@@ -330,3 +330,12 @@ def test_plot_returns_axes(tmp_path):
     path = tmp_path / "tei.png"
     tei_figure(r, str(path))
     assert path.stat().st_size > 1000
+
+
+def test_docstring_example():
+    import doctest
+
+    from thermocontact.studies import tei as module
+
+    result = doctest.testmod(module)
+    assert result.attempted > 0 and result.failed == 0

@@ -802,7 +802,8 @@ def tei_cmd(slider, counterface, friction, wavelength, speed, dundurs, materials
         lines.append(f"  critical speed  {res.critical_speed:.6g} m/s (the neutral mode "
                      f"migrates at {res.migration_speed:.6g} m/s relative to the counterface)")
     if res.speed is not None:
-        lines.append(f"  at {res.speed:.6g} m/s: {len(res.modes)} modes")
+        lines.append(f"  at {res.speed:.6g} m/s: {len(res.modes)} "
+                     f"mode{'' if len(res.modes) == 1 else 's'}, the fastest growing first")
         for k, mode in enumerate(res.modes, 1):
             lines.append(f"    {k}: growth rate {mode.growth_rate:.6g} 1/s, frequency "
                          f"{mode.frequency:.6g} Hz, migration speed {mode.migration_speed:.6g} m/s")

@@ -13,7 +13,7 @@ Examples
 >>> from thermocontact.studies.tei import tei
 >>> r = tei("steel", "organic-composite-brake-block", 0.4, "50mm")
 >>> round(r.critical_speed, 4), r.stable_at_all_speeds
-(0.3959, False)
+(55.3725, False)
 """
 
 from __future__ import annotations
