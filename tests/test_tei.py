@@ -339,3 +339,16 @@ def test_docstring_example():
 
     result = doctest.testmod(module)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_public_call_and_edge_inputs():
+    """The package exports the call; no friction or no speed makes no heat: nothing grows."""
+    import thermocontact
+
+    assert thermocontact.tei is tei
+    r = tei("steel", "cast-iron", 0.0, 0.05, speed=10.0)
+    assert r.stable_at_all_speeds and r.critical_speed is None
+    assert r.modes == () and r.most_unstable_wavelength is None
+    r = tei("steel", "cast-iron", 0.3, 0.05, speed=0.0)
+    assert r.modes == () and r.most_unstable_wavelength is None and r.critical_speed > 0
+    assert not high_speed_unstable(SlidingPair(STEEL, IRON, 0.0))
