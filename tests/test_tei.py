@@ -69,7 +69,8 @@ def test_conductor_against_non_conductor_closed_form(dundurs, slider_conducts):
         # The bound (T9) is sharp here: equality at the neutral speed.
         assert _rel(speed_lower_bound(pair, M), exact) < 1e-14
     else:
-        assert abs(pair.beta) > 0.5 and _rel(vc, pair.compliance * M / (0.4 * STEEL.distortivity)) > 1e-3
+        burton = pair.compliance * M / (0.4 * STEEL.distortivity)
+        assert abs(pair.beta) > 0.5 and _rel(vc, burton) > 1e-3
 
 
 def _identical(phi):
@@ -263,7 +264,8 @@ def test_command_json_is_the_record(capsys, tmp_path):
     assert main(["tei", "--slider", "steel", "--counterface", "felt", "--friction", "0.4",
                  "--wavelength", "0.05", "--materials", str(toml), "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
-    burton = (STEEL.compliance + get_material("felt", toml).compliance) * M / (0.4 * STEEL.distortivity)
+    felt = get_material("felt", toml)
+    burton = (STEEL.compliance + felt.compliance) * M / (0.4 * STEEL.distortivity)
     assert rec["counterface"] == "felt"
     assert _rel(rec["critical_speed"], burton) < 0.05   # beta f moves it a little
 

@@ -297,7 +297,8 @@ def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
     def he(mat):
         if mat.K == 0.0:
             return 0.0, 0.0
-        return 2.0 * pair.friction * _expansion(mat) * math.sqrt(mat.k) / A, mat.K / math.sqrt(mat.k)
+        root = math.sqrt(mat.k)
+        return 2.0 * pair.friction * _expansion(mat) * root / A, mat.K / root
 
     (h1, e1), (h2, e2) = he(pair.slider), he(pair.counterface)
     if pair.friction == 0.0:
