@@ -354,3 +354,24 @@ def test_public_call_and_edge_inputs():
     r = tei("steel", "cast-iron", 0.3, 0.05, speed=0.0)
     assert r.modes == () and r.most_unstable_wavelength is None and r.critical_speed > 0
     assert not high_speed_unstable(SlidingPair(STEEL, IRON, 0.0))
+
+
+NC = "E=2e9,nu=0.25,alpha=2e-5,K=0,k=0"
+
+
+@pytest.mark.parametrize("argv, flag", [
+    (["contact", "--cylinder", "steel", "--half-plane", NC, "--radius", "10mm", "--load", "1e5",
+      "--speed", "1", "--friction", "0.3", "--lam", "0"], "--half-plane"),
+    (["map", "--cylinder", NC, "--half-plane", "steel", "--radius", "10mm", "--friction", "0.2",
+      "--lam", "-1", "--x", "load:1e2:1e6:5:log", "--y", "speed:0.01:100:5:log", "--out",
+      "op.nc"], "--cylinder"),
+    (["boundary", "--along", "load", "--from", "10kN/m", "--to", "1MN/m", "--cylinder", "steel",
+      "--half-plane", NC, "--radius", "450mm", "--speed", "1", "--friction", "0.35", "--lam",
+      "1", "-n", "16"], "--half-plane"),
+])
+def test_steady_commands_refuse_a_non_conductor(capsys, tmp_path, monkeypatch, argv, flag):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and f"{flag} must conduct heat (K > 0)" in err
+    assert not (tmp_path / "op.nc").exists()
