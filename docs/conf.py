@@ -11,6 +11,7 @@ The pages with a ``kernelspec`` (the user guide) are executed by myst-nb at ever
 an example that raises fails the build.
 """
 
+import importlib
 import inspect
 import re
 import shutil
@@ -41,18 +42,13 @@ extensions = [
 ]
 
 exclude_patterns = ["_build", "jupyter_execute", "**/.ipynb_checkpoints"]
-# The README and the scripts beside the pictures are not pages.
+# Pages in MyST (executed by myst-nb where they have a kernelspec) or reST.
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}
 
+# Every cross-reference must resolve; one to an object without a page of its own (a
+# module's helper, another package's class: nothing is fetched at build time) is shown as
+# code by resolve_internal below.
 nitpicky = True
-# Types named in docstrings that no page of this site documents (no intersphinx: nothing
-# is fetched at build time).
-nitpick_ignore_regex = [
-    (r"py:.*", r"(numpy|np|scipy|xarray|xr|pint|click|matplotlib|pathlib|dask|distributed)\..*"),
-    (r"py:.*", r"(array|array_like|ndarray|Dataset|Path|callable|optional|default|"
-               r"float|int|bool|str|dict|list|tuple|None|iterable|sequence|mapping|"
-               r"of|or|and|shape|ints|floats|strs)"),
-]
 
 # numpydoc renders the sections; autodoc lists the members once.
 numpydoc_show_class_members = False
@@ -163,13 +159,13 @@ class PublicNames(SphinxDirective):
 # -- references into the package's modules -------------------------------------------
 
 def _find(path):
-    """The object a dotted path names, or None."""
+    """The object a dotted path names (importing its module if need be), or None."""
     parts = path.split(".")
     for i in range(len(parts), 0, -1):
-        module = sys.modules.get(".".join(parts[:i]))
-        if module is None:
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except Exception:  # not a module: try a shorter prefix
             continue
-        obj = module
         try:
             for attr in parts[i:]:
                 obj = getattr(obj, attr)
@@ -198,8 +194,9 @@ def resolve_internal(app, env, node, contnode):
     """A Python reference to an object of the package that is not on a page of its own.
 
     If the object is public (the same object as ``thermocontact.<name>``), link to that
-    name's page; if it is internal (a module's helper, a dataclass field), show it as
-    code without a link.  A reference to nothing that exists stays a warning.
+    name's page; if it exists but has no page (a module's helper, a dataclass field,
+    another package's class), show it as code without a link.  A reference to nothing
+    that exists stays a warning.
     """
     if node.get("refdomain") != "py":
         return None
