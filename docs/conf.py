@@ -41,7 +41,7 @@ extensions = [
     "sphinx_click",
 ]
 
-exclude_patterns = ["_build", "jupyter_execute", "**/.ipynb_checkpoints"]
+exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
 # Pages in MyST (executed by myst-nb where they have a kernelspec) or reST.
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}
 
@@ -58,7 +58,6 @@ autodoc_member_order = "bysource"
 
 # MyST: headings get anchors so that `page.md#section` links resolve.
 myst_heading_anchors = 3
-myst_enable_extensions = ["deflist"]
 
 # myst-nb: execute every page with a kernelspec at every build, fail on any error.
 nb_execution_mode = "force"
@@ -129,7 +128,7 @@ def write_api_pages(app):
 
 
 def _summary(name):
-    """The first sentence of a public name's documentation, on one line."""
+    """The first paragraph of a public name's documentation, on one line."""
     value = getattr(thermocontact, name)
     if inspect.isclass(value) or callable(value):
         doc = inspect.getdoc(value) or ""
