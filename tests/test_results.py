@@ -1,6 +1,10 @@
 """Results and models as a user (and a process pool) handles them: pickling, equality,
-a short repr, records and datasets, and a Model that answers like solve()."""
+a short repr, records and datasets (the result protocol, for every result class), the
+commands' JSON as the results' records, and a Model that answers like solve()."""
 
+import contextlib
+import dataclasses
+import io
 import json
 import pickle
 import warnings
@@ -9,6 +13,7 @@ import numpy as np
 import pytest
 
 from thermocontact import ConvergenceWarning, Model, clear_caches, solve
+from thermocontact.io.results import FieldResult, Result, plain, same
 from thermocontact.numerics.cache import BoundedCache, cache_info
 
 
@@ -95,12 +100,6 @@ def test_caches_are_bounded_and_clearable():
 
 
 # The result protocol (thermocontact.io.results), for every result of the package.
-
-import dataclasses
-import io
-import contextlib
-
-from thermocontact.io.results import FieldResult, Result, plain, same
 
 
 def _results():

@@ -440,7 +440,8 @@ class ZoneSolution(Result):
 
     def _summary(self) -> str:
         z = ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in self.edges)
-        return f"zones={z}, loads={np.round(self.loads, 4).tolist()}, valid={self.valid}, n={self.n}"
+        return (f"zones={z}, loads={np.round(self.loads, 4).tolist()}, valid={self.valid}, "
+                f"n={self.n}")
 
 
 class ZoneModel:
