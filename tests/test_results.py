@@ -1,6 +1,10 @@
 """Results and models as a user (and a process pool) handles them: pickling, equality,
-a short repr, records and datasets, and a Model that answers like solve()."""
+a short repr, records and datasets (the result protocol, for every result class), the
+commands' JSON as the results' records, and a Model that answers like solve()."""
 
+import contextlib
+import dataclasses
+import io
 import json
 import pickle
 import warnings
@@ -9,6 +13,7 @@ import numpy as np
 import pytest
 
 from thermocontact import ConvergenceWarning, Model, clear_caches, solve
+from thermocontact.io.results import FieldResult, Result, plain, same
 from thermocontact.numerics.cache import BoundedCache, cache_info
 
 
@@ -92,3 +97,171 @@ def test_caches_are_bounded_and_clearable():
     from thermocontact.numerics.moments import panel_rule
 
     assert panel_rule.cache_info().currsize == 0  # the small tables too
+
+
+# The result protocol (thermocontact.io.results), for every result of the package.
+
+
+def _results():
+    """One small instance of every result class, built from cheap solves (those of the
+    commands below with their arguments, BLAS on one thread as they run)."""
+    from thermocontact.analysis.applicability import applicability
+    from thermocontact.physics.reference_solutions import barber_insulated
+    from thermocontact.problem.parameters import Parameters
+    from thermocontact.solvers.elements import solve_elements
+    from thermocontact.solvers.refinement import refine
+    from thermocontact.studies.boundaries import follow
+    from thermocontact.studies.contact_sets import find_contact_set
+    from thermocontact.studies.ray import Ray, follow as follow_ray
+    from thermocontact.studies.sweeps import sweep
+
+    sol = solve(5, 0.2, 10, lam=-1)
+    fixed = dict(pe=5.0, K2_over_K1=10.0, delta1_over_delta2=1.0, lam=1.0)  # as the CLI's
+    path = follow(fixed, "fhpe", 0.0, 2.0, n=16)
+    sets = find_contact_set(5.43, 0.5, 10, lam=-1, n=16)
+    return {
+        "ContactSolution": sol,
+        "Validity": sol.validity,
+        "Applicability": applicability(sol, 0.01),
+        "Curve": sweep("c", dict(pe=5, K2_over_K1=10, lam=-1), "fhpe",
+                       np.linspace(0.0, 0.3, 4), n=16),
+        "Path": path,
+        "Event": path.events[0],
+        "RayScan": follow_ray(Ray(10.0, 10.0, 1.0, 0.1, -1.0), 1.0, 10.0, n=8),
+        "ContactSetResult": sets,
+        "ZoneSolution": sets.answer,
+        "ZoneValidity": sets.answer.validity,
+        "ElementSolution": solve_elements(Parameters(1.0, 0.0, 10.0), 0.0, elements=100),
+        "BarberSolution": barber_insulated(0.3, n=16),
+        "Refinement": refine(lambda m: (solve(5, 0.2, 10, lam=-1, n=m),), [8, 16, 32]),
+    }
+
+
+@pytest.fixture(scope="module")
+def results():
+    return _one_thread(_results)
+
+
+NAMES = ["ContactSolution", "Validity", "Applicability", "Curve", "Path", "Event", "RayScan",
+         "ContactSetResult", "ZoneSolution", "ZoneValidity", "ElementSolution",
+         "BarberSolution", "Refinement"]
+
+
+def _changed(r):
+    """``r`` with one field changed: an array (by one element) where it has one."""
+    for f in dataclasses.fields(r):
+        v = getattr(r, f.name)
+        if isinstance(v, np.ndarray) and v.size and v.dtype.kind in "fb":
+            w = v.copy()
+            w.flat[0] = (not w.flat[0]) if v.dtype.kind == "b" else w.flat[0] + 1.0
+            return dataclasses.replace(r, **{f.name: w})
+    for f in dataclasses.fields(r):
+        v = getattr(r, f.name)
+        if isinstance(v, float) and not isinstance(v, bool):
+            return dataclasses.replace(r, **{f.name: v + 1.0})
+    raise AssertionError(f"{type(r).__name__}: no field to change")
+
+
+def test_every_result_class_follows_the_protocol():
+    """Frozen dataclasses whose equality and repr are the protocol's."""
+    import importlib
+
+    classes = {}
+    for module in ("analysis.applicability", "analysis.validity", "analysis.zone_validity",
+                   "physics.reference_solutions", "solvers.elements", "solvers.refinement",
+                   "solvers.result", "solvers.zones", "studies.boundaries",
+                   "studies.contact_sets", "studies.ray", "studies.sweeps"):
+        mod = importlib.import_module(f"thermocontact.{module}")
+        classes.update({k: v for k, v in vars(mod).items()
+                        if isinstance(v, type) and issubclass(v, Result)
+                        and v not in (Result, FieldResult)})
+    assert set(NAMES) <= set(classes)
+    for name, cls in classes.items():
+        assert dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen, name
+        assert cls.__eq__ is Result.__eq__ and cls.__repr__ is Result.__repr__, name
+        assert cls.__hash__ is None, name
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_result_pickles_compares_and_records(results, name):
+    r = results[name]
+    back = pickle.loads(pickle.dumps(r))
+    assert back == r and not (back != r)
+    other = _changed(r)
+    assert (other == r) is False and other != r
+    text = repr(r)
+    assert text.startswith(name + "(") and "\n" not in text and len(text) < 200, text
+    rec = r.to_dict()
+    assert json.loads(json.dumps(rec, allow_nan=False)) == rec
+    if isinstance(r, FieldResult):
+        ds = r.to_dataset()
+        assert ds.sizes and all(len(v.dims) == 1 for v in ds.data_vars.values())
+        assert all(not isinstance(v, (dict, list)) for v in ds.attrs.values())
+
+
+def test_field_datasets_hold_the_arrays(results):
+    """The generic dataset of a result with fields over one coordinate."""
+    curve = results["Curve"]
+    ds = curve.to_dataset()
+    assert np.array_equal(ds["x"].values, curve.x)
+    assert np.array_equal(ds["load_ratio"].values, curve.load_ratio, equal_nan=True)
+    assert ds.attrs["n"] == 16 and ds.attrs["error_estimate"] == "none"
+    scan = results["RayScan"]
+    assert np.array_equal(scan.to_dataset()["load_ratio"].values, scan.load_ratio)
+    path = results["Path"]
+    assert np.array_equal(path.to_dataset()["valid"].values, path.valid)
+
+
+def test_equality_is_nan_aware_and_never_raises():
+    """NaN equals NaN in arrays and scalars; arrays of different shape, or an array
+    against a number, are simply different."""
+    a = np.array([1.0, np.nan])
+    assert same(a, a.copy()) and same(float("nan"), float("nan"))
+    assert not same(a, np.array([1.0])) and not same(a, 1.0) and not same([a], (a,))
+    assert same({"x": [a, None]}, {"x": [a.copy(), None]})
+    assert plain({"a": np.float64(np.inf), "b": (np.int64(2), np.nan), "c": a}) == {
+        "a": None, "b": [2, None], "c": [1.0, None]}
+    with pytest.raises(TypeError, match="no JSON record"):
+        plain(object())
+
+
+def _cli_json(args):
+    from thermocontact.cli import main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(args + ["--json"]) == 0
+    return json.loads(out.getvalue())
+
+
+def _one_thread(func):
+    """``func()`` with BLAS on one thread, as the command runs (same rounding)."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return func()
+
+
+def test_solve_json_is_the_record(results):
+    from thermocontact.analysis.applicability import applicability
+
+    args = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1"]
+    sol = results["ContactSolution"]
+    assert _cli_json(args) == sol.to_dict()
+    judged = sol.replace(applicability=applicability(sol, 0.01))
+    rec = _cli_json(args + ["--delta-over-r", "0.01"])
+    assert rec == judged.to_dict() and "applicable" in rec
+    assert list(rec)[: len(sol.to_dict())] == list(sol.to_dict())  # its entries end it
+
+
+def test_boundary_json_is_the_record(results):
+    path = results["Path"]
+    assert _cli_json(["boundary", "--along", "fhpe", "--from", "0", "--to", "2", "--pe", "5",
+                      "--K2-over-K1", "10", "--lam", "1", "-n", "16"]) == path.to_dict()
+
+
+def test_zones_json_is_the_record(results):
+    res = results["ContactSetResult"]
+    rec = _cli_json(["zones", "--pe-hertz", "5.43", "--fhpe-hertz", "0.5", "--K2-over-K1",
+                     "10", "--lam", "-1", "-n", "16"])
+    assert rec == res.to_dict() and rec["status"] == "solved"

@@ -1,3 +1,4 @@
 """The package version, in one place (read by the build as well)."""
 
+#: The package version.
 __version__ = "0.2.0"

@@ -203,11 +203,9 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
         from .analysis.applicability import applicability
 
         app = applicability(sol, check_positive("delta_over_r", delta_over_r))
+        sol = sol.replace(applicability=app)
     if as_json:
-        rec = sol.to_dict()
-        if app is not None:
-            rec.update(app.to_dict())
-        click.echo(json.dumps(rec, allow_nan=False))
+        click.echo(json.dumps(sol.to_dict(), allow_nan=False))
     else:
         text = _summary(sol)
         if app is not None:

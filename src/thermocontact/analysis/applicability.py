@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..discretisation.operator import distortion_operators
+from ..io.results import Result
 
 __all__ = ["AMBIENT_TEMPERATURE", "Applicability", "MAX_HALF_WIDTH_OVER_RADIUS",
            "MAX_SLOPE", "MAX_STRAIN", "applicability", "surface_slopes"]
@@ -52,8 +53,8 @@ MAX_STRAIN = 0.01
 AMBIENT_TEMPERATURE = 293.15
 
 
-@dataclass(frozen=True)
-class Applicability:
+@dataclass(frozen=True, eq=False, repr=False)
+class Applicability(Result):
     """Whether the assumptions of the theory hold for one solution.
 
     Attributes
@@ -84,7 +85,11 @@ class Applicability:
     temperature_range: tuple | None = None
     max_temperature: tuple | None = None
 
-    def to_dict(self) -> dict:
+    def _summary(self) -> str:
+        return (f"applicable={self.applicable}, reasons={len(self.reasons)}, "
+                f"half_width_over_radius={self.half_width_over_radius:.3g}")
+
+    def _record(self) -> dict:
         return {
             "applicable": self.applicable,
             "applicability_reasons": list(self.reasons),

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..io.results import Result
 from ..numerics.edge_graded import MIN_BLOCK
 from ..numerics.extrema import interpolated_minimum, polish_minimum
 from ..physics.green_functions import cylinder_displacement_drop, moving_slope
@@ -26,8 +27,8 @@ from ..problem.parameters import Parameters
 __all__ = ["Validity", "assess", "gap"]
 
 
-@dataclass(frozen=True)
-class Validity:
+@dataclass(frozen=True, eq=False, repr=False)
+class Validity(Result):
     """Margins of the contact inequalities of one solution.
 
     Positions are in ``s = (x - sigma)/Delta``; ``s = -1`` is the trailing edge
@@ -156,8 +157,12 @@ class Validity:
                     + f", below the tolerated {EDGE_LAYER_TOLERANCE:g})")
         return "valid"
 
-    def to_dict(self) -> dict:
-        """The margins as a JSON-ready record."""
+    def _summary(self) -> str:
+        return (f"valid={self.valid}, pressure_margin={self.pressure_margin:.3g}, "
+                f"gap_margin={self.gap_margin:.3g}, edge_margin={min(self.edge_margins):.3g}")
+
+    def _record(self) -> dict:
+        """The margins as a record (:meth:`~thermocontact.io.results.Result.to_dict`)."""
         return {
             "valid": self.valid,
             "reason": self.reason,

@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..discretisation.operator import contact_operators, outside_operators
+from ..io.results import Result
 from ..problem.parameters import Parameters
 from .validity import EDGE_LAYER_TOLERANCE, edge_terms, least_of
 
@@ -28,8 +29,8 @@ __all__ = ["ZoneValidity", "assess_zones", "zone_gap"]
 _NEAR = np.geomspace(1e-8, 1e3, 160)
 
 
-@dataclass(frozen=True)
-class ZoneValidity:
+@dataclass(frozen=True, eq=False, repr=False)
+class ZoneValidity(Result):
     """Margins of the contact inequalities of a contact set.
 
     Positions ``X`` in units of the Hertz half-width ``l``; pressures in ``P/l``,
@@ -93,7 +94,11 @@ class ZoneValidity:
     def reason(self) -> str:
         return "valid" if self.valid else "invalid: " + "; ".join(self.failures)
 
-    def to_dict(self) -> dict:
+    def _summary(self) -> str:
+        return (f"valid={self.valid}, pressure_margin={self.pressure_margin:.3g}, "
+                f"gap_margin={self.gap_margin:.3g}, edge_margin={min(self.edge_margins):.3g}")
+
+    def _record(self) -> dict:
         return {"valid": self.valid, "reason": self.reason,
                 "strictly_valid": self.strictly_valid,
                 "pressure_margin": self.pressure_margin,

@@ -80,6 +80,8 @@ _CHEBYSHEV_RANGE = (16, 1024)
 #: factor of about 2 of it once there.
 _CHEBYSHEV_ORDER = 3.0
 
+#: Every solution method by name: ``"graded"``, ``"graded-collocation"``, ``"galerkin"``,
+#: ``"product"`` and ``"paper"`` (the paper's scheme, kept for comparison).
 METHODS: dict[str, Method] = {m.name: m for m in (
     Method("graded", EdgeGraded, "projection", _GRADED_RANGE,
            "edge-graded cosine series, every integral a moment, equations projected "
@@ -98,4 +100,5 @@ METHODS: dict[str, Method] = {m.name: m for m in (
            order_cap=1.0, estimate_is_bound=False),
 )}
 
+#: The method used unless another is asked for (derivation section 12).
 DEFAULT_METHOD = "graded"

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..io.results import Result
 from ..problem.validation import check_integer, check_nonnegative
 
 __all__ = ["BarberSolution", "barber_insulated", "hertz_pressure"]
@@ -68,8 +69,8 @@ def hertz_pressure(s):
     return (2.0 / np.pi) * np.sqrt(np.maximum(1.0 - s * s, 0.0))
 
 
-@dataclass(frozen=True)
-class BarberSolution:
+@dataclass(frozen=True, eq=False, repr=False)
+class BarberSolution(Result):
     """Solution of Barber's insulated-cylinder problem (B1) for one ``F``.
 
     The pressure is the sine series in ``s = cos(t)``

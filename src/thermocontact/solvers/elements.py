@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import i0e, i1e, k0e, k1e
 
+from ..io.results import FieldResult
 from ..problem.parameters import Parameters, SolveError
 
 __all__ = ["ElementSolution", "solve_elements"]
@@ -61,8 +62,8 @@ def _element_matrix(antiderivative, X, Y, h, scale=1.0):
     return (antiderivative(scale * (u + 0.5 * h)) - antiderivative(scale * (u - 0.5 * h))) / scale
 
 
-@dataclass(frozen=True, eq=False)
-class ElementSolution:
+@dataclass(frozen=True, eq=False, repr=False)
+class ElementSolution(FieldResult):
     """The second method's contact set.
 
     Attributes
@@ -90,6 +91,12 @@ class ElementSolution:
     active: np.ndarray
     iterations: int
     chatter: int = 0
+    _coordinate = "centres"
+
+    def _summary(self) -> str:
+        z = ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in self.zones)
+        return (f"zones={z}, elements={self.centres.size}, h={self.h:.3g}, "
+                f"iterations={self.iterations}, chatter={self.chatter}")
 
     @property
     def zones(self) -> np.ndarray:

@@ -2,16 +2,21 @@
 
 A solve, a sweep's choice of ``n`` and the physical front end's roots all solve at
 successive ``n`` (doubling) and estimate the error of the finest solution from
-the last three by Richardson's extrapolation with the observed order.
+the last three by Richardson's extrapolation with the observed order.  An estimate
+is reported only where it was measured: where nothing solved at two levels there is
+none (None), and the :class:`Refinement`'s status says why.
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["N_RANGE", "P_MAX", "error_estimate", "refine"]
+from ..io.results import Result
+
+__all__ = ["N_RANGE", "P_MAX", "Refinement", "error_estimate", "refine"]
 
 log = logging.getLogger("thermocontact")
 
@@ -73,8 +78,76 @@ def error_estimate(levels, quantities=QUANTITIES, p_max=P_MAX) -> float:
     return est
 
 
-def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None):
+@dataclass(frozen=True, eq=False, repr=False)
+class Refinement(Result):
+    """The levels of a refinement in ``n`` and the error estimate of the finest.
+
+    It unpacks as ``levels, estimate``.  An estimate is only ever one that was
+    measured: where no case has solutions at the finest level and a coarser one of
+    the last three, it is None and ``status`` is ``"no estimate"``, ``reason``
+    saying why.
+
+    Attributes
+    ----------
+    levels : tuple of tuple
+        The results per level, coarsest first (None where a case has no solution).
+    sizes : tuple of int
+        ``n`` of each level.
+    estimate : float or None
+        The largest :func:`error_estimate` over the cases measured at the finest level.
+    status : {"converged", "not converged", "estimated", "no estimate"}
+        ``estimate <= tol``; above ``tol`` at the largest ``n``; measured without a
+        target; or not measured.
+    reason : str
+        One line: the estimate against its target, or why there is none.
+    tol : float or None
+        The target.
+    """
+
+    levels: tuple
+    sizes: tuple
+    estimate: float | None
+    status: str
+    reason: str
+    tol: float | None = None
+
+    @property
+    def n(self) -> int:
+        """``n`` of the finest level."""
+        return self.sizes[-1]
+
+    def __iter__(self):
+        # ``levels, estimate = refine(...)``; the levels as a list that the caller may
+        # extend.
+        return iter((list(self.levels), self.estimate))
+
+    def _summary(self) -> str:
+        est = "None" if self.estimate is None else f"{self.estimate:.1e}"
+        return f"n={self.n}, levels={len(self.levels)}, estimate={est}, status={self.status!r}"
+
+    def _record(self) -> dict:
+        """Everything but the levels' results."""
+        return {"sizes": list(self.sizes), "estimate": self.estimate, "status": self.status,
+                "reason": self.reason, "tol": self.tol}
+
+
+def _measure(levels, p_max):
+    """The largest :func:`error_estimate` over the cases that have a solution at the
+    finest level and at a coarser one of the last three (None when none has)."""
+    est = None
+    for case in zip(*levels):
+        sols = [s for s in case[-3:] if s is not None]
+        if len(sols) > 1 and case[-1] is not None:
+            e = error_estimate(sols, p_max=p_max)
+            est = e if est is None else max(est, e)
+    return est
+
+
+def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None) -> Refinement:
     """Solve at ``sizes``, then at doubled ``n`` until the estimate meets ``tol``.
+
+    The doubling also stops where no case has a solution at the finest level: a
+    larger ``n`` would be solved in vain, and no estimate is claimed.
 
     Parameters
     ----------
@@ -96,10 +169,10 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None):
 
     Returns
     -------
-    levels : list of tuple
-        The results per level, coarsest first.
-    estimate : float or None
-        The largest :func:`error_estimate` over the cases (None with one level).
+    Refinement
+        Unpacks as ``levels, estimate``: the results per level, coarsest first, and
+        the largest :func:`error_estimate` over the cases (None where none was
+        measured: one level, or no case solved at the finest level and a coarser one).
     """
     sizes = [int(m) for m in sizes]
     n = sizes[-1]
@@ -111,17 +184,31 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None):
             progress(m, None)
         levels.append(at(m))
     while True:
-        est = None
-        if len(levels) > 1:
-            est = 0.0
-            for case in zip(*levels):
-                sols = [s for s in case[-3:] if s is not None]
-                if len(sols) > 1 and case[-1] is not None:
-                    est = max(est, error_estimate(sols, p_max=p_max))
+        est = _measure(levels, p_max) if len(levels) > 1 else None
         log.debug("refinement: n = %d, error estimate %s", n, est)
-        if tol is None or (est is not None and est <= tol) or 2 * n > n_max:
-            return levels, est
+        unsolved = all(s is None for s in levels[-1])
+        if (tol is None or (est is not None and est <= tol) or 2 * n > n_max
+                or (est is None and unsolved)):
+            break
         n *= 2
+        sizes.append(n)
         if progress is not None:
             progress(n, est)
         levels.append(at(n))
+    if est is None:
+        status = "no estimate"
+        if len(levels) == 1:
+            reason = f"no error estimate: one level (n = {n}) leaves no coarser one"
+        elif unsolved:
+            reason = f"no error estimate: nothing solved at n = {n}"
+        else:
+            reason = (f"no error estimate: no case solved at n = {n} and at a coarser "
+                      f"level of the last three")
+    elif tol is None:
+        status, reason = "estimated", f"error estimate {est:.1e} at n = {n}"
+    elif est <= tol:
+        status, reason = "converged", f"error estimate {est:.1e} <= target {tol:.0e} at n = {n}"
+    else:
+        status = "not converged"
+        reason = f"error estimate {est:.1e} > target {tol:.0e} at the largest n = {n}"
+    return Refinement(tuple(levels), tuple(sizes), est, status, reason, tol)

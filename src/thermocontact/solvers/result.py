@@ -1,20 +1,23 @@
-"""The result of one solve: small, frozen, picklable, comparable."""
+"""The result of one solve: small, frozen, picklable, comparable (the result protocol,
+:mod:`thermocontact.io.results`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from .._version import __version__
+from ..analysis.applicability import Applicability
 from ..analysis.validity import Validity, gap
+from ..io.results import FieldResult, dataset_attrs
 from ..problem.parameters import Parameters
 
 __all__ = ["ContactSolution"]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class ContactSolution:
+class ContactSolution(FieldResult):
     """One solution of the sliding-contact problem, in dimensionless form.
 
     Positions are ``s = (x - sigma)/Delta``: ``s = +1`` is the leading edge, where
@@ -60,6 +63,10 @@ class ContactSolution:
     estimate_is_bound : bool
         False for a method whose error estimate does not bound its error (the
         paper's scheme): such a result is never ``converged``.
+    applicability : Applicability or None
+        Whether the theory's assumptions hold, when judged for a given ``Delta/R``
+        (:func:`~thermocontact.analysis.applicability.applicability`); its entries
+        then end the record.
     """
 
     parameters: Parameters
@@ -78,6 +85,7 @@ class ContactSolution:
     auto_n: bool = False
     load_ratio_change: float | None = None
     estimate_is_bound: bool = True
+    applicability: Applicability | None = None
 
     # Status, in the manner of scipy's OptimizeResult.
     @property
@@ -193,41 +201,19 @@ class ContactSolution:
                    self.load_ratio, self.sigma_over_delta, self.lam, s)
         return g
 
-    # Comparison, display, records.
-    def __eq__(self, other):
-        if type(other) is not type(self):
-            return NotImplemented
-        for f in fields(self):
-            a, b = getattr(self, f.name), getattr(other, f.name)
-            if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
-                if not np.array_equal(a, b):
-                    return False
-            elif a != b and not (a is None and b is None):
-                if not (isinstance(a, float) and isinstance(b, float)
-                        and np.isnan(a) and np.isnan(b)):
-                    return False
-        return True
-
-    __hash__ = None
-
-    def __repr__(self):
+    # Display and records (equality and pickling: :class:`~thermocontact.io.results.Result`).
+    def _summary(self):
         p = self.parameters
         v = "?" if self.validity is None else self.validity.valid
         est = "None" if self.error_estimate is None else f"{self.error_estimate:.1e}"
-        return (f"ContactSolution(pe={p.pe:g}, fhpe={p.fhpe:g}, K2_over_K1={p.K2_over_K1:g}, "
-                f"k2_over_k1={p.k2_over_k1:g}, delta1_over_delta2={p.delta1_over_delta2:g}, "
-                + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "")
-                + (f"beta_f={p.beta_f:g}, " if p.beta_f else "") +
+        return (f"pe={p.pe:g}, fhpe={p.fhpe:g}, K2_over_K1={p.K2_over_K1:g}, "
                 f"method={self.method!r}, n={self.n}, load_ratio={self.load_ratio:.10g}, "
-                f"lam={self.lam:.10g}, sigma_over_delta={self.sigma_over_delta:.10g}, "
-                f"valid={v}, error_estimate={est}, status={self.status!r})")
+                f"lam={self.lam:.6g}, sigma_over_delta={self.sigma_over_delta:.6g}, "
+                f"valid={v}, error_estimate={est}, status={self.status!r}")
 
-    def replace(self, **changes) -> "ContactSolution":
-        """A copy with some fields changed."""
-        return replace(self, **changes)
-
-    def to_dict(self) -> dict:
-        """A JSON-ready record: scalars, validity margins and profiles (the CLI's ``--json``).
+    def _record(self) -> dict:
+        """The record of :meth:`to_dict`, the CLI's ``--json``: scalars, validity margins,
+        profiles, then the applicability's entries when it was judged.
 
         Pressure profile ``s``/``pressure`` is normalised to unit integral (Hertz:
         ``(2/pi) sqrt(1 - s^2)``); gaps are in units of ``Delta^2/R``; positions in
@@ -268,6 +254,8 @@ class ContactSolution:
             "flux_half_plane": self.flux_half_plane.tolist(),
             "version": __version__,
         })
+        if self.applicability is not None:
+            rec.update(self.applicability.to_dict())
         return rec
 
     def to_dataset(self):
@@ -280,20 +268,9 @@ class ContactSolution:
         """
         import xarray as xr
 
-        rec = self.to_dict()
         profiles = ("s", "pressure", "flux_s", "flux_difference", "flux_cylinder",
                     "flux_half_plane")
-        attrs = {}
-        for key, value in rec.items():
-            if key in profiles:
-                continue
-            if value is None:
-                value = "none"
-            elif isinstance(value, bool):
-                value = int(value)
-            elif isinstance(value, (list, tuple)):
-                value = np.asarray(value, dtype=float)
-            attrs[key] = value
+        attrs = dataset_attrs(self.to_dict(), skip=profiles)
         return xr.Dataset(
             {
                 "pressure": ("s", self.pressure, {"long_name": "contact pressure",

@@ -32,6 +32,7 @@ from ..discretisation.operator import (contact_operators, heat_operators, outsid
                                        temperature_operators)
 from ..discretisation.representations import range_projections
 from ..discretisation.system import equation_points
+from ..io.results import Result
 from ..numerics.extrema import polish_minimum
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_range
@@ -310,7 +311,7 @@ def _solve_linear(system: ZoneSystem, F: float, biot=None, scale=None, A=None, b
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class ZoneSolution:
+class ZoneSolution(Result):
     """A contact set of one or more zones, in units of the Hertz half-width ``l``.
 
     Positions ``X = x/l`` from the undeformed cylinder's lowest point, the leading
@@ -424,7 +425,7 @@ class ZoneSolution:
         return [{"a": float(a), "b": float(b), "load": float(w), "peak_pressure": float(pk)}
                 for (a, b), w, pk in zip(self.edges, self.loads, self.peak_pressures)]
 
-    def to_dict(self) -> dict:
+    def _record(self) -> dict:
         p = self.parameters
         return {
             "version": __version__,
@@ -437,10 +438,10 @@ class ZoneSolution:
             "complementarity": None if self.validity is None else self.validity.to_dict(),
         }
 
-    def __repr__(self):
+    def _summary(self) -> str:
         z = ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in self.edges)
-        return (f"ZoneSolution(zones={z}, loads={np.round(self.loads, 4).tolist()}, "
-                f"valid={self.valid}, n={self.n})")
+        return (f"zones={z}, loads={np.round(self.loads, 4).tolist()}, valid={self.valid}, "
+                f"n={self.n}")
 
 
 class ZoneModel:

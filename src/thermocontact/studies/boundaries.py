@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..io.results import FieldResult, Result
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_choice, check_finite, check_integer
 from ..solvers.refinement import refine
@@ -47,8 +48,8 @@ START_POINTS = 33
 MAX_HALVINGS = 5
 
 
-@dataclass(frozen=True)
-class Event:
+@dataclass(frozen=True, eq=False, repr=False)
+class Event(Result):
     """A change of validity along a path.
 
     Attributes
@@ -78,18 +79,16 @@ class Event:
     position: float | None = None
     error_estimate: float | None = None
 
-    def to_dict(self) -> dict:
-        return {"at": self.at, "inequality": self.inequality, "edge": self.edge,
-                "valid_before": self.valid_before, "valid_after": self.valid_after,
-                "position": self.position, "error_estimate": self.error_estimate}
 
-
-@dataclass(frozen=True)
-class Path:
+@dataclass(frozen=True, eq=False, repr=False)
+class Path(FieldResult):
     """The samples of a path and its events.
 
     ``n`` is that of the samples; ``event_n`` that of the events' final location
     (larger where their estimates asked for it, :data:`EVENT_RTOL`).
+    ``error_estimate`` is that of the refinement that chose ``n`` (NaN where nothing
+    was measured, None in the record).  The record (the command's JSON) holds the
+    events, not the samples; the dataset holds ``valid`` over the samples ``x``.
     """
 
     along: str
@@ -102,7 +101,12 @@ class Path:
     error_estimate: float
     event_n: int | None = None
 
-    def to_dict(self) -> dict:
+    def _summary(self) -> str:
+        return (f"along={self.along!r}, from {self.x[0]:g} to {self.x[-1]:g}, "
+                f"events={[e.inequality for e in self.events]}, method={self.method!r}, "
+                f"n={self.n}, event_n={self.event_n}")
+
+    def _record(self) -> dict:
         return {"along": self.along, "fixed": self.fixed, "n": self.n, "method": self.method,
                 "error_estimate": self.error_estimate, "event_n": self.event_n,
                 "events": [e.to_dict() for e in self.events]}

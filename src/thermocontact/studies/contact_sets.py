@@ -16,6 +16,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..analysis.applicability import MAX_HALF_WIDTH_OVER_RADIUS, MAX_STRAIN
+from ..io.results import Result
 from ..numerics.continuation import arclength
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
@@ -30,9 +31,12 @@ __all__ = ["ContactSetResult", "PhysicalConductance", "find_contact_set",
 EVENT_TOL = 1e-4
 
 
-@dataclass(frozen=True)
-class ContactSetResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class ContactSetResult(Result):
     """The answer for one load: a contact set, or why there is none.
+
+    A result (:mod:`thermocontact.io.results`); its record is the JSON of
+    ``thermocontact zones``.
 
     Attributes
     ----------
@@ -72,7 +76,13 @@ class ContactSetResult:
         validity there."""
         return self.solution if self.reached >= 1.0 else None
 
-    def to_dict(self) -> dict:
+    def _summary(self) -> str:
+        sol = self.answer
+        zones = "None" if sol is None else ", ".join(f"[{a:.4g}, {b:.4g}]" for a, b in sol.edges)
+        return (f"status={self.status!r}, zones={zones}, "
+                f"valid={None if sol is None else sol.valid}, reached={self.reached:.6g}")
+
+    def _record(self) -> dict:
         sol = self.answer
         rec = {"status": self.status, "message": self.message,
                "valid": None if sol is None else sol.valid,

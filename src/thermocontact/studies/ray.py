@@ -17,11 +17,12 @@ along the ray by continuation in ``ln Pe`` with step control;
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..io.results import FieldResult
 from ..problem.parameters import SolveError
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
@@ -96,9 +97,10 @@ class Ray:
             return 0.0
 
 
-@dataclass(frozen=True)
-class RayScan:
-    """``L`` along the ray, from :func:`follow`.
+@dataclass(frozen=True, eq=False, repr=False)
+class RayScan(FieldResult):
+    """``L`` along the ray, from :func:`follow` (a result, :mod:`thermocontact.io.results`:
+    its dataset holds ``load_ratio`` over ``pe``).
 
     Attributes
     ----------
@@ -110,14 +112,15 @@ class RayScan:
         Solves made, rejected steps included.
     """
 
-    pe: np.ndarray = field(repr=False)
-    load_ratio: np.ndarray = field(repr=False)
+    pe: np.ndarray
+    load_ratio: np.ndarray
     n: int
     evaluations: int
+    _coordinate = "pe"
 
-    def __repr__(self):
-        return (f"RayScan(Pe {self.pe[0]:.4g} to {self.pe[-1]:.4g}, {self.pe.size} samples, "
-                f"n={self.n}, evaluations={self.evaluations})")
+    def _summary(self) -> str:
+        return (f"Pe {self.pe[0]:.4g} to {self.pe[-1]:.4g}, {self.pe.size} samples, "
+                f"n={self.n}, evaluations={self.evaluations}")
 
 
 def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RayScan:

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..discretisation.methods import DEFAULT_METHOD
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..io.results import FieldResult
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
 from ..solvers.refinement import refine
@@ -20,9 +21,12 @@ from .boundaries import closure, locate_events, model_for
 
 __all__ = ["Curve", "choose_n", "sweep"]
 
-@dataclass(frozen=True)
-class Curve:
+@dataclass(frozen=True, eq=False, repr=False)
+class Curve(FieldResult):
     """One sweep: fixed parameters, the swept one, and the solutions' key values.
+
+    A result (:mod:`thermocontact.io.results`): its dataset holds the arrays over
+    ``x``; its record every field but the solutions.
 
     Attributes
     ----------
@@ -36,9 +40,11 @@ class Curve:
         Where validity changes (:func:`~.boundaries.locate_events`).
     n : int
     method : str
-    error_estimate : float
-        The larger of the error estimates at the middle and the end of the sweep.
+    error_estimate : float or None
+        The larger of the error estimates at the middle and the end of the sweep
+        (None with ``n`` given, or where nothing solved there: none was measured).
     solutions : tuple of ContactSolution
+        Every solution, when kept (``keep_solutions``).
     """
 
     label: str
@@ -54,23 +60,41 @@ class Curve:
     boundaries: tuple
     n: int
     method: str
-    error_estimate: float
+    error_estimate: float | None
     solutions: tuple = ()
+
+    def _summary(self) -> str:
+        est = "None" if self.error_estimate is None else f"{self.error_estimate:.1e}"
+        return (f"{self.label!r}, {self.x_name} from {self.x[0]:g} to {self.x[-1]:g} "
+                f"({self.x.size} points), valid {int(np.count_nonzero(self.valid))}, "
+                f"boundaries {len(self.boundaries)}, method={self.method!r}, n={self.n}, "
+                f"error_estimate={est}")
+
+    def _record(self) -> dict:
+        rec = super()._record()
+        del rec["solutions"]
+        return rec
 
 
 def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
-             n_max=None) -> tuple[int, float]:
-    """Smallest ``n`` (doubling from 16) whose error estimate at the points
-    ``x_end`` is below ``tol``, or ``n_max``.
+             n_max=None) -> tuple[int, float | None]:
+    """Smallest ``n`` of the method's automatic range whose error estimate at the points
+    ``x_end`` is below ``tol``, or the largest.
 
-    The points are refined together (:func:`~thermocontact.solvers.refinement.refine`
-    from the levels 4, 8, 16); a point without a solution at some ``n`` is left out
-    of the estimate there.
+    The points are refined together (:func:`~thermocontact.solvers.refinement.refine`)
+    from the levels ``lo, 2 lo, 4 lo`` up to ``hi`` (``lo, hi`` the method's
+    :attr:`~thermocontact.discretisation.methods.Method.auto_range`; ``n_max`` may
+    lower ``hi``), the estimate believing the method's order cap; a point without a
+    solution at some ``n`` is left out of the estimate there.
 
     Returns
     -------
-    n, error_estimate
+    n : int
+    error_estimate : float or None
+        None where no point solved at ``n`` and a coarser level (nothing was measured).
     """
+    lo, hi = METHODS[method].auto_range
+    hi = hi if n_max is None else min(hi, int(n_max))
     model = model_for(fixed, method)
     points = [{**fixed, x_name: float(x)} for x in np.atleast_1d(x_end)]
 
@@ -83,9 +107,8 @@ def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
                 out.append(None)
         return tuple(out)
 
-    levels, est = refine(at, [4, 8, 16], tol=tol, n_max=2**30 if n_max is None else n_max)
-    n = 16 * 2 ** (len(levels) - 3)
-    return n, est
+    done = refine(at, [lo, 2 * lo, 4 * lo], tol=tol, n_max=hi, p_max=METHODS[method].order_cap)
+    return done.n, done.estimate
 
 
 def _solver(fixed: dict, x_name: str, n: int, method: str):
@@ -130,7 +153,7 @@ def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_MET
     if x_name not in ("fhpe", "lam"):
         raise InputError(f"x_name must be 'fhpe' or 'lam', got {x_name!r}")
     x = np.asarray(x, dtype=float)
-    est = float("nan")
+    est = None
     if n is None:
         probe = (x[x.size // 2], x[-1])
         n, est = choose_n(fixed, x_name, probe, tol=tol, method=method, n_max=n_max)

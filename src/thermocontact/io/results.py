@@ -1,0 +1,184 @@
+"""The result protocol: every result of the package behaves the same way.
+
+A result is a frozen dataclass that subclasses :class:`Result`, declared with
+``@dataclass(frozen=True, eq=False, repr=False)`` so that the protocol's equality and
+repr are the ones used.  It then
+
+* pickles (to and from worker processes), its arrays included;
+* compares by value: arrays element by element (``np.array_equal``, NaN equal to
+  NaN), floats NaN-aware, containers and nested results field by field; ``==`` never
+  raises on arrays.  Results are not hashable (they hold arrays);
+* has a one-line repr of its key numbers, never its arrays (:meth:`Result._summary`);
+* has :meth:`~Result.to_dict`, its JSON record: plain Python types, non-finite numbers
+  as None (JSON has none), so that ``json.dumps(result.to_dict(), allow_nan=False)``
+  always succeeds;
+* where it holds fields over one coordinate (:class:`FieldResult`), has
+  :meth:`~FieldResult.to_dataset`, an :class:`xarray.Dataset` of those fields with the
+  record's scalars as attributes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import fields, replace
+
+import numpy as np
+
+__all__ = ["FieldResult", "Result", "dataset_attrs", "plain", "same"]
+
+
+def plain(value):
+    """``value`` as plain JSON types: dicts, lists, str, int, float, bool and None.
+
+    NumPy scalars and arrays become Python numbers and lists, tuples become lists,
+    results their :meth:`~Result.to_dict`, and NaN and infinities None.
+
+    Raises
+    ------
+    TypeError
+        For anything else (an object has no JSON record of its own).
+    """
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, dict):
+        return {(plain(k) if isinstance(k, np.generic) else k): plain(v)
+                for k, v in value.items()}
+    if isinstance(value, Result):
+        return value.to_dict()
+    raise TypeError(f"no JSON record for a {type(value).__name__}")
+
+
+def same(a, b) -> bool:
+    """Whether ``a`` and ``b`` are equal by value: arrays element by element (NaN equal
+    to NaN), floats NaN-aware, lists, tuples and dicts entry by entry; never raises on
+    arrays."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)):
+            return False
+        if a.shape != b.shape or a.dtype.kind != b.dtype.kind:
+            return False
+        if a.dtype.kind in "fc":
+            return bool(np.array_equal(a, b, equal_nan=True))
+        if a.dtype.kind == "O":
+            return all(same(x, y) for x, y in zip(a.ravel(), b.ravel()))
+        return bool(np.array_equal(a, b))
+    if isinstance(a, (list, tuple)) or isinstance(b, (list, tuple)):
+        return (type(a) is type(b) and len(a) == len(b)
+                and all(same(x, y) for x, y in zip(a, b)))
+    if isinstance(a, dict) or isinstance(b, dict):
+        return (isinstance(a, dict) and isinstance(b, dict) and a.keys() == b.keys()
+                and all(same(a[k], b[k]) for k in a))
+    if isinstance(a, (float, np.floating)) and isinstance(b, (float, np.floating)):
+        return bool(a == b or (math.isnan(a) and math.isnan(b)))
+    return bool(a == b)
+
+
+def _short(value) -> str:
+    """A scalar for a repr: floats to 6 digits."""
+    if isinstance(value, (float, np.floating)):
+        return f"{value:.6g}"
+    return repr(value)
+
+
+class Result:
+    """The base of every result: value equality, a one-line repr, a JSON record.
+
+    A subclass is a ``@dataclass(frozen=True, eq=False, repr=False)``.  It names its
+    key numbers in :meth:`_summary` (default: its scalar fields) and writes its record
+    in :meth:`_record` (default: every field); :meth:`to_dict` makes that record
+    plain (:func:`plain`).
+    """
+
+    __slots__ = ()
+
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(same(getattr(self, f.name), getattr(other, f.name)) for f in fields(self))
+
+    # Equal results may hold different NaNs and arrays: no hash agrees with that.
+    __hash__ = None
+
+    def _summary(self) -> str:
+        """The key numbers, ``name=value, ...``: by default the scalar fields."""
+        return ", ".join(f"{f.name}={_short(getattr(self, f.name))}" for f in fields(self)
+                         if f.repr and isinstance(getattr(self, f.name),
+                                                  (bool, int, float, str, np.generic,
+                                                   type(None))))
+
+    def __repr__(self):
+        return f"{type(self).__name__}({self._summary()})"
+
+    def _record(self) -> dict:
+        """The record before :func:`plain`: by default every field."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def to_dict(self) -> dict:
+        """The JSON record: plain Python types, non-finite numbers as None.
+
+        ``json.dumps(result.to_dict(), allow_nan=False)`` always succeeds.
+        """
+        return plain(self._record())
+
+    def replace(self, **changes):
+        """A copy with some fields changed."""
+        return replace(self, **changes)
+
+
+def dataset_attrs(record: dict, skip=()) -> dict:
+    """The entries of a record as NetCDF attributes: None as ``"none"``, booleans as 0
+    or 1, lists of numbers as float arrays (None as NaN); entries in ``skip``, nested
+    records and lists of anything else left out."""
+    attrs = {}
+    for key, value in record.items():
+        if key in skip or isinstance(value, dict):
+            continue
+        if value is None:
+            value = "none"
+        elif isinstance(value, bool):
+            value = int(value)
+        elif isinstance(value, (list, tuple)):
+            if not all(v is None or isinstance(v, (int, float)) for v in value):
+                continue
+            value = np.asarray([np.nan if v is None else v for v in value], dtype=float)
+        attrs[key] = value
+    return attrs
+
+
+class FieldResult(Result):
+    """A result with fields over one coordinate: :meth:`to_dataset`.
+
+    ``_coordinate`` names the field that holds the coordinate (a 1-d array); every
+    other 1-d array field of its length is a variable over it, and the record's scalars
+    (:meth:`~Result.to_dict`) are the attributes.
+    """
+
+    __slots__ = ()
+    #: The field holding the coordinate.
+    _coordinate = "x"
+
+    def to_dataset(self):
+        """An :class:`xarray.Dataset`: the fields over the coordinate, the record's
+        scalars as attributes (:func:`dataset_attrs`)."""
+        import xarray as xr
+
+        name = self._coordinate
+        coord = np.asarray(getattr(self, name))
+        variables = {}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if (f.name != name and isinstance(value, np.ndarray) and value.ndim == 1
+                    and value.shape == coord.shape):
+                variables[f.name] = (name, value)
+        return xr.Dataset(variables, coords={name: (name, coord)},
+                          attrs=dataset_attrs(self.to_dict(), skip=(name, *variables)))
