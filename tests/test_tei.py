@@ -243,6 +243,14 @@ def test_result_record_equality_pickle_repr():
     assert r == tei(STEEL, PAD, 0.4, 0.05, speed=60.0)
     assert r != tei(STEEL, PAD, 0.4, 0.05, speed=60.0, dundurs=False)
     assert "\n" not in repr(r) and len(repr(r)) < 200 and "55.37" in repr(r)
+    assert repr(r).startswith("TEIResult(carbon-steel on organic-composite-brake-block")
+    assert r != r.replace(critical_speed=r.critical_speed + 1.0)
+    assert r.modes[0] == pickle.loads(pickle.dumps(r.modes[0]))
+    from thermocontact.io.results import Result
+
+    for cls in (TEIResult, type(r.modes[0])):   # the package's result protocol
+        assert issubclass(cls, Result) and cls.__repr__ is Result.__repr__
+        assert cls.__eq__ is Result.__eq__ and cls.__hash__ is None
     plain = tei(STEEL, PAD, 0.4, 0.05).to_dict()
     assert "modes" not in plain and plain["critical_speed"] == d["critical_speed"]
 

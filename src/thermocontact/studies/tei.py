@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
+from ..io.results import Result
 from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
 from ..problem.validation import check_nonnegative, check_positive
 
@@ -38,8 +39,8 @@ _SCAN_FACTOR = 1e6
 _LAST_FACTOR = 1e15
 
 
-@dataclass(frozen=True)
-class TEIMode:
+@dataclass(frozen=True, eq=False, repr=False)
+class TEIMode(Result):
     """One mode ``exp(b t + i m x)`` of the sliding half-planes.
 
     Attributes
@@ -58,10 +59,6 @@ class TEIMode:
     frequency: float
     migration_speed: float
 
-    def to_dict(self) -> dict:
-        return {"growth_rate": self.growth_rate, "frequency": self.frequency,
-                "migration_speed": self.migration_speed}
-
 
 def _mode(b: complex, wavenumber: float) -> TEIMode:
     # The slider moves toward +x in the frame of the dispersion relation (U = +V).
@@ -69,8 +66,8 @@ def _mode(b: complex, wavenumber: float) -> TEIMode:
     return TEIMode(float(b.real), float(speed * wavenumber / (2.0 * math.pi)), float(speed))
 
 
-@dataclass(frozen=True)
-class TEIResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class TEIResult(Result):
     """The thermoelastic stability of two sliding half-planes at one wavelength.
 
     Attributes
@@ -120,15 +117,16 @@ class TEIResult:
     most_unstable_growth_rate: float | None = None
     pair: SlidingPair | None = field(default=None, repr=False)
 
-    def __repr__(self):
-        vc = ("stable at all speeds" if self.critical_speed is None
-              else f"critical_speed={self.critical_speed:.6g} m/s")
-        at = "" if self.speed is None else f", speed={self.speed:g} m/s, {len(self.modes)} modes"
-        return (f"TEIResult({self.slider} on {self.counterface}, f={self.friction:g}, "
-                f"wavelength={self.wavelength:g} m: {vc}{at})")
+    def _summary(self) -> str:
+        vc = ("stable_at_all_speeds=True" if self.critical_speed is None
+              else f"critical_speed={self.critical_speed:.6g}")
+        at = "" if self.speed is None else f", speed={self.speed:.6g}, modes={len(self.modes)}"
+        return (f"{self.slider} on {self.counterface}, friction={self.friction:g}, "
+                f"wavelength={self.wavelength:.6g}, {vc}{at}")
 
-    def to_dict(self) -> dict:
-        """The JSON record of ``thermocontact tei``."""
+    def _record(self) -> dict:
+        """The JSON record of ``thermocontact tei``: the inputs, the critical speed and,
+        with a speed, the modes and the most unstable wavelength."""
         out = {"slider": self.slider, "counterface": self.counterface,
                "friction": self.friction, "wavelength": self.wavelength,
                "dundurs": self.dundurs, "beta": self.beta,
@@ -136,7 +134,7 @@ class TEIResult:
                "stable_at_all_speeds": self.stable_at_all_speeds,
                "migration_speed": self.migration_speed}
         if self.speed is not None:
-            out.update(speed=self.speed, modes=[m.to_dict() for m in self.modes],
+            out.update(speed=self.speed, modes=list(self.modes),
                        most_unstable_wavelength=self.most_unstable_wavelength,
                        most_unstable_growth_rate=self.most_unstable_growth_rate)
         return out
