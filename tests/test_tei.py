@@ -1,5 +1,6 @@
-"""Thermoelastic instability of sliding half-planes (derivation, last section, T1-T12):
-closed forms, two independent methods, limits and symmetries, the command and the API."""
+"""Thermoelastic instability of sliding half-planes (docs/derivation.md, "Thermoelastic
+instability of sliding half-planes", H1-H12): closed forms, two independent methods,
+limits and symmetries, the command and the API."""
 
 import json
 import math
@@ -38,7 +39,7 @@ def _rel(a, b):
 # --- closed forms -----------------------------------------------------------------
 
 def _non_conductor_neutral(conductor, pair, m, slider_conducts):
-    """(T12): the neutral speed and migration speed of a conductor against a
+    """(H12): the neutral speed and migration speed of a conductor against a
     non-conductor: z(z + 1) = G/c, z = a + iq on the neutral line, with
     (a - 1)(1 + 2a)^2 = beta'^2 (1 + a), G = (1 + beta'^2)(1 + a)."""
     bp = 0.5 * pair.beta * pair.friction  # sgn U = +1
@@ -66,7 +67,7 @@ def test_conductor_against_non_conductor_closed_form(dundurs, slider_conducts):
         assert _rel(exact, pair.compliance * M / (0.4 * STEEL.distortivity)) < 1e-15
         assert mode.migration_speed == pytest.approx(exact if slider_conducts else 0.0,
                                                      abs=1e-9 * exact)
-        # The bound (T9) is sharp here: equality at the neutral speed.
+        # The bound (H9) is sharp here: equality at the neutral speed.
         assert _rel(speed_lower_bound(pair, M), exact) < 1e-14
     else:
         burton = pair.compliance * M / (0.4 * STEEL.distortivity)
@@ -82,7 +83,7 @@ def _identical(phi):
 
 @pytest.mark.parametrize("phi", [0.55, 0.8, 2.0, 10.0])
 def test_identical_materials_above_threshold(phi):
-    """(T11b) V_c = kappa m 8 phi/(4 phi^2 - 1), the mode migrating at V_c/2."""
+    """(H11b) V_c = kappa m 8 phi/(4 phi^2 - 1), the mode migrating at V_c/2."""
     pair = _identical(phi)
     vc, mode = critical_speed(pair, M)
     exact = STEEL.k * M * 8.0 * phi / (4.0 * phi * phi - 1.0)
@@ -207,7 +208,7 @@ def test_exchanging_the_bodies(pair, speed):
 
 
 def test_critical_speed_is_proportional_to_the_wavenumber():
-    """(T11): only V/(kappa m) enters, so V_c L is the same at every wavelength."""
+    """(H11): only V/(kappa m) enters, so V_c L is the same at every wavelength."""
     pair = SlidingPair(STEEL, IRON, 0.3)
     wl = np.array([0.01, 0.05, 0.4])
     direct = [critical_speed(pair, 2.0 * math.pi / x)[0] for x in wl]

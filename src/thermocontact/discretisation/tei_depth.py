@@ -3,15 +3,15 @@
 Each conducting body's temperature amplitude ``T(eta)`` (``eta`` the depth below its
 surface) is collocated at Chebyshev–Lobatto points of ``xi`` in ``[-1, 1]`` mapped
 onto the whole depth, ``eta = l (1 + xi)/(1 - xi)`` (``xi = 1`` is ``eta = inf``,
-where ``T = 0``).  The heat equation with convection (T1), temperature continuity
-and the heat balance at the interface (T5), with the pressure given by the contact
-condition (T6) and each body's thermal displacement by Maysel's integral
+where ``T = 0``).  The heat equation with convection (H1), temperature continuity
+and the heat balance at the interface (H5), with the pressure given by the contact
+condition (H6) and each body's thermal displacement by Maysel's integral
 ``2 alpha (1 + nu) int T e^{-m eta} d eta`` (D3; Clenshaw–Curtis weights), make a
 linear generalised eigenproblem ``L x = b M x`` for the growth rate ``b``.
 
 It shares nothing with the root search of :mod:`thermocontact.physics.tei` but the
-material constants: neither the closed-form kernels (T3, T4) nor the polynomial
-(T8).  Its eigenvalues converge spectrally in the number of points; the continuous
+material constants: neither the closed-form kernels (H3, H4) nor the polynomial
+(H8).  Its eigenvalues converge spectrally in the number of points; the continuous
 spectrum (``Re b <= -kappa m^2``) appears as a cloud of eigenvalues to be ignored.
 """
 
@@ -98,11 +98,11 @@ def depth_modes(pair: SlidingPair, wavenumber, velocity, n=48):
         L[o, o] = 1.0                                      # T = 0 at infinite depth
         weights = np.zeros(n + 1)
         weights[1:] = w[1:] * np.exp(-m * eta[1:]) / jac[1:]   # d eta = d xi / jac
-        # (T6): P = (2 m/(A c)) sum alpha (1 + nu) int T e^{-m eta} d eta.
+        # (H6): P = (2 m/(A c)) sum alpha (1 + nu) int T e^{-m eta} d eta.
         pressure[o:o + n + 1] = (2.0 * m / (pair.compliance * c)
                                  * mat.alpha * (1.0 + mat.nu) * weights)
         surface.append((o + n, mat.K, d1[n]))
-    # Heat balance (T5): sum over bodies of -K dT/d eta at the surface = f V P.
+    # Heat balance (H5): sum over bodies of -K dT/d eta at the surface = f V P.
     flux_row = surface[-1][0]
     row = np.zeros(size, dtype=complex)
     for i, (idx, K, deriv) in enumerate(surface):

@@ -6,7 +6,8 @@ used here) with velocity ``U`` along ``x`` (``|U| = V``), friction ``f``.  Every
 perturbation of the uniform sliding state is a sum of modes
 ``exp(b t + i m x)``; ``m > 0`` is the wavenumber ``2 pi / L`` and ``b`` the complex
 growth rate in the counterface's frame.  The derivation, with its checks, is the
-last section of ``docs/derivation.md`` (equations T1-T12 cited below).
+section "Thermoelastic instability of sliding half-planes" of ``docs/derivation.md``
+(equations H1-H12 cited below).
 
 A body with conductivity ``K = 0`` is a non-conductor (the limit ``K -> 0`` at a
 fixed heat capacity ``rho c``): no heat enters it and it does not distort thermally.
@@ -93,7 +94,7 @@ class SlidingPair:
         return dundurs_beta(self.slider, self.counterface) if self.dundurs else 0.0
 
     def dundurs_factor(self, velocity) -> complex:
-        """``c = 1 + i sgn(U) beta f / 2`` of the contact condition (T6)."""
+        """``c = 1 + i sgn(U) beta f / 2`` of the contact condition (H6)."""
         return 1.0 + 0.5j * math.copysign(1.0, velocity) * self.beta * self.friction
 
 
@@ -103,13 +104,13 @@ def _expansion(mat: Material) -> float:
 
 
 def _root(w):
-    """Principal square root, ``Re >= 0``: the field decays into the body (T2)."""
+    """Principal square root, ``Re >= 0``: the field decays into the body (H2)."""
     return np.sqrt(np.asarray(w, dtype=complex))
 
 
 def surface_kernels(b, wavenumber, velocity, material: Material):
     """A half-plane's transient surface response to a surface temperature
-    ``Theta exp(b t + i m x)`` (T1-T4).
+    ``Theta exp(b t + i m x)`` (H1-H4).
 
     Parameters
     ----------
@@ -140,7 +141,7 @@ def surface_kernels(b, wavenumber, velocity, material: Material):
 
 
 def dispersion(pair: SlidingPair, b, wavenumber, velocity):
-    """The dispersion function ``D(b)``, dimensionless, zero at a mode (T7).
+    """The dispersion function ``D(b)``, dimensionless, zero at a mode (H7).
 
     ``D = (f V m / A) sum_i W_i / sum_i Y_i - (1 + i sgn(U) beta f / 2)``, with
     ``W_i``, ``Y_i`` the displacement and heat of :func:`surface_kernels`, the
@@ -163,7 +164,7 @@ def dispersion(pair: SlidingPair, b, wavenumber, velocity):
 
 
 def speed_lower_bound(pair: SlidingPair, wavenumber) -> float:
-    """A speed below which no mode grows: ``A m (K1 + K2) / (f (a1 + a2))`` (T9),
+    """A speed below which no mode grows: ``A m (K1 + K2) / (f (a1 + a2))`` (H9),
     ``a = alpha (1 + nu)`` of each conductor; ``inf`` without friction."""
     a = _expansion(pair.slider) + _expansion(pair.counterface)
     if pair.friction == 0.0 or a == 0.0:
@@ -189,7 +190,7 @@ def _reference(pair: SlidingPair, velocity):
 
 
 def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
-    """Every mode ``b`` of the dispersion relation, fastest growing first (T8).
+    """Every mode ``b`` of the dispersion relation, fastest growing first (H8).
 
     With ``z = gamma_r / m`` of a conducting reference body ``r`` (the counterface
     unless it does not conduct) and ``z_o = sqrt(w(z))`` of the other body, the
@@ -281,7 +282,7 @@ def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
 
 
 def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
-    """Whether a mode grows at every large enough speed (the limit V -> inf, T10).
+    """Whether a mode grows at every large enough speed (the limit V -> inf, H10).
 
     With ``b = V m X``, each body's field becomes a one-dimensional transient one
     (``gamma_2 ~ sqrt(V X/(kappa_2 m))``, ``gamma_1 ~ sqrt(V (X + i s)/(kappa_1 m))``,

@@ -2,11 +2,11 @@
 unstable wavelength (``thermocontact tei``).
 
 The dispersion relation and its root search are :mod:`thermocontact.physics.tei`;
-the derivation is the last section of ``docs/derivation.md`` (T1-T12).  For two
-half-planes the wavelength enters only through the Péclet number ``V/(kappa m)``,
-so the critical speed is proportional to the wavenumber (T11): longer waves go
-unstable first, and at a given speed the growth rate has a maximum over the
-wavelength.
+the derivation is the section "Thermoelastic instability of sliding half-planes" of
+``docs/derivation.md`` (H1-H12).  For two half-planes the wavelength enters only
+through the Péclet number ``V/(kappa m)``, so the critical speed is proportional to
+the wavenumber (H11): longer waves go unstable first, and at a given speed the growth
+rate has a maximum over the wavelength.
 
 Examples
 --------
@@ -31,10 +31,10 @@ from ..problem.validation import check_nonnegative, check_positive
 __all__ = ["TEIMode", "TEIResult", "critical_speed", "critical_speeds", "growth_rate",
            "most_unstable_wavelength", "tei", "tei_modes"]
 
-#: Speeds scanned per factor 2 above the lower bound (T9) before Brent's method.
+#: Speeds scanned per factor 2 above the lower bound (H9) before Brent's method.
 _PER_OCTAVE = 4
 #: Without a crossing up to this multiple of the lower bound, the high-speed limit
-#: (T10) decides; where it says unstable, the scan goes on to ``_LAST_FACTOR``.
+#: (H10) decides; where it says unstable, the scan goes on to ``_LAST_FACTOR``.
 _SCAN_FACTOR = 1e6
 _LAST_FACTOR = 1e15
 
@@ -150,10 +150,10 @@ def growth_rate(pair: SlidingPair, wavenumber: float, speed: float) -> float:
 def critical_speed(pair: SlidingPair, wavenumber: float):
     """The lowest speed at which a mode of wavenumber ``m`` grows, and that mode.
 
-    No mode grows below the bound (T9); the speeds above it are scanned
+    No mode grows below the bound (H9); the speeds above it are scanned
     geometrically until the largest growth rate changes sign, which Brent's method
     then locates to 1e-13 relative.  Without a sign change up to 1e6 times the
-    bound, the high-speed limit (T10) decides between a later crossing and
+    bound, the high-speed limit (H10) decides between a later crossing and
     stability at every speed.
 
     Returns
@@ -191,7 +191,7 @@ def critical_speeds(pair: SlidingPair, wavelengths) -> np.ndarray:
     """Critical speed at each wavelength, m/s (``nan`` where stable at all speeds).
 
     The wavelength enters the dispersion relation only through ``V/(kappa m)``
-    (T11), so one critical speed gives them all: ``V_c(L) = V_c(L0) L0/L``.
+    (H11), so one critical speed gives them all: ``V_c(L) = V_c(L0) L0/L``.
     """
     wl = np.atleast_1d(np.asarray(wavelengths, dtype=float))
     wl0 = float(np.exp(np.mean(np.log(wl))))
@@ -208,9 +208,9 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
                              critical=None):
     """The wavelength of largest growth rate at ``speed``, and that rate.
 
-    The critical speed is ``P_c kappa m`` (T11), so every wavenumber above
+    The critical speed is ``P_c kappa m`` (H11), so every wavenumber above
     ``m_c = speed/(P_c kappa)`` is stable; the growth rate vanishes as ``m -> 0``
-    too (it is ``O(V m)``, T10).  The maximum is bracketed on 60 wavenumbers
+    too (it is ``O(V m)``, H10).  The maximum is bracketed on 60 wavenumbers
     spaced in ``ln m`` over five decades below ``m_c`` and refined by Brent's method.
 
     ``critical``, the critical speed at ``wavenumber`` if known (m/s), saves its
@@ -230,7 +230,7 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
     logs = np.linspace(math.log(m_c) - 5.0 * math.log(10.0), math.log(m_c), 61)[:-1]
     rates = np.array([growth_rate(pair, math.exp(x), speed) for x in logs])
     i = int(np.argmax(rates))
-    if i == 0:  # still growing toward long waves: not bracketed (not expected, T10)
+    if i == 0:  # still growing toward long waves: not bracketed (not expected, H10)
         return 2.0 * math.pi / math.exp(logs[0]), float(rates[0])
     hi = logs[i + 1] if i + 1 < logs.size else math.log(m_c)
     res = minimize_scalar(lambda x: -growth_rate(pair, math.exp(x), speed),
