@@ -1,8 +1,9 @@
-"""Checks of the transient kernels (derivation section 16) against independent routes.
+"""Checks of the transient kernels against independent routes (derivation, section
+"Transient kernels: a perturbation e^{bt}", eqs. T1-T12).
 
 * b -> 0: the steady kernels of :mod:`thermocontact.physics.green_functions`
   (Carslaw and Jaeger's and Barber's closed forms, Dundurs' sgn/2 and the Cauchy
-  kernel), and the stationary half-plane's divergent constants (eqs. D54, D59).
+  kernel), and the stationary half-plane's divergent constants (eqs. T6, T11).
 * The Laplace transform in time, by adaptive quadrature, of the instantaneous
   line source's surface temperature ``E/(2 pi K t) exp(-(x + v t)^2/(4 k t))`` and
   of its surface displacement (Maysel's formula applied to it: a Dawson function).
@@ -68,13 +69,13 @@ def test_stationary_half_plane_tends_to_steady_kernels(b):
     assert np.max(np.abs(tk.transient_temperature_gradient_regular(U, 0.0, b))) < 1e-12
     _close(tk.transient_slope(U, 0.0, b), steady.half_plane_slope(U), 1e-12)
     # Temperature: K0(sqrt(b)|u|) = -ln|u| - ln(sqrt(b)/2) - gamma_E + O(b u^2 ln): the
-    # constant diverges like ln sqrt(b), the u-dependence is the steady logarithm (D54).
+    # constant diverges like ln sqrt(b), the u-dependence is the steady logarithm (T6).
     shifted = tk.transient_temperature(U, 0.0, b) + np.log(np.sqrt(b) / 2.0) + np.euler_gamma
     assert np.max(np.abs(shifted + np.log(np.abs(U)))) < 1e-12
 
 
 def test_stationary_displacement_small_b_expansion():
-    """``W = 2/(pi sqrt b) - |u|/2 + (2/(3 pi)) sqrt(b) u^2 + O(b |u|^3)`` (eq. D59)."""
+    """``W = 2/(pi sqrt b) - |u|/2 + (2/(3 pi)) sqrt(b) u^2 + O(b |u|^3)`` (eq. T11)."""
     u = np.array([-3.0, -0.5, 0.25, 2.0])
     for b in (1e-8, 1e-8 * np.exp(0.5j * np.pi), 1e-8 * np.exp(-0.75j * np.pi)):
         rb = np.sqrt(b)
@@ -213,7 +214,7 @@ def test_slope_jumps_by_one_at_the_source():
 
 def test_large_rate_localises_the_stationary_slope():
     """``S = sgn(u) P(sqrt(b)|u|)``, ``P(z) ~ (4/z^3 + 24/z^5 + 540/z^7 + 25200/z^9)/pi``:
-    the kernel decays on the conduction length ``sqrt(k/|b|)`` (eq. D60)."""
+    the kernel decays on the conduction length ``sqrt(k/|b|)`` (eq. T12)."""
     b = 1e4 * np.exp(0.3j * np.pi)
     u = np.array([0.5, 1.0, 2.0, -1.5])
     z = np.sqrt(b) * np.abs(u)
@@ -259,8 +260,10 @@ def test_graded_moments_at_small_rate_equal_the_steady_ones():
     c, b = 5.0, 1e-30 * np.exp(0.3j * np.pi)
     pairs = [
         (lambda u: tk.transient_temperature_gradient_regular(u, c, b),
-         lambda u: steady.cylinder_temperature_gradient_regular(u, c), dict(scale=c, logarithmic=True)),
-        (lambda u: tk.transient_slope(u, c, b), lambda u: steady.cylinder_slope(c * u), dict(scale=c)),
+         lambda u: steady.cylinder_temperature_gradient_regular(u, c),
+         dict(scale=c, logarithmic=True)),
+        (lambda u: tk.transient_slope(u, c, b), lambda u: steady.cylinder_slope(c * u),
+         dict(scale=c)),
         (lambda u: tk.transient_slope(u, 0.0, b), steady.half_plane_slope, dict(scale=1.0)),
     ]
     for transient, reference, kw in pairs:

@@ -5,24 +5,25 @@ material moves through the contact toward ``-x`` at speed ``v`` (``v < 0``: towa
 ``+x``; ``v = 0``: the stationary half-plane), carries a surface line source
 ``Q exp(b t)`` at ``x = xi``.  After transients the surface temperature and the
 outward thermoelastic displacement are ``exp(b t)`` times the kernels here
-(derivation section 16, "Transient kernels: a perturbation e^{bt}").
+(derivation, section "Transient kernels: a perturbation e^{bt}", eqs. T1-T12).
 
 Every kernel is written in contact coordinates, as the steady kernels with a
 ``scale`` are: ``u = (x - xi)/Delta``, the signed Peclet number of the body
 ``c = v Delta/(2 k)`` (``c = Pe k2/k1`` for the cylinder, ``0`` for the stationary
-half-plane) and the body's own dimensionless rate ``b = b_phys Delta^2 / k``, complex.
-With the project's rate ``b_hat = b_phys Delta^2/k2`` the stationary half-plane has
+half-plane) and the body's own dimensionless rate ``b = b_phys Delta^2 / k``, complex
+(``B`` in the derivation, eq. T1).  With the project's rate ``b_hat = b_phys Delta^2/k2`` the stationary half-plane has
 ``b = b_hat`` and the cylinder ``b = b_hat k2/k1``.
 
-* temperature ``T = Q/(pi K) * exp(-c u) K0(mu |u|)``, ``mu = sqrt(c^2 + b)`` (D52);
-* its gradient ``dT/dx = -Q/(pi K Delta) * G(u)`` (D53), Cauchy part ``1/u``;
+* temperature ``T = Q/(pi K) * exp(-c u) K0(mu |u|)``, ``mu = sqrt(c^2 + b)`` (T3);
+* its gradient ``dT/dx = -Q/(pi K Delta) * G(u)`` (T4), Cauchy part ``1/u``;
 * displacement ``w = delta Q Delta * W(u)`` and slope ``dw/dx = -delta Q * S(u)``
-  (D56, D57), each a quadrature over ``phi`` in ``[0, pi/2]``.
+  (T9, T10), each a quadrature over ``phi`` in ``[0, pi/2]``.
 
 For ``b -> 0`` they tend to the steady kernels of
 :mod:`thermocontact.physics.green_functions` (the stationary half-plane's temperature
 and displacement up to constants that diverge like ``ln sqrt(b)`` and
-``1/sqrt(b)``; derivation eqs. D54, D59).  Real ``b >= 0`` gives real kernels;
+``1/sqrt(b)``; derivation eqs. T6, T11).  The elastic (Flamant) part of the contact
+problem is quasi-static and does not depend on ``b``.  Real ``b >= 0`` gives real kernels;
 complex ``b`` complex ones, with ``K(conj b) = conj K(b)``.  The kernels are the
 principal branch, analytic in ``b`` off the cut ``b <= 0``; ``b`` on the negative
 real axis is refused, and so is ``b = 0`` for the stationary half-plane
@@ -84,13 +85,13 @@ def _sqrt(x):
 
 
 def _convective_rate(mu, c, b, sg):
-    """``D = mu + sgn(u) c``, formed as ``b / (mu + |c|)`` in the wake (eq. D52)."""
+    """``D = mu + sgn(u) c``, formed as ``b / (mu + |c|)`` in the wake (eq. T3)."""
     up = sg * c >= 0.0
     return np.where(up, mu + np.abs(c), b / (mu + np.abs(c)))
 
 
 def transient_temperature(u, c, b):
-    """Surface temperature ``exp(-c u) K0(sqrt(c^2 + b) |u|)`` (derivation eq. D52).
+    """Surface temperature ``exp(-c u) K0(sqrt(c^2 + b) |u|)`` (derivation eq. T3).
 
     In units of ``Q/(pi K)``: the temperature of the half-plane at ``u`` per unit
     strength of the line source ``Q exp(b t)`` at ``u = 0``.  Logarithmically
@@ -121,7 +122,7 @@ def transient_temperature(u, c, b):
 
 
 def transient_temperature_gradient(u, c, b):
-    """Gradient kernel ``G(u) = exp(-c u) [c K0(mu|u|) + mu sgn(u) K1(mu|u|)]`` (eq. D53).
+    """Gradient kernel ``G(u) = exp(-c u) [c K0(mu|u|) + mu sgn(u) K1(mu|u|)]`` (eq. T4).
 
     ``dT/dx = -(Q/(pi K Delta)) G(u)``; ``mu = sqrt(c^2 + b)``.  ``G(u) = 1/u + O(ln|u|)``
     at ``u = 0``.  For ``b = 0``, ``c > 0`` it is ``c M(c u)`` (derivation eq. D10).
@@ -151,7 +152,7 @@ def transient_temperature_gradient_regular(u, c, b):
 
     Only logarithmically singular at ``u = 0``.  For ``|mu u| < 1e-3`` it is formed
     from the ascending series of ``K0``, ``K1`` (Abramowitz and Stegun 9.6.11,
-    9.6.13; eq. D55), without the cancellation of ``1/u`` against ``mu K1``.  For
+    9.6.13; eq. T5), without the cancellation of ``1/u`` against ``mu K1``.  For
     ``b = 0``, ``c > 0`` it is ``c M(c u) - 1/u`` (eq. D16).
 
     Parameters
@@ -198,7 +199,7 @@ def _phi_quadrature(u, c, b, integrand):
     graded geometrically toward ``phi = 0`` (ratio 2, down to ``1/(2 lam)``,
     ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate there), each cut
     into equal parts over which the exponent changes by at most
-    ``_PANEL_VARIATION`` (derivation section 16, *Evaluation*).
+    ``_PANEL_VARIATION`` (derivation, "Transient kernels", *Evaluation*).
     """
     u = np.asarray(u, dtype=float)
     shape = u.shape
@@ -268,12 +269,12 @@ def _phi_block(u, c, b, integrand):
 
 
 def transient_displacement(u, c, b):
-    """Displacement kernel ``W(u) = (2/pi) int_0^(pi/2) (s/rho) exp(-|u| s D) dphi`` (eq. D56).
+    """Displacement kernel ``W(u) = (2/pi) int_0^(pi/2) (s/rho) exp(-|u| s D) dphi`` (eq. T9).
 
     The outward surface displacement is ``w = delta Q Delta W(u)``; ``s = sin phi``,
     ``rho = sqrt(b + c^2 s^2)``, ``D = rho + sgn(u) c s``.  For ``b = 0``,
     ``c > 0`` it is ``E(c u)/c`` (derivation eq. D5); for ``c = 0`` it is
-    ``2/(pi sqrt b) - |u|/2 + O(sqrt(b) u^2)`` (eq. D59).
+    ``2/(pi sqrt b) - |u|/2 + O(sqrt(b) u^2)`` (eq. T11).
 
     Parameters
     ----------
@@ -291,7 +292,7 @@ def transient_displacement(u, c, b):
 
 
 def transient_slope(u, c, b):
-    """Slope kernel ``S(u) = (2/pi) sgn(u) int_0^(pi/2) s^2 (D/rho) exp(-|u| s D) dphi`` (eq. D57).
+    """Slope kernel ``S(u) = (2/pi) sgn(u) int_0^(pi/2) s^2 (D/rho) exp(-|u| s D) dphi`` (eq. T10).
 
     The outward slope is ``dw/dx = -delta Q S(u)``; ``S`` jumps by 1 at ``u = 0``,
     where it takes its mean value ``(2/pi) int s^3 c/rho dphi``.  For ``b = 0``,
