@@ -11,8 +11,8 @@ Every kernel is written in contact coordinates, as the steady kernels with a
 ``scale`` are: ``u = (x - xi)/Delta``, the signed Peclet number of the body
 ``c = v Delta/(2 k)`` (``c = Pe k2/k1`` for the cylinder, ``0`` for the stationary
 half-plane) and the body's own dimensionless rate ``b = b_phys Delta^2 / k``, complex
-(``B`` in the derivation, eq. T1).  With the project's rate ``b_hat = b_phys Delta^2/k2`` the stationary half-plane has
-``b = b_hat`` and the cylinder ``b = b_hat k2/k1``.
+(``B`` in the derivation, eq. T1).  With the project's rate ``b_hat = b_phys Delta^2/k2``
+the stationary half-plane has ``b = b_hat`` and the cylinder ``b = b_hat k2/k1``.
 
 * temperature ``T = Q/(pi K) * exp(-c u) K0(mu |u|)``, ``mu = sqrt(c^2 + b)`` (T3);
 * its gradient ``dT/dx = -Q/(pi K Delta) * G(u)`` (T4), Cauchy part ``1/u``;
