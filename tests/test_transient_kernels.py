@@ -270,3 +270,36 @@ def test_graded_moments_at_small_rate_equal_the_steady_ones():
         for got, ref in zip(_split_moments(transient, s, n, **kw),
                             edge_graded.moments(reference, s, n, **kw)):
             assert np.max(np.abs(got - ref)) < 1e-12 * np.max(np.abs(ref))
+
+
+@pytest.mark.parametrize("kernel, kw", [
+    (lambda u: tk.transient_temperature_gradient_regular(u, 5.0, 2.0 + 7.0j),
+     dict(scale=5.0, logarithmic=True)),
+    (lambda u: tk.transient_slope(u, 0.0, 4.0 - 3.0j), dict(scale=np.sqrt(5.0))),
+])
+def test_graded_moments_of_a_complex_rate_against_quadrature(kernel, kw):
+    """One entry of each moment matrix against a separate quadrature in ``tau``: 20-point
+    Gauss-Legendre on panels halving toward the point's own ``tau_s`` (where the kernel
+    jumps or is logarithmic) from both sides, 52 deep."""
+    n, j, row = 8, 3, 5
+    tau = np.pi * (np.arange(n, 0, -1) - 0.5) / n  # the points of the test above
+    tau_s = tau[row]
+    bounded, singular = _split_moments(kernel, np.cos(edge_graded.stretch(tau)), n, **kw)
+    x, w = np.polynomial.legendre.leggauss(20)
+    offsets, weights = [], []
+    for length, side in ((tau_s, -1.0), (np.pi - tau_s, 1.0)):
+        far = length * 2.0 ** -np.arange(53)  # panel [far/2, far] of distances from tau_s
+        near = np.append(far[1:], 0.0)
+        d = 0.5 * (far + near)[:, None] + 0.5 * (far - near)[:, None] * x
+        offsets.append(side * d.ravel())
+        weights.append((0.5 * (far - near)[:, None] * w).ravel())
+    d, w_nodes = np.concatenate(offsets), np.concatenate(weights)
+    t_nodes = tau_s + d
+    t = edge_graded.stretch(t_nodes)
+    # s - cos t without cancellation next to tau_s: t - t_s = d - cos(2 tau_s + d) sin d.
+    dt = d - np.cos(2.0 * tau_s + d) * np.sin(d)
+    u = 2.0 * np.sin(edge_graded.stretch(tau_s) + 0.5 * dt) * np.sin(0.5 * dt)
+    common = w_nodes * kernel(u) * edge_graded.stretch_derivative(t_nodes) * np.cos(j * t_nodes)
+    b_ref, s_ref = np.sum(common * np.sin(t) ** 2), np.sum(common)
+    assert abs(bounded[row, j] - b_ref) < 1e-12 * np.max(np.abs(bounded))
+    assert abs(singular[row, j] - s_ref) < 1e-12 * np.max(np.abs(singular))
