@@ -197,7 +197,8 @@ def _phi_quadrature(u, c, b, integrand):
     for good (the integrand is below ``exp(-45)`` of its largest values beyond),
     and the rest is integrated by composite 16-point Gauss-Legendre on panels
     graded geometrically toward ``phi = 0`` (ratio 2, down to ``1/(2 lam)``,
-    ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate there), each cut
+    ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate there, and to a
+    quarter of ``sqrt|b|/|c|``, where ``rho`` turns from ``sqrt b`` to ``|c| s``), each cut
     into equal parts over which the exponent changes by at most
     ``_PANEL_VARIATION`` (derivation, "Transient kernels", *Evaluation*).
     """
@@ -249,8 +250,14 @@ def _phi_block(u, c, b, integrand):
             hi = np.where(over, mid, hi)
             lo = np.where(over, lo, mid)
         end[rows] = hi
-    # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end].
-    depth = max(1, int(np.ceil(np.log2(max(1.0, float(np.max(2.0 * lam * end))))))) + 1
+    # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
+    # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
+    # below 1e-15, where the omitted part is below 1e-15 of the integral.
+    small = 0.5 / np.maximum(lam, 1e-300)
+    if c != 0.0 and b != 0.0:
+        small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
+    small = np.maximum(small, 1e-15)
+    depth = max(1, int(np.ceil(np.log2(max(1.0, float(np.max(end / small))))))) + 1
     edges = end[:, None] * 2.0 ** np.arange(-depth, 1)[None, :]
     edges = np.concatenate([np.zeros((u.size, 1)), edges], axis=1)
     e = exponent(edges)[3]
