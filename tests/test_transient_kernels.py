@@ -17,6 +17,7 @@
 
 from __future__ import annotations
 
+import mpmath
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -310,3 +311,19 @@ def test_graded_moments_of_a_complex_rate_against_quadrature(kernel, kw):
     b_ref, s_ref = np.sum(common * np.sin(t) ** 2), np.sum(common)
     assert abs(bounded[row, j] - b_ref) < 1e-12 * np.max(np.abs(bounded))
     assert abs(singular[row, j] - s_ref) < 1e-12 * np.max(np.abs(singular))
+
+
+def test_regular_gradient_series_against_mpmath():
+    """``G - 1/u`` near the source, where the series (T5) replaces the Bessel functions
+    (``|mu u| < 1e-2``), and just beyond, against 40-digit ``mpmath`` at complex rates."""
+    mpmath.mp.dps = 40
+    for c, b in [(0.0, 3.0 + 4.0j), (0.5, 3.0 + 4.0j), (-2.0, 1.0 - 6.0j)]:
+        mu = np.sqrt(c * c + b)
+        u = np.array([-2e-2, -9e-3, -2e-3, -1e-7, 1e-7, 9e-4, 9e-3, 2e-2]) / abs(mu)
+        got = tk.transient_temperature_gradient_regular(u, c, b)
+        for ui, g in zip(u, got):
+            x, m = mpmath.mpf(ui), mpmath.sqrt(mpmath.mpc(c * c + b))
+            k0, k1 = mpmath.besselk(0, m * abs(x)), mpmath.besselk(1, m * abs(x))
+            ref = complex(mpmath.exp(-c * x) * (c * k0 + m * mpmath.sign(x) * k1) - 1 / x)
+            # 5e-13: the cancellation of 1/u against mu K1 just beyond the series
+            assert abs(g - ref) < 5e-13 * abs(ref), (c, ui, g, ref)
