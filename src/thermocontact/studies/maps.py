@@ -32,6 +32,7 @@ from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.executors import run
 from ..io.chunks import ChunkStore
 from ..io.files import atomic_path
+from ..numerics.continuation import locate, widen
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
 from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
@@ -270,7 +271,8 @@ def evaluate_chunk(task: dict) -> dict:
 
 
 def _events(fixed, name, values, sols, method, tol):
-    """Changes of validity between neighbouring solved points, located by Brent's method."""
+    """Changes of validity between neighbouring solved points
+    (:func:`~.boundaries.locate_events`)."""
     events = []
     for a, b, sa, sb in zip(values[:-1], values[1:], sols[:-1], sols[1:]):
         if sa is None or sb is None or sa.valid == sb.valid:
@@ -304,8 +306,6 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
     the two lines), and so on to ``CURVE_DEPTH`` levels.  The tolerance compares
     positions in the axes' own scales (log or linear).
     """
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
     inner, outer = (spec.x, spec.y) if spec.inner == "x" else (spec.y, spec.x)
     fwd_i = (lambda v: math.log(v)) if inner.log else float
     inv_i = math.exp if inner.log else float
@@ -334,17 +334,13 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
             except (SolveError, InputError):
                 return math.nan
             return {"load": sol.load_ratio, **sol.validity.margins()}[key[0]]
-        width = max(abs(ua - ub), span / 1000)
-        for _ in range(8):
-            a, b = max(up - width, lo_i), min(up + width, hi_i)
-            fa, fb = margin(a), margin(b)
-            if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
-                break
-            width *= 2
-        else:
+        found = widen(margin, up, max(abs(ua - ub), span / 1000), lo_i, hi_i, factor=2.0,
+                      tries=8)
+        if found is None:
             return
+        a, b = found
         try:
-            um = brentq(margin, a, b, xtol=BOUNDARY_RTOL * max(abs(a), abs(b), 1e-300))
+            um = locate(margin, a, b, xtol=BOUNDARY_RTOL * max(abs(a), abs(b), 1e-300))
         except (ValueError, RuntimeError):
             return
         x = inv_i(um)
