@@ -322,7 +322,7 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
         groups.setdefault(b[2:6], {}).setdefault(outer_index[float(v)], []).append(u)
     added = []
 
-    def locate(key, ua, va, ub, vb, n, depth):
+    def bend(key, ua, va, ub, vb, n, depth):
         vm, up = 0.5 * (va + vb), 0.5 * (ua + ub)
         fixed = {**spec.fixed, outer.name: inv_o(vm)}
 
@@ -347,8 +347,8 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
         point = (x, inv_o(vm)) if spec.inner == "x" else (inv_o(vm), x)
         added.append((*point, *key, 1))
         if depth < CURVE_DEPTH and abs(um - up) > CURVE_TOL * span:
-            locate(key, ua, va, um, vm, n, depth + 1)
-            locate(key, um, vm, ub, vb, n, depth + 1)
+            bend(key, ua, va, um, vm, n, depth + 1)
+            bend(key, um, vm, ub, vb, n, depth + 1)
 
     for key, lines in groups.items():
         single = {j: fwd_i(us[0]) for j, us in lines.items() if len(us) == 1}
@@ -362,7 +362,7 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
                     marked |= {j - 1, j}
         for j in sorted(marked):
             n = int(max(n_lines[j], n_lines[j + 1]))
-            locate(key, single[j], fwd_o(outer.values[j]), single[j + 1],
+            bend(key, single[j], fwd_o(outer.values[j]), single[j + 1],
                    fwd_o(outer.values[j + 1]), n, 1)
     return added
 
