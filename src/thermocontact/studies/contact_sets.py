@@ -155,8 +155,13 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     starts from the edges extrapolated through the last two solutions; it is halved
     where Newton's method fails or an edge lands farther than
     :data:`MAX_EDGE_MOVE` of the smallest zone's half-width from that prediction (so
-    that no step jumps to another branch), and grown by half
-    where it succeeds.  Events carry ``t``, ``pe_hertz`` and ``fhpe_hertz``.
+    that no step jumps to another branch), and grown by half where it succeeds
+    (:func:`~thermocontact.numerics.continuation.march`); below 1e-4 of what remains,
+    pseudo-arclength continuation passes the point or locates a fold
+    (:func:`~thermocontact.numerics.continuation.arclength`).  Where an inequality
+    fails, the event is located on the least margin to :data:`EVENT_TOL` by Brent's
+    method (:func:`~thermocontact.numerics.continuation.locate`).  Events carry ``t``,
+    ``pe_hertz`` and ``fhpe_hertz``.
     """
     lam = check_range("lam", lam, -1e6, 1e6)
     if not 8 <= int(n) <= 256:
@@ -295,29 +300,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     if reached < 1.0:
         event["single_zone_followed_to"] = where(reached)
 
-    # The contact sets the failure at the end suggests.
-    v = single.validity
-    guesses = []
+    guesses = _suggested_sets(single)
     (a, b), = single.edges
     h = 0.5 * (b - a)
-    if v.gap_margin < 0.0:
-        X0 = v.gap_margin_at
-        for w in (1e-3, 1e-2):
-            width = w * h
-            if X0 > b:
-                gap = X0 - b
-                guesses.append(("zone where the gap closed",
-                                [[a, b], [X0 - min(width, 0.5 * gap), X0 + width]]))
-            else:
-                gap = a - X0
-                guesses.append(("zone where the gap closed",
-                                [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
-    # (A pressure failing at an edge moves that edge: only an interior one splits.)
-    if v.pressure_margin < 0.0 and a + 0.05 * h < v.pressure_margin_at < b - 0.05 * h:
-        Xp = v.pressure_margin_at
-        for w in (1e-3, 1e-2):
-            guesses.append(("zone split where the pressure vanished",
-                            [[a, Xp - w * h], [Xp + w * h, b]]))
     attempts = []
     try:
         if beta_f or conductance is not None:
@@ -359,6 +344,35 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
            "that far, where it is returned"), single, event, attempts, history, folds,
         reached)
+
+
+def _suggested_sets(single: ZoneSolution) -> list[tuple[str, list]]:
+    """The contact sets that the failure of one zone suggests, ``(name, edges)``: a
+    zone where the gap closed, or the zone split where the pressure vanished (each
+    with new half-widths 1e-3 and 1e-2 of the zone's)."""
+    v = single.validity
+    guesses = []
+    (a, b), = single.edges
+    h = 0.5 * (b - a)
+    if v.gap_margin < 0.0:
+        X0 = v.gap_margin_at
+        for w in (1e-3, 1e-2):
+            width = w * h
+            if X0 > b:
+                gap = X0 - b
+                guesses.append(("zone where the gap closed",
+                                [[a, b], [X0 - min(width, 0.5 * gap), X0 + width]]))
+            else:
+                gap = a - X0
+                guesses.append(("zone where the gap closed",
+                                [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
+    # (A pressure failing at an edge moves that edge: only an interior one splits.)
+    if v.pressure_margin < 0.0 and a + 0.05 * h < v.pressure_margin_at < b - 0.05 * h:
+        Xp = v.pressure_margin_at
+        for w in (1e-3, 1e-2):
+            guesses.append(("zone split where the pressure vanished",
+                            [[a, Xp - w * h], [Xp + w * h, b]]))
+    return guesses
 
 
 def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:

@@ -129,7 +129,8 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     ``pe_h``, to ``SIGN_MARGIN |L - (Pe/Pe_H)^2|``: far from a root of D26 only the
     sign of that difference matters) and then grows (by at most 2, as the error's
     cube root: the predictor is third order), and is halved otherwise, between
-    :data:`STEP_MIN` and :data:`STEP_MAX`.  Given ``pe_h``, a step is halved too
+    :data:`STEP_MIN` and :data:`STEP_MAX`
+    (:func:`~thermocontact.numerics.continuation.march`).  Given ``pe_h``, a step is halved too
     where ``h = L - (Pe/Pe_H)^2``, with ``L`` on the parabola through the last two
     samples and the new one, changes sign more than once inside it, so that pairs of
     roots (near a fold of the load) do not hide in one step.  Near a pole of ``L`` (past fHPe ~ 2)
