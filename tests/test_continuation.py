@@ -29,3 +29,121 @@ def test_passes_where_the_branch_is_regular():
     outcome, z = arclength(residual, jacobian, [0.0, 0.0], until=2.0, ds=0.1)
     assert outcome == "passed" and z[1] >= 2.0
     assert z[0] ** 3 + z[0] - z[1] == pytest.approx(0.0, abs=1e-10)
+
+
+# The engine's other pieces, on problems whose answers are known.
+
+import math
+
+from thermocontact.numerics.continuation import (REJECT, STOP, locate, march, secant,
+                                                 sign_changes, subdivide, widen)
+
+
+def test_march_halves_rejected_steps_and_grows_accepted_ones():
+    """Steps longer than 0.3 are rejected: from 1, halved twice to 0.25, accepted, grown
+    to 0.5, rejected, ... every accepted step is 0.25 (or the last piece), and the march
+    ends exactly at the end."""
+    accepted = []
+
+    def attempt(t, trial, at_smallest):
+        if trial - t > 0.3:
+            return REJECT
+        accepted.append((t, trial))
+        return 2.0
+    assert march(attempt, 0.0, 1.1, step=1.0, smallest=1e-3) == 1.1
+    assert [b - a for a, b in accepted] == pytest.approx([0.25] * 4 + [0.1])
+    assert all(b == a2 for (_, b), (a2, _) in zip(accepted[:-1], accepted[1:]))
+
+
+def test_march_accepts_at_the_smallest_step_and_keeps_the_largest():
+    """A step rejected until it is at its smallest is taken there; growth stops at the
+    largest step."""
+    widths = []
+
+    def attempt(t, trial, at_smallest):
+        if not at_smallest and t < 0.5:
+            return REJECT
+        widths.append(trial - t)
+        return 10.0
+    march(attempt, 0.0, 2.0, step=0.4, smallest=0.1, largest=0.3)
+    # 0.4 -> 0.2 -> 0.1 (clamped): accepted at 0.1 five times up to t = 0.5, then 0.3.
+    assert widths[:5] == pytest.approx([0.1] * 5)
+    assert widths[5:-1] == pytest.approx([0.3] * (len(widths) - 6))
+
+
+def test_march_hands_a_stall_to_its_handler_and_stops_when_asked():
+    stalls = []
+
+    def stalled(t):
+        stalls.append(t)
+        return t + 0.5 if t < 0.6 else None
+    # Every natural step fails: the handler moves t by 0.5 until it gives up.
+    end = march(lambda t, trial, s: REJECT, 0.0, 2.0, step=lambda t: (2.0 - t) / 8,
+                smallest=lambda t: 1e-4 * (2.0 - t), stalled=stalled)
+    assert stalls == [0.0, 0.5, 1.0] and end == 1.0
+    assert march(lambda t, trial, s: STOP if trial > 0.45 else 1.0, 0.0, 1.0, step=0.1,
+                 smallest=0.01) == pytest.approx(0.4)
+
+
+def test_locate_finds_a_known_root_to_its_tolerance():
+    """cos x = x (the Dottie number) and a root at x = 0.3 of a margin that is only a
+    step function of x (validity); the bracket holds the root, valid side first."""
+    dottie = 0.7390851332151607
+    x = locate(lambda x: math.cos(x) - x, 0.0, 1.0, xtol=1e-12)
+    assert abs(x - dottie) < 2e-12
+    lo, hi = locate(lambda x: math.cos(x) - x, 0.0, 1.0, xtol=1e-6, rtol=1e-6,
+                    bracket=True)
+    assert lo <= dottie <= hi and hi - lo < 1e-6 * (1 + dottie)
+    # A margin that is +1 where valid, -1 past 0.3.
+    lo, hi = locate(lambda x: 1.0 if x < 0.3 else -1.0, 0.0, 1.0, xtol=1e-9, rtol=1e-9,
+                    bracket=True)
+    assert lo < 0.3 <= hi and hi - lo < 1e-9
+    with pytest.raises(ValueError):
+        locate(lambda x: x + 1.0, 0.0, 1.0, xtol=1e-9)
+
+
+def test_locate_returns_the_bracket_reached_when_the_margin_cannot_be_evaluated():
+    class Refused(Exception):
+        pass
+    seen = []
+
+    def f(x):
+        seen.append(x)
+        if len(seen) > 4:
+            raise Refused
+        return 0.4 - x
+    lo, hi = locate(f, 0.0, 1.0, xtol=1e-12, bracket=True, interrupt=(Refused,))
+    assert lo <= 0.4 <= hi and {lo, hi} <= set(seen) and hi - lo < 1.0
+
+
+def test_widen_grows_a_bracket_until_the_sign_changes():
+    """From [0.29, 0.31] doubling: the first bracket holding 0.37 is [0.22, 0.38]."""
+    a, b = widen(lambda x: x - 0.37, 0.3, 0.01, 0.0, 1.0, factor=2.0, tries=8)
+    assert (a, b) == pytest.approx((0.22, 0.38))
+    # Cut to [lo, hi], and not beyond `largest` or `tries`.
+    assert widen(lambda x: x - 0.37, 0.3, 1.0, 0.1, 0.9, factor=2.0, tries=8) == (0.1, 0.9)
+    assert widen(lambda x: x - 0.37, 0.3, 0.01, 0.0, 1.0, factor=2.0, tries=8,
+                 largest=0.03) is None
+    assert widen(lambda x: x - 0.37, 0.3, 0.01, 0.0, 1.0, factor=2.0, tries=3) is None
+    assert widen(lambda x: math.nan, 0.3, 0.01, 0.0, 1.0, factor=2.0, tries=8) is None
+
+
+def test_subdivide_halves_the_interval_of_a_sign_change():
+    """Five halvings of the interval where sign(x - 0.123) changes: width 0.1/32."""
+    xs = list(np.linspace(0.0, 1.0, 11))
+    values = {x: math.copysign(1.0, x - 0.123) for x in xs}
+    out = subdivide(xs, values, lambda x: math.copysign(1.0, x - 0.123),
+                    lambda a, b: a != b, lambda a, b: 0.5 * (a + b), times=5)
+    assert out == sorted(out) and set(out) == set(values)
+    (i,) = sign_changes([values[x] for x in out])
+    assert out[i] < 0.123 < out[i + 1] and out[i + 1] - out[i] == pytest.approx(0.1 / 32)
+    assert len(out) == 11 + 5
+    assert subdivide(xs[::-1], values, None, lambda a, b: False, None, times=5,
+                     reverse=True) == xs[::-1]
+
+
+def test_sign_changes_and_secant():
+    assert list(sign_changes([1.0, -1.0, np.nan, -1.0, 2.0, 0.0, -3.0])) == [0, 3]
+    x, _ = secant(lambda x: x * x - 2.0, 1.0, 2.0, 0.0, 2.0)
+    assert x == pytest.approx(math.sqrt(2.0), abs=1e-13)
+    assert secant(lambda x: x * x - 2.0, 1.0, 2.0, 0.0, 1.2) is None  # leaves [lo, hi]

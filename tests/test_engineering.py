@@ -12,7 +12,8 @@ from scipy.special import k0
 from thermocontact import InputError, solve
 from thermocontact.cli import main
 from thermocontact.studies.physical_contact import PhysicalProblem, _temperatures, contact
-from thermocontact.studies.ray import _secant, brackets, follow, interpolated_roots
+from thermocontact.numerics.continuation import secant
+from thermocontact.studies.ray import brackets, follow, interpolated_roots
 from thermocontact.problem.materials import MaterialError, get_material
 
 STEEL, IRON = get_material("steel"), get_material("cast-iron")
@@ -118,7 +119,7 @@ def test_continuation_brackets_every_root_and_the_pole():
     def h(x):
         return np.exp(2 * x) - ray.load_ratio(np.exp(x), None)
     for x, exact in zip(guesses[:2] + guesses[3:], (1.0, 2.0, 3.0)):
-        root, _ = _secant(h, x, (h(x + 1e-6) - h(x - 1e-6)) / 2e-6, x - 0.2, x + 0.2)
+        root, _ = secant(h, x, (h(x + 1e-6) - h(x - 1e-6)) / 2e-6, x - 0.2, x + 0.2)
         assert abs(np.exp(root) - exact) < 1e-12
 
 

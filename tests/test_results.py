@@ -116,7 +116,7 @@ def _results():
     from thermocontact.studies.sweeps import sweep
 
     sol = solve(5, 0.2, 10, lam=-1)
-    fixed = dict(pe=5.0, K2_over_K1=10.0, delta1_over_delta2=1.0, lam=1.0)  # as the CLI's
+    fixed = dict(pe=5.0, K2_over_K1=10.0, lam=1.0)  # as the CLI's
     path = follow(fixed, "fhpe", 0.0, 2.0, n=16)
     sets = find_contact_set(5.43, 0.5, 10, lam=-1, n=16)
     return {

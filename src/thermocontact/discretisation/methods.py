@@ -9,13 +9,16 @@ benchmarks are parametrised over :data:`METHODS`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from importlib import import_module
+from typing import TYPE_CHECKING
 
-from ..problem.parameters import Parameters
 from ..problem.validation import InputError
-from .representations import Chebyshev, ChebyshevSampled, EdgeGraded
-from .system import Blocks, assemble
 
-__all__ = ["DEFAULT_METHOD", "METHODS", "Method"]
+if TYPE_CHECKING:  # the registry is read (for the command line's help) without NumPy
+    from ..problem.parameters import Parameters
+    from .system import Blocks
+
+__all__ = ["DEFAULT_METHOD", "DEFAULT_TOL", "METHODS", "Method"]
 
 
 @dataclass(frozen=True)
@@ -25,8 +28,9 @@ class Method:
     Attributes
     ----------
     name : str
-    representation : type
-        A :class:`~.representations.Representation` subclass.
+    representation_name : str
+        The name of a :class:`~.representations.Representation` subclass, available
+        as :attr:`representation`.
     scheme : {"collocation", "projection"}
     auto_range : tuple of int
         First and largest ``n`` of the automatic doubling.
@@ -40,7 +44,7 @@ class Method:
     """
 
     name: str
-    representation: type
+    representation_name: str
     scheme: str
     auto_range: tuple
     summary: str
@@ -48,10 +52,15 @@ class Method:
     estimate_is_bound: bool = True
 
     @property
+    def representation(self) -> type:
+        """The :class:`~.representations.Representation` subclass (imported on first use)."""
+        return getattr(import_module(".representations", __package__), self.representation_name)
+
+    @property
     def edge_exponents(self) -> bool:
         """Whether the representation carries edge exponents other than 1/2 (the
         Dundurs term, derivation section 5c)."""
-        return self.representation is EdgeGraded
+        return self.representation_name == "EdgeGraded"
 
     def check(self, par: Parameters) -> None:
         """Refuse parameters the method cannot represent."""
@@ -65,6 +74,8 @@ class Method:
         self.check(par)
         rep = (self.representation(n, par.edge_exponent) if self.edge_exponents
                else self.representation(n))
+        from .system import assemble
+
         return assemble(par, rep, self.scheme)
 
     __call__ = assemble
@@ -83,18 +94,18 @@ _CHEBYSHEV_ORDER = 3.0
 #: Every solution method by name: ``"graded"``, ``"graded-collocation"``, ``"galerkin"``,
 #: ``"product"`` and ``"paper"`` (the paper's scheme, kept for comparison).
 METHODS: dict[str, Method] = {m.name: m for m in (
-    Method("graded", EdgeGraded, "projection", _GRADED_RANGE,
+    Method("graded", "EdgeGraded", "projection", _GRADED_RANGE,
            "edge-graded cosine series, every integral a moment, equations projected "
            "(the default; derivation section 12)"),
-    Method("graded-collocation", EdgeGraded, "collocation", _GRADED_RANGE,
+    Method("graded-collocation", "EdgeGraded", "collocation", _GRADED_RANGE,
            "the same representation, equations collocated"),
-    Method("galerkin", Chebyshev, "projection", _CHEBYSHEV_RANGE,
+    Method("galerkin", "Chebyshev", "projection", _CHEBYSHEV_RANGE,
            "Chebyshev series with exact kernel moments, equations projected "
            "(order 4; section 10)", order_cap=_CHEBYSHEV_ORDER),
-    Method("product", Chebyshev, "collocation", _CHEBYSHEV_RANGE,
+    Method("product", "Chebyshev", "collocation", _CHEBYSHEV_RANGE,
            "Chebyshev series with exact kernel moments, collocated (product integration)",
            order_cap=_CHEBYSHEV_ORDER),
-    Method("paper", ChebyshevSampled, "collocation", _CHEBYSHEV_RANGE,
+    Method("paper", "ChebyshevSampled", "collocation", _CHEBYSHEV_RANGE,
            "the paper's scheme: kernels sampled at Gauss-Chebyshev nodes (first order at "
            "best, erratic at high Pe: its error estimate is no bound; section 6)",
            order_cap=1.0, estimate_is_bound=False),
@@ -102,3 +113,6 @@ METHODS: dict[str, Method] = {m.name: m for m in (
 
 #: The method used unless another is asked for (derivation section 12).
 DEFAULT_METHOD = "graded"
+
+#: Target of the error estimate of ``P_H/P`` and ``sigma/Delta`` when ``n`` is chosen.
+DEFAULT_TOL = 1e-8

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import ConvergenceWarning, SolveError
 from .validation import InputError, check_finite, check_nonnegative, check_positive
 
 __all__ = ["ConvergenceWarning", "Parameters", "SolveError"]
@@ -21,14 +22,6 @@ C_MIN = 1e-100
 #: Dundurs' constant in magnitude, |beta_D| <= 1/2) and f rarely exceeds 1; at 20 the edge
 #: exponents are 0.984 and 0.016.
 B_MAX = 20.0
-
-
-class SolveError(RuntimeError):
-    """The discrete problem has no (unique, well-conditioned) solution."""
-
-
-class ConvergenceWarning(UserWarning):
-    """A result whose error estimate misses its target."""
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from scipy.linalg import LinAlgError, lu_factor, lu_solve
 from scipy.linalg.lapack import dgecon
 
 from ..analysis.validity import assess
-from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..discretisation.system import Blocks
 from ..numerics.cache import BoundedCache
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
@@ -46,8 +46,6 @@ __all__ = [
 
 log = logging.getLogger("thermocontact")
 
-#: Default error target.
-DEFAULT_TOL = 1e-8
 #: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
 LIMIT = 1e6
 #: Systems whose reciprocal 1-norm condition number is below this are refused.

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult, Result
+from ..numerics.continuation import locate, subdivide, widen
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_choice, check_finite, check_integer
 from ..solvers.refinement import refine
@@ -171,7 +172,8 @@ def _where(sol, inequality):
 
 
 def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
-    """Every sign change of a margin between neighbouring samples, by Brent's method.
+    """Every sign change of a margin between neighbouring samples
+    (:func:`~thermocontact.numerics.continuation.locate`: Brent's method).
 
     Parameters
     ----------
@@ -181,7 +183,7 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
     xs, sols : sequences
         The samples, in the path's order, and their solutions (None allowed).
     xtol : callable
-        ``xtol(a, b)``: Brent's tolerance on the interval ``(a, b)``.
+        ``xtol(a, b)``: the events' tolerance on the interval ``(a, b)``.
     only_validity_changes : bool
         Keep, per interval, only the first event, and only where the samples'
         validity differs (a figure's boundaries).
@@ -190,8 +192,6 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
     -------
     tuple of Event
     """
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
     events = []
     for a, b, sa, sb in zip(xs[:-1], xs[1:], sols[:-1], sols[1:]):
         ma, mb = validity_margins(sa), validity_margins(sb)
@@ -217,8 +217,7 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
                     return 0.0 if k == "load" else np.nan
                 return m[k]
             try:
-                root = brentq(f, min(a, b), max(a, b), xtol=xtol(a, b),
-                              rtol=4 * np.finfo(float).eps)
+                root = locate(f, min(a, b), max(a, b), xtol=xtol(a, b))
             except (ValueError, RuntimeError):
                 continue
             found.append((abs(root - a), root, k))
@@ -238,10 +237,8 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
 
 def _relocated(at, event, lo, hi, xtol):
     """The sign change of the event's margin under ``at`` nearest ``event.at``
-    (brackets widened from 1e-4 of ``max(|at|, 1e-3 (hi - lo))`` to a tenth of the
+    (brackets widened by 4 from 1e-4 of ``max(|at|, 1e-3 (hi - lo))`` to a tenth of the
     path), or None."""
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
     def f(x):
         try:
             m = validity_margins(at(x))
@@ -249,19 +246,14 @@ def _relocated(at, event, lo, hi, xtol):
             m = None
         return np.nan if m is None else m[event.inequality]
 
-    x0, width = event.at, max(abs(event.at), 1e-3 * (hi - lo), 1e-300) * 1e-4
-    for _ in range(12):
-        a, b = max(x0 - width, lo), min(x0 + width, hi)
-        fa, fb = f(a), f(b)
-        if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
-            try:
-                return float(brentq(f, a, b, xtol=xtol(a, b)))
-            except (ValueError, RuntimeError):
-                return None
-        if width > 0.1 * (hi - lo):
-            return None
-        width *= 4.0
-    return None
+    width = max(abs(event.at), 1e-3 * (hi - lo), 1e-300) * 1e-4
+    found = widen(f, event.at, width, lo, hi, factor=4.0, tries=12, largest=0.1 * (hi - lo))
+    if found is None:
+        return None
+    try:
+        return locate(f, *found, xtol=xtol(*found))
+    except (ValueError, RuntimeError):
+        return None
 
 
 def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, n_max=256,
@@ -285,7 +277,7 @@ def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, 
     start, stop : float
         The path's ends (the events stay between them).
     xtol : callable
-        Brent's tolerance, as in :func:`locate_events`.
+        The events' tolerance, as in :func:`locate_events`.
 
     Returns
     -------
@@ -410,20 +402,15 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
         sols[x] = at(n, x)
         report("samples", i + 1, len(xs))
 
-    def suspicious(a, b):
-        ma, mb = validity_margins(sols[a]), validity_margins(sols[b])
+    def suspicious(sa, sb):
+        ma, mb = validity_margins(sa), validity_margins(sb)
         if ma is None or mb is None:
             return False
         return any(min(abs(ma[k]), abs(mb[k])) < abs(ma[k] - mb[k]) for k in MARGINS)
 
-    for _ in range(MAX_HALVINGS):
-        new = [middle(a, b) for a, b in zip(xs[:-1], xs[1:]) if suspicious(a, b)]
-        if not new:
-            break
-        for i, x in enumerate(new):
-            sols[x] = at(n, x)
-            report("samples halved", i + 1, len(new))
-        xs = sorted(set(xs) | set(new), reverse=stop < start)
+    xs = subdivide(xs, sols, lambda x: at(n, x), suspicious, middle, times=MAX_HALVINGS,
+                   reverse=stop < start,
+                   progress=lambda done, total: report("samples halved", done, total))
 
     xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
     events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs], xtol=xtol)

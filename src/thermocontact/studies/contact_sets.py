@@ -17,7 +17,7 @@ import numpy as np
 
 from ..analysis.applicability import MAX_HALF_WIDTH_OVER_RADIUS, MAX_STRAIN
 from ..io.results import Result
-from ..numerics.continuation import arclength
+from ..numerics.continuation import REJECT, STOP, arclength, locate, march
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
@@ -26,8 +26,7 @@ from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
 __all__ = ["ContactSetResult", "PhysicalConductance", "find_contact_set",
            "follow_contact_set", "other_starts", "physical_contact_set"]
 
-#: Relative width to which the event of the first failing inequality is located
-#: (or its least margin to 1e-9 on the invalid side).
+#: Relative width to which the event of the first failing inequality is located.
 EVENT_TOL = 1e-4
 
 
@@ -166,8 +165,13 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     starts from the edges extrapolated through the last two solutions; it is halved
     where Newton's method fails or an edge lands farther than
     :data:`MAX_EDGE_MOVE` of the smallest zone's half-width from that prediction (so
-    that no step jumps to another branch), and grown by half
-    where it succeeds.  Events carry ``t``, ``pe_hertz`` and ``fhpe_hertz``.
+    that no step jumps to another branch), and grown by half where it succeeds
+    (:func:`~thermocontact.numerics.continuation.march`); below 1e-4 of what remains,
+    pseudo-arclength continuation passes the point or locates a fold
+    (:func:`~thermocontact.numerics.continuation.arclength`).  Where an inequality
+    fails, the event is located on the least margin to :data:`EVENT_TOL` by Brent's
+    method (:func:`~thermocontact.numerics.continuation.locate`).  Events carry ``t``,
+    ``pe_hertz`` and ``fhpe_hertz``.
     """
     lam = check_range("lam", lam, -1e6, 1e6)
     if not 8 <= int(n) <= 256:
@@ -187,11 +191,14 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         return model_at(t).solve(edges, pe, F, lam, polish=polish, max_iter=max_iter)
 
     def follow(sol, t, to, stop_when_invalid):
-        # From sol at t toward `to`; stops at the first invalid solution if asked.
-        step = (to - t) / 8.0
+        # From sol at t toward `to` (steps from an eighth of what remains, halved on
+        # failure, grown by half on success); stops at the first invalid solution if
+        # asked.  Returns the last solution, its t, and the t where it failed.
         last = None  # the previous (t, edges), for the secant predictor
-        while t < to:
-            trial = min(to, t + step)
+        failed_at = None
+
+        def attempt(t, trial, _):
+            nonlocal sol, last, failed_at
             guess = sol.edges
             if last is not None and last[1].shape == sol.edges.shape:
                 guess = sol.edges + (trial - t) / (t - last[0]) * (sol.edges - last[1])
@@ -200,38 +207,41 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 # is too long; the correction, not the move, is limited (a zone may
                 # travel many of its widths along a path).
                 new = at(guess, trial, max_iter=12)
-                moved = new.zones != sol.zones or float(
-                    np.max(np.abs(new.edges - guess))) > MAX_EDGE_MOVE * float(
-                    np.min(sol.half_widths))
             except SolveError:
-                moved = True
-            if moved:
-                step *= 0.5
-                if step < 1e-4 * (to - t):
-                    # Natural steps stall: round the point by pseudo-arclength, which
-                    # passes it or finds the branch turning back (a fold).
-                    outcome, z = around(sol, t, min(to, t + 0.02 * (to - t)))
-                    if outcome == "passed":
-                        try:
-                            sol, t = at(z[:-1].reshape(-1, 2), z[-1]), float(z[-1])
-                        except SolveError:
-                            return sol, t, None
-                        step, last = (to - t) / 8.0, None
-                        continue
-                    if outcome == "fold":
-                        folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
-                    return sol, t, None
-                continue
+                return REJECT
+            if new.zones != sol.zones or float(np.max(np.abs(new.edges - guess))) > (
+                    MAX_EDGE_MOVE * float(np.min(sol.half_widths))):
+                return REJECT
             if stop_when_invalid and not new.valid:
-                return sol, t, trial
+                failed_at = trial
+                return STOP
             last = (t, sol.edges)
-            sol, t = new, trial
-            history.append(dict(where(t), edges=sol.edges.ravel().tolist(),
+            sol = new
+            history.append(dict(where(trial), edges=sol.edges.ravel().tolist(),
                                 valid=bool(sol.valid)))
-            step *= 1.5
             if progress is not None:
-                progress(t)
-        return sol, t, None
+                progress(trial)
+            return 1.5
+
+        def stalled(t):
+            # Natural steps stall: round the point by pseudo-arclength, which passes it
+            # or finds the branch turning back (a fold).
+            nonlocal sol, last
+            outcome, z = around(sol, t, min(to, t + 0.02 * (to - t)))
+            if outcome == "passed":
+                try:
+                    sol = at(z[:-1].reshape(-1, 2), z[-1])
+                except SolveError:
+                    return None
+                last = None
+                return float(z[-1])
+            if outcome == "fold":
+                folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
+            return None
+
+        t = march(attempt, t, to, step=lambda t: (to - t) / 8.0,
+                  smallest=lambda t: 1e-4 * (to - t), stalled=stalled)
+        return sol, t, failed_at
 
     def where(t):
         pe, F = path(t)
@@ -272,42 +282,22 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                                     history=history)
         failed_at = 1.0
 
-    # Locate the event between the last valid t and the first invalid one, on the
-    # least margin (continuous where the verdict changes, sections 7-8) by the
-    # Illinois variant of regula falsi, which keeps a bracket.
-    def margin(s_):
-        return min(s_.validity.margins().values())
+    # Locate the event between the last valid t and the first invalid one on the
+    # least margin (continuous where the verdict changes, sections 7-8; >= 0 exactly
+    # where valid), each solve starting from the valid solution nearest the event.
+    solved = {t: sol}
 
-    lo, hi, lo_sol = t, failed_at, sol
+    def margin(t_):
+        if t_ not in solved:
+            start = max((x for x in solved if solved[x].valid), default=t)
+            solved[t_] = at(solved[start].edges, t_)
+        return min(solved[t_].validity.margins().values())
     try:
-        m_lo, m_hi = margin(lo_sol), margin(at(lo_sol.edges, hi))
-    except SolveError:
-        m_lo = m_hi = None
-    side = 0
-    while hi - lo > EVENT_TOL * max(hi, 1e-9):
-        if m_lo is None or not m_lo > 0.0 > m_hi:
-            mid = 0.5 * (lo + hi)
-        else:
-            mid = hi - m_hi * (hi - lo) / (m_hi - m_lo)
-            # Keep away from the bracket's ends by a little of its width.
-            mid = min(max(mid, lo + 0.01 * (hi - lo)), hi - 0.01 * (hi - lo))
-        try:
-            s_mid = at(lo_sol.edges, mid)
-        except SolveError:
-            break
-        m_mid = margin(s_mid)
-        if s_mid.valid:
-            lo, lo_sol, m_lo = mid, s_mid, m_mid
-            if side == -1 and m_hi is not None:
-                m_hi *= 0.5
-            side = -1
-        else:
-            hi, m_hi = mid, m_mid
-            if side == 1 and m_lo is not None:
-                m_lo *= 0.5
-            side = 1
-        if m_lo is not None and m_hi is not None and abs(m_hi) < 1e-9:
-            break
+        lo, hi = locate(margin, t, failed_at, xtol=EVENT_TOL * 1e-9, rtol=EVENT_TOL,
+                        bracket=True, interrupt=(SolveError,))
+    except ValueError:  # no sign change between the ends: the event at the invalid one
+        lo, hi = t, failed_at
+    lo_sol = solved[lo]
     bad = at(lo_sol.edges, hi, polish=True)
     event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
     # The history passes the event where it was located.
@@ -320,29 +310,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     if reached < 1.0:
         event["single_zone_followed_to"] = where(reached)
 
-    # The contact sets the failure at the end suggests.
-    v = single.validity
-    guesses = []
+    guesses = _suggested_sets(single)
     (a, b), = single.edges
     h = 0.5 * (b - a)
-    if v.gap_margin < 0.0:
-        X0 = v.gap_margin_at
-        for w in (1e-3, 1e-2):
-            width = w * h
-            if X0 > b:
-                gap = X0 - b
-                guesses.append(("zone where the gap closed",
-                                [[a, b], [X0 - min(width, 0.5 * gap), X0 + width]]))
-            else:
-                gap = a - X0
-                guesses.append(("zone where the gap closed",
-                                [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
-    # (A pressure failing at an edge moves that edge: only an interior one splits.)
-    if v.pressure_margin < 0.0 and a + 0.05 * h < v.pressure_margin_at < b - 0.05 * h:
-        Xp = v.pressure_margin_at
-        for w in (1e-3, 1e-2):
-            guesses.append(("zone split where the pressure vanished",
-                            [[a, Xp - w * h], [Xp + w * h, b]]))
     attempts = []
     try:
         if beta_f or conductance is not None:
@@ -384,6 +354,35 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
            "that far, where it is returned"), single, event, attempts, history, folds,
         reached)
+
+
+def _suggested_sets(single: ZoneSolution) -> list[tuple[str, list]]:
+    """The contact sets that the failure of one zone suggests, ``(name, edges)``: a
+    zone where the gap closed, or the zone split where the pressure vanished (each
+    with new half-widths 1e-3 and 1e-2 of the zone's)."""
+    v = single.validity
+    guesses = []
+    (a, b), = single.edges
+    h = 0.5 * (b - a)
+    if v.gap_margin < 0.0:
+        X0 = v.gap_margin_at
+        for w in (1e-3, 1e-2):
+            width = w * h
+            if X0 > b:
+                gap = X0 - b
+                guesses.append(("zone where the gap closed",
+                                [[a, b], [X0 - min(width, 0.5 * gap), X0 + width]]))
+            else:
+                gap = a - X0
+                guesses.append(("zone where the gap closed",
+                                [[X0 - width, X0 + min(width, 0.5 * gap)], [a, b]]))
+    # (A pressure failing at an edge moves that edge: only an interior one splits.)
+    if v.pressure_margin < 0.0 and a + 0.05 * h < v.pressure_margin_at < b - 0.05 * h:
+        Xp = v.pressure_margin_at
+        for w in (1e-3, 1e-2):
+            guesses.append(("zone split where the pressure vanished",
+                            [[a, Xp - w * h], [Xp + w * h, b]]))
+    return guesses
 
 
 def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:

@@ -31,6 +31,7 @@ from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.resumable import run_chunks
 from ..io.files import atomic_path
+from ..numerics.continuation import locate, widen
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.axes import MAX_AXIS_POINTS, Axis, checked_axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
@@ -249,7 +250,8 @@ def evaluate_chunk(task: dict) -> dict:
 
 
 def _events(fixed, name, values, sols, method, tol):
-    """Changes of validity between neighbouring solved points, located by Brent's method."""
+    """Changes of validity between neighbouring solved points
+    (:func:`~.boundaries.locate_events`)."""
     events = []
     for a, b, sa, sb in zip(values[:-1], values[1:], sols[:-1], sols[1:]):
         if sa is None or sb is None or sa.valid == sb.valid:
@@ -283,8 +285,6 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
     the two lines), and so on to ``CURVE_DEPTH`` levels.  The tolerance compares
     positions in the axes' own scales (log or linear).
     """
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
     inner, outer = (spec.x, spec.y) if spec.inner == "x" else (spec.y, spec.x)
     fwd_i = (lambda v: math.log(v)) if inner.log else float
     inv_i = math.exp if inner.log else float
@@ -301,7 +301,7 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
         groups.setdefault(b[2:6], {}).setdefault(outer_index[float(v)], []).append(u)
     added = []
 
-    def locate(key, ua, va, ub, vb, n, depth):
+    def bend(key, ua, va, ub, vb, n, depth):
         vm, up = 0.5 * (va + vb), 0.5 * (ua + ub)
         fixed = {**spec.fixed, outer.name: inv_o(vm)}
 
@@ -313,25 +313,21 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
             except (SolveError, InputError):
                 return math.nan
             return {"load": sol.load_ratio, **sol.validity.margins()}[key[0]]
-        width = max(abs(ua - ub), span / 1000)
-        for _ in range(8):
-            a, b = max(up - width, lo_i), min(up + width, hi_i)
-            fa, fb = margin(a), margin(b)
-            if np.isfinite(fa) and np.isfinite(fb) and (fa >= 0) != (fb >= 0):
-                break
-            width *= 2
-        else:
+        found = widen(margin, up, max(abs(ua - ub), span / 1000), lo_i, hi_i, factor=2.0,
+                      tries=8)
+        if found is None:
             return
+        a, b = found
         try:
-            um = brentq(margin, a, b, xtol=BOUNDARY_RTOL * max(abs(a), abs(b), 1e-300))
+            um = locate(margin, a, b, xtol=BOUNDARY_RTOL * max(abs(a), abs(b), 1e-300))
         except (ValueError, RuntimeError):
             return
         x = inv_i(um)
         point = (x, inv_o(vm)) if spec.inner == "x" else (inv_o(vm), x)
         added.append((*point, *key, 1))
         if depth < CURVE_DEPTH and abs(um - up) > CURVE_TOL * span:
-            locate(key, ua, va, um, vm, n, depth + 1)
-            locate(key, um, vm, ub, vb, n, depth + 1)
+            bend(key, ua, va, um, vm, n, depth + 1)
+            bend(key, um, vm, ub, vb, n, depth + 1)
 
     for key, lines in groups.items():
         single = {j: fwd_i(us[0]) for j, us in lines.items() if len(us) == 1}
@@ -345,7 +341,7 @@ def _between_lines(spec: MapSpec, boundary, n_grid):
                     marked |= {j - 1, j}
         for j in sorted(marked):
             n = int(max(n_lines[j], n_lines[j + 1]))
-            locate(key, single[j], fwd_o(outer.values[j]), single[j + 1],
+            bend(key, single[j], fwd_o(outer.values[j]), single[j + 1],
                    fwd_o(outer.values[j + 1]), n, 1)
     return added
 

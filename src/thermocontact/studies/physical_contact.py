@@ -26,11 +26,12 @@ from ..physics.green_functions import cylinder_temperature
 from ..problem.materials import Material, dundurs_beta
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
+from ..numerics.continuation import secant
 from ..numerics.extrema import polish_minimum
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import DEFAULT_TOL
 from .boundaries import EVENT_RTOL, Path, trace
-from .ray import Ray, _secant, brackets, follow, root, start_of_root
+from .ray import Ray, brackets, follow, root, start_of_root
 
 __all__ = ["ALONG", "Branch", "PhysicalContact", "PhysicalProblem", "contact", "follow_along"]
 
@@ -546,7 +547,7 @@ def _primary(problem: PhysicalProblem, along: str):
         step = None
         if near is not None and distance(near) < math.log(1.5):
             y = near[2] + math.log(pe_h / near[1])
-            step = _secant(h, y, near[3], y - 1.0, y + 1.0, xtol=1e-13)
+            step = secant(h, y, near[3], y - 1.0, y + 1.0, xtol=1e-13)
         if step is None:
             # No root found so far near enough, or the steps from it failed: bracket
             # the first root on the ray (poles, where |h| stays large, skipped).
@@ -555,7 +556,7 @@ def _primary(problem: PhysicalProblem, along: str):
             for i in brackets(scan.pe, scan.load_ratio, pe_h):
                 lo, hi = math.log(scan.pe[i]), math.log(scan.pe[i + 1])
                 y, slope = start_of_root(scan, pe_h, i)
-                step = _secant(h, y, slope, lo, hi, xtol=1e-13)
+                step = secant(h, y, slope, lo, hi, xtol=1e-13)
                 if step is not None and abs(h(step[0])) <= 1e-6:
                     break
                 step = None

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult
+from ..numerics.continuation import REJECT, locate, march, secant, sign_changes
 from ..problem.parameters import SolveError
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
@@ -131,7 +132,8 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     ``pe_h``, to ``SIGN_MARGIN |L - (Pe/Pe_H)^2|``: far from a root of D26 only the
     sign of that difference matters) and then grows (by at most 2, as the error's
     cube root: the predictor is third order), and is halved otherwise, between
-    :data:`STEP_MIN` and :data:`STEP_MAX`.  Given ``pe_h``, a step is halved too
+    :data:`STEP_MIN` and :data:`STEP_MAX`
+    (:func:`~thermocontact.numerics.continuation.march`).  Given ``pe_h``, a step is halved too
     where ``h = L - (Pe/Pe_H)^2``, with ``L`` on the parabola through the last two
     samples and the new one, changes sign more than once inside it, so that pairs of
     roots (near a fold of the load) do not hide in one step.  Near a pole of ``L`` (past fHPe ~ 2)
@@ -154,35 +156,37 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     """
     x_lo, x_hi = math.log(pe_lo), math.log(pe_hi)
     xs, fs = [x_lo], [ray.load_ratio(pe_lo, n)]
-    evaluations, step = 1, STEP_FIRST
-    while xs[-1] < x_hi:
-        x = min(xs[-1] + step, x_hi)
+    evaluations = 1
+
+    def attempt(_, x, at_smallest):
+        nonlocal evaluations
         f = ray.load_ratio(math.exp(x), n)
         evaluations += 1
-        if pe_h is not None and len(xs) >= 2 and step > STEP_MIN * (1 + 1e-9):
+        if pe_h is not None and len(xs) >= 2 and not at_smallest:
             # Between the samples, h = L - (Pe/Pe_H)^2 with L on the parabola through
             # the last two samples and this one (the term (Pe/Pe_H)^2 is exact): more
             # than one sign change of it inside the step, two roots could hide there.
             u = np.linspace(xs[-1], x, SUBSTEPS + 1)
             h = lagrange(xs[-2:] + [x], fs[-2:] + [f], u) - np.exp(2 * u) / pe_h**2
             if np.count_nonzero(np.diff(np.sign(h)) != 0) > 1:
-                step = max(step / 2, STEP_MIN)
-                continue
+                return REJECT
+        growth = 1.0
         if len(xs) >= 3:
             predicted = float(lagrange(xs[-3:], fs[-3:], x))
             allowed = PREDICTOR_TOL * max(1.0, abs(f))
             if pe_h is not None:
                 allowed = max(allowed, SIGN_MARGIN * abs(f - math.exp(2 * x) / pe_h**2))
             error = abs(f - predicted) / allowed
-            if error > 1.0 and step > STEP_MIN * (1 + 1e-9):
-                step = max(step / 2, STEP_MIN)
-                continue
-            step *= min(2.0, 0.9 / max(error, 1e-3) ** (1 / 3))
-            step = min(max(step, STEP_MIN), STEP_MAX)
+            if error > 1.0 and not at_smallest:
+                return REJECT
+            growth = min(2.0, 0.9 / max(error, 1e-3) ** (1 / 3))
         xs.append(x)
         fs.append(f)
         if progress is not None:
             progress(round(100 * (x - x_lo) / (x_hi - x_lo)), 100)
+        return growth
+
+    march(attempt, x_lo, x_hi, step=STEP_FIRST, smallest=STEP_MIN, largest=STEP_MAX)
     return RayScan(np.exp(xs), np.array(fs), n, evaluations)
 
 
@@ -211,16 +215,12 @@ def local(ln_pe, values, x, stencil=STENCIL):
 def brackets(pe, load_ratio, pe_h):
     """Indices ``i`` where ``Pe^2 - Pe_H^2 L`` changes sign between samples ``i`` and
     ``i + 1`` (both finite)."""
-    g = np.asarray(pe) ** 2 - pe_h**2 * np.asarray(load_ratio)
-    ok = np.isfinite(g)
-    return np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) * np.sign(g[1:]) < 0))
+    return sign_changes(np.asarray(pe) ** 2 - pe_h**2 * np.asarray(load_ratio))
 
 
 def interpolated_roots(pe, load_ratio, pe_h):
     """The roots ``ln Pe`` of D26 on the local interpolants of the samples (those
     with ``STENCIL`` finite samples around them)."""
-    from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
     lp = np.log(pe)
     L = np.asarray(load_ratio)
     ok = np.isfinite(L)
@@ -231,30 +231,8 @@ def interpolated_roots(pe, load_ratio, pe_h):
 
         def h(x):
             return pe_h**2 * local(lp, L, x) - math.exp(2 * x)
-        roots.append(brentq(h, lp[i], lp[i + 1], xtol=1e-14))
+        roots.append(locate(h, lp[i], lp[i + 1], xtol=1e-14))
     return roots
-
-
-def _secant(h, x0, slope, lo, hi, h0=None, xtol=1e-13):
-    """The root of ``h`` by secant steps from ``x0``, the first along ``slope``.
-
-    Returns ``(x, slope)`` at the last point evaluated (its ``h`` known to the
-    caller's solver), or None when a step leaves ``[lo, hi]`` or 30 do not converge.
-    """
-    h0 = h(x0) if h0 is None else h0
-    for _ in range(30):
-        if slope == 0.0 or not math.isfinite(slope):
-            return None
-        x1 = x0 - h0 / slope
-        if not lo <= x1 <= hi:
-            return None
-        h1 = h(x1)
-        if abs(x1 - x0) <= xtol * max(1.0, abs(x1)):
-            return x1, slope
-        if h1 != h0:
-            slope = (h1 - h0) / (x1 - x0)
-        x0, h0 = x1, h1
-    return None
 
 
 def start_of_root(scan: RayScan, pe_h, i):
@@ -268,7 +246,7 @@ def start_of_root(scan: RayScan, pe_h, i):
 
     ha, hb = interpolant(a), interpolant(b)
     x0, slope = a - ha * (b - a) / (hb - ha), (hb - ha) / (b - a)
-    return _secant(interpolant, x0, slope, a, b) or (x0, slope)
+    return secant(interpolant, x0, slope, a, b) or (x0, slope)
 
 
 def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
@@ -297,11 +275,9 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     a, b = math.log(scan.pe[i]), math.log(scan.pe[i + 1])
     x0, slope = start_of_root(scan, pe_h, i)
     # To 1e-8 only: the steps at the final n start from here along this slope.
-    found = _secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-8)
+    found = secant(lambda x: h(x, scan.n), x0, slope, a, b, xtol=1e-8)
     if found is None:
-        from scipy.optimize import brentq
-
-        x = brentq(h, a, b, args=(scan.n,), xtol=1e-12)
+        x = locate(lambda y: h(y, scan.n), a, b, xtol=1e-12)
     else:
         x, slope = found
     if abs(h(x, scan.n)) > pole_tol:
@@ -312,7 +288,7 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
     fine = levels[-1][0]
     n = fine.n
     width = max(b - a, 1e-9)
-    found = _secant(lambda y: h(y, n), x, slope, x - width, x + width,
+    found = secant(lambda y: h(y, n), x, slope, x - width, x + width,
                     h0=math.exp(2 * x) / pe_h**2 - fine.load_ratio)
     if found is not None:
         x = found[0]

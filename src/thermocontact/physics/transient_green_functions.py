@@ -1,0 +1,332 @@
+"""Green's functions of a surface line source whose strength varies as ``exp(b t)``.
+
+One half-plane, conductivity ``K``, diffusivity ``k``, distortivity ``delta``, whose
+material moves through the contact toward ``-x`` at speed ``v`` (``v < 0``: toward
+``+x``; ``v = 0``: the stationary half-plane), carries a surface line source
+``Q exp(b t)`` at ``x = xi``.  After transients the surface temperature and the
+outward thermoelastic displacement are ``exp(b t)`` times the kernels here
+(derivation, section "Transient kernels: a perturbation e^{bt}", eqs. T1-T12).
+
+Every kernel is written in contact coordinates, as the steady kernels with a
+``scale`` are: ``u = (x - xi)/Delta``, the signed Peclet number of the body
+``c = v Delta/(2 k)`` (``c = Pe k2/k1`` for the cylinder, ``0`` for the stationary
+half-plane) and the body's own dimensionless rate ``b = b_phys Delta^2 / k``, complex
+(``B`` in the derivation, eq. T1).  With the project's rate ``b_hat = b_phys Delta^2/k2``
+the stationary half-plane has ``b = b_hat`` and the cylinder ``b = b_hat k2/k1``.
+
+* temperature ``T = Q/(pi K) * exp(-c u) K0(mu |u|)``, ``mu = sqrt(c^2 + b)`` (T3);
+* its gradient ``dT/dx = -Q/(pi K Delta) * G(u)`` (T4), Cauchy part ``1/u``;
+* displacement ``w = delta Q Delta * W(u)`` and slope ``dw/dx = -delta Q * S(u)``
+  (T9, T10), each a quadrature over ``phi`` in ``[0, pi/2]``.
+
+For ``b -> 0`` they tend to the steady kernels of
+:mod:`thermocontact.physics.green_functions` (the stationary half-plane's temperature
+and displacement up to constants that diverge like ``ln sqrt(b)`` and
+``1/sqrt(b)``; derivation eqs. T6, T11).  The elastic (Flamant) part of the contact
+problem is quasi-static and does not depend on ``b``.  Real ``b >= 0`` gives real kernels;
+complex ``b`` complex ones, with ``K(conj b) = conj K(b)``.  The kernels are the
+principal branch, analytic in ``b`` off the cut ``b <= 0``; ``b`` on the negative
+real axis is refused, and so is ``b = 0`` for the stationary half-plane
+(``c = 0``), whose steady kernels are logarithmic.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import kve
+
+from thermocontact.problem.validation import InputError
+
+__all__ = [
+    "transient_displacement",
+    "transient_slope",
+    "transient_temperature",
+    "transient_temperature_gradient",
+    "transient_temperature_gradient_regular",
+]
+
+#: Gauss-Legendre rule of each panel of the ``phi`` quadrature.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+#: Largest change of the exponent ``|u| s D`` over one panel (the rule is exact to
+#: rounding for ``exp`` of a linear function varying by this much).
+_PANEL_VARIATION = 4.0
+#: The integral is cut where the exponent's real part exceeds its smallest value by
+#: this for good: the integrand there is below ``exp(-45)`` of its largest values.
+_NEGLIGIBLE = 45.0
+#: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
+_BLOCK = 2048
+
+
+def _parameters(c, b):
+    """``(c, b)`` checked; ``b`` real (float) when its imaginary part is zero."""
+    try:
+        c = float(c)
+    except (TypeError, ValueError):
+        raise InputError(f"c must be a real number, got {c!r}", parameters=("c",)) from None
+    try:
+        b = complex(b)
+    except (TypeError, ValueError):
+        raise InputError(f"b must be a complex number off the cut b <= 0 "
+                         f"(or 0 with c != 0), got {b!r}", parameters=("b",)) from None
+    if not (np.isfinite(c) and np.isfinite(b.real) and np.isfinite(b.imag)):
+        raise InputError(f"c and b must be finite, got c={c!r}, b={b!r}", parameters=("c", "b"))
+    if b.imag == 0.0:
+        b = b.real + 0.0
+        if b < 0.0 or (b == 0.0 and c == 0.0):
+            raise InputError(f"b must be off the negative real axis, and non-zero for "
+                             f"c = 0 (the steady kernels are logarithmic), got {b!r}",
+                             parameters=("b",))
+    return c, b
+
+
+def _sqrt(x):
+    """Principal square root, real for real non-negative input."""
+    return np.sqrt(x) if np.isrealobj(x) else np.sqrt(x.astype(complex))
+
+
+def _convective_rate(mu, c, b, sg):
+    """``D = mu + sgn(u) c``, formed as ``b / (mu + |c|)`` in the wake (eq. T3)."""
+    up = sg * c >= 0.0
+    return np.where(up, mu + np.abs(c), b / (mu + np.abs(c)))
+
+
+def transient_temperature(u, c, b):
+    """Surface temperature ``exp(-c u) K0(sqrt(c^2 + b) |u|)`` (derivation eq. T3).
+
+    In units of ``Q/(pi K)``: the temperature of the half-plane at ``u`` per unit
+    strength of the line source ``Q exp(b t)`` at ``u = 0``.  Logarithmically
+    singular at ``u = 0``; for ``c > 0`` the wake is at ``u < 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``, non-zero.
+    c : float
+        Signed ``v Delta/(2 k)``; 0 for the stationary half-plane.
+    b : complex
+        ``b_phys Delta^2/k``, off the cut ``b <= 0`` (``b = 0`` allowed for
+        ``c != 0``).
+
+    Returns
+    -------
+    ndarray
+        Real for real ``b``, complex otherwise.
+    """
+    c, b = _parameters(c, b)
+    u = np.asarray(u, dtype=float)
+    a = np.abs(u)
+    mu = _sqrt(np.asarray(c * c + b))
+    d = _convective_rate(mu, c, b, np.sign(u))
+    # exp(-c u) K0(mu|u|) = kve(0, mu|u|) exp(-|u| (mu + sgn(u) c))
+    return kve(0, mu * a) * np.exp(-a * d)
+
+
+def transient_temperature_gradient(u, c, b):
+    """Gradient kernel ``G(u) = exp(-c u) [c K0(mu|u|) + mu sgn(u) K1(mu|u|)]`` (eq. T4).
+
+    ``dT/dx = -(Q/(pi K Delta)) G(u)``; ``mu = sqrt(c^2 + b)``.  ``G(u) = 1/u + O(ln|u|)``
+    at ``u = 0``.  For ``b = 0``, ``c > 0`` it is ``c M(c u)`` (derivation eq. D10).
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``, non-zero.
+    c, b
+        As in :func:`transient_temperature`.
+
+    Returns
+    -------
+    ndarray
+    """
+    c, b = _parameters(c, b)
+    u = np.asarray(u, dtype=float)
+    a = np.abs(u)
+    sg = np.sign(u)
+    mu = _sqrt(np.asarray(c * c + b))
+    z = mu * a
+    return np.exp(-a * _convective_rate(mu, c, b, sg)) * (c * kve(0, z) + mu * sg * kve(1, z))
+
+
+def transient_temperature_gradient_regular(u, c, b):
+    """The Cauchy-free part ``G(u) - 1/u`` of :func:`transient_temperature_gradient`.
+
+    Only logarithmically singular at ``u = 0``.  For ``|mu u| < 1e-2`` it is formed
+    from the ascending series of ``K0``, ``K1`` to ``z^4``, ``z^5`` (Abramowitz and
+    Stegun 9.6.11, 9.6.13; eq. T5; the neglected terms are below 1e-15 of the
+    result), without the cancellation of ``1/u`` against ``mu K1``, which costs about
+    ``eps/(z^2 |ln z|)`` beyond (3e-13 relative observed at ``|mu u| = 2e-2``).  For
+    ``b = 0``, ``c > 0`` it is ``c M(c u) - 1/u`` (eq. D16).
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``, non-zero.
+    c, b
+        As in :func:`transient_temperature`.
+
+    Returns
+    -------
+    ndarray
+    """
+    c, b = _parameters(c, b)
+    u = np.asarray(u, dtype=float)
+    mu = _sqrt(np.asarray(c * c + b))
+    z = np.abs(mu * u)
+    small = z < 1e-2
+    out = np.empty(u.shape, dtype=np.result_type(mu, float))
+    big = ~small
+    if np.any(big):
+        out[big] = transient_temperature_gradient(u[big], c, b) - 1.0 / u[big]
+    if np.any(small):
+        x = u[small]
+        sg = np.sign(x)
+        zz = mu * np.abs(x)
+        lg = np.log(zz / 2.0) + np.euler_gamma
+        z2 = zz * zz
+        k0 = -lg + 0.25 * z2 * (1.0 - lg) + z2 * z2 / 64.0 * (1.5 - lg)
+        # K1(z) - 1/z
+        k1_rest = zz * (0.5 * (lg - 0.5) + z2 / 16.0 * (lg - 1.25)
+                        + z2 * z2 / 384.0 * (lg - 5.0 / 3.0))
+        e = np.exp(-c * x)
+        # exp(-c x) mu sgn(x) K1 - 1/x = (exp(-c x) - 1)/x + exp(-c x) mu sgn(x) k1_rest
+        out[small] = e * c * k0 + np.expm1(-c * x) / x + e * mu * sg * k1_rest
+    return out
+
+
+def _phi_quadrature(u, c, b, integrand):
+    """``(2/pi) integral_0^(pi/2) integrand(s, rho, D, sgn u) exp(-|u| s D) dphi`` per point.
+
+    ``s = sin(phi)``, ``rho = sqrt(b + c^2 s^2)``, ``D = rho + sgn(u) c s`` (formed as
+    ``b/(rho + |c| s)`` in the wake, free of cancellation).  The integral is cut
+    where the exponent's real part exceeds its smallest value by ``_NEGLIGIBLE``
+    for good (the integrand is below ``exp(-45)`` of its largest values beyond),
+    and the rest is integrated by composite 16-point Gauss-Legendre on panels
+    graded geometrically toward ``phi = 0`` (ratio 2, down to ``1/(2 lam)``,
+    ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate there, and to a
+    quarter of ``sqrt|b|/|c|``, where ``rho`` turns from ``sqrt b`` to ``|c| s``), each cut
+    into equal parts over which the exponent changes by at most
+    ``_PANEL_VARIATION`` (derivation, "Transient kernels", *Evaluation*).
+    """
+    u = np.asarray(u, dtype=float)
+    shape = u.shape
+    u = u.ravel()
+    dtype = np.result_type(np.asarray(b), float)
+    out = np.empty(u.shape, dtype=dtype)
+    for i in range(0, u.size, _BLOCK):
+        out[i:i + _BLOCK] = _phi_block(u[i:i + _BLOCK], c, b, integrand)
+    return out.reshape(shape)
+
+
+def _phi_block(u, c, b, integrand):
+    a = np.abs(u)[:, None]
+    sg = np.sign(u)[:, None]
+    half_pi = 0.5 * np.pi
+
+    def exponent(phi):
+        s = np.sin(phi)
+        rho = _sqrt(b + (c * s) ** 2)
+        with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+            d = np.where(sg * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+        return s, rho, d, np.where(s == 0.0, 0.0, a * s * d)
+
+    # Where the integrand becomes negligible for good: coarse geometric edges, then
+    # bisection on the first interval after which Re(exponent) stays above the cut.
+    lam = a[:, 0] * (np.sqrt(abs(b)) + 2.0 * abs(c))
+    first = np.minimum(half_pi, 0.5 / np.maximum(lam, 1e-300))
+    levels = max(1, int(np.ceil(np.log2(half_pi / first.min()))) + 1)
+    coarse = np.minimum(half_pi, first[:, None] * 2.0 ** np.arange(levels)[None, :])
+    coarse = np.concatenate([np.zeros((u.size, 1)), coarse, np.full((u.size, 1), half_pi)], axis=1)
+    re = exponent(coarse)[3].real
+    cut = np.min(re, axis=1, keepdims=True) + _NEGLIGIBLE
+    above = np.flip(np.logical_and.accumulate(np.flip(re >= cut, axis=1), axis=1), axis=1)
+    end = np.full(u.size, half_pi)
+    has = above.any(axis=1) & ~above[:, 0]
+    if np.any(has):
+        k = np.argmax(above[has], axis=1)
+        rows = np.flatnonzero(has)
+        lo, hi = coarse[rows, k - 1], coarse[rows, k]
+        sub_a, sub_sg, sub_cut = a[rows], sg[rows], cut[rows, 0]
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            s = np.sin(mid)
+            rho = _sqrt(b + (c * s) ** 2)
+            d = np.where(sub_sg[:, 0] * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+            over = (sub_a[:, 0] * s * d).real >= sub_cut
+            hi = np.where(over, mid, hi)
+            lo = np.where(over, lo, mid)
+        end[rows] = hi
+    # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
+    # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
+    # below 1e-15, where the omitted part is below 1e-15 of the integral.
+    small = 0.5 / np.maximum(lam, 1e-300)
+    if c != 0.0 and b != 0.0:
+        small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
+    small = np.maximum(small, 1e-15)
+    depth = max(1, int(np.ceil(np.log2(max(1.0, float(np.max(end / small))))))) + 1
+    edges = end[:, None] * 2.0 ** np.arange(-depth, 1)[None, :]
+    edges = np.concatenate([np.zeros((u.size, 1)), edges], axis=1)
+    e = exponent(edges)[3]
+    change = np.max(np.abs(np.diff(e, axis=1)), axis=0)
+    total = np.zeros(u.size, dtype=np.result_type(np.asarray(b), float))
+    for j in range(edges.shape[1] - 1):
+        parts = max(1, int(np.ceil(change[j] / _PANEL_VARIATION)))
+        frac = np.arange(parts + 1) / parts
+        sub = edges[:, j:j + 1] + (edges[:, j + 1:j + 2] - edges[:, j:j + 1]) * frac[None, :]
+        half = 0.5 * np.diff(sub, axis=1)
+        phi = ((sub[:, :-1] + half)[:, :, None] + half[:, :, None] * _GL_X).reshape(u.size, -1)
+        w = (half[:, :, None] * _GL_W).reshape(u.size, -1)
+        s, rho, d, ex = exponent(phi)
+        total += np.sum(w * integrand(s, rho, d, sg) * np.exp(-ex), axis=1)
+    return (2.0 / np.pi) * total
+
+
+def transient_displacement(u, c, b):
+    """Displacement kernel ``W(u) = (2/pi) int_0^(pi/2) (s/rho) exp(-|u| s D) dphi`` (eq. T9).
+
+    The outward surface displacement is ``w = delta Q Delta W(u)``; ``s = sin phi``,
+    ``rho = sqrt(b + c^2 s^2)``, ``D = rho + sgn(u) c s``.  For ``b = 0``,
+    ``c > 0`` it is ``E(c u)/c`` (derivation eq. D5); for ``c = 0`` it is
+    ``2/(pi sqrt b) - |u|/2 + O(sqrt(b) u^2)`` (eq. T11).
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``.
+    c, b
+        As in :func:`transient_temperature`.
+
+    Returns
+    -------
+    ndarray
+    """
+    c, b = _parameters(c, b)
+    return _phi_quadrature(u, c, b, lambda s, rho, d, sg: s / rho)
+
+
+def transient_slope(u, c, b):
+    """Slope kernel ``S(u) = (2/pi) sgn(u) int_0^(pi/2) s^2 (D/rho) exp(-|u| s D) dphi`` (eq. T10).
+
+    The outward slope is ``dw/dx = -delta Q S(u)``; ``S`` jumps by 1 at ``u = 0``,
+    where it takes its mean value ``(2/pi) int s^3 c/rho dphi``.  For ``b = 0``,
+    ``c != 0`` it is ``sgn(c) N(c u) H(c u)`` (derivation eq. D7,
+    :func:`~thermocontact.physics.green_functions.moving_slope`); for ``c = 0`` it
+    tends to ``sgn(u)/2`` (eq. D4) as ``b -> 0``.
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``.
+    c, b
+        As in :func:`transient_temperature`.
+
+    Returns
+    -------
+    ndarray
+    """
+    c, b = _parameters(c, b)
+
+    def integrand(s, rho, d, sg):
+        # sgn(u) D/rho = c s/rho + sgn(u); at u = 0 the mean of both sides, c s/rho.
+        return s * s * np.where(sg == 0.0, c * s / rho, sg * d / rho)
+
+    return _phi_quadrature(u, c, b, integrand)
