@@ -19,6 +19,7 @@ _EXPORTS = {
     "Axis": ".problem.axes",
     "boundary": ".api",
     "contact": ".api",
+    "compute_map": ".api",
     "contact_set": ".api",
     "map_spec": ".api",
     "operating_map": ".api",
