@@ -41,13 +41,13 @@ def run_map(spec, out, workers, title, command):
     from ..execution.progress import ProgressLine
     from ..plotting.maps import map_figure
     from ..api import compute_map
-    from ..studies.maps import parts_folder, read_map, write_map
+    from ..io.datasets import parts_folder, read_dataset, write_dataset
 
     picture = os.path.splitext(out)[0] + ".png"
     manifest = json.dumps(spec.manifest(), sort_keys=True)
     if os.path.exists(out):
         try:
-            done = read_map(out)
+            done = read_dataset(out)
         except Exception:  # not a map of ours: never overwritten
             done = None
         if done is None or done.attrs.get("manifest") != manifest:
@@ -74,7 +74,7 @@ def run_map(spec, out, workers, title, command):
         if hasattr(workers, "close"):
             workers.close()
     bar.close()
-    write_map(ds, out)
+    write_dataset(ds, out)
     map_figure(ds, picture, title=title)
     from ..io.chunks import discard
 
@@ -134,12 +134,10 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     """
     from ..api import map_spec
     from ..io.files import check_output_dir, check_output_file
-    from ..studies.maps import parse_axis
-    from ..studies.operating_maps import parse_physical_axis
+    from ..problem.axes import Axis
 
     operating = cylinder is not None or half_plane is not None
-    parse = parse_physical_axis if operating else parse_axis
-    spec = map_spec(parse("--x", x_spec), parse("--y", y_spec), pe=pe, fhpe=fhpe,
+    spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
                     K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=None if operating else delta1_over_delta2,
                     speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,

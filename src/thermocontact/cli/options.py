@@ -97,8 +97,8 @@ def contact_set_options(zones_help: str, p_ref_help: str):
 
 
 def parse_conductance(text, what, physical=False):
-    """``"h0:m"`` as ``(h0, m)``, or None; in SI units ``"h0:m[:p_ref]"`` as a
-    :class:`~.studies.contact_sets.PhysicalConductance`."""
+    """``"h0:m"`` as ``(h0, m)``, or None; in SI units ``"h0:m[:p_ref]"`` as
+    ``(h0, m, p_ref)``, ``p_ref`` in Pa or None."""
     if text is None:
         return None
     parts = text.split(":")
@@ -114,7 +114,6 @@ def parse_conductance(text, what, physical=False):
     if not physical:
         return tuple(values)
     from ..problem.units import parse_quantity
-    from ..studies.contact_sets import PhysicalConductance
 
     p_ref = parse_quantity(parts[2], "Pa", "conductance p_ref") if len(parts) == 3 else None
-    return PhysicalConductance(*values, p_ref)
+    return (*values, p_ref)
