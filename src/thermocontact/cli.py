@@ -186,9 +186,13 @@ def _contact_set_options(zones_help: str, p_ref_help: str):
 @click.option("--delta-over-r", "delta_over_r", type=float, default=None,
               help="Half-width over cylinder radius, > 0: also say whether the theory applies "
                    "(small contact, slopes and strains).")
+@click.option("--conductance", default=None,
+              help="BI0:m, an interface conductance h = h0 (p/p_ref)^m with BI0 the Biot "
+                   "number h0 Delta/K2 at the contact's mean pressure p_ref = P/(2 Delta), "
+                   "m >= 0 [default: perfect thermal contact].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
-              sigma, n, tol, method, check, delta_over_r, as_json):
+              sigma, n, tol, method, check, delta_over_r, conductance, as_json):
     """Solve one case in dimensionless form."""
     if (lam is None) == (sigma is None):
         raise InputError("give exactly one of --lam and --sigma")
@@ -196,7 +200,8 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
                 delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                 lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
-                check_convergence=check, progress=_Progress())
+                check_convergence=check, progress=_Progress(),
+                conductance=_conductance(conductance, "the Biot number h0 Delta/K2"))
     app = None
     if delta_over_r is not None:
         from .analysis.applicability import applicability

@@ -78,6 +78,7 @@ class ContactSolution:
     auto_n: bool = False
     load_ratio_change: float | None = None
     estimate_is_bound: bool = True
+    conductance: object = None
 
     # Status, in the manner of scipy's OptimizeResult.
     @property
@@ -268,6 +269,9 @@ class ContactSolution:
             "flux_half_plane": self.flux_half_plane.tolist(),
             "version": __version__,
         })
+        if self.conductance is not None:
+            rec["conductance"] = {"biot0": self.conductance.biot0,
+                                  "exponent": self.conductance.exponent}
         return rec
 
     def to_dataset(self):

@@ -257,7 +257,7 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
-        validity=validity, rcond=rcond)
+        validity=validity, rcond=rcond, conductance=conductance)
 
 
 def check_n(n) -> int:
