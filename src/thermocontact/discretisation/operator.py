@@ -146,8 +146,9 @@ def outside_operators(par: Parameters, rep, side: float, tt):
     the cylinder's temperature gradient ``c M(c u) - 1/u`` to
     ``-[exp(-c u) K0(c|u|) + ln|u|]`` (D8-D10).  A half-plane moving through the
     contact (``c2 = R Pe != 0``) replaces ``sgn(u)/2`` by its slope kernel, whose
-    integral is the cylinder's drop with ``|c2|`` on the side its material leaves
-    (the right for ``c2 > 0``, the left for ``c2 < 0``) and zero on the other, and
+    integral is the cylinder's drop with ``|c2|`` at the distance ``|e - r|`` on the
+    side where ``c2 u > 0`` (the right for ``c2 > 0``, the left for ``c2 < 0``) and
+    zero on the other, and
     adds its regular gradient part ``M_c2``, integrated as the cylinder's (D32b).
     Every kernel is a function of the distance ``e - r`` to the edge, formed without
     cancellation.
@@ -186,8 +187,8 @@ def outside_operators(par: Parameters, rep, side: float, tt):
         Tp = (1.0 - eta) * half * rep.pressure_rule.weights[None, :]
         Tq = -half * rep.flux_rule.weights[None, :]
     elif c2 * side > 0.0:
-        # The moving half-plane's slope kernel, downstream of where its material
-        # leaves the contact: the cylinder's drop with |c2| at the distance |e - r|.
+        # The moving half-plane's slope kernel lives where c2 u > 0: the cylinder's
+        # drop with |c2| at the distance |e - r| (section 16).
         a2 = abs(c2)
         hb, hq = edge_integral(f"drop2 {c2!r}", lambda e: cylinder_displacement_drop(
             a2 * side * e, a2 * col), a2)

@@ -174,6 +174,8 @@ def equation_points(rep: Representation, scheme: str):
 
 def zone_parameters(par: Parameters, half: float) -> Parameters:
     """The single-patch parameters of a zone of half-width ``half`` (units of ``l``)."""
+    if half == 1.0:
+        return par
     return replace(par, pe=par.pe * half, fhpe=par.fhpe * half)
 
 
@@ -304,21 +306,28 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     if sigma_over_delta is not None and m != 1:
         raise InputError(f"sigma_over_delta closes a single zone only (section 16), got "
                          f"{m} zones; give lam instead")
-    centre = edges.mean(axis=1)
+    centre = 0.5 * (edges[:, 0] + edges[:, 1])
     half = 0.5 * (edges[:, 1] - edges[:, 0])
     zpar = [zone_parameters(par, h) for h in half]
-    (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
-    if conductance:
-        sh, ah, p2 = temperature_points(rep, scheme)
     nh = n if conductance else n - 1
     closing = 2 * m if lam is not None else 1
 
     def reduce(P, M):
         return M if P is None else P @ M
 
-    # The right side's e_0 and e_1 as the single patch forms them.
-    e0 = np.ones(n + 1) if p1 is None else p1.sum(axis=1)
-    e1 = reduce(p1, sc)
+    # The single patch's cached blocks serve the one zone (-1, 1): then no point is
+    # needed unless a temperature equation or a profile asks for them.
+    own_cached = blocks is not None and m == 1 and half[0] == 1.0
+    if own_cached and not conductance and profile is None:
+        sc = sh = ah = p1 = p2 = None
+        e0, e1 = blocks.const_column, blocks.linear_column
+    else:
+        (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
+        if conductance:
+            sh, ah, p2 = temperature_points(rep, scheme)
+        # The right side's e_0 and e_1 as the single patch forms them.
+        e0 = np.ones(n + 1) if p1 is None else p1.sum(axis=1)
+        e1 = reduce(p1, sc)
     size = 2 * m * n + closing + int(conductance)
     A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
     phi = [slice(j * n, (j + 1) * n) for j in range(m)]
@@ -329,14 +338,14 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     for i in range(m):
         rc = slice(i * (n + 1), (i + 1) * (n + 1))
         rh = slice(load + 1 + i * nh, load + 1 + (i + 1) * nh)
-        xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
+        if sc is not None:
+            xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
         if conductance:
             U = np.zeros((sh.size, size))
         for j in range(m):
             own = i == j
             if own:
-                own_blocks = (blocks if blocks is not None and m == 1 and half[j] == 1.0
-                              else assemble(zpar[j], rep, scheme))
+                own_blocks = blocks if own_cached else assemble(zpar[j], rep, scheme)
                 C, Tp, Tq = own_blocks.C, own_blocks.Tp, own_blocks.Tq
             else:
                 s_c = (xc - centre[j]) / half[j]
@@ -346,8 +355,8 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
             A0[rc, phi[j]] = C
             A1[rc, phi[j]] = -half[j] * Tp
             A1[rc, psi[j]] = -half[j] * Tq
-            s_h = sh if own else (xh - centre[j]) / half[j]
             if conductance:
+                s_h = sh if own else (xh - centre[j]) / half[j]
                 # (D33) in units of l: zone j's integrals carry Delta_j, and a stationary
                 # half-plane's logarithm ln(Delta_j) times the heat it puts into it.
                 Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
@@ -359,7 +368,7 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
                 A0[rh, phi[j]] = own_blocks.Hp
                 A0[rh, psi[j]] = own_blocks.Hq
             else:
-                Hp, Hq = heat_operators(zpar[j], rep, s_h)
+                Hp, Hq = heat_operators(zpar[j], rep, (xh - centre[j]) / half[j])
                 A0[rh, phi[j]] = reduce(p2, Hp)
                 A0[rh, psi[j]] = reduce(p2, Hq)
         if conductance:
