@@ -15,7 +15,11 @@ defects ``mu_j``, ``nu_j`` of a term ``(2/pi)(mu_j + nu_j s)`` added to its righ
 side; Newton's method moves the edges until every defect vanishes.  With one zone
 this is the single-patch problem with the half-width fixed by the load
 (``P_H/P = Delta^2``, ``Pe = Pe_l Delta``, ``fHPe = fHPe_l Delta``,
-``sigma/Delta = centre/Delta``), solved by the same blocks.
+``sigma/Delta = centre/Delta``), solved by the same blocks; one zone may instead be
+closed by its offset, the half-width then found by Newton's method.  The system is
+assembled by :func:`~thermocontact.discretisation.system.contact_set_system`, the
+single patch's too (derivation section 16), with the moving half-plane, the Dundurs
+term and an interface conductance.
 """
 
 from __future__ import annotations
