@@ -119,7 +119,8 @@ def test_conductance_through_solve_and_the_command_line(capsys):
                  "-n", "16", "--conductance", "3:0", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["load_ratio"] == ref.load_ratio
-    assert out["conductance"] == {"biot0": 3.0, "exponent": 0.0}
+    assert (out["conductance_biot0"], out["conductance_exponent"]) == (3.0, 0.0)
+    assert sol.to_dataset().attrs["conductance_biot0"] == 3.0
     assert main(["solve", "--pe", "5", "--fhpe", "0.3", "--K2-over-K1", "10", "--lam", "0.5",
                  "--conductance", "0:0"]) != 0
     assert "conductance h0" in capsys.readouterr().err

@@ -270,8 +270,9 @@ class ContactSolution:
             "version": __version__,
         })
         if self.conductance is not None:
-            rec["conductance"] = {"biot0": self.conductance.biot0,
-                                  "exponent": self.conductance.exponent}
+            # Flat scalars, so that the dataset's attributes hold them.
+            rec["conductance_biot0"] = self.conductance.biot0
+            rec["conductance_exponent"] = self.conductance.exponent
         return rec
 
     def to_dataset(self):
