@@ -9,6 +9,11 @@ Two ways to close the problem (derivation section 5):
 * ``sigma_over_delta`` given: the unknowns are ``phi``, ``psi`` and ``L``; ``lam``
   follows from the heat flux.  With ``fhpe = 0`` this problem has no bounded
   solution unless ``sigma = 0``, and then ``lam`` is undetermined: refused.
+
+The system is the one-zone contact set ``(-1, 1)`` in the contact's own scaling,
+assembled by :func:`~thermocontact.discretisation.system.contact_set_system` from the
+cached blocks (derivation section 16); an interface conductance replaces the heat
+equation by the temperature equation (D33).
 """
 
 from __future__ import annotations
@@ -40,6 +45,7 @@ __all__ = [
     "check_n",
     "factorise",
     "solve",
+    "solve_contact_system",
     "solve_equilibrated",
     "solve_system",
 ]
