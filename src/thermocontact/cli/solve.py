@@ -9,7 +9,7 @@ import click
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..problem.validation import InputError, check_positive
-from .options import problem_options
+from .options import parse_conductance, problem_options
 from .progress import RefinementProgress
 
 __all__ = ["solve_cmd"]
@@ -66,9 +66,13 @@ def solve_summary(sol) -> str:
 @click.option("--delta-over-r", "delta_over_r", type=float, default=None,
               help="Half-width over cylinder radius, > 0: also say whether the theory applies "
                    "(small contact, slopes and strains).")
+@click.option("--conductance", default=None,
+              help="BI0:m, an interface conductance h = h0 (p/p_ref)^m with BI0 the Biot "
+                   "number h0 Delta/K2 at the contact's mean pressure p_ref = P/(2 Delta), "
+                   "m >= 0 [default: perfect thermal contact].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
-              sigma, n, tol, method, check, delta_over_r, as_json):
+              sigma, n, tol, method, check, delta_over_r, conductance, as_json):
     """Solve one case in dimensionless form."""
     from ..api import solve
 
@@ -78,7 +82,8 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                 lam=lam,
                 sigma_over_delta=sigma, n=n, method=method, tol=tol,
-                check_convergence=check, progress=RefinementProgress())
+                check_convergence=check, progress=RefinementProgress(),
+                conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))
     app = None
     if delta_over_r is not None:
         from ..analysis.applicability import applicability
