@@ -10,7 +10,7 @@ import pytest
 import thermocontact as tc
 from thermocontact.cli import main
 from thermocontact.problem.validation import InputError
-from thermocontact.studies.maps import read_map
+from thermocontact.io.datasets import read_dataset
 
 
 def _json(capsys, argv):
@@ -75,7 +75,7 @@ def test_parameter_map_is_the_command(tmp_path, capsys):
     assert main(["map", "--x", "fhpe:0:0.8:3", "--y", "pe:1:10:2:log", "--K2-over-K1", "10",
                  "--lam", "1", "--workers", "1", "--out", str(out)]) == 0
     capsys.readouterr()
-    written = read_map(out)
+    written = read_dataset(out)
     for name in ds.data_vars:
         assert np.array_equal(ds[name].values, written[name].values), name
     assert ds.attrs["manifest"] == written.attrs["manifest"]
@@ -91,7 +91,7 @@ def test_operating_map_is_the_command(tmp_path, capsys):
                  "--y", "speed:1:1.5:2", "--tol", "1e-4", "--workers", "1",
                  "--out", str(out)]) == 0
     capsys.readouterr()
-    written = read_map(out)
+    written = read_dataset(out)
     for name in ds.data_vars:
         a, b = ds[name].values, written[name].values
         assert a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind == "f"), name

@@ -59,15 +59,70 @@ def test_every_module_belongs_to_a_layer():
     assert found <= set(LAYERS), found - set(LAYERS)
 
 
+#: Which layers each layer may import (besides its own): the graph drawn in
+#: docs/architecture.md.  The command line reaches the computations only through the
+#: public calls (api) and the layers that do its own work (files, progress, pictures).
+ALLOWED = {
+    "_version": set(),
+    "problem": set(),
+    "io": {"_version", "problem"},
+    "execution": {"problem", "io"},
+    "physics": {"problem"},
+    "numerics": set(),
+    "discretisation": {"problem", "physics", "numerics"},
+    "analysis": {"problem", "io", "physics", "numerics", "discretisation"},
+    "solvers": {"_version", "problem", "io", "numerics", "discretisation", "analysis"},
+    "studies": {"_version", "problem", "io", "execution", "physics", "numerics",
+                "discretisation", "analysis", "solvers"},
+    "plotting": {"problem", "io"},
+    "figures": {"problem", "io", "physics", "solvers", "studies", "plotting"},
+    "api": {"problem", "discretisation", "solvers", "studies"},
+    "cli": {"_version", "problem", "io", "execution", "discretisation", "plotting",
+            "figures", "api"},
+    "__main__": {"cli"},
+}
+
+
+def test_the_graph_is_the_layers_order():
+    """The graph only ever points down the order of LAYERS (so it has no cycle)."""
+    assert set(ALLOWED) == set(LAYERS)
+    for layer, allowed in ALLOWED.items():
+        assert all(LAYERS.index(a) < LAYERS.index(layer) for a in allowed), layer
+
+
 @pytest.mark.parametrize("name, path", list(_modules()), ids=[m for m, _ in _modules()])
-def test_imports_only_from_lower_layers(name, path):
-    """Each import's layer is at or below the importer's."""
-    mine = LAYERS.index(_layer(name))
+def test_imports_follow_the_graph(name, path):
+    """Each import is of the importer's own layer or of one its layer may import."""
+    mine = _layer(name)
     for target in _imports(name, path):
         if target == "thermocontact":
             pytest.fail(f"{name} imports the package root; import the module instead")
-        theirs = LAYERS.index(_layer(target))
-        assert theirs <= mine, f"{name} ({LAYERS[mine]}) imports {target} ({LAYERS[theirs]})"
+        theirs = _layer(target)
+        assert theirs == mine or theirs in ALLOWED[mine], (
+            f"{name} ({mine}) imports {target} ({theirs}), not allowed by the graph")
+
+
+def _private_imports(name, path):
+    """``from <package module> import _x``: a private name taken across modules."""
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith(
+                "thermocontact")):
+            for alias in node.names:
+                if alias.name.startswith("_") and not alias.name.startswith("__"):
+                    yield f"{'.' * node.level}{node.module or ''}.{alias.name}"
+
+
+@pytest.mark.parametrize("name, path", list(_modules()), ids=[m for m, _ in _modules()])
+def test_no_private_name_crosses_modules(name, path):
+    assert not list(_private_imports(name, path)), (
+        f"{name} imports private names: {list(_private_imports(name, path))}")
+
+
+def test_no_private_name_of_the_package_in_tests_of_the_api():
+    """The public surface resolves every exported name to a public one."""
+    for name in thermocontact.__all__:
+        assert not name.startswith("_") or name == "__version__"
 
 
 def test_methods_are_an_explicit_registry():

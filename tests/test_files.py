@@ -101,7 +101,7 @@ def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, c
     before are complete and counted, the SVG is absent (not truncated)."""
     import thermocontact.plotting.curves as curves
 
-    real = curves._save
+    real = curves.save_figure
     calls = []
 
     def interrupted(fig, path, written=None):
@@ -109,7 +109,7 @@ def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, c
         if len(calls) == 2:
             raise KeyboardInterrupt
         real(fig, path, written)
-    monkeypatch.setattr(curves, "_save", interrupted)
+    monkeypatch.setattr(curves, "save_figure", interrupted)
     assert main(["reproduce", "--out", str(tmp_path), "--only", "fig5"]) == 130
     err = capsys.readouterr().err
     assert "interrupted: 2 complete files" in err

@@ -15,8 +15,8 @@ from thermocontact.execution.executors import ExecutionError, check_scheduler, c
 from thermocontact.io.chunks import ChunkStore
 from thermocontact.problem.validation import InputError
 from thermocontact.studies.boundaries import follow
-from thermocontact.studies.maps import (MAX_AXIS_POINTS, MapSpec, compute_map, parse_axis,
-                                        read_map, write_map)
+from thermocontact.io.datasets import read_dataset, write_dataset
+from thermocontact.studies.maps import MAX_AXIS_POINTS, MapSpec, compute_map, parse_axis
 
 #: A small map that crosses the boundary: Pe = 1, 3, 10 and fHPe to 0.8 (the gap
 #: closes outside the leading edge near fHPe = 0.65).
@@ -131,8 +131,8 @@ def test_resume_after_interruption_is_identical(tmp_path, reference):
 
     ds = compute_map(small_spec(), workers=counting, store_path=store)
     assert calls[-1] == 1
-    write_map(ds, tmp_path / "m.nc")
-    xr.testing.assert_identical(read_map(tmp_path / "m.nc"), reference)
+    write_dataset(ds, tmp_path / "m.nc")
+    xr.testing.assert_identical(read_dataset(tmp_path / "m.nc"), reference)
 
 
 def test_a_broken_executor_keeps_finished_work(tmp_path):
@@ -180,7 +180,7 @@ def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
         rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
                    "--out", str(out), "--scheduler", cluster.scheduler_address])
         assert rc == 0, capsys.readouterr().err
-    back = read_map(out)
+    back = read_dataset(out)
     np.testing.assert_array_equal(back.load_ratio.values, reference.load_ratio.values)
     assert (tmp_path / "d.png").stat().st_size > 10_000
     assert not (tmp_path / "d.nc.parts").exists()
@@ -220,7 +220,7 @@ def test_command_writes_refuses_and_completes(tmp_path, capsys):
     assert main(args) == 0
     text = capsys.readouterr().out
     assert "27 points" in text and (tmp_path / "m.png").exists()
-    ds = read_map(out)
+    ds = read_dataset(out)
     assert ds.attrs["thermocontact_version"] and ds.attrs["method"] == "graded"
     assert json.loads(ds.attrs["manifest"])["x"] == "fhpe:0.0:0.8:9"
     assert ds.boundary_x.attrs["parameter"] == "fhpe"

@@ -19,8 +19,9 @@ from thermocontact.physics.tei import (SlidingPair, dispersion, high_speed_unsta
                                        speed_lower_bound, surface_kernels)
 from thermocontact.problem.materials import Material, MaterialError, get_material
 from thermocontact.problem.validation import InputError
+from thermocontact.api import tei
 from thermocontact.studies.tei import (TEIResult, critical_speed, critical_speeds,
-                                       growth_rate, most_unstable_wavelength, tei)
+                                       growth_rate, most_unstable_wavelength)
 
 STEEL = get_material("steel")
 PAD = get_material("organic-composite-brake-block")

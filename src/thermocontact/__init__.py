@@ -19,6 +19,7 @@ _EXPORTS = {
     "Axis": ".problem.axes",
     "boundary": ".api",
     "contact": ".api",
+    "compute_map": ".api",
     "contact_set": ".api",
     "map_spec": ".api",
     "operating_map": ".api",
@@ -35,7 +36,7 @@ _EXPORTS = {
     "ContactSolution": ".solvers.result",
     "Model": ".solvers.single_patch",
     "solve": ".solvers.single_patch",
-    "tei": ".studies.tei",
+    "tei": ".api",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

@@ -24,10 +24,11 @@ from __future__ import annotations
 from .discretisation.methods import DEFAULT_METHOD
 from .problem.axes import Axis
 from .problem.validation import InputError, check_positive
-from .solvers.single_patch import DEFAULT_TOL
+from .discretisation.methods import DEFAULT_TOL
+from .solvers.single_patch import Model, solve
 
-__all__ = ["Axis", "boundary", "contact", "contact_set", "map_spec", "operating_map",
-           "parameter_map"]
+__all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec",
+           "operating_map", "parameter_map", "solve", "tei"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
 PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
@@ -398,14 +399,11 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     >>> ds["valid"].shape
     (2, 3)
     """
-    from .studies.maps import compute_map
-
     spec = map_spec(x, y, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
                     beta_f=beta_f, lam=lam, sigma=sigma, delta_over_r=delta_over_r,
                     method=method, tol=tol)
-    return compute_map(spec, workers=workers, store_path=store, progress=progress,
-                       command=command)
+    return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
 def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, load=None,
@@ -443,14 +441,11 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, loa
     xarray.Dataset
         As written by ``thermocontact map --cylinder ... --out``.
     """
-    from .studies.operating_maps import compute_operating_map
-
     spec = map_spec(x, y, cylinder=cylinder, half_plane=half_plane, friction=friction,
                     lam=lam, radius=radius, load=load, speed=speed, speed_ratio=speed_ratio,
                     dundurs=dundurs, materials=materials, tol=tol, zones=zones,
                     conductance=conductance)
-    return compute_operating_map(spec, workers=workers, progress=progress, command=command,
-                                 store_path=store)
+    return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
 def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
@@ -511,3 +506,77 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                          tol=check_positive("tol", tol), dundurs=dundurs is not False,
                          speed_ratio=speed_ratio or 0.0, zones=bool(zones),
                          conductance=_physical_conductance(conductance))
+
+
+def compute_map(spec, *, workers=1, store=None, progress=None, command=None):
+    """The map that a :func:`map_spec` describes, as an :class:`xarray.Dataset`.
+
+    :func:`parameter_map` and :func:`operating_map` are this call on their
+    specification; the command line makes the specification first (to check its
+    inputs and its output file before any work) and then calls this.
+
+    Parameters
+    ----------
+    spec : MapSpec or OperatingSpec
+    workers, store, progress, command
+        As for :func:`parameter_map`.
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    from .studies.maps import MapSpec
+    from .studies.maps import compute_map as dimensionless
+    from .studies.operating_maps import OperatingSpec, compute_operating_map
+
+    if isinstance(spec, MapSpec):
+        return dimensionless(spec, workers=workers, store_path=store, progress=progress,
+                             command=command)
+    if isinstance(spec, OperatingSpec):
+        return compute_operating_map(spec, workers=workers, progress=progress,
+                                     command=command, store_path=store)
+    raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
+                     parameters=("spec",))
+
+
+def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None):
+    """Thermoelastic instability of two sliding half-planes (``thermocontact tei``).
+
+    The critical speed at one wavelength, the neutral mode's migration speed and, at a
+    given speed, every mode and the most unstable wavelength (docs/derivation.md,
+    "Thermoelastic instability of sliding half-planes").
+
+    Parameters
+    ----------
+    slider, counterface : str or Material
+        The sliding half-plane and the one it slides over: names, inline
+        definitions ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
+        non-conductor; not both.
+    friction : float
+        Coulomb coefficient ``f >= 0``.
+    wavelength : float or str
+        ``L > 0`` of the perturbation, m or with units (``"50mm"``).
+    speed : float or str, optional
+        Sliding speed ``V >= 0``, m/s or with units: adds the modes at that speed
+        and the most unstable wavelength.
+    dundurs : bool, optional
+        Keep the Dundurs term ``beta f`` (default), as ``contact`` does.
+    materials : str or os.PathLike, optional
+        A TOML file of further materials.
+
+    Returns
+    -------
+    TEIResult
+        Its ``to_dict()`` is the command's JSON.
+
+    Raises
+    ------
+    InputError
+        A wavelength <= 0, a speed or friction < 0, both bodies non-conducting, an
+        unknown material; the message is one line naming the parameter.
+    """
+    from .studies.tei import analyse
+
+    s, c = _materials(slider, counterface, materials)
+    return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
+                   speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))

@@ -144,13 +144,18 @@ def outside_operators(par: Parameters, rep, side: float, tt):
     slope kernel to ``[E(c(e - r)) - E(c(s - r))]/c`` (D5), the stationary
     half-plane's ``sgn(u)/2`` to ``tt/2`` on either side, and the regular part of
     the cylinder's temperature gradient ``c M(c u) - 1/u`` to
-    ``-[exp(-c u) K0(c|u|) + ln|u|]`` (D8-D10).  Every kernel is a function of the
-    distance ``e - r`` to the edge, formed without cancellation.
+    ``-[exp(-c u) K0(c|u|) + ln|u|]`` (D8-D10).  A half-plane moving through the
+    contact (``c2 = R Pe != 0``) replaces ``sgn(u)/2`` by its slope kernel, whose
+    integral is the cylinder's drop with ``|c2|`` at the distance ``|e - r|`` on the
+    side where ``c2 u > 0`` (the right for ``c2 > 0``, the left for ``c2 < 0``) and
+    zero on the other, and
+    adds its regular gradient part ``M_c2``, integrated as the cylinder's (D32b).
+    Every kernel is a function of the distance ``e - r`` to the edge, formed without
+    cancellation.
 
     Parameters
     ----------
     par : Parameters
-        A stationary half-plane (``speed_ratio = 0``).
     rep : Representation
         One that integrates kernels of the distance to an edge (``from_edge``).
     side : {-1.0, 1.0}
@@ -163,8 +168,6 @@ def outside_operators(par: Parameters, rep, side: float, tt):
     Hp, Hq : ndarray, shape (k, n)
         ``I`` of the heat equation's (D18) is ``Hp phi + Hq psi``.
     """
-    if par.half_plane_scale:
-        raise ValueError("outside_operators: a stationary half-plane only")
     tt = np.atleast_1d(np.asarray(tt, dtype=float))
     points = side * (1.0 + tt)
     col = tt[:, None]
@@ -178,22 +181,40 @@ def outside_operators(par: Parameters, rep, side: float, tt):
     # ln|(s - r)/(e - r)| with e - r = e_r (the argument): log1p(side tt / e_r).
     lb, lq = edge_integral("log", lambda e: np.log1p(side * col / e))
     C = lb / np.pi
-    half = 0.5 * tt[:, None]
-    Tp = (1.0 - eta) * half * rep.pressure_rule.weights[None, :]
-    Tq = -half * rep.flux_rule.weights[None, :]
+    c2 = par.half_plane_scale
+    if not c2:
+        half = 0.5 * tt[:, None]
+        Tp = (1.0 - eta) * half * rep.pressure_rule.weights[None, :]
+        Tq = -half * rep.flux_rule.weights[None, :]
+    elif c2 * side > 0.0:
+        # The moving half-plane's slope kernel lives where c2 u > 0: the cylinder's
+        # drop with |c2| at the distance |e - r| (section 16).
+        a2 = abs(c2)
+        hb, hq = edge_integral(f"drop2 {c2!r}", lambda e: cylinder_displacement_drop(
+            a2 * side * e, a2 * col), a2)
+        Tp, Tq = (1.0 - eta) * hb / a2, -hq / a2
+    else:
+        Tp = np.zeros((tt.size, rep.n))
+        Tq = np.zeros((tt.size, rep.n))
     if d and side > 0.0:
         # Only downstream of the cylinder's material, which enters at s = +1.
         db, dq = edge_integral("drop", lambda e: cylinder_displacement_drop(c * e, c * col), c)
         Tp = Tp + d * (1.0 + eta) * db / c
         Tq = Tq + d * dq / c
 
-    def temperature_change(e):
+    def temperature_change(e, c=c):
         # -[T(c(e + side tt)) + ln|e + side tt|] + [T(c e) + ln|e|], T = exp(-u) K0(|u|).
         far = e + side * col
         return (cylinder_temperature(c * e) - cylinder_temperature(c * far)
                 - np.log1p(side * col / e))
     mb, mq = edge_integral("temperature", temperature_change, c)
     Hq = (lq + (rho / (1.0 + rho)) * mq) / np.pi
+    if c2:
+        # (D18b): the half-plane's regular part on q' and, subtracted, on p.
+        m2b, m2q = edge_integral(f"temperature2 {c2!r}",
+                                 lambda e: temperature_change(e, c2), abs(c2))
+        Hq = Hq + m2q / ((1.0 + rho) * np.pi)
+        mb = mb - m2b
     Hp = (2.0 / ((1.0 + rho) * (1.0 + 1.0 / rho))) * mb / np.pi
     return C, Tp, Tq, Hp, Hq
 
@@ -207,20 +228,27 @@ def temperature_operators(par: Parameters, rep, s, aux=None):
     the contact's half-width (a length unit ``Delta`` adds ``ln(Delta)`` times the heat
     into the half-plane); ``q1 = ((1 + eta) p + q')/2``, ``q2 = ((1 - eta) p - q')/2``.
     The undifferentiated form of the heat equation, for contact with an interface
-    conductance (derivation section 15).
+    conductance (derivation section 15).  A half-plane moving through the contact
+    (``c2 = R Pe != 0``, section 5b) has Carslaw and Jaeger's temperature with its own
+    signed argument: ``ln|u|`` becomes ``-T(c2 u)`` (D33b), scale-free, so that a
+    length unit adds no logarithm.
 
     Returns
     -------
     Up, Uq : ndarray, shape (k, n)
         On ``phi`` and ``psi``.
     """
-    if par.half_plane_scale:
-        raise ValueError("temperature_operators: a stationary half-plane only")
     rho, c, eta = par.K2_over_K1, par.cylinder_scale, par.eta
     tb, tq = rep.integrate(lambda u: cylinder_temperature(c * u), s, scale=c,
                            logarithmic=True, aux=aux)
-    lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0, logarithmic=True,
-                           aux=aux)
+    c2 = par.half_plane_scale
+    if c2:
+        t2b, t2q = rep.integrate(lambda u: cylinder_temperature(c2 * u), s, scale=abs(c2),
+                                 logarithmic=True, aux=aux)
+        lb, lq = -t2b, -t2q
+    else:
+        lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0, logarithmic=True,
+                               aux=aux)
     Up = 0.5 * rho * (1.0 + eta) * tb + 0.5 * (1.0 - eta) * lb
     Uq = 0.5 * rho * tq - 0.5 * lq
     return Up, Uq

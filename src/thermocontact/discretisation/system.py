@@ -20,6 +20,12 @@ with the load and heat-partition rows ``w_p . phi = 1`` and
 ``lam`` or ``sigma``, so one assembly serves a whole sweep over them.  The blocks
 are plain arrays and a representation (pickled as its class and ``n``), so an
 assembly can be sent to another process.
+
+:func:`contact_set_system` places the blocks of every zone of a contact set, and
+their terms at each other's points, in one linear system with its closure (the heat
+partition or the offset) and, optionally, an interface conductance (derivation
+sections 14-16).  The single patch is its one zone in its own scaling: the zone
+``(-1, 1)`` with no initial gap, whose two defects are ``L sigma/Delta`` and ``L``.
 """
 
 from __future__ import annotations
@@ -28,11 +34,58 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dataclasses import replace
+
 from ..problem.parameters import Parameters
-from .operator import contact_operators, heat_operators
+from ..problem.validation import InputError, check_range
+from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
 from .representations import Representation, range_projections
 
-__all__ = ["Blocks", "assemble", "equation_points"]
+__all__ = ["BIOT_RANGE", "Blocks", "Conductance", "ContactSetSystem", "assemble",
+           "contact_set_system", "equation_points", "temperature_points", "zone_parameters"]
+
+#: The Biot numbers ``h l/K2`` of an interface conductance that are solved: from
+#: nearly insulating to perfect contact to rounding (section 15).
+BIOT_RANGE = (1e-12, 1e15)
+
+
+@dataclass(frozen=True)
+class Conductance:
+    """An interface conductance ``h = h0 (p / p_ref)^m`` (derivation sections 15, 16).
+
+    Attributes
+    ----------
+    biot0 : float
+        ``h0 l / K2 > 0``: the Biot number of the conductance at the reference
+        pressure ``p_ref = P/(2 l)``, ``l`` the length unit (the Hertz half-width of
+        the load for a contact set, the contact's half-width ``Delta`` for the single
+        patch, section 16).
+    exponent : float
+        ``m >= 0`` (0: a constant conductance; about 0.95 for plastically deformed
+        asperities, Cooper, Mikic and Yovanovich 1969).
+    """
+
+    biot0: float
+    exponent: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
+                                                      *BIOT_RANGE))
+        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
+
+    def biot(self, pressure):
+        """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""
+        if self.exponent == 0.0:
+            return np.full(np.shape(pressure), self.biot0)
+        return self.biot0 * np.maximum(2.0 * np.asarray(pressure), 1e-300) ** self.exponent
+
+    def dbiot(self, pressure):
+        """``dBi/dp`` (0 where the pressure is clipped)."""
+        p2 = 2.0 * np.asarray(pressure)
+        live = p2 > 1e-300
+        out = np.zeros(np.shape(p2))
+        out[live] = 2.0 * self.exponent * self.biot0 * p2[live] ** (self.exponent - 1.0)
+        return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,3 +170,264 @@ def equation_points(rep: Representation, scheme: str):
         s, aux = rep.projection_points(x)
         return (s, aux, p1), (s, aux, p2)
     raise ValueError(f"scheme must be 'collocation' or 'projection', got {scheme!r}")
+
+
+def zone_parameters(par: Parameters, half: float) -> Parameters:
+    """The single-patch parameters of a zone of half-width ``half`` (units of ``l``)."""
+    if half == 1.0:
+        return par
+    return replace(par, pe=par.pe * half, fhpe=par.fhpe * half)
+
+
+def temperature_points(rep, scheme: str):
+    """Where the temperature equation (D33) is evaluated: ``n`` points and the
+    reduction (the first ``n`` projections of the contact equation, or collocation at
+    ``tau = pi (k - 1/2)/n``)."""
+    n = rep.n
+    if scheme == "projection":
+        x, p1, _ = range_projections(n)
+        s, aux = rep.projection_points(x)
+        return s, aux, p1[:n]
+    tau = np.pi * (np.arange(n, 0, -1) - 0.5) / n
+    s, aux = rep.projection_points(tau)
+    return s, aux, None
+
+
+@dataclass(frozen=True, eq=False)
+class ContactSetSystem:
+    """The linear system of one contact set: ``(A0 + F A1) x = b``.
+
+    The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
+    ``psi``, then the closure's unknowns (each zone's defects ``(mu, nu)`` with the
+    heat partition given; the one zone's ``nu`` with the offset given), then (with an
+    interface conductance) the temperature difference's constant.  The rows are each
+    zone's contact equation, the load, each zone's heat (or temperature) equation,
+    the heat partition (``lam`` given) and the returns between zones.  With a
+    conductance each zone's temperature rows (D33) depend on the Biot numbers at its
+    points (``points``): they are formed by :meth:`matrix` from ``local``.
+    """
+
+    A0: np.ndarray
+    A1: np.ndarray
+    b: np.ndarray
+    zones: int
+    n: int
+    local: tuple = ()
+    points: tuple = ()
+    closure: str = "lam"
+
+    @property
+    def closure_slice(self) -> slice:
+        """The closure's unknowns in ``x``."""
+        k = 2 * self.zones if self.closure == "lam" else 1
+        return slice(2 * self.zones * self.n, 2 * self.zones * self.n + k)
+
+    def matrix(self, F, biot=None, scale=None):
+        A = self.A0 + F * self.A1
+        if not self.local:
+            return A
+        # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its
+        # column stays of order one however small the conductance.
+        scale = self.theta_scale(biot) if scale is None else scale
+        for (rows, P, U, Lq), bi in zip(self.local, biot):
+            # (D33) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
+            # the interface's (pi/2) q by 1/(1 + Bi); either limit stays finite.
+            w = 1.0 / (1.0 + bi)
+            point_rows = (bi * w)[:, None] * U + (0.5 * np.pi * w)[:, None] * Lq
+            point_rows[:, -1] /= scale
+            A[rows] = point_rows if P is None else P @ point_rows
+        return A
+
+    @staticmethod
+    def theta_scale(biot):
+        return max(float(np.max(bi / (1.0 + bi))) for bi in biot)
+
+    def conductance_jacobian(self, x, biot, dbiot, pressure_rows, scale):
+        """The derivative of the temperature rows through ``Bi(p)``: ``(D33)`` times
+        ``Bi/(1 + Bi)`` changes with ``Bi`` by ``(U x - (pi/2) q)/(1 + Bi)^2`` per
+        point, and ``Bi`` with the pressure ``p = pressure_rows @ phi``."""
+        J = np.zeros_like(self.A0)
+        n = self.n
+        for i, ((rows, P, U, Lq), bi, dbi, R) in enumerate(zip(self.local, biot, dbiot,
+                                                               pressure_rows)):
+            ux = U[:, :-1] @ x[:-1] + U[:, -1] * x[-1] / scale
+            dr = (ux - 0.5 * np.pi * (Lq @ x)) / (1.0 + bi) ** 2 * dbi
+            block = dr[:, None] * R
+            J[rows, i * n:(i + 1) * n] = block if P is None else P @ block
+        return J
+
+
+def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
+                       sigma_over_delta=None, profile=None, conductance=False,
+                       blocks=None) -> ContactSetSystem:
+    """Assemble the equations of a contact set with given edges (derivation sections
+    14 and 16): the one assembler of the single patch and of contact sets.
+
+    Rows: each zone's contact equation (``n + 1``), the load, each zone's heat
+    equation (``n - 1``), the heat partition (with ``lam``), and for each gap between
+    zones the gap's return (D31a) and the temperature difference's return (D31b).
+    With an interface conductance (``conductance=True``, section 15) each zone's heat
+    rows are instead ``n`` rows of the temperature equation (D33), whose constant is
+    one more unknown, and (D31b) is not needed.  With the heat partition given, each
+    zone's right side gains ``(2/pi)(mu_j + nu_j s)``; with the offset given (one
+    zone only) ``(2/pi) nu (sigma + s)`` and no partition row (section 16).
+
+    Parameters
+    ----------
+    par : Parameters
+        ``pe`` and ``fhpe`` in the length unit of ``edges`` (``Pe_l`` and ``fHPe_l``
+        for a contact set; ``Pe`` and ``fHPe`` for the single patch, edges (-1, 1)).
+    edges : ndarray, shape (m, 2)
+    rep : Representation
+        An edge-graded one when ``m > 1`` (the kernels between zones are integrated
+        from an edge).
+    scheme : {"collocation", "projection"}
+    lam, sigma_over_delta : float
+        Exactly one: the heat partition, or (one zone) the offset ``centre/half``.
+    profile : numpy.polynomial.Polynomial, optional
+        The initial gap in units of ``l^2/R`` against ``X``; None: none (the single
+        patch in its own scaling, whose ``X^2/2`` is carried by the defects).
+    conductance : bool
+    blocks : Blocks, optional
+        The one zone's own blocks at ``half = 1`` (a cached single-patch assembly).
+
+    Returns
+    -------
+    ContactSetSystem
+
+    Raises
+    ------
+    InputError
+        The offset given with more than one zone.
+    """
+    m, n = len(edges), rep.n
+    if (lam is None) == (sigma_over_delta is None):
+        raise InputError("give exactly one of lam and sigma_over_delta")
+    if sigma_over_delta is not None and m != 1:
+        raise InputError(f"sigma_over_delta closes a single zone only (section 16), got "
+                         f"{m} zones; give lam instead")
+    centre = 0.5 * (edges[:, 0] + edges[:, 1])
+    half = 0.5 * (edges[:, 1] - edges[:, 0])
+    zpar = [zone_parameters(par, h) for h in half]
+    nh = n if conductance else n - 1
+    closing = 2 * m if lam is not None else 1
+
+    def reduce(P, M):
+        return M if P is None else P @ M
+
+    # The single patch's cached blocks serve the one zone (-1, 1): then no point is
+    # needed unless a temperature equation or a profile asks for them.
+    own_cached = blocks is not None and m == 1 and half[0] == 1.0
+    if own_cached and not conductance and profile is None:
+        sc = sh = ah = p1 = p2 = None
+        e0, e1 = blocks.const_column, blocks.linear_column
+    else:
+        (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
+        if conductance:
+            sh, ah, p2 = temperature_points(rep, scheme)
+        # The right side's e_0 and e_1 as the single patch forms them.
+        e0 = np.ones(n + 1) if p1 is None else p1.sum(axis=1)
+        e1 = reduce(p1, sc)
+    size = 2 * m * n + closing + int(conductance)
+    A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
+    phi = [slice(j * n, (j + 1) * n) for j in range(m)]
+    psi = [slice((m + j) * n, (m + j + 1) * n) for j in range(m)]
+    load = m * (n + 1)
+    part = load + 1 + m * nh
+    local, points = [], []
+    for i in range(m):
+        rc = slice(i * (n + 1), (i + 1) * (n + 1))
+        rh = slice(load + 1 + i * nh, load + 1 + (i + 1) * nh)
+        if sc is not None:
+            xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
+        if conductance:
+            U = np.zeros((sh.size, size))
+        for j in range(m):
+            own = i == j
+            if own:
+                own_blocks = blocks if own_cached else assemble(zpar[j], rep, scheme)
+                C, Tp, Tq = own_blocks.C, own_blocks.Tp, own_blocks.Tq
+            else:
+                s_c = (xc - centre[j]) / half[j]
+                C, Tp, Tq = (reduce(p1, M) for M in contact_operators(zpar[j], rep, s_c,
+                                                                      own=False))
+            # Zone j's thermal terms in units of l carry its half-width (section 14).
+            A0[rc, phi[j]] = C
+            A1[rc, phi[j]] = -half[j] * Tp
+            A1[rc, psi[j]] = -half[j] * Tq
+            if conductance:
+                s_h = sh if own else (xh - centre[j]) / half[j]
+                # (D33) in units of l: zone j's integrals carry Delta_j, and a stationary
+                # half-plane's logarithm ln(Delta_j) times the heat it puts into it.
+                Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
+                lg = 0.0 if par.half_plane_scale else np.log(half[j])
+                U[:, phi[j]] = half[j] * (Up + 0.5 * (1.0 - par.eta) * lg
+                                          * rep.pressure_rule.weights[None, :])
+                U[:, psi[j]] = half[j] * (Uq - 0.5 * lg * rep.flux_rule.weights[None, :])
+            elif own:
+                A0[rh, phi[j]] = own_blocks.Hp
+                A0[rh, psi[j]] = own_blocks.Hq
+            else:
+                Hp, Hq = heat_operators(zpar[j], rep, (xh - centre[j]) / half[j])
+                A0[rh, phi[j]] = reduce(p2, Hp)
+                A0[rh, psi[j]] = reduce(p2, Hq)
+        if conductance:
+            U[:, size - 1] = -1.0
+            # The interface's (pi/2) q = (pi/2)(q' + eta p) at the zone's own points.
+            Lq = np.zeros_like(U)
+            Lq[:, phi[i]] = par.eta * rep.pressure_rows(sh, ah)
+            Lq[:, psi[i]] = rep.flux_rows(sh, ah)
+            local.append((rh, p2, U, Lq))
+            points.append((sh, ah))
+        if profile is not None:
+            b[rc] = (2.0 / np.pi) * reduce(p1, profile.deriv()(xc))
+        first = 2 * m * n + (2 * i if lam is not None else 0)
+        if lam is not None:
+            A0[rc, first] = -(2.0 / np.pi) * e0
+            A0[rc, first + 1] = -(2.0 / np.pi) * e1
+        else:
+            A0[rc, first] = -(2.0 / np.pi) * (sigma_over_delta * e0 + e1)
+
+    wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
+    b[load] = 1.0
+    for j in range(m):
+        A0[load, phi[j]] = half[j] * wp
+        if lam is not None:
+            # (D19) with the load row: sum_j Delta_j w_q . psi_j = lam - eta.
+            A0[part, psi[j]] = half[j] * wq
+    if lam is not None:
+        b[part] = lam - par.eta
+    for k in range(m - 1):
+        lo, hi = edges[k, 1], edges[k + 1, 0]
+        rg, rt = part + 1 + k, part + m + k
+        for j in range(m):
+            C, Tp, Tq, Hp, Hq = region_integral(zpar[j], rep, edges[j], half[j], lo, hi)
+            A0[rg, phi[j]] += half[j] * C
+            A1[rg, phi[j]] -= half[j] ** 2 * Tp
+            A1[rg, psi[j]] -= half[j] ** 2 * Tq
+            if not conductance:
+                A0[rt, phi[j]] += half[j] * Hp
+                A0[rt, psi[j]] += half[j] * Hq
+        b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
+    return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points),
+                            "lam" if lam is not None else "sigma")
+
+
+def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
+    """Rows of the integrals over ``lo < X < hi`` (outside the zone) of its terms.
+
+    ``integral`` of the zone's contact-equation and heat-equation left sides over
+    ``X``, per unit ``ds`` (multiply by ``half`` for ``dX``): the differences of
+    :func:`~thermocontact.discretisation.operator.outside_operators` at the two
+    ends, measured from the zone's edge on that side.
+    """
+    a, b = edge_pair
+    if lo >= b:
+        side, t_lo, t_hi = 1.0, (lo - b) / half, (hi - b) / half
+    else:
+        side, t_lo, t_hi = -1.0, (a - lo) / half, (a - hi) / half
+    ops = outside_operators(zpar, rep, side, np.array([t_lo, t_hi]))
+    # From lo to hi: I(t_hi) - I(t_lo) on the right; on the left the integral from
+    # the edge outward runs from hi to lo, so the same difference holds with the
+    # orientation of I: integral_lo^hi = I(t_hi) - I(t_lo) as well.
+    return tuple(M[1] - M[0] for M in ops)

@@ -28,14 +28,14 @@ def plot_tei(result, ax=None, wavelengths=None):
     -------
     matplotlib.axes.Axes
     """
-    from ..studies.tei import critical_speeds
-
     ax = prepare_axes(ax)
     wl0 = result.wavelength
     if wavelengths is None:
         wavelengths = wl0 * np.logspace(-1.0, 1.0, 25)
     wavelengths = np.sort(np.asarray(wavelengths, dtype=float))
-    speeds = critical_speeds(result.pair, wavelengths)
+    # Only V/(kappa m) enters (derivation, H11): V_c L is the same at every wavelength.
+    vc = result.critical_speed
+    speeds = np.full(wavelengths.shape, np.nan) if vc is None else vc * wl0 / wavelengths
     label = (f"{result.slider} on {result.counterface}, f = {result.friction:g}"
              + ("" if result.dundurs else ", no Dundurs term"))
     if np.all(np.isnan(speeds)):

@@ -113,6 +113,41 @@ class Axis:
         return (f"{self.name}:{self.start!r}:{self.stop!r}:{self.count}"
                 + (":log" if self.log else ""))
 
+    @classmethod
+    def parse(cls, text, label: str = "axis") -> "Axis":
+        """An axis from its command-line form ``name:start:stop:count[:log]``.
+
+        The name is not checked here (the map that takes the axis checks it);
+        errors name ``label`` (``"--x"``).
+
+        Examples
+        --------
+        >>> Axis.parse("pe:1:100:3:log").values
+        array([  1.,  10., 100.])
+        """
+        form = "name:start:stop:count[:log]"
+        if not isinstance(text, str):
+            raise InputError(f"{label} must be {form}, got {text!r}", parameters=(label,))
+        parts = text.split(":")
+        if len(parts) not in (4, 5):
+            raise InputError(f"{label} must be {form}, got {text!r}", parameters=(label,))
+        try:
+            start, stop = float(parts[1]), float(parts[2])
+        except ValueError:
+            raise InputError(f"{label} start and stop must be numbers, got {text!r}",
+                             parameters=(label,)) from None
+        try:
+            count = int(parts[3])
+        except ValueError:
+            raise InputError(f"{label} count must be an integer, got {parts[3]!r}",
+                             parameters=(label,)) from None
+        if len(parts) == 5 and parts[4].strip() != "log":
+            raise InputError(f"{label} fifth field must be 'log', got {parts[4]!r}",
+                             parameters=(label,))
+        name, start, stop, count, log = checked_axis(label, parts[0].strip(), start, stop,
+                                                      count, len(parts) == 5)
+        return cls(name, start, stop, count, log)
+
     def renamed(self, name: str) -> "Axis":
         """The same values under another spelling of the parameter."""
         return Axis(name, self.start, self.stop, self.count, self.log)

@@ -86,6 +86,7 @@ class ContactSolution(FieldResult):
     load_ratio_change: float | None = None
     estimate_is_bound: bool = True
     applicability: Applicability | None = None
+    conductance: object = None
 
     # Status, in the manner of scipy's OptimizeResult.
     @property
@@ -254,6 +255,10 @@ class ContactSolution(FieldResult):
             "flux_half_plane": self.flux_half_plane.tolist(),
             "version": __version__,
         })
+        if self.conductance is not None:
+            # Flat scalars, so that the dataset's attributes hold them.
+            rec["conductance_biot0"] = self.conductance.biot0
+            rec["conductance_exponent"] = self.conductance.exponent
         if self.applicability is not None:
             rec.update(self.applicability.to_dict())
         return rec

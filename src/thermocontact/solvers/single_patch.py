@@ -9,6 +9,11 @@ Two ways to close the problem (derivation section 5):
 * ``sigma_over_delta`` given: the unknowns are ``phi``, ``psi`` and ``L``; ``lam``
   follows from the heat flux.  With ``fhpe = 0`` this problem has no bounded
   solution unless ``sigma = 0``, and then ``lam`` is undetermined: refused.
+
+The system is the one-zone contact set ``(-1, 1)`` in the contact's own scaling,
+assembled by :func:`~thermocontact.discretisation.system.contact_set_system` from the
+cached blocks (derivation section 16); an interface conductance replaces the heat
+equation by the temperature equation (D33).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ from scipy.linalg.lapack import dgecon
 
 from ..analysis.validity import assess
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..discretisation.system import Blocks
+from ..discretisation.system import Blocks, Conductance, ContactSetSystem, contact_set_system
 from ..numerics.cache import BoundedCache
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
@@ -40,6 +45,7 @@ __all__ = [
     "check_n",
     "factorise",
     "solve",
+    "solve_contact_system",
     "solve_equilibrated",
     "solve_system",
 ]
@@ -84,8 +90,101 @@ def factorise(A, what="the linear system"):
     return lu, float(rcond)
 
 
+#: Newton steps of the interface conductance's dependence on the pressure.
+MAX_PICARD = 50
+
+
+def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=None,
+                  b=None, what="the contact set's linear system"):
+    A = system.matrix(F, biot, scale) if A is None else A.copy()
+    b = system.b.copy() if b is None else b.copy()
+    x, rcond = solve_equilibrated(A, b, what)
+    if not np.all(np.isfinite(x)):
+        raise SolveError(f"{what}: the linear solve produced non-finite values")
+    return x, float(rcond)
+
+
+def solve_contact_system(system: ContactSetSystem, F: float, rep, half, conductance=None,
+                         what="the contact set's linear system"):
+    """``x`` and the reciprocal condition number of an assembled contact set at
+    ``F`` (:func:`~thermocontact.discretisation.system.contact_set_system`).
+
+    With an interface conductance (section 15) whose Biot numbers follow the
+    pressure (``m != 0``), Newton's method on the whole linear system with that
+    dependence in its Jacobian, from the load spread over the zones as Hertz's shape
+    (plain repetition with the last pressure oscillates once the heat couples
+    strongly).
+
+    Parameters
+    ----------
+    system : ContactSetSystem
+    F : float
+        ``fHPe`` in the system's length unit.
+    rep : Representation
+    half : array_like
+        The zones' half-widths in the system's length unit.
+    conductance : Conductance, optional
+        Required when the system was assembled with one.
+    what : str
+        The system's name in messages.
+
+    Raises
+    ------
+    SolveError
+        A singular system, or the conductance's pressure unsettled after
+        :data:`MAX_PICARD` Newton steps.
+    """
+    if not system.local:
+        return _solve_linear(system, F, what=what)
+    m, n = system.zones, system.n
+    # The first pressure: the load spread over the zones as Hertz's shape.
+    rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
+    pressure = [(2.0 / (np.pi * np.sum(half))) * rep.pressure_weight(sh)
+                for sh, _ in system.points]
+    cond = conductance
+    biot = [cond.biot(p) for p in pressure]
+    scale = system.theta_scale(biot)
+    x, rcond = _solve_linear(system, F, biot, scale, what=what)
+    if cond.exponent == 0.0:
+        return x, rcond
+
+    def residual(x):
+        phi = x[:m * n].reshape(m, n)
+        p = [r @ f for r, f in zip(rows, phi)]
+        bi = [cond.biot(q) for q in p]
+        A = system.matrix(F, bi, scale)
+        return A @ x - system.b, A, p, bi
+    r, A, p, bi = residual(x)
+    norm = np.linalg.norm(r)
+    step = np.inf
+    for _ in range(MAX_PICARD):
+        # Converged when the residual is at rounding level or the step is.
+        if (norm <= 1e-11 * max(1.0, np.linalg.norm(system.b))
+                or step <= 1e-13 * np.linalg.norm(x)):
+            return x, rcond
+        J = A + system.conductance_jacobian(x, bi, [cond.dbiot(q) for q in p], rows, scale)
+        dx, rcond = _solve_linear(system, F, A=J, b=-r, what=what)
+        alpha = 1.0
+        while True:
+            trial = residual(x + alpha * dx)
+            if np.linalg.norm(trial[0]) < norm or alpha < 1e-4:
+                break
+            alpha *= 0.5
+        x = x + alpha * dx
+        step = alpha * np.linalg.norm(dx)
+        r, A, p, bi = trial
+        norm = np.linalg.norm(r)
+    raise SolveError(f"the interface conductance's pressure did not settle in "
+                     f"{MAX_PICARD} Newton steps")
+
+
+#: The single patch in its own scaling: one zone from -1 to 1 (section 16).
+_PATCH = np.array([[-1.0, 1.0]])
+
+
 def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
-                 sigma_over_delta=None, check_validity=True, polish=True) -> ContactSolution:
+                 sigma_over_delta=None, check_validity=True, polish=True,
+                 conductance=None) -> ContactSolution:
     """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
 
     Parameters
@@ -103,6 +202,9 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     polish : bool, optional
         Polish every margin's minimum on the closed forms (default), or only those
         near zero (:func:`~thermocontact.analysis.validity.assess`; maps).
+    conductance : Conductance, optional
+        An interface conductance with ``Bi0 = h0 Delta/K2`` (derivation section 16);
+        default perfect thermal contact.
 
     Returns
     -------
@@ -123,13 +225,9 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     rep = blocks.representation
     pr, fr = rep.pressure_rule, rep.flux_rule
     eta = par.eta
-    sk, one = blocks.linear_column, blocks.const_column
-    np1, nm1 = n + 1, n - 1
-    two_pi = 2.0 / np.pi
 
     if lam is not None:
         lam = check_range("lam", lam, -LIMIT, LIMIT)
-        size = 2 * n + 2
     else:
         sigma = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
         if F == 0.0:
@@ -138,25 +236,11 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
                 "coupling the contact is Hertzian, a bounded solution needs "
                 "sigma_over_delta = 0 and then lam is undetermined; give lam instead"
             )
-        size = 2 * n + 1
-
-    A = np.zeros((size, size))
-    b = np.zeros(size)
-    A[:np1, :n] = blocks.C - F * blocks.Tp
-    A[:np1, n:2 * n] = -F * blocks.Tq
-    A[np1, :n] = pr.weights
-    b[np1] = 1.0
-    A[np1 + 1:np1 + 1 + nm1, :n] = blocks.Hp
-    A[np1 + 1:np1 + 1 + nm1, n:2 * n] = blocks.Hq
-    if lam is not None:
-        A[2 * n + 1, n:2 * n] = fr.weights
-        b[2 * n + 1] = lam - eta
-        A[:np1, 2 * n] = -two_pi * one
-        A[:np1, 2 * n + 1] = -two_pi * sk
-    else:
-        A[:np1, 2 * n] = -two_pi * (sigma * one + sk)
-
-    x, rcond = solve_equilibrated(A, b)
+    # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
+    system = contact_set_system(par, _PATCH, rep, METHODS[method].scheme, lam=lam,
+                                sigma_over_delta=sigma_over_delta, blocks=blocks,
+                                conductance=conductance is not None)
+    x, rcond = solve_contact_system(system, F, rep, [1.0], conductance, "the linear system")
     phi, psi = x[:n], x[n:2 * n]
     if lam is not None:
         L_sigma, L = x[2 * n], x[2 * n + 1]
@@ -177,7 +261,7 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
-        validity=validity, rcond=rcond)
+        validity=validity, rcond=rcond, conductance=conductance)
 
 
 def check_n(n) -> int:
@@ -215,6 +299,10 @@ class Model:
         cylinder's (default 0, the stationary half-plane; derivation section 5b).
     beta_f : float, optional
         ``B = beta f`` of the Dundurs term (default 0, the paper's omission; section 5c).
+    conductance : tuple, optional
+        ``(Bi0, m)``: an interface conductance ``h = h0 (p/p_ref)^m`` with
+        ``Bi0 = h0 Delta/K2`` and ``p_ref = P/(2 Delta)`` (derivation section 16);
+        default perfect thermal contact.
     method : str, optional
         A key of :data:`~thermocontact.discretisation.methods.METHODS`.
     n : int, optional
@@ -234,9 +322,10 @@ class Model:
 
     def __init__(self, pe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
                  speed_ratio=0.0, beta_f=0.0, method=DEFAULT_METHOD, n=None,
-                 tol=DEFAULT_TOL):
+                 tol=DEFAULT_TOL, conductance=None):
         self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
                                      speed_ratio, beta_f)
+        self.conductance = None if conductance is None else Conductance(*conductance)
         self.method = check_method(method)
         self.n = None if n is None else check_n(n)
         self.tol = check_positive("tol", tol)
@@ -244,9 +333,10 @@ class Model:
 
     def __getstate__(self):
         return {"parameters": self.parameters, "method": self.method, "n": self.n,
-                "tol": self.tol}
+                "tol": self.tol, "conductance": self.conductance}
 
     def __setstate__(self, state):
+        state.setdefault("conductance", None)
         self.__dict__.update(state)
         self._blocks = {}
 
@@ -256,6 +346,8 @@ class Model:
                 f"delta1_over_delta2={p.delta1_over_delta2:g}, "
                 + (f"speed_ratio={p.speed_ratio:g}, " if p.speed_ratio else "")
                 + (f"beta_f={p.beta_f:g}, " if p.beta_f else "")
+                + (f"conductance=({self.conductance.biot0:g}, {self.conductance.exponent:g}), "
+                   if self.conductance is not None else "")
                 + f"method={self.method!r}, "
                 f"n={self.n}, tol={self.tol:g})")
 
@@ -284,7 +376,7 @@ class Model:
         """One solve at ``n`` without error estimate."""
         return solve_system(self.parameters_at(fhpe), self.blocks(n), self.method, lam=lam,
                             sigma_over_delta=sigma_over_delta, check_validity=check_validity,
-                            polish=polish)
+                            polish=polish, conductance=self.conductance)
 
     def sizes(self):
         """The first levels of the refinement and the largest ``n``."""
@@ -329,7 +421,8 @@ class Model:
             # Validity only for the solution returned: the coarser levels feed the
             # error estimate alone.
             return (solve_system(par, self.blocks(m), self.method, lam=lam,
-                                 sigma_over_delta=sigma_over_delta, check_validity=False),)
+                                 sigma_over_delta=sigma_over_delta, check_validity=False,
+                                 conductance=self.conductance),)
 
         def validity_of(sol):
             return assess(par, sol.representation, sol.phi, sol.psi, sol.load_ratio,
@@ -372,7 +465,8 @@ class Model:
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           speed_ratio=0.0, beta_f=0.0, lam=None, sigma_over_delta=None, n=None,
           method=DEFAULT_METHOD,
-          tol=DEFAULT_TOL, check_convergence=False, progress=None) -> ContactSolution:
+          tol=DEFAULT_TOL, check_convergence=False, progress=None,
+          conductance=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
@@ -401,6 +495,9 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         Also solve with ``2n`` and report the change in ``P_H/P``.
     progress : callable, optional
         ``progress(n, estimate)`` before each level of the refinement.
+    conductance : tuple, optional
+        ``(Bi0, m)`` of an interface conductance, ``Bi0 = h0 Delta/K2`` (section 16);
+        default perfect thermal contact.
 
     Returns
     -------
@@ -422,6 +519,6 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
-                  method=method, n=n, tol=tol)
+                  method=method, n=n, tol=tol, conductance=conductance)
     return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
                        check_convergence=check_convergence, progress=progress, _stacklevel=3)

@@ -15,7 +15,11 @@ defects ``mu_j``, ``nu_j`` of a term ``(2/pi)(mu_j + nu_j s)`` added to its righ
 side; Newton's method moves the edges until every defect vanishes.  With one zone
 this is the single-patch problem with the half-width fixed by the load
 (``P_H/P = Delta^2``, ``Pe = Pe_l Delta``, ``fHPe = fHPe_l Delta``,
-``sigma/Delta = centre/Delta``), solved by the same blocks.
+``sigma/Delta = centre/Delta``), solved by the same blocks; one zone may instead be
+closed by its offset, the half-width then found by Newton's method.  The system is
+assembled by :func:`~thermocontact.discretisation.system.contact_set_system`, the
+single patch's too (derivation section 16), with the moving half-plane, the Dundurs
+term and an interface conductance.
 """
 
 from __future__ import annotations
@@ -28,68 +32,22 @@ from numpy.polynomial import Polynomial
 from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
-from ..discretisation.operator import (contact_operators, heat_operators, outside_operators,
-                                       temperature_operators)
-from ..discretisation.representations import range_projections
-from ..discretisation.system import equation_points
+from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
+                                     contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
 from ..problem.parameters import Parameters, SolveError
-from ..problem.validation import InputError, check_range
-from .single_patch import solve_equilibrated
+from ..problem.validation import InputError, check_exactly_one, check_range
+from .refinement import N_RANGE, refine
+from .single_patch import solve_contact_system
 
-__all__ = ["CYLINDER", "ZoneModel", "ZoneSolution", "zone_system"]
+__all__ = ["BIOT_RANGE", "CYLINDER", "Conductance", "ZoneModel", "ZoneSolution",
+           "zone_parameters", "zone_system"]
 
 #: The cylinder's initial gap, ``X^2/2`` in units of ``l^2/R``.
 CYLINDER = Polynomial([0.0, 0.0, 0.5])
 #: Newton's stopping test on the largest defect.
 DEFECT_TOL = 1e-11
-
-
-#: Newton steps of the interface conductance's dependence on the pressure.
-MAX_PICARD = 50
-
-
-#: The Biot numbers ``h l/K2`` of an interface conductance that are solved: from
-#: nearly insulating to perfect contact to rounding (section 15).
-BIOT_RANGE = (1e-12, 1e15)
-
-
-@dataclass(frozen=True)
-class Conductance:
-    """An interface conductance ``h = h0 (p / p_ref)^m`` (derivation section 15).
-
-    Attributes
-    ----------
-    biot0 : float
-        ``h0 l / K2 > 0``: the Biot number of the conductance at the reference
-        pressure, ``p_ref = P/(2 l)`` (the mean Hertz pressure of the load).
-    exponent : float
-        ``m >= 0`` (0: a constant conductance; about 0.95 for plastically deformed
-        asperities, Cooper, Mikic and Yovanovich 1969).
-    """
-
-    biot0: float
-    exponent: float = 0.0
-
-    def __post_init__(self):
-        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
-                                                      *BIOT_RANGE))
-        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
-
-    def biot(self, pressure):
-        """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""
-        if self.exponent == 0.0:
-            return np.full(np.shape(pressure), self.biot0)
-        return self.biot0 * np.maximum(2.0 * np.asarray(pressure), 1e-300) ** self.exponent
-
-    def dbiot(self, pressure):
-        """``dBi/dp`` (0 where the pressure is clipped)."""
-        p2 = 2.0 * np.asarray(pressure)
-        live = p2 > 1e-300
-        out = np.zeros(np.shape(p2))
-        out[live] = 2.0 * self.exponent * self.biot0 * p2[live] ** (self.exponent - 1.0)
-        return out
 
 
 def _edges(edges) -> np.ndarray:
@@ -105,209 +63,20 @@ def _edges(edges) -> np.ndarray:
     return e
 
 
-def zone_parameters(par: Parameters, half: float) -> Parameters:
-    """The single-patch parameters of a zone of half-width ``half`` (units of ``l``)."""
-    return replace(par, pe=par.pe * half, fhpe=par.fhpe * half)
-
-
-@dataclass(frozen=True)
-class ZoneSystem:
-    """The linear system of one contact set: ``(A0 + F A1) x = b``.
-
-    The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
-    ``psi``, then each zone's defects ``(mu, nu)``, then (with an interface
-    conductance) the temperature difference's constant.  With a conductance each
-    zone's temperature rows (D33) depend on the Biot numbers at its points
-    (``points``): they are formed by :meth:`matrix` from ``local``.
-    """
-
-    A0: np.ndarray
-    A1: np.ndarray
-    b: np.ndarray
-    zones: int
-    n: int
-    local: tuple = ()
-    points: tuple = ()
-
-    def matrix(self, F, biot=None, scale=None):
-        A = self.A0 + F * self.A1
-        if not self.local:
-            return A
-        # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its
-        # column stays of order one however small the conductance.
-        scale = self.theta_scale(biot) if scale is None else scale
-        for (rows, P, U, Lq), bi in zip(self.local, biot):
-            # (D33) times Bi/(1 + Bi): the temperature terms weighted by Bi/(1 + Bi),
-            # the interface's (pi/2) q by 1/(1 + Bi); either limit stays finite.
-            w = 1.0 / (1.0 + bi)
-            point_rows = (bi * w)[:, None] * U + (0.5 * np.pi * w)[:, None] * Lq
-            point_rows[:, -1] /= scale
-            A[rows] = point_rows if P is None else P @ point_rows
-        return A
-
-    @staticmethod
-    def theta_scale(biot):
-        return max(float(np.max(bi / (1.0 + bi))) for bi in biot)
-
-    def conductance_jacobian(self, x, biot, dbiot, pressure_rows, scale):
-        """The derivative of the temperature rows through ``Bi(p)``: ``(D33)`` times
-        ``Bi/(1 + Bi)`` changes with ``Bi`` by ``(U x - (pi/2) q)/(1 + Bi)^2`` per
-        point, and ``Bi`` with the pressure ``p = pressure_rows @ phi``."""
-        J = np.zeros_like(self.A0)
-        n = self.n
-        for i, ((rows, P, U, Lq), bi, dbi, R) in enumerate(zip(self.local, biot, dbiot,
-                                                               pressure_rows)):
-            ux = U[:, :-1] @ x[:-1] + U[:, -1] * x[-1] / scale
-            dr = (ux - 0.5 * np.pi * (Lq @ x)) / (1.0 + bi) ** 2 * dbi
-            block = dr[:, None] * R
-            J[rows, i * n:(i + 1) * n] = block if P is None else P @ block
-        return J
-
-
-def temperature_points(rep, scheme: str):
-    """Where the temperature equation (D33) is evaluated: ``n`` points and the
-    reduction (the first ``n`` projections of the contact equation, or collocation at
-    ``tau = pi (k - 1/2)/n``)."""
-    n = rep.n
-    if scheme == "projection":
-        x, p1, _ = range_projections(n)
-        s, aux = rep.projection_points(x)
-        return s, aux, p1[:n]
-    tau = np.pi * (np.arange(n, 0, -1) - 0.5) / n
-    s, aux = rep.projection_points(tau)
-    return s, aux, None
+#: The system of a contact set (:class:`~thermocontact.discretisation.system.
+#: ContactSetSystem`), under the name it had.
+ZoneSystem = ContactSetSystem
 
 
 def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER,
-                conductance=False) -> ZoneSystem:
-    """Assemble the equations of a contact set with given edges (derivation section 14).
-
-    Rows: each zone's contact equation (``n + 1``), each zone's heat equation
-    (``n - 1``), the load, the heat partition, and for each gap between zones the
-    gap's return (D31a) and the temperature difference's return (D31b).  With an
-    interface conductance (``conductance=True``, section 15) each zone's heat rows
-    are instead ``n`` rows of the temperature equation (D33), whose constant is one
-    more unknown, and (D31b) is not needed.
-
-    Parameters
-    ----------
-    par : Parameters
-        ``pe = Pe_l`` and ``fhpe = fHPe_l`` in units of the Hertz half-width.
-    edges : ndarray, shape (m, 2)
-    lam : float
-    rep : Representation
-        An edge-graded one (the kernels between zones are integrated from an edge).
-    scheme : {"collocation", "projection"}
-    profile : numpy.polynomial.Polynomial
-        The initial gap in units of ``l^2/R`` against ``X`` (default ``X^2/2``).
-    conductance : bool
-    """
-    m, n = len(edges), rep.n
-    centre = edges.mean(axis=1)
-    half = 0.5 * (edges[:, 1] - edges[:, 0])
-    zpar = [zone_parameters(par, h) for h in half]
-    (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
-    if conductance:
-        sh, ah, p2 = temperature_points(rep, scheme)
-    nh = n if conductance else n - 1
-
-    def reduce(P, M):
-        return M if P is None else P @ M
-
-    size = 2 * m * n + 2 * m + int(conductance)
-    A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
-    phi = [slice(j * n, (j + 1) * n) for j in range(m)]
-    psi = [slice((m + j) * n, (m + j + 1) * n) for j in range(m)]
-    slope = profile.deriv()
-    local, points = [], []
-    for i in range(m):
-        rc = slice(i * (n + 1), (i + 1) * (n + 1))
-        rh = slice(m * (n + 1) + i * nh, m * (n + 1) + (i + 1) * nh)
-        xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
-        if conductance:
-            U = np.zeros((sh.size, size))
-        for j in range(m):
-            own = i == j
-            s_c = sc if own else (xc - centre[j]) / half[j]
-            s_h = sh if own else (xh - centre[j]) / half[j]
-            C, Tp, Tq = contact_operators(zpar[j], rep, s_c, ac if own else None, own=own)
-            # Zone j's thermal terms in units of l carry its half-width (section 14).
-            A0[rc, phi[j]] = reduce(p1, C)
-            A1[rc, phi[j]] = -half[j] * reduce(p1, Tp)
-            A1[rc, psi[j]] = -half[j] * reduce(p1, Tq)
-            if conductance:
-                # (D33) in units of l: zone j's integrals carry Delta_j, and its
-                # logarithm ln(Delta_j) times the heat it puts into the half-plane.
-                Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
-                lg = np.log(half[j])
-                U[:, phi[j]] = half[j] * (Up + 0.5 * (1.0 - par.eta) * lg
-                                          * rep.pressure_rule.weights[None, :])
-                U[:, psi[j]] = half[j] * (Uq - 0.5 * lg * rep.flux_rule.weights[None, :])
-            else:
-                Hp, Hq = heat_operators(zpar[j], rep, s_h, ah if own else None)
-                A0[rh, phi[j]] = reduce(p2, Hp)
-                A0[rh, psi[j]] = reduce(p2, Hq)
-        if conductance:
-            U[:, size - 1] = -1.0
-            # The interface's (pi/2) q = (pi/2)(q' + eta p) at the zone's own points.
-            Lq = np.zeros_like(U)
-            Lq[:, phi[i]] = par.eta * rep.pressure_rows(sh, ah)
-            Lq[:, psi[i]] = rep.flux_rows(sh, ah)
-            local.append((rh, p2, U, Lq))
-            points.append((sh, ah))
-        b[rc] = (2.0 / np.pi) * reduce(p1, slope(xc))
-        A0[rc, 2 * m * n + 2 * i] = -(2.0 / np.pi) * reduce(p1, np.ones_like(sc))
-        A0[rc, 2 * m * n + 2 * i + 1] = -(2.0 / np.pi) * reduce(p1, sc)
-
-    wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
-    load, part = m * (n + 1) + m * nh, m * (n + 1) + m * nh + 1
-    for j in range(m):
-        A0[load, phi[j]] = half[j] * wp
-        A0[part, phi[j]] = half[j] * par.eta * wp
-        A0[part, psi[j]] = half[j] * wq
-    b[load], b[part] = 1.0, lam
-    for k in range(m - 1):
-        lo, hi = edges[k, 1], edges[k + 1, 0]
-        rg, rt = part + 1 + k, part + m + k
-        for j in range(m):
-            C, Tp, Tq, Hp, Hq = region_integral(zpar[j], rep, edges[j], half[j], lo, hi)
-            A0[rg, phi[j]] += half[j] * C
-            A1[rg, phi[j]] -= half[j] ** 2 * Tp
-            A1[rg, psi[j]] -= half[j] ** 2 * Tq
-            if not conductance:
-                A0[rt, phi[j]] += half[j] * Hp
-                A0[rt, psi[j]] += half[j] * Hq
-        b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
-    return ZoneSystem(A0, A1, b, m, n, tuple(local), tuple(points))
-
-
-def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):
-    """Rows of the integrals over ``lo < X < hi`` (outside the zone) of its terms.
-
-    ``integral`` of the zone's contact-equation and heat-equation left sides over
-    ``X``, per unit ``ds`` (multiply by ``half`` for ``dX``): the differences of
-    :func:`~thermocontact.discretisation.operator.outside_operators` at the two
-    ends, measured from the zone's edge on that side.
-    """
-    a, b = edge_pair
-    if lo >= b:
-        side, t_lo, t_hi = 1.0, (lo - b) / half, (hi - b) / half
-    else:
-        side, t_lo, t_hi = -1.0, (a - lo) / half, (a - hi) / half
-    ops = outside_operators(zpar, rep, side, np.array([t_lo, t_hi]))
-    # From lo to hi: I(t_hi) - I(t_lo) on the right; on the left the integral from
-    # the edge outward runs from hi to lo, so the same difference holds with the
-    # orientation of I: integral_lo^hi = I(t_hi) - I(t_lo) as well.
-    return tuple(M[1] - M[0] for M in ops)
-
-
-def _solve_linear(system: ZoneSystem, F: float, biot=None, scale=None, A=None, b=None):
-    A = system.matrix(F, biot, scale) if A is None else A.copy()
-    b = system.b.copy() if b is None else b.copy()
-    x, rcond = solve_equilibrated(A, b, "the contact set's linear system")
-    if not np.all(np.isfinite(x)):
-        raise SolveError("the contact set's linear solve produced non-finite values")
-    return x, float(rcond)
+                conductance=False, *, sigma_over_delta=None) -> ContactSetSystem:
+    """The contact set's equations in units of the Hertz half-width (section 14):
+    :func:`~thermocontact.discretisation.system.contact_set_system` with the profile
+    ``profile`` (default the cylinder's ``X^2/2``) and ``lam`` or, for one zone,
+    ``sigma_over_delta``."""
+    return contact_set_system(par, _edges(edges), rep, scheme, lam=lam,
+                              sigma_over_delta=sigma_over_delta, profile=profile,
+                              conductance=conductance)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -335,6 +104,9 @@ class ZoneSolution(Result):
     rcond : float
     validity : ZoneValidity or None
     profile : Polynomial
+    error_estimate : float or None
+        Measured by :meth:`ZoneModel.error_estimate` (``solve(..., estimate=True)``);
+        None when not measured.
     """
 
     parameters: Parameters
@@ -349,6 +121,7 @@ class ZoneSolution(Result):
     rcond: float
     validity: ZoneValidity | None = None
     profile: Polynomial = field(default_factory=lambda: CYLINDER)
+    error_estimate: float | None = None
 
     @property
     def n(self) -> int:
@@ -432,6 +205,9 @@ class ZoneSolution(Result):
             "pe_hertz": p.pe, "fhpe_hertz": p.fhpe, "K2_over_K1": p.K2_over_K1,
             "k2_over_k1": p.k2_over_k1, "delta1_over_delta2": p.delta1_over_delta2,
             "beta_f": p.beta_f, "lam": self.lam, "method": self.method, "n": self.n,
+            **({"speed_ratio": p.speed_ratio} if p.speed_ratio else {}),
+            **({"error_estimate": self.error_estimate}
+               if self.error_estimate is not None else {}),
             "valid": self.valid,
             "zones": self.zone_records(),
             "defect": self.defect, "iterations": self.iterations,
@@ -444,6 +220,23 @@ class ZoneSolution(Result):
                 f"n={self.n}")
 
 
+@dataclass(frozen=True)
+class ZoneMeasure:
+    """A zone's single-patch equivalents, the quantities whose change with ``n``
+    estimates a contact set's error: ``load_ratio = Delta_j^2`` and
+    ``sigma_over_delta = centre_j/Delta_j`` (for one zone the single patch's
+    ``P_H/P`` and ``sigma/Delta``, section 14)."""
+
+    load_ratio: float
+    sigma_over_delta: float
+
+
+def zone_measures(sol: ZoneSolution) -> tuple:
+    """Each zone's :class:`ZoneMeasure`, the cases refined together."""
+    return tuple(ZoneMeasure(float(h * h), float(c / h))
+                 for h, c in zip(sol.half_widths, sol.centres))
+
+
 class ZoneModel:
     """The contact-set problem with the materials' ratios fixed; solve it at any load.
 
@@ -454,7 +247,7 @@ class ZoneModel:
         Defaults to ``K2_over_K1``.
     delta1_over_delta2 : float, optional
     beta_f : float, optional
-        The Dundurs term (section 5c); the half-plane is stationary.
+        The Dundurs term (section 5c).
     method : str, optional
         ``"graded"`` or ``"graded-collocation"``.
     n : int, optional
@@ -462,12 +255,18 @@ class ZoneModel:
     profile : Polynomial, optional
         The initial gap against ``X`` in units of ``l^2/R`` (default ``X^2/2``, the
         cylinder); e.g. a profile with two minima makes two zones without heat.
+    conductance : tuple, optional
+        ``(Bi0, m)`` of an interface conductance, ``Bi0 = h0 l/K2`` (section 15).
+    speed_ratio : float, optional
+        ``R = v2/v1``: the half-plane moving through the contact (default 0, the
+        stationary half-plane; sections 5b and 16).
     """
 
     def __init__(self, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0, beta_f=0.0,
-                 method=DEFAULT_METHOD, n=32, profile=CYLINDER, conductance=None):
-        self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2, 0.0,
-                               beta_f)
+                 method=DEFAULT_METHOD, n=32, profile=CYLINDER, conductance=None,
+                 speed_ratio=0.0):
+        self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
+                               speed_ratio, beta_f)
         self.conductance = None if conductance is None else Conductance(*conductance)
         if method not in METHODS or not METHODS[method].edge_exponents:
             raise InputError(f"method must be 'graded' or 'graded-collocation' for contact "
@@ -483,66 +282,24 @@ class ZoneModel:
         m = METHODS[self.method]
         return m.representation(self.n, self.base.edge_exponent)
 
-    def system(self, edges, pe, fhpe, lam) -> ZoneSystem:
-        return zone_system(self.parameters(pe, fhpe), _edges(edges), lam,
-                           self.representation(), METHODS[self.method].scheme, self.profile,
-                           conductance=self.conductance is not None)
+    def system(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None) -> ContactSetSystem:
+        return zone_system(self.parameters(pe, fhpe), edges, lam, self.representation(),
+                           METHODS[self.method].scheme, self.profile,
+                           conductance=self.conductance is not None,
+                           sigma_over_delta=sigma_over_delta)
 
-    def defects(self, edges, pe, fhpe, lam):
-        """The defects ``(mu_1, nu_1, ...)`` and the linear solution at these edges.
+    def defects(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None):
+        """The defects and the linear solution at these edges: ``(mu_1, nu_1, ...)``
+        with ``lam`` given, ``(nu,)`` with ``sigma_over_delta`` (section 16).
 
-        With a pressure-dependent conductance the linear solve is repeated with the
-        Biot numbers of the last pressure until the pressure settles (section 15).
+        With a pressure-dependent conductance the Biot numbers follow the pressure
+        (section 15, :func:`~thermocontact.solvers.single_patch.solve_contact_system`).
         """
-        system = self.system(edges, pe, fhpe, lam)
-        m, n = system.zones, system.n
-        if self.conductance is None:
-            x, rcond = _solve_linear(system, fhpe)
-            return x[2 * m * n:], x, rcond
+        system = self.system(edges, pe, fhpe, lam, sigma_over_delta=sigma_over_delta)
         half = 0.5 * np.diff(_edges(edges), axis=1)[:, 0]
-        rep = self.representation()
-        # The first pressure: the load spread over the zones as Hertz's shape.
-        rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
-        pressure = [(2.0 / (np.pi * half.sum())) * rep.pressure_weight(sh)
-                    for sh, _ in system.points]
-        cond = self.conductance
-        biot = [cond.biot(p) for p in pressure]
-        scale = system.theta_scale(biot)
-        x, rcond = _solve_linear(system, fhpe, biot, scale)
-        if cond.exponent != 0.0:
-            # Newton's method on the whole linear system with Bi following the pressure
-            # (plain repetition oscillates once the heat couples strongly).
-            def residual(x):
-                phi = x[:m * n].reshape(m, n)
-                p = [r @ f for r, f in zip(rows, phi)]
-                bi = [cond.biot(q) for q in p]
-                A = system.matrix(fhpe, bi, scale)
-                return A @ x - system.b, A, p, bi
-            r, A, p, bi = residual(x)
-            norm = np.linalg.norm(r)
-            step = np.inf
-            for _ in range(MAX_PICARD):
-                # Converged when the residual is at rounding level or the step is.
-                if (norm <= 1e-11 * max(1.0, np.linalg.norm(system.b))
-                        or step <= 1e-13 * np.linalg.norm(x)):
-                    break
-                J = A + system.conductance_jacobian(x, bi, [cond.dbiot(q) for q in p], rows,
-                                                    scale)
-                dx, rcond = _solve_linear(system, fhpe, A=J, b=-r)
-                alpha = 1.0
-                while True:
-                    trial = residual(x + alpha * dx)
-                    if np.linalg.norm(trial[0]) < norm or alpha < 1e-4:
-                        break
-                    alpha *= 0.5
-                x = x + alpha * dx
-                step = alpha * np.linalg.norm(dx)
-                r, A, p, bi = trial
-                norm = np.linalg.norm(r)
-            else:
-                raise SolveError(f"the interface conductance's pressure did not settle in "
-                                 f"{MAX_PICARD} Newton steps")
-        return x[2 * m * n:2 * m * n + 2 * m], x, rcond
+        x, rcond = solve_contact_system(system, fhpe, self.representation(), half,
+                                        self.conductance)
+        return x[system.closure_slice], x, rcond
 
     def jacobian(self, edges, pe, fhpe, lam, defects=None):
         """Derivatives of the defects with respect to the edges, by differences."""
@@ -560,18 +317,93 @@ class ZoneModel:
             J[:, k] = (self.defects(ek, pe, fhpe, lam)[0] - d0) / h
         return J
 
-    def solve(self, edges, pe, fhpe, lam, *, max_iter=40, check_validity=True,
-              polish=True) -> ZoneSolution:
+    def solve(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None, max_iter=40,
+              check_validity=True, polish=True, estimate=False) -> ZoneSolution:
         """Newton's method on the edges from ``edges`` to zero defects.
+
+        Parameters
+        ----------
+        edges : array_like, shape (m, 2)
+            The start.
+        pe, fhpe : float
+            ``Pe_l > 0`` and ``fHPe_l >= 0``.
+        lam, sigma_over_delta : float
+            Exactly one: the heat partition, or (one zone) the offset
+            ``centre/half-width``, whose zone is ``((sigma - 1) Delta, (sigma + 1) Delta)``
+            with ``Delta`` found by Newton's method (section 16).
+        max_iter : int, optional
+        check_validity, polish : bool, optional
+            As :meth:`~thermocontact.solvers.single_patch.Model.solve`.
+        estimate : bool, optional
+            Also solve at ``n/2`` and ``n/4`` from the solution's edges and record the
+            error estimate of :func:`~thermocontact.solvers.refinement.refine` on each
+            zone's ``Delta_j^2`` and ``centre_j/Delta_j`` (None when ``n/2`` is below
+            the smallest ``n``); without, ``error_estimate`` is None (not measured).
 
         Raises
         ------
         SolveError
             When Newton's method does not converge (the message says how far it got).
         """
+        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
         check_range("pe_hertz", pe, 1e-12, 1e6)
         check_range("fhpe_hertz", fhpe, 0.0, 1e6)
-        lam = check_range("lam", lam, -1e6, 1e6)
+        if lam is not None:
+            lam = check_range("lam", lam, -1e6, 1e6)
+            e, x, rcond, err, it = self._newton_edges(edges, pe, fhpe, lam, max_iter)
+        else:
+            sigma = check_range("sigma_over_delta", sigma_over_delta, -1e6, 1e6)
+            e, x, rcond, err, it = self._newton_half(edges, pe, fhpe, sigma, max_iter)
+        par = self.parameters(pe, fhpe)
+        m, n = len(e) // 2, self.n
+        edges2 = e.reshape(m, 2)
+        phi = x[:m * n].reshape(m, n)
+        psi = x[m * n:2 * m * n].reshape(m, n)
+        rep = self.representation()
+        if lam is None:
+            half = 0.5 * (edges2[0, 1] - edges2[0, 0])
+            lam = half * float(rep.flux_rule.weights @ psi[0]
+                               + par.eta * (rep.pressure_rule.weights @ phi[0]))
+        validity = (assess_zones(par, rep, edges2, phi, psi, self.profile, polish=polish)
+                    if check_validity else None)
+        sol = ZoneSolution(par, float(lam), edges2, phi, psi, rep, self.method, err, it,
+                           rcond, validity, self.profile)
+        if estimate:
+            sol = replace(sol, error_estimate=self.error_estimate(
+                sol, sigma_over_delta=sigma_over_delta, max_iter=max_iter))
+        return sol
+
+    def at_n(self, n) -> "ZoneModel":
+        """The same model with ``n`` unknowns per function per zone."""
+        other = object.__new__(ZoneModel)
+        other.__dict__.update(self.__dict__)
+        other.n = int(n)
+        return other
+
+    def error_estimate(self, sol: ZoneSolution, *, sigma_over_delta=None, max_iter=40):
+        """The error estimate of ``sol`` from the solutions at ``n/4``, ``n/2`` and
+        ``n`` (:func:`~thermocontact.solvers.refinement.refine`, each zone's
+        :class:`ZoneMeasure` a case), or None when ``n/2`` is below the smallest ``n``.
+        """
+        sizes = [k for k in (sol.n // 4, sol.n // 2) if k >= N_RANGE[0]] + [sol.n]
+        if len(sizes) < 2:
+            return None
+        lam = None if sigma_over_delta is not None else sol.lam
+
+        def at(k):
+            if k == sol.n:
+                return zone_measures(sol)
+            coarse = self.at_n(k).solve(sol.edges, sol.parameters.pe, sol.parameters.fhpe,
+                                        lam, sigma_over_delta=sigma_over_delta,
+                                        max_iter=max_iter, check_validity=False)
+            if coarse.zones != sol.zones:
+                raise SolveError("the error estimate's coarser solution has another "
+                                 "number of zones")
+            return zone_measures(coarse)
+        _, est = refine(at, sizes, p_max=METHODS[self.method].order_cap)
+        return None if est is None else float(est)
+
+    def _newton_edges(self, edges, pe, fhpe, lam, max_iter):
         e = _edges(edges).ravel().copy()
         J = None
         for it in range(max_iter + 1):
@@ -601,13 +433,33 @@ class ZoneModel:
                         f"zones {k // 2 + 1} and {k // 2 + 2} merge")
                 raise SolveError(f"Newton's method leaves this contact set: {what} "
                                  f"(largest defect {err:.2e})")
-        par = self.parameters(pe, fhpe)
-        m, n = len(e) // 2, self.n
-        edges2 = e.reshape(m, 2)
-        phi = x[:m * n].reshape(m, n)
-        psi = x[m * n:2 * m * n].reshape(m, n)
-        rep = self.representation()
-        validity = (assess_zones(par, rep, edges2, phi, psi, self.profile, polish=polish)
-                    if check_validity else None)
-        return ZoneSolution(par, float(lam), edges2, phi, psi, rep, self.method, err, it,
-                            rcond, validity, self.profile)
+        return e, x, rcond, err, it
+
+    def _newton_half(self, edges, pe, fhpe, sigma, max_iter):
+        """Newton's method on the one zone's half-width ``Delta`` with its centre at
+        ``sigma Delta``, to ``nu = 0`` (section 16)."""
+        start = _edges(edges)
+        if len(start) != 1:
+            raise InputError(f"sigma_over_delta closes a single zone only (section 16), "
+                             f"got {len(start)} zones; give lam instead")
+        half = 0.5 * float(start[0, 1] - start[0, 0])
+
+        def at(h):
+            e = np.array([(sigma - 1.0) * h, (sigma + 1.0) * h])
+            d, x, rcond = self.defects(e, pe, fhpe, sigma_over_delta=sigma)
+            return e, float(d[0]), x, rcond
+        for it in range(max_iter + 1):
+            e, d, x, rcond = at(half)
+            err = abs(d)
+            if err < DEFECT_TOL:
+                return e, x, rcond, err, it
+            if it == max_iter:
+                break
+            h = 1e-7 * half
+            slope = (at(half + h)[1] - d) / h
+            if slope == 0.0 or not np.isfinite(slope):
+                raise SolveError("the half-width's Newton step is singular")
+            # Keep the zone: it shrinks by at most half a step.
+            half = max(half - d / slope, 0.5 * half)
+        raise SolveError(f"the half-width did not converge in {max_iter} Newton steps "
+                         f"(defect {err:.2e})")

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import warnings
 from dataclasses import dataclass, field
 
@@ -30,15 +29,13 @@ import numpy as np
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.resumable import run_chunks
-from ..io.files import atomic_path
 from ..numerics.continuation import locate, widen
 from ..problem.parameters import ConvergenceWarning, SolveError
-from ..problem.axes import MAX_AXIS_POINTS, Axis, checked_axis
+from ..problem.axes import MAX_AXIS_POINTS, Axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
 from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
 
-__all__ = ["Axis", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis", "read_map",
-           "write_map"]
+__all__ = ["Axis", "MAX_AXIS_POINTS", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis"]
 
 #: Parameter names a dimensionless map accepts: the command line's and Python's.
 NAMES = {**SPELLINGS, **{name: name for name in ALONG}}
@@ -62,7 +59,8 @@ FIELDS = ("load_ratio", "sigma_over_delta", "lam", "valid", "applicable", "press
 
 
 def parse_axis(option: str, spec, names=NAMES) -> Axis:
-    """An :class:`Axis` from ``name:start:stop:count[:log]``.
+    """An :class:`Axis` from ``name:start:stop:count[:log]`` (:meth:`Axis.parse`), its
+    name one of ``names`` (a spelling of the command line's taken to Python's).
 
     Raises
     ------
@@ -71,31 +69,18 @@ def parse_axis(option: str, spec, names=NAMES) -> Axis:
         reversed or empty range, fewer than 2 or more than :data:`MAX_AXIS_POINTS`
         points, a log axis that does not stay positive, or a bad fifth field.
     """
-    form = "name:start:stop:count[:log]"
-    if not isinstance(spec, str):
-        raise InputError(f"{option} must be {form}, got {spec!r}")
-    parts = spec.split(":")
-    if len(parts) not in (4, 5):
-        raise InputError(f"{option} must be {form}, got {spec!r}")
-    name = check_axis_name(option, parts[0].strip(), names)
-    try:
-        start, stop = float(parts[1]), float(parts[2])
-    except ValueError:
-        raise InputError(f"{option} start and stop must be numbers, got {spec!r}") from None
-    try:
-        count = int(parts[3])
-    except ValueError:
-        raise InputError(f"{option} count must be an integer, got {parts[3]!r}") from None
-    if len(parts) == 5 and parts[4].strip() != "log":
-        raise InputError(f"{option} fifth field must be 'log', got {parts[4]!r}")
-    return Axis(*checked_axis(option, names[name], start, stop, count, len(parts) == 5))
+    if isinstance(spec, str):
+        check_axis_name(option, spec.split(":", 1)[0].strip(), names)
+    axis = Axis.parse(spec, option)
+    return axis.renamed(names[axis.name])
 
 
 def check_axis_name(option: str, name, names=NAMES) -> str:
     """``name`` if it is one of ``names``, else :class:`InputError` naming ``option``."""
     if name not in names:
         allowed = sorted({k for k in names if "_" not in k} or names)
-        raise InputError(f"{option} parameter must be one of {', '.join(allowed)}, got {name!r}")
+        raise InputError(f"{option} parameter must be one of {', '.join(allowed)}, got {name!r}",
+                         parameters=(option,))
     return name
 
 
@@ -444,11 +429,6 @@ def _describe(ds, spec: MapSpec, command):
     return ds
 
 
-def parts_folder(path) -> str:
-    """Where the finished chunks of the map at ``path`` are kept until it is written."""
-    return os.fspath(path).rstrip("/\\") + ".parts"
-
-
 def compute_map(spec: MapSpec, *, workers=1, store_path=None, progress=None, command=None):
     """Evaluate a map, keeping finished chunks in ``store_path`` (resumed if present).
 
@@ -471,37 +451,3 @@ def compute_map(spec: MapSpec, *, workers=1, store_path=None, progress=None, com
     chunks = run_chunks(evaluate_chunk, spec.tasks(), spec.manifest(), store_path,
                         workers=workers, progress=progress)
     return _dataset(spec, chunks, command)
-
-
-def _engine():
-    for name in ("netCDF4", "h5netcdf"):
-        try:
-            __import__(name)
-            return name.lower()
-        except ImportError:
-            continue
-    return "scipy"
-
-
-def write_map(ds, path):
-    """Write the dataset whole (a temporary name, then renamed): NetCDF for ``.nc``,
-    Zarr for ``.zarr``."""
-    path = os.fspath(path)
-    zarr = path.lower().endswith(".zarr")
-    with atomic_path(path, folder=zarr) as tmp:
-        if zarr:
-            ds.to_zarr(tmp, mode="w")
-        else:
-            ds.to_netcdf(tmp, engine=_engine())
-    return path
-
-
-def read_map(path):
-    """The dataset written by :func:`write_map`, loaded into memory."""
-    import xarray as xr
-
-    path = os.fspath(path)
-    if path.lower().endswith(".zarr"):
-        return xr.open_zarr(path).load()
-    with xr.open_dataset(path, engine=_engine()) as ds:
-        return ds.load()

@@ -10,8 +10,9 @@ rate has a maximum over the wavelength.
 
 Examples
 --------
->>> from thermocontact.studies.tei import tei
->>> r = tei("steel", "organic-composite-brake-block", 0.4, "50mm")
+>>> from thermocontact.problem.materials import get_material
+>>> from thermocontact.studies.tei import analyse
+>>> r = analyse(get_material("steel"), get_material("organic-composite-brake-block"), 0.4, 0.05)
 >>> round(r.critical_speed, 4), r.stable_at_all_speeds
 (55.3725, False)
 """
@@ -28,8 +29,8 @@ from ..io.results import Result
 from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
 from ..problem.validation import check_nonnegative, check_positive
 
-__all__ = ["TEIMode", "TEIResult", "critical_speed", "critical_speeds", "growth_rate",
-           "most_unstable_wavelength", "tei", "tei_modes"]
+__all__ = ["TEIMode", "TEIResult", "analyse", "critical_speed", "critical_speeds",
+           "growth_rate", "most_unstable_wavelength", "tei_modes"]
 
 #: Speeds scanned per factor 2 above the lower bound (H9) before Brent's method.
 _PER_OCTAVE = 4
@@ -238,60 +239,37 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
     return 2.0 * math.pi / math.exp(res.x), float(-res.fun)
 
 
-def _materials(slider, counterface, materials):
-    from ..problem.materials import Material, get_material, load_materials
-
-    if materials is not None:
-        load_materials(materials)  # read and checked even when both bodies are inline
-    return tuple(m if isinstance(m, Material) else get_material(m, materials)
-                 for m in (slider, counterface))
-
-
-def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
-        materials=None) -> TEIResult:
-    """Thermoelastic instability of two sliding half-planes (``thermocontact tei``).
+def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True) -> TEIResult:
+    """The critical speed at one wavelength and, at a speed, the modes and the most
+    unstable wavelength: the study behind :func:`thermocontact.tei`.
 
     Parameters
     ----------
-    slider, counterface : str or Material
-        The sliding half-plane and the one it slides over: names, inline
-        definitions ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
-        non-conductor; not both.
+    slider, counterface : Material
+        As for :class:`~thermocontact.physics.tei.SlidingPair`.
     friction : float
-        Coulomb coefficient ``f >= 0``.
-    wavelength : float or str
-        ``L > 0`` of the perturbation, m or with units (``"50mm"``).
-    speed : float or str, optional
-        Sliding speed ``V >= 0``, m/s or with units: adds the modes at that speed
-        and the most unstable wavelength.
+        ``f >= 0``.
+    wavelength : float
+        ``L > 0``, m.
+    speed : float, optional
+        Sliding speed ``V >= 0``, m/s.
     dundurs : bool, optional
-        Keep the Dundurs term ``beta f`` (default), as ``contact`` does.
-    materials : str or os.PathLike, optional
-        A TOML file of further materials.
+        Keep the Dundurs term (default).
 
     Returns
     -------
     TEIResult
-
-    Raises
-    ------
-    InputError
-        A wavelength <= 0, a speed or friction < 0, both bodies non-conducting, an
-        unknown material; the message is one line naming the parameter.
     """
-    from ..problem.units import parse_quantity
-
-    s, c = _materials(slider, counterface, materials)
-    pair = SlidingPair(s, c, check_nonnegative("friction", friction), dundurs=dundurs)
-    wl = check_positive("wavelength", parse_quantity(wavelength, "m", "wavelength"))
+    pair = SlidingPair(slider, counterface, friction, dundurs=dundurs)
+    wl = check_positive("wavelength", wavelength)
     m = 2.0 * math.pi / wl
     vc, neutral = critical_speed(pair, m)
     extra = {}
     if speed is not None:
-        v = check_nonnegative("speed", parse_quantity(speed, "m/s", "speed"))
+        v = check_nonnegative("speed", speed)
         mw, rate = (None, None) if vc is None else most_unstable_wavelength(pair, v, m, vc)
         extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
                      most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
-    return TEIResult(s.name, c.name, pair.friction, wl, pair.dundurs, pair.beta, vc,
-                     vc is None, None if neutral is None else neutral.migration_speed,
-                     **extra, pair=pair)
+    return TEIResult(pair.slider.name, pair.counterface.name, pair.friction, wl, pair.dundurs,
+                     pair.beta, vc, vc is None,
+                     None if neutral is None else neutral.migration_speed, **extra, pair=pair)

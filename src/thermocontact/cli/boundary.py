@@ -1,0 +1,65 @@
+"""``thermocontact boundary``: every change of validity along one parameter
+(:func:`thermocontact.boundary`)."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from .._version import __version__
+from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
+from .options import physical_options, problem_options
+from .progress import StageProgress
+
+__all__ = ["boundary_cmd"]
+
+
+@click.command("boundary")
+@click.option("--along", required=True,
+              help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
+                   "delta1-over-delta2, speed-ratio, beta-f; or, with --cylinder and --half-plane, load, speed, "
+                   "radius or friction.")
+@click.option("--from", "start", required=True,
+              help="Start of the path (physical parameters in SI units or with units).")
+@click.option("--to", "stop", required=True, help="End of the path.")
+@problem_options(required=False)
+@physical_options(required=False)
+@click.option("--tol", type=float, default=DEFAULT_TOL, show_default=True,
+              help="Error target for the choice of n.")
+@click.option("-n", "n", type=int, default=None,
+              help="Unknowns per function of the whole path (default: chosen by --tol); "
+                   "each event's error estimate compares with n/2.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
+              show_default=True, help="Discretisation method (dimensionless paths).")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
+                 speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
+                 friction, dundurs, tol, n, method, as_json):
+    """Every change of validity along one parameter, located to 1e-9 relative."""
+    from ..api import PHYSICAL_ALONG, boundary
+
+    bar = StageProgress(f"boundary along {along}")
+    path = boundary(along, start, stop, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
+                    k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
+                    cylinder=cylinder, half_plane=half_plane, radius=radius, load=load,
+                    speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
+                    method=method, tol=tol, n=n, progress=bar)
+    method = path.method
+    bar.close()
+    if as_json:
+        click.echo(json.dumps(path.to_dict(), allow_nan=False))
+        return
+    unit = PHYSICAL_ALONG.get(along, "")
+    click.echo(f"thermocontact {__version__}: along {along} from {path.x[0]:g} to "
+               f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n}"
+               + (f"; events at n = {path.event_n}" if path.event_n != path.n else "") + ")")
+    if not path.events:
+        click.echo(f"  no change of validity (valid throughout: {bool(path.valid.all())})")
+    for e in path.events:
+        where = f" at the {e.edge} edge" if e.edge else ""
+        err = ("" if e.error_estimate is None else
+               f" (discretisation error estimate {e.error_estimate:.1e})")
+        click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
+                   f"{e.inequality}{where}; valid {e.valid_before} -> {e.valid_after}")

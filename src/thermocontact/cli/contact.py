@@ -1,0 +1,268 @@
+"""``thermocontact contact`` and ``thermocontact zones``: a contact in physical units,
+and the contact set at one load (:func:`thermocontact.contact`,
+:func:`thermocontact.contact_set`)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+
+import click
+
+from .._version import __version__
+from ..problem.validation import InputError, check_positive
+from .options import contact_set_options, parse_conductance, physical_options
+
+__all__ = ["contact_cmd", "zones_cmd"]
+
+
+def branch_record(b) -> dict:
+    v = b.solution.validity
+    return {
+        "half_width": b.half_width, "offset": b.offset, "a": b.a, "b": b.b,
+        "peak_pressure": b.peak_pressure, "mean_pressure": b.mean_pressure,
+        "pe": b.pe, "fhpe": b.fhpe, "lam": b.lam, "load_ratio": b.load_ratio,
+        "valid": b.valid, "flash_temperature": b.flash_temperature,
+        "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
+        "temperature_mismatch": b.temperature_mismatch,
+        "half_plane_incoming_temperature": b.half_plane_incoming_temperature,
+        "flash_temperature_half_plane": b.flash_temperature_half_plane,
+        "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
+        "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
+        "reason": v.reason, "strictly_valid": v.strictly_valid,
+        "applicable": b.applicable,
+        "applicability_reasons": list(b.applicability.reasons),
+    }
+
+
+def contact_record(res) -> dict:
+    """The JSON record of a :class:`~thermocontact.studies.physical_contact.PhysicalContact` (SI units)."""
+    prob = res.problem
+    prim = res.primary
+    rec = {key: (getattr(prim, key) if prim is not None else None) for key in (
+        "half_width", "offset", "a", "b", "peak_pressure", "mean_pressure", "pe", "fhpe",
+        "flash_temperature", "heat_cylinder", "heat_half_plane")}
+    rec.update({
+        "hertz_half_width": prob.hertz_half_width,
+        "hertz_peak_pressure": prob.hertz_peak_pressure,
+        "lam": prob.lam,
+        "valid": bool(prim is not None and prim.valid),
+        "applicable": bool(prim is not None and prim.applicable),
+        "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
+                                  else []),
+        "error_estimate": prim.error_estimate if prim is not None else None,
+        "converged": prim.converged if prim is not None else None,
+        "message": res.message,
+        "largest_valid_load": res.largest_valid_load,
+        "searched": (None if res.searched is None else dict(zip(
+            ("half_width_min", "half_width_max", "fhpe_min", "fhpe_max"), res.searched))),
+        "branches": [branch_record(b) for b in res.branches],
+        "inputs": {
+            "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
+            "radius": prob.radius, "load": prob.load, "speed": prob.speed,
+            "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
+            "dundurs": prob.dundurs,
+        },
+        "beta_f": prob.beta_f,
+        "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
+                 "surface temperature), W/m",
+        "version": __version__,
+    })
+    if rec["largest_valid_load"] is not None and not math.isfinite(rec["largest_valid_load"]):
+        rec["largest_valid_load"] = "unbounded"
+    return rec
+
+
+def contact_summary(res) -> str:
+    prob = res.problem
+    lines = [
+        f"thermocontact {__version__}: {prob.cylinder.name} cylinder (R = {prob.radius:g} m) "
+        + (f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}" if not prob.speed2 else
+           f"at {prob.speed:g} m/s on {prob.half_plane.name} at {prob.speed2:g} m/s "
+           f"(sliding speed {prob.sliding_speed:g} m/s)"),
+        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}, "
+        + (f"beta f = {prob.beta_f:.4g} (Dundurs term)" if prob.dundurs
+           else "Dundurs term dropped"),
+        f"  Hertz: half-width {prob.hertz_half_width:.4g} m, peak pressure "
+        f"{prob.hertz_peak_pressure:.4g} Pa",
+    ]
+    for i, b in enumerate(res.branches):
+        tag = "valid" if b.valid else "INVALID"
+        star = "*" if b is res.primary else " "
+        lines += [
+            f" {star}branch {i + 1} ({tag}): half-width {b.half_width:.4g} m, offset "
+            f"{b.offset:.4g} m (a = {b.a:.4g}, b = {b.b:.4g})",
+            f"    peak pressure {b.peak_pressure:.4g} Pa, mean {b.mean_pressure:.4g} Pa; "
+            f"Pe {b.pe:.4g}, fHPe {b.fhpe:.4g}, P_H/P {b.load_ratio:.4g}",
+            f"    flash temperature {b.flash_temperature:.4g} K; heat into cylinder "
+            f"{b.heat_cylinder:.4g} W/m, half-plane {b.heat_half_plane:.4g} W/m",
+            f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
+            f"{'met' if b.converged else 'NOT met'})",
+        ]
+        if b.half_plane_incoming_temperature is not None:
+            dt = b.half_plane_incoming_temperature
+            lines.append(f"    the heat partition implies the half-plane enters {abs(dt):.4g} K "
+                         f"{'above' if dt >= 0 else 'below'} the cylinder's temperature; its "
+                         f"flash temperature {b.flash_temperature_half_plane:.4g} K over it")
+        if b.solution.validity.reason != "valid":
+            lines.append(f"    {b.solution.validity.reason}")
+        if b.applicable:
+            lines.append("    theory applicable: yes")
+        else:
+            lines.append("    theory NOT applicable: " + "; ".join(b.applicability.reasons))
+    if res.message:
+        lines.append(f"  {res.message}")
+    return "\n".join(lines)
+
+
+@click.command("zones")
+@click.option("--pe-hertz", "pe_hertz", type=float, required=True,
+              help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load.")
+@click.option("--fhpe-hertz", "fhpe_hertz", type=float, required=True,
+              help="fHPe_l = f H Pe_l >= 0.")
+@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
+              help="Conductivity ratio K2/K1 > 0.")
+@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
+@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
+              help="Distortivity ratio >= 0.")
+@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--conductance", default=None,
+              help="h0:m, an interface conductance h = h0 (p/p_ref)^m with h0 as the Biot "
+                   "number h0 l/K2 at the mean Hertz pressure p_ref = P/(2 l), m >= 0 "
+                   "[default: perfect thermal contact].")
+@click.option("-n", "n", type=int, default=32, show_default=True,
+              help="Unknowns per function per zone, in [8, 256].")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam,
+              conductance, n, as_json):
+    """The contact set at one load: one zone or several, or why there is none.
+
+    Lengths in units of the Hertz half-width l of the load, from the undeformed
+    cylinder's lowest point (the leading edge at larger x); loads as fractions of P,
+    pressures in units of P/l.
+    """
+    from ..studies.contact_sets import find_contact_set
+
+    res = find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+                           delta1_over_delta2=delta1_over_delta2, n=n,
+                           conductance=parse_conductance(conductance, "the Biot number h0 l/K2"))
+    if as_json:
+        click.echo(json.dumps(res.to_dict(), allow_nan=False))
+        return
+    lines = [f"status: {res.status}: {res.message}"]
+    if res.answer is not None:
+        lines.append(f"  valid: {res.answer.valid} ({res.answer.validity.reason})")
+        for k, z in enumerate(res.answer.zone_records(), 1):
+            lines.append(f"  zone {k}: {z['a']:.6f} < x/l < {z['b']:.6f}, load "
+                         f"{z['load']:.6f} P, peak pressure {z['peak_pressure']:.6f} P/l")
+    click.echo("\n".join(lines))
+
+
+@click.command("contact")
+@physical_options(required=True)
+@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--speed2", default="0", show_default=True,
+              help="Speed of the half-plane's surface through the contact (m/s, or with "
+                   "units), positive in the cylinder's direction; --speed is then the "
+                   "cylinder's surface speed and the heat is made at |speed - speed2|.")
+@click.option("--tol", type=float, default=1e-6, show_default=True,
+              help="Error target of P_H/P per branch (with --zones not used: contact sets "
+                   "are solved with 32 unknowns per function per zone, doubled where the "
+                   "path stalls).")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+@click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
+@click.option("--plot", "plot_file", default=None,
+              help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
+@contact_set_options("The contact set at this load, of one zone or several (derivation "
+                      "section 14), instead of the single patch's branches.",
+                      "omitted: the mean Hertz pressure")
+def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
+                lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
+    """Contact width, pressures and temperatures from materials, load and speed."""
+    from ..io.files import check_output_file
+    from ..problem.materials import get_material, load_materials
+    from ..problem.units import parse_quantity
+    from ..studies.physical_contact import PhysicalProblem, contact
+
+    # Output paths are checked before the computation, whose result would be lost.
+    if csv_file is not None:
+        csv_file = check_output_file("--csv", csv_file)
+    if plot_file is not None:
+        plot_file = check_output_file("--plot", plot_file, suffixes=(".png", ".svg", ".pdf"))
+    if (csv_file is not None and plot_file is not None
+            and os.path.realpath(csv_file) == os.path.realpath(plot_file)):
+        raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
+    if materials_file is not None:
+        load_materials(materials_file)  # read and checked even when both materials are inline
+    prob = PhysicalProblem(
+        get_material(cylinder, materials_file), get_material(half_plane, materials_file),
+        parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
+        parse_quantity(speed, "m/s", "speed"), friction, lam,
+        parse_quantity(speed2, "m/s", "speed2"), dundurs=dundurs is not False)
+    tol = check_positive("tol", tol)
+    if conductance is not None and not zones:
+        raise InputError("--conductance needs --zones (the single patch assumes perfect "
+                         "thermal contact)")
+    if zones:
+        if csv_file is not None or plot_file is not None:
+            raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
+        from ..studies.contact_sets import physical_contact_set
+
+        rec = physical_contact_set(prob, conductance=parse_conductance(
+            conductance, "in W/(m^2 K)", physical=True))
+        if as_json:
+            click.echo(json.dumps(rec, allow_nan=False))
+            return
+        lines = [f"status: {rec['status']}: {rec['message']}",
+                 f"  Hertz half-width {rec['hertz_half_width']:.6g} m"]
+        for k, z in enumerate(rec["zones"], 1):
+            lines.append(f"  zone {k}: {z['a']:.6g} m < x < {z['b']:.6g} m, load "
+                         f"{z['load']:.6g} N/m, peak pressure {z['peak_pressure']:.6g} Pa")
+        lines.append(f"  valid: {rec['valid']}")
+        lines.append("  theory applicable (contact size, strains; slopes and temperatures "
+                     "not checked for contact sets): "
+                     + ("yes" if rec["theory_applicable"] else
+                        "NO: " + "; ".join(rec["theory_reasons"])))
+        click.echo("\n".join(lines))
+        return
+    from ..execution.executors import side_process
+    from ..execution.progress import ProgressLine
+
+    # The picture's Matplotlib is imported in a second process while the contact is
+    # solved: the import alone takes about as long as the solve.
+    side = None if plot_file is None else side_process(
+        "thermocontact.plotting.curves", "matplotlib.figure", "matplotlib.backends.backend_agg")
+    try:
+        bar = ProgressLine("contact: half-widths followed", "%")
+        res = contact(prob, tol=tol, progress=bar)
+        bar.close()
+        if csv_file is not None:
+            write_contact_csv(res, csv_file)
+        if plot_file is not None:
+            from ..plotting.curves import contact_figure
+
+            if side is None:
+                contact_figure(res, plot_file)
+            else:
+                side.submit(contact_figure, res, plot_file).result()
+    finally:
+        if side is not None:
+            side.shutdown(wait=False, cancel_futures=True)
+    if as_json:
+        click.echo(json.dumps(contact_record(res), allow_nan=False))
+    else:
+        click.echo(contact_summary(res))
+
+
+def write_contact_csv(res, path):
+    from ..io.tables import write_table
+
+    rows = ([i + 1, int(b.valid)] + [float(v) for v in row]
+            for i, b in enumerate(res.branches)
+            for row in zip(b.x, b.pressure, b.temperature_cylinder, b.temperature_half_plane))
+    write_table(path, ["SI units; temperatures are rises above the cylinder's incoming "
+                       "surface temperature"],
+                ["branch", "valid", "x", "pressure", "temperature_cylinder",
+                 "temperature_half_plane"], rows)

@@ -1,0 +1,135 @@
+"""The command group and its entry point: errors in one line, exit status 2.
+
+Errors in the input or the solve are reported on one line of standard error with
+exit status 2, naming the command's flags; nothing here raises a traceback for bad
+input.  Only click and the standard library are imported before a command runs, so
+that ``--version`` and ``--help`` answer at once.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from .._version import __version__
+from ..problem.errors import SolveError
+from ..problem.validation import InputError
+from .boundary import boundary_cmd
+from .contact import contact_cmd, zones_cmd
+from .maps import map_cmd
+from .reproduce import reproduce_cmd
+from .solve import solve_cmd
+from .tei import tei_cmd
+
+__all__ = ["cli", "main"]
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="thermocontact")
+def cli():
+    """Thermoelastic sliding contact of a conducting cylinder on a conducting half-plane."""
+
+
+for _command in (solve_cmd, boundary_cmd, map_cmd, reproduce_cmd, zones_cmd, contact_cmd,
+                 tei_cmd):
+    cli.add_command(_command)
+
+
+def _refuse_repeated_options(args):
+    """An option given twice (``--lam -1 ... --lam 1``) is refused, not silently the last.
+
+    Options declared ``multiple`` (``--only``) may repeat.
+    """
+    if len(args) < 1 or args[0] not in cli.commands:
+        return
+    command = cli.commands[args[0]]
+    names = {}
+    for param in command.params:
+        if isinstance(param, click.Option) and not param.multiple:
+            for opt in param.opts + param.secondary_opts:
+                names[opt] = param.name
+    seen = {}
+    for token in args[1:]:
+        if token == "--":
+            break
+        opt = token.split("=", 1)[0]
+        if opt in names:
+            if names[opt] in seen:
+                raise InputError(f"{opt} must be given at most once, got it twice "
+                                 f"({seen[names[opt]]} and {opt})")
+            seen[names[opt]] = opt
+
+
+#: Python names of the library's parameters whose flag is not their click name.
+_FLAG_ALIASES = {"sigma_over_delta": "--sigma", "materials": "--materials", "x": "--x",
+                 "y": "--y", "start": "--from", "stop": "--to"}
+
+
+def _flagged(exc, args) -> str:
+    """The message of a library error with the parameters it names (Python spelling,
+    ``K2_over_K1``) written as the command's flags (``--K2-over-K1``)."""
+    import re
+
+    message = str(exc)
+    command = cli.commands.get(args[0]) if args else None
+    if command is None:
+        return message
+    flags = {p.name: next((o for o in p.opts if o.startswith("--")), p.opts[0])
+             for p in command.params if isinstance(p, click.Option)}
+    for name in getattr(exc, "parameters", ()):
+        flag = flags.get(name) or (_FLAG_ALIASES.get(name)
+                                   if _FLAG_ALIASES.get(name) in flags.values() else None)
+        if flag is not None:
+            message = re.sub(rf"(?<![\w-]){re.escape(name)}(?![\w-])", flag, message)
+    return message
+
+
+def _computes(args) -> bool:
+    """Whether the command line asks for work rather than a help text or the version."""
+    return bool(args) and args[0] in cli.commands and not (
+        {"-h", "--help", "--version"} & set(args[: args.index("--") if "--" in args else None]))
+
+
+def main(argv=None) -> int:
+    """Entry point; returns the exit status (0, or 2 for any error)."""
+    import contextlib
+    import warnings
+
+    def one_line(message, category, *args, **kwargs):
+        click.echo(f"warning: {message}", err=True)
+
+    args = sys.argv[1:] if argv is None else list(argv)
+    limits = contextlib.nullcontext()
+    if _computes(args):
+        # The matrices here are small: one BLAS thread is faster than several
+        # competing for two cores (measured: 3x on the benchmark).  Imported only
+        # for work, so that a help text or the version answers at once.
+        from threadpoolctl import threadpool_limits
+
+        limits = threadpool_limits(limits=1, user_api="blas")
+    try:
+        _refuse_repeated_options(args)
+        with limits, warnings.catch_warnings():
+            warnings.showwarning = one_line
+            rc = cli.main(args=argv, prog_name="thermocontact", standalone_mode=False)
+    except click.exceptions.Exit as exc:
+        return exc.exit_code
+    except click.ClickException as exc:
+        click.echo(f"error: {exc.format_message()}", err=True)
+        return 2
+    except (InputError, SolveError) as exc:
+        click.echo(f"error: {_flagged(exc, args)}", err=True)
+        return 2
+    except click.exceptions.Abort:
+        click.echo("error: aborted", err=True)
+        return 130
+    except (ValueError, ArithmeticError) as exc:  # e.g. a non-finite number reaching json
+        click.echo(f"error: {exc}", err=True)
+        return 2
+    # Without standalone mode click returns, rather than raises, an Exit's code.
+    return rc if isinstance(rc, int) else 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

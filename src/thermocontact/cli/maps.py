@@ -1,0 +1,172 @@
+"""``thermocontact map``: a map over two parameters, dimensionless or in physical units
+(:func:`thermocontact.parameter_map`, :func:`thermocontact.operating_map`)."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+
+import click
+
+from ..discretisation.methods import DEFAULT_METHOD, METHODS
+from ..problem.validation import InputError
+from .options import contact_set_options, parse_conductance, physical_options, problem_options
+
+__all__ = ["map_cmd"]
+
+
+def executor_of(workers, scheduler):
+    """The executor of ``--workers``/``--scheduler`` (a Dask client to be closed, or an int)."""
+    from ..execution.executors import MAX_WORKERS, connect, cpu_count
+
+    if scheduler is not None:
+        if workers is not None:
+            raise InputError("give --workers or --scheduler, not both (a cluster has its own)")
+        return connect(scheduler)
+    if workers is None:
+        return cpu_count()
+    if not 1 <= workers <= MAX_WORKERS:
+        raise InputError(f"--workers must be 1 to {MAX_WORKERS}, got {workers}")
+    return workers
+
+
+def run_map(spec, out, workers, title, command):
+    """Compute (or resume) a map, write the dataset and its picture, keep nothing else."""
+    import time
+
+    import numpy as np
+
+    from ..execution.executors import ExecutionError
+    from ..execution.progress import ProgressLine
+    from ..plotting.maps import map_figure
+    from ..api import compute_map
+    from ..io.datasets import parts_folder, read_dataset, write_dataset
+
+    picture = os.path.splitext(out)[0] + ".png"
+    manifest = json.dumps(spec.manifest(), sort_keys=True)
+    if os.path.exists(out):
+        try:
+            done = read_dataset(out)
+        except Exception:  # not a map of ours: never overwritten
+            done = None
+        if done is None or done.attrs.get("manifest") != manifest:
+            raise InputError(f"--out {out} exists and holds a different map; remove it or "
+                             f"choose another --out")
+        if not os.path.exists(picture):
+            map_figure(done, picture, title=title)
+        click.echo(f"{out} is complete (same arguments): nothing to compute")
+        return
+    parts = parts_folder(out)
+    bar = ProgressLine("map", "lines")
+    t0 = time.perf_counter()
+    try:
+        ds = compute_map(spec, workers=workers, store=parts, progress=bar, command=command)
+    except KeyboardInterrupt:
+        bar.close()
+        click.echo(f"interrupted: finished lines are kept in {parts}; run the same command "
+                   f"to resume", err=True)
+        raise click.exceptions.Exit(130)
+    except ExecutionError as exc:
+        bar.close()
+        raise InputError(f"{exc} (kept in {parts})") from None
+    finally:
+        if hasattr(workers, "close"):
+            workers.close()
+    bar.close()
+    write_dataset(ds, out)
+    map_figure(ds, picture, title=title)
+    from ..io.chunks import discard
+
+    discard(parts)  # the dataset holds everything now
+    status = np.asarray(ds["status"].values)
+    failed = int((status == "failed").sum())
+    unconverged = int((status == "not converged").sum())
+    events = ds.sizes.get("event", 0)
+    click.echo(f"wrote {out} and {picture}: {status.size} points ({int(ds['valid'].sum())} "
+               f"valid, {unconverged} not converged, {failed} failed), "
+               f"{events} boundary point{'s' * (events != 1)}, "
+               f"in {time.perf_counter() - t0:.1f} s")
+    if "zones_status" in ds:
+        zs = np.asarray(ds["zones_status"].values)
+        counts = np.asarray(ds["zones_count"].values)[zs == "solved"]
+        click.echo(f"contact sets: {int((zs == 'solved').sum())} solved ("
+                   + ", ".join(f"{int((counts == c).sum())} of {c} zone{'s' * (c > 1)}"
+                               for c in sorted(set(counts.tolist())))
+                   + f"), {int((zs == 'no steady solution').sum())} no steady solution, "
+                   f"{int((zs == 'not converged').sum())} not converged, "
+                   f"{int((zs == 'failed').sum())} failed")
+
+
+@click.command("map")
+@click.option("--x", "x_spec", required=True,
+              help="First axis, name:start:stop:count[:log] (e.g. fhpe:0:0.8:41).")
+@click.option("--y", "y_spec", required=True,
+              help="Second axis, name:start:stop:count[:log] (e.g. pe:0.5:100:31:log).")
+@problem_options(required=False)
+@click.option("--delta-over-r", "delta_over_r", type=float, default=None,
+              help="Half-width over radius > 0: also map whether the theory applies.")
+@click.option("--tol", type=float, default=1e-6, show_default=True,
+              help="Error target of every point.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
+              show_default=True, help="Discretisation method.")
+@click.option("--out", required=True,
+              help="Dataset to write: .nc (NetCDF) or .zarr; the picture goes beside it (.png).")
+@click.option("--workers", type=int, default=None,
+              help="Local worker processes [default: all cores].")
+@click.option("--scheduler", default=None,
+              help="Run on the Dask cluster whose scheduler is at this address "
+                   "(tcp://host:port) instead.")
+@physical_options(required=False)
+@contact_set_options("Operating maps: also the contact set, of one zone or several, at "
+                      "every point (what exists past the single patch's boundary).",
+                      "needed unless m = 0")
+def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
+            beta_f, lam, sigma,
+            delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
+            materials_file, radius, load, speed, friction, dundurs, zones, conductance):
+    """The solution over a grid of two parameters, and where it stops being valid.
+
+    Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
+    speed-ratio, beta-f;
+    with --cylinder, load, speed and radius in SI units (an operating map).
+    Interrupted, the same command resumes; finished work is kept beside --out.
+    """
+    from ..api import map_spec
+    from ..io.files import check_output_dir, check_output_file
+    from ..problem.axes import Axis
+
+    operating = cylinder is not None or half_plane is not None
+    spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
+                    K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
+                    delta1_over_delta2=None if operating else delta1_over_delta2,
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
+                    delta_over_r=delta_over_r, method=method, cylinder=cylinder,
+                    half_plane=half_plane, friction=friction, radius=radius, load=load,
+                    speed=speed, dundurs=dundurs, materials=materials_file, zones=zones,
+                    conductance=parse_conductance(conductance, "in W/(m^2 K)", physical=True),
+                    tol=tol)
+    fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
+    if operating:
+        title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
+                 f"lambda = {spec.lam:g}, {fixed} (SI)\nsingle patch (perfect contact) "
+                 f"valid where not shaded; theory not applicable where hatched")
+        if spec.zones:
+            c = spec.conductance
+            title += "\ncontact sets, " + ("perfect contact" if c is None else (
+                f"h = {c.h0:g} W/m2K" + (f" (p/{c.p_ref:g} Pa)^{c.exponent:g}"
+                                         if c.exponent else "")))
+    else:
+        title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "
+                 f"applicable where hatched")
+    if out.lower().endswith(".zarr"):
+        out = check_output_dir("--out", out)
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise InputError("--out .zarr needs the zarr package: pip install "
+                             "'thermocontact[zarr]', or write .nc") from None
+    else:
+        out = check_output_file("--out", out, suffixes=(".nc", ".zarr"))
+    run_map(spec, out, executor_of(workers, scheduler), title,
+             "thermocontact " + " ".join(sys.argv[1:]))

@@ -1,0 +1,167 @@
+"""One assembler for the single patch and contact sets (derivation section 16)."""
+
+import numpy as np
+import pytest
+
+from thermocontact.discretisation.operator import (contact_operators, heat_operators,
+                                                   outside_operators, temperature_operators)
+from thermocontact.discretisation.representations import EdgeGraded
+from thermocontact.problem.parameters import Parameters
+from thermocontact.problem.validation import InputError
+from thermocontact.solvers.single_patch import Model
+from thermocontact.solvers.zones import ZoneModel
+
+STENCIL = np.array([1.0, -8.0, 8.0, -1.0])  # fourth-order central difference, times 1/(12 h)
+
+
+@pytest.mark.parametrize("speed_ratio, beta_f", [(0.5, 0.0), (-0.7, 0.0), (0.0, 0.4),
+                                                 (0.3, -0.5)])
+def test_one_zone_is_the_single_patch_with_moving_half_plane_and_dundurs(speed_ratio, beta_f):
+    """One zone with R != 0 and B != 0 is the single patch at Pe = Pe_l Delta, fHPe =
+    fHPe_l Delta: P_H/P = Delta^2 and sigma/Delta to 1e-10 (measured 7e-16)."""
+    sol = ZoneModel(10.0, n=16, speed_ratio=speed_ratio, beta_f=beta_f).solve(
+        [[-0.9, 0.8]], 5.0, 0.2, 0.3)
+    L, sigma = sol.single_patch()
+    D = sol.half_widths[0]
+    core = Model(5.0 * D, 10.0, speed_ratio=speed_ratio, beta_f=beta_f, n=16).solve_at(
+        16, 0.2 * D, lam=0.3)
+    assert L == pytest.approx(core.load_ratio, abs=1e-10)
+    assert sigma == pytest.approx(core.sigma_over_delta, abs=1e-10)
+    assert sol.valid == core.valid
+    assert sol.to_dict().get("speed_ratio", 0.0) == speed_ratio
+
+
+@pytest.mark.parametrize("speed_ratio", [0.6, -0.4])
+def test_outside_integrals_of_a_moving_half_plane_are_its_operators_integrated(speed_ratio):
+    """d/dtt of the integrated contact and heat operators (D32b) is the moving
+    half-plane's contact and heat operator outside, on either side of the contact
+    (where its material has and has not yet passed)."""
+    par = Parameters(3.0, 0.3, 10.0, 4.0, 0.5, speed_ratio)
+    rep = EdgeGraded(20)
+    rng = np.random.default_rng(5)
+    phi, psi = rng.standard_normal(20), rng.standard_normal(20)
+    h = 1e-3
+    for side in (1.0, -1.0):
+        for tt in (0.2, 0.7):
+            ops = outside_operators(par, rep, side, tt + h * np.array([-2, -1, 1, 2]))
+            s = np.array([side * (1 + tt)])
+            C, Tp, Tq = contact_operators(par, rep, s)
+            Hp, Hq = heat_operators(par, rep, s)
+            for M, ref, v in ((ops[0], C, phi), (ops[1], Tp, phi), (ops[2], Tq, psi),
+                              (ops[3], Hp, phi), (ops[4], Hq, psi)):
+                deriv = side * (STENCIL / (12 * h)) @ (M @ v)
+                assert deriv == pytest.approx((ref @ v)[0], rel=1e-7, abs=1e-10)
+
+
+@pytest.mark.parametrize("speed_ratio", [0.0, 0.6, -0.4])
+def test_temperature_rows_differentiate_to_the_heat_equation(speed_ratio):
+    """d/ds of (D33)'s temperature rows (with the moving half-plane, D33b) is
+    -(pi (1 + rho)/2) times the heat operator of (D18)/(D18b)."""
+    par = Parameters(3.0, 0.3, 10.0, 4.0, 0.5, speed_ratio)
+    rep = EdgeGraded(20)
+    rng = np.random.default_rng(6)
+    phi, psi = rng.standard_normal(20), rng.standard_normal(20)
+    h = 1e-4
+    for s0 in (-0.55, 0.3):
+        Up, Uq = temperature_operators(par, rep, s0 + h * np.array([-2, -1, 1, 2]))
+        deriv = (STENCIL / (12 * h)) @ (Up @ phi + Uq @ psi)
+        Hp, Hq = heat_operators(par, rep, np.array([s0]))
+        ref = -0.5 * np.pi * (1.0 + par.K2_over_K1) * (Hp @ phi + Hq @ psi)[0]
+        assert deriv == pytest.approx(ref, rel=1e-8)
+
+
+def test_single_patch_with_a_large_conductance_is_perfect_contact():
+    """Bi0 -> infinity: the temperature equation (D33) reaches the heat equation
+    (D18), the difference in P_H/P falling as 1/Bi0 (to 2e-13 at Bi0 = 1e12)."""
+    perfect = Model(5.0, 10.0, n=32).solve_at(32, 0.2, lam=-1)
+    changes = []
+    for bi in (1e6, 1e9, 1e12):
+        sol = Model(5.0, 10.0, n=32, conductance=(bi, 0.0)).solve_at(32, 0.2, lam=-1)
+        changes.append(abs(sol.load_ratio - perfect.load_ratio))
+    assert changes[-1] < 1e-11
+    assert abs(sol.sigma_over_delta - perfect.sigma_over_delta) < 1e-11
+    assert changes[1] < 1e-2 * changes[0]
+
+
+@pytest.mark.parametrize("biot0, m, method", [(3.0, 0.0, "graded"),
+                                              (3.0, 1.0, "graded-collocation"),
+                                              (0.5, 0.95, "graded-collocation")])
+def test_single_patch_conductance_is_one_zone_with_converted_biot(biot0, m, method):
+    """The single patch with Bi0 = h0 Delta/K2 (p_ref = P/(2 Delta)) is one zone with
+    Bi0_l = Bi0 (P_H/P)^((m - 1)/2) at Pe_l = Pe/Delta (section 16), to 1e-10.  (With
+    m != 0 the projected rows weight their points by Bi/(1 + Bi), which depends on
+    the length unit: there the two agree to the discretisation error, section 16.)"""
+    pe, F, lam = 5.0, 0.3, 0.5
+    core = Model(pe, 10.0, n=16, conductance=(biot0, m), method=method).solve_at(
+        16, F, lam=lam)
+    L = core.load_ratio
+    D = np.sqrt(L)
+    zone = ZoneModel(10.0, n=16, conductance=(biot0 * L ** ((m - 1) / 2), m),
+                     method=method).solve([[-1.0, 1.0]], pe / D, F / D, lam)
+    Lz, sigma = zone.single_patch()
+    assert Lz == pytest.approx(L, abs=1e-10)
+    assert sigma == pytest.approx(core.sigma_over_delta, abs=1e-10)
+    # The conductance moves the answer: it is not perfect contact.
+    perfect = Model(pe, 10.0, n=16).solve_at(16, F, lam=lam)
+    assert abs(perfect.load_ratio - L) > 1e-3
+
+
+def test_conductance_through_solve_and_the_command_line(capsys):
+    import json
+
+    from thermocontact import solve
+    from thermocontact.cli import main
+    sol = solve(5.0, 0.3, 10.0, lam=0.5, n=16, conductance=(3.0, 0.0))
+    ref = Model(5.0, 10.0, n=16, conductance=(3.0, 0.0)).solve_at(16, 0.3, lam=0.5)
+    assert sol.load_ratio == ref.load_ratio
+    assert sol.error_estimate is not None and sol.error_estimate > 0.0
+    assert main(["solve", "--pe", "5", "--fhpe", "0.3", "--K2-over-K1", "10", "--lam", "0.5",
+                 "-n", "16", "--conductance", "3:0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["load_ratio"] == ref.load_ratio
+    assert (out["conductance_biot0"], out["conductance_exponent"]) == (3.0, 0.0)
+    assert sol.to_dataset().attrs["conductance_biot0"] == 3.0
+    assert main(["solve", "--pe", "5", "--fhpe", "0.3", "--K2-over-K1", "10", "--lam", "0.5",
+                 "--conductance", "0:0"]) != 0
+    assert "conductance h0" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("speed_ratio, beta_f", [(0.0, 0.0), (0.4, 0.3)])
+def test_sigma_closure_of_one_zone_is_the_single_patch(speed_ratio, beta_f):
+    """One zone with its offset given: centre/Delta is sigma, and Delta^2 and lam are
+    the single patch's at Pe = Pe_l Delta with sigma given (to 1e-10)."""
+    zone = ZoneModel(10.0, n=16, speed_ratio=speed_ratio, beta_f=beta_f).solve(
+        [[-1.0, 1.0]], 5.0, 0.2, sigma_over_delta=-0.05)
+    L, sigma = zone.single_patch()
+    assert sigma == pytest.approx(-0.05, abs=1e-13)
+    D = zone.half_widths[0]
+    core = Model(5.0 * D, 10.0, n=16, speed_ratio=speed_ratio, beta_f=beta_f).solve_at(
+        16, 0.2 * D, sigma_over_delta=-0.05)
+    assert L == pytest.approx(core.load_ratio, abs=1e-10)
+    assert zone.lam == pytest.approx(core.lam, abs=1e-10)
+
+
+def test_sigma_closure_refused_for_several_zones():
+    model = ZoneModel(10.0, n=8)
+    with pytest.raises(InputError, match="single zone"):
+        model.solve([[-2.6, -1.4], [1.3, 2.7]], 1.0, 0.1, sigma_over_delta=0.0)
+    with pytest.raises(InputError, match="exactly one"):
+        model.solve([[-1.0, 1.0]], 1.0, 0.1, 0.5, sigma_over_delta=0.0)
+
+
+def test_zone_error_estimate_is_measured_and_shrinks_with_n():
+    """The estimate of refine over n/4, n/2, n: None unless asked for or without a
+    coarser level, positive and falling as n doubles."""
+    model = ZoneModel(10.0, n=16)
+    assert model.solve([[-1.0, 1.0]], 5.0, 0.3, 0.5).error_estimate is None
+    assert ZoneModel(10.0, n=4).solve([[-1.0, 1.0]], 5.0, 0.3, 0.5,
+                                      estimate=True).error_estimate is None
+    sols = [ZoneModel(10.0, n=n).solve([[-1.0, 1.0]], 5.0, 0.3, 0.5, estimate=True)
+            for n in (8, 16)]
+    est = [sol.error_estimate for sol in sols]
+    assert est[0] > 100 * est[1] > 0.0
+    assert sols[1].to_dict()["error_estimate"] == est[1]
+    # It bounds the error: against n = 32 in Delta^2 and centre/Delta.
+    fine = ZoneModel(10.0, n=32).solve(sols[1].edges, 5.0, 0.3, 0.5)
+    change = np.subtract(fine.single_patch(), sols[1].single_patch())
+    assert np.max(np.abs(change)) < est[1]
