@@ -596,63 +596,6 @@ def reproduce_cmd(out_dir, only):
     click.echo(f"wrote {len(done)} files to {out_dir}/ in {time.perf_counter() - t0:.1f} s")
 
 
-def _branch_record(b) -> dict:
-    v = b.solution.validity
-    return {
-        "half_width": b.half_width, "offset": b.offset, "a": b.a, "b": b.b,
-        "peak_pressure": b.peak_pressure, "mean_pressure": b.mean_pressure,
-        "pe": b.pe, "fhpe": b.fhpe, "lam": b.lam, "load_ratio": b.load_ratio,
-        "valid": b.valid, "flash_temperature": b.flash_temperature,
-        "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
-        "temperature_mismatch": b.temperature_mismatch,
-        "half_plane_incoming_temperature": b.half_plane_incoming_temperature,
-        "flash_temperature_half_plane": b.flash_temperature_half_plane,
-        "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
-        "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
-        "reason": v.reason, "strictly_valid": v.strictly_valid,
-        "applicable": b.applicable,
-        "applicability_reasons": list(b.applicability.reasons),
-    }
-
-
-def contact_record(res) -> dict:
-    """The JSON record of a :class:`~thermocontact.studies.physical_contact.PhysicalContact` (SI units)."""
-    prob = res.problem
-    prim = res.primary
-    rec = {key: (getattr(prim, key) if prim is not None else None) for key in (
-        "half_width", "offset", "a", "b", "peak_pressure", "mean_pressure", "pe", "fhpe",
-        "flash_temperature", "heat_cylinder", "heat_half_plane")}
-    rec.update({
-        "hertz_half_width": prob.hertz_half_width,
-        "hertz_peak_pressure": prob.hertz_peak_pressure,
-        "lam": prob.lam,
-        "valid": bool(prim is not None and prim.valid),
-        "applicable": bool(prim is not None and prim.applicable),
-        "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
-                                  else []),
-        "error_estimate": prim.error_estimate if prim is not None else None,
-        "converged": prim.converged if prim is not None else None,
-        "message": res.message,
-        "largest_valid_load": res.largest_valid_load,
-        "searched": (None if res.searched is None else dict(zip(
-            ("half_width_min", "half_width_max", "fhpe_min", "fhpe_max"), res.searched))),
-        "branches": [_branch_record(b) for b in res.branches],
-        "inputs": {
-            "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
-            "radius": prob.radius, "load": prob.load, "speed": prob.speed,
-            "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
-            "dundurs": prob.dundurs,
-        },
-        "beta_f": prob.beta_f,
-        "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
-                 "surface temperature), W/m",
-        "version": __version__,
-    })
-    if rec["largest_valid_load"] is not None and not np.isfinite(rec["largest_valid_load"]):
-        rec["largest_valid_load"] = "unbounded"
-    return rec
-
-
 def _contact_summary(res) -> str:
     prob = res.problem
     lines = [
@@ -854,7 +797,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         if side is not None:
             side.shutdown(wait=False, cancel_futures=True)
     if as_json:
-        click.echo(json.dumps(contact_record(res), allow_nan=False))
+        click.echo(json.dumps(res.to_dict(), allow_nan=False))
     else:
         click.echo(_contact_summary(res))
 

@@ -47,8 +47,8 @@ from ..discretisation.operator import distortion_operators
 from ..numerics.extrema import polish_minimum
 from ..physics.green_functions import cylinder_temperature
 
-__all__ = ["ContactFields", "SAMPLES", "Zone", "contact_fields", "slopes_and_strains",
-           "zones_of"]
+__all__ = ["ContactFields", "SAMPLES", "Zone", "contact_fields", "slope_factors",
+           "slopes_and_strains", "surface_temperatures", "zones_of"]
 
 #: Points per zone at which pressure and temperatures are sampled (``s = -cos(theta)``,
 #: equally spaced in ``theta``, edges included).
@@ -122,6 +122,35 @@ def _temperature(zones, rep, eta, body, unit, at, s):
             t = -unit * 0.5 * ((1 - eta) * (lb @ z.phi) - lq @ z.psi)
         total = total + (t if z.half == 1.0 else z.half * t)
     return total
+
+
+def surface_temperatures(sol, s, *, zone=0, temperature_units=None):
+    """Both bodies' surface temperature rises at points ``s`` of one zone (D8, D12).
+
+    Parameters
+    ----------
+    sol : ContactSolution or ZoneSolution
+    s : array_like
+        Points in the zone's own coordinate (``[-1, 1]`` over the zone).
+    zone : int
+        Which zone (0 for a single patch).
+    temperature_units : pair of float, optional
+        As in :func:`contact_fields`.
+
+    Returns
+    -------
+    t1, t2 : ndarray
+        The cylinder's rise over its incoming temperature; the half-plane's before
+        its level is set: a moving half-plane's rise over its own incoming
+        temperature, a stationary one's up to a constant.
+    """
+    zones, rep, eta, _ = zones_of(sol)
+    if temperature_units is None:
+        temperature_units = (1.0, 1.0 / sol.parameters.K2_over_K1)
+    s = np.atleast_1d(np.asarray(s, dtype=float))
+    at = zones[zone]
+    return (_temperature(zones, rep, eta, 1, temperature_units[0], at, s),
+            _temperature(zones, rep, eta, 2, temperature_units[1], at, s))
 
 
 def slopes_and_strains(length_over_radius, reach, load_ratio, slope_factors, strain_pressure,
@@ -329,6 +358,15 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
         temperature_range=(float(rises.min()), float(rises.max())),
         reach=float(reach), extent=float(extent), load_ratio=float(L),
         slope_factors=factors, strain_pressure=strain_p, length=float(length))
+
+
+def slope_factors(sol, fractions=(1.0, 1.0)):
+    """Per body the largest ``fraction |elastic| + |thermal|`` of (D14) over the
+    contact, and the greatest pressure on the same points (units ``P/ell``), of a
+    single patch or a contact set (:func:`slopes_and_strains` makes them slopes and
+    strains)."""
+    zones, rep, _, _ = zones_of(sol)
+    return _slope_factors(zones, rep, sol.parameters, fractions)
 
 
 def _slope_factors(zones, rep, par, fractions):

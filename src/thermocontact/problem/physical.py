@@ -202,10 +202,11 @@ class PhysicalProblem:
                 self.half_plane.compliance / self.compliance)
 
     @property
-    def heat_scale(self) -> float:
-        """``f |v1 - v2| P / pi``, W/m: over a conductivity, the unit of the surface
-        temperature rises (derivation D8, D24)."""
-        return self.friction * self.sliding_speed * self.load / np.pi
+    def temperature_units(self) -> tuple:
+        """``f |v1 - v2| P/(pi K1)`` and ``f |v1 - v2| P/(pi K2)``, K: the units of each
+        body's surface temperature rise (derivation D8, D12, D24)."""
+        q = self.friction * self.sliding_speed * self.load
+        return q / (np.pi * self.cylinder.K), q / (np.pi * self.half_plane.K)
 
     def scan_range(self) -> tuple:
         """The half-widths searched for the ones that carry the load, m
