@@ -756,21 +756,22 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
             raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
         from .studies.contact_sets import physical_contact_set
 
-        rec = physical_contact_set(prob, conductance=_conductance(
+        found = physical_contact_set(prob, conductance=_conductance(
             conductance, "in W/(m^2 K)", physical=True))
         if as_json:
-            click.echo(json.dumps(rec, allow_nan=False))
+            click.echo(json.dumps(found.to_dict(), allow_nan=False))
             return
-        lines = [f"status: {rec['status']}: {rec['message']}",
-                 f"  Hertz half-width {rec['hertz_half_width']:.6g} m"]
-        for k, z in enumerate(rec["zones"], 1):
+        lines = [f"status: {found.status}: {found.message}",
+                 f"  Hertz half-width {found.hertz_half_width:.6g} m"]
+        for k, z in enumerate(found.zones, 1):
             lines.append(f"  zone {k}: {z['a']:.6g} m < x < {z['b']:.6g} m, load "
                          f"{z['load']:.6g} N/m, peak pressure {z['peak_pressure']:.6g} Pa")
-        lines.append(f"  valid: {rec['valid']}")
-        lines.append("  theory applicable (contact size, strains; slopes and temperatures "
-                     "not checked for contact sets): "
-                     + ("yes" if rec["theory_applicable"] else
-                        "NO: " + "; ".join(rec["theory_reasons"])))
+        if found.fields is not None:
+            lines.append(f"  flash temperature {found.fields.flash_temperature:.4g} K")
+        lines.append(f"  valid: {found.valid}")
+        if found.applicability is not None:
+            lines.append("  theory applicable: yes" if found.applicable else
+                         "  theory NOT applicable: " + "; ".join(found.applicability.reasons))
         click.echo("\n".join(lines))
         return
     from .execution.executors import side_process

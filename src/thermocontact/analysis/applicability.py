@@ -37,7 +37,8 @@ from ..discretisation.operator import distortion_operators
 from .fields import slope_factors, slopes_and_strains
 
 __all__ = ["AMBIENT_TEMPERATURE", "Applicability", "MAX_HALF_WIDTH_OVER_RADIUS",
-           "MAX_SLOPE", "MAX_STRAIN", "applicability", "assess", "surface_slopes"]
+           "MAX_SLOPE", "MAX_STRAIN", "applicability", "assess", "physical_applicability",
+           "surface_slopes"]
 
 #: Half-plane theory replaces the cylinder by a half-plane: the contact must be small
 #: against the radius (the curvature's error in the Hertz load is O((Delta/R)^2)).
@@ -208,3 +209,22 @@ def assess(half_width_over_radius, max_slope, max_strain, *, temperature_rises=N
     return Applicability(applicable=not reasons, reasons=tuple(reasons),
                          half_width_over_radius=ratio, max_slope=slope, max_strain=strain,
                          temperature_range=t_range, max_temperature=limits)
+
+
+def physical_applicability(problem, fields) -> Applicability:
+    """Whether the theory applies to a contact of a physical problem: :func:`assess`
+    of its fields (:func:`~.fields.contact_fields` in SI units), the one judgement of a
+    single patch's branch and of a contact set.
+
+    Parameters
+    ----------
+    problem : PhysicalProblem
+        The radius, the compliances and the materials' temperature limits.
+    fields : ContactFields
+        In metres, pascals and kelvin.
+    """
+    slope, strain = fields.slopes_and_strains(problem.radius, problem.compliance_fractions)
+    return assess(fields.extent * fields.length / problem.radius, slope, strain,
+                  temperature_rises=fields.temperature_range,
+                  max_temperature=(problem.cylinder.max_temperature,
+                                   problem.half_plane.max_temperature))

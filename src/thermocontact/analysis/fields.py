@@ -277,7 +277,7 @@ class ContactFields:
 
 
 def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
-                   fractions=(1.0, 1.0)) -> ContactFields:
+                   fractions=(1.0, 1.0), perfect_contact=True) -> ContactFields:
     """Evaluate a contact's fields (see the module notes).
 
     Parameters
@@ -296,6 +296,11 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
     fractions : pair of float
         Each body's compliance ``(1 - nu_i)/mu_i`` over their sum, for the slope
         factors (default: the whole elastic part charged to each body, a bound).
+    perfect_contact : bool
+        Whether both surfaces are at one temperature in the contact (default), which
+        sets a stationary half-plane's level.  Across an interface conductance they
+        are not, and the half-plane's temperatures are NaN (its level is not set):
+        the temperature range is then the cylinder's.
 
     Returns
     -------
@@ -324,9 +329,13 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
         t_edges = _temperature(zones, rep, eta, 1, u1, z, np.array([-1.0, 1.0]))
         t1_all.append(np.concatenate([t_edges[:1], t1s[-1], t_edges[1:]]))
     t1, t2 = np.concatenate(t1s), np.concatenate(t2s)
-    shift = float(np.mean(t1 - t2))
-    t2 = t2 + shift
-    mismatch = float(np.max(np.abs(t1 - t2)))
+    if perfect_contact:
+        shift = float(np.mean(t1 - t2))
+        t2 = t2 + shift
+        mismatch = float(np.max(np.abs(t1 - t2)))
+    else:
+        t2 = np.full_like(t2, np.nan)
+        shift = mismatch = float("nan")
     # The flash temperature: the greatest sample, polished on the closed form in its zone.
     best = max(range(len(zones)), key=lambda j: np.max(t1_all[j]))
     t_all = t1_all[best]
@@ -337,6 +346,7 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
         lambda x: -_temperature(zones, rep, eta, 1, u1, zb, np.asarray(x, dtype=float)),
         s_t, -t_all, it)
     rises = np.concatenate([*t1_all, t2])
+    rises = rises[np.isfinite(rises)]
     nan = np.array([np.nan])
     n_in = s_in.size
     t2_zones = [t2[k * n_in:(k + 1) * n_in] for k in range(len(zones))]

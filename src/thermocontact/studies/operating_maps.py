@@ -303,14 +303,13 @@ def evaluate_contact_sets(task) -> dict:
     for load, speed, radius in task["points"]:
         nan = math.nan
         try:
-            rec = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
-                                       conductance=spec.conductance)
-            z = rec["zones"]
-            row = (rec["status"], len(z), int(bool(rec["valid"])),
-                   int(bool(rec["theory_applicable"])),
+            found = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
+                                         conductance=spec.conductance)
+            z = found.zones
+            row = (found.status, len(z), int(bool(found.valid)), int(found.applicable),
                    z[0]["a"] if z else nan, z[-1]["b"] if z else nan,
                    sum(q["load"] for q in z) if z else nan,
-                   max(q["peak_pressure"] for q in z) if z else nan, rec["message"])
+                   max(q["peak_pressure"] for q in z) if z else nan, found.message)
         except (SolveError, InputError) as exc:
             row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc))
         for k, v in zip(ZONE_FIELDS, row):

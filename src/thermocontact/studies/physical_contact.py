@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._version import __version__
-from ..analysis.applicability import Applicability, assess
+from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import contact_fields
 from ..problem.parameters import SolveError
 from ..problem.physical import FHPE_MIN, MAX_WIDTH, PhysicalProblem
@@ -252,17 +252,6 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
         solution=sol,
         applicability=physical_applicability(prob, f),
     )
-
-
-def physical_applicability(prob: PhysicalProblem, fields) -> Applicability:
-    """Whether the theory applies to a contact of ``prob`` whose fields
-    (:func:`~thermocontact.analysis.fields.contact_fields`, SI units) are ``fields``:
-    size against the radius, slopes, strains, temperatures (:func:`assess`)."""
-    slope, strain = fields.slopes_and_strains(prob.radius, prob.compliance_fractions)
-    return assess(fields.extent * fields.length / prob.radius, slope, strain,
-                  temperature_rises=fields.temperature_range,
-                  max_temperature=(prob.cylinder.max_temperature,
-                                   prob.half_plane.max_temperature))
 
 
 def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContact:
