@@ -266,15 +266,16 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
 
 #: Fields of a map's contact sets (``zones_*``), by point.
 ZONE_FIELDS = ("status", "count", "valid", "applicable", "start", "end", "load",
-               "peak_pressure", "message")
+               "peak_pressure", "message", "flash_temperature", "applicability_reasons")
 
 
 def evaluate_contact_sets(task) -> dict:
     """The contact set at each of the task's points (:func:`physical_contact_set`):
     its status, number of zones, validity, whether the theory applies, the first
     zone's trailing and the last zone's leading edge (m), the load carried (N/m, the
-    sum over zones: the imposed load where solved), the peak pressure (Pa), and the
-    message."""
+    sum over zones: the imposed load where solved), the peak pressure (Pa), the
+    message, the flash temperature (K) and why the theory does not apply (the
+    reasons joined by "; ", as the single patch's ``applicability_reasons``)."""
     spec = task["spec"]
     out = {k: [] for k in ZONE_FIELDS}
     for load, speed, radius in task["points"]:
@@ -286,9 +287,12 @@ def evaluate_contact_sets(task) -> dict:
             row = (found.status, len(z), int(bool(found.valid)), int(found.applicable),
                    z[0]["a"] if z else nan, z[-1]["b"] if z else nan,
                    sum(q["load"] for q in z) if z else nan,
-                   max(q["peak_pressure"] for q in z) if z else nan, found.message)
+                   max(q["peak_pressure"] for q in z) if z else nan, found.message,
+                   found.fields.flash_temperature if found.fields is not None else nan,
+                   "; ".join(found.applicability.reasons)
+                   if found.applicability is not None else "")
         except (SolveError, InputError) as exc:
-            row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc))
+            row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc), nan, "")
         for k, v in zip(ZONE_FIELDS, row):
             out[k].append(v)
     return out
@@ -352,7 +356,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         ``mean_pressure``, ``flash_temperature``, ``load_ratio``, ``pe``, ``fhpe``,
         ``max_slope_*`` and ``max_strain_*`` of the cylinder and the half-plane (as
         ``contact`` measures them), ``valid``, ``applicable`` (size, slopes, strains,
-        flash temperature), ``branches``, ``status``, ``reason``; the boundary
+        temperatures: :func:`~thermocontact.analysis.applicability.assess`, as
+        ``contact``), ``applicability_reasons`` (joined by "; "), ``branches``,
+        ``status``, ``reason``; the boundary
         as values of ``Pe_H`` and as curves in the plane; with ``spec.zones`` the
         contact sets' ``zones_*`` (:func:`evaluate_contact_sets`).
     """
@@ -402,6 +408,7 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     branches = np.zeros(shape, dtype=np.int32)
     status = np.full(shape, "solved", dtype=object)
     reason = np.full(shape, "", dtype=object)
+    reasons_of = np.full(shape, "", dtype=object)
     k2, K1 = spec.half_plane.k, spec.cylinder.K
     fractions = spec.fractions()
     limits = (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
@@ -448,6 +455,7 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
                                         unit * _local(lp, ray["temperature_high"], r)),
                      max_temperature=limits)
         reasons = app.reasons
+        reasons_of[idx] = "; ".join(reasons)
         applicable[idx] = int(not reasons)
         reason[idx] = ("valid" if valid[idx] else "invalid single patch") + (
             "; not applicable: " + "; ".join(reasons) if reasons else "")
@@ -472,7 +480,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         {**{k: (dims, v) for k, v in fields.items()},
          "valid": (dims, valid), "applicable": (dims, applicable),
          "branches": (dims, branches), "status": (dims, status.astype(str)),
-         "reason": (dims, reason.astype(str)), "pe_hertz": (dims, pe_h),
+         "reason": (dims, reason.astype(str)),
+         "applicability_reasons": (dims, reasons_of.astype(str)), "pe_hertz": (dims, pe_h),
          "boundary_pe_hertz": ("event", bounds),
          "boundary_pe_hertz_error": ("event", np.array([
              _pe_hertz_error(lp, ray["load_ratio"], e) for e in ray["events"]],
