@@ -144,7 +144,7 @@ def test_one_point_one_answer_from_every_command(zones_map, capsys):
     one wording) and the same flash temperature: the contact set's to 1e-8 (its own
     solve, n = 32 per zone; observed 6e-15), the map's to 1e-5, the map's stated
     interpolation accuracy (ray in ln Pe to degree 5 at 24 samples per decade; observed
-    1e-6)."""
+    1.4e-10). The contact set's slopes and strains equal the map's to 1e-5 as well."""
     import json
 
     from thermocontact.cli import main
@@ -173,6 +173,11 @@ def test_one_point_one_answer_from_every_command(zones_map, capsys):
     assert zones["flash_temperature"] == pytest.approx(flash, rel=1e-8)
     assert float(here.zones_flash_temperature) == pytest.approx(flash, rel=1e-8)
     assert float(here.flash_temperature) == pytest.approx(flash, rel=1e-5)
+    for i, body in enumerate(("cylinder", "half_plane")):
+        assert zones["max_slope"][i] == pytest.approx(float(here[f"max_slope_{body}"]),
+                                                      rel=1e-5)
+        assert zones["max_strain"][i] == pytest.approx(float(here[f"max_strain_{body}"]),
+                                                       rel=1e-5)
 
 
 def test_contact_set_options_of_a_map_are_checked():
