@@ -43,9 +43,8 @@ from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
-from ..discretisation.operator import distortion_operators
+from ..discretisation.operator import distortion_operators, temperature_kernels
 from ..numerics.extrema import polish_minimum
-from ..physics.green_functions import cylinder_temperature
 
 __all__ = ["ContactFields", "SAMPLES", "Zone", "contact_fields", "slope_factors",
            "slopes_and_strains", "surface_temperatures", "zones_of"]
@@ -99,29 +98,29 @@ def _local(zone: Zone, other: Zone, s):
     return (other.centre + other.half * s - zone.centre) / zone.half
 
 
-def _temperature(zones, rep, eta, body, unit, at, s):
-    """Body ``body``'s surface temperature rise at points ``s`` of zone ``at``, before
-    the half-plane's level is set: the sum over zones of (D8) or (D12) in units
-    ``unit`` (``f |v1 - v2| P/(pi K_body)``)."""
-    sign = 1.0 if body == 1 else -1.0
-    total = 0.0
+def _temperatures(zones, rep, eta, units, at, s):
+    """Both bodies' surface temperature rises at points ``s`` of zone ``at``, before
+    the half-plane's level is set: the sums over zones of (D8) and (D12) in units
+    ``units`` (``f |v1 - v2| P/(pi K_i)``), by the kernels' one quadrature
+    (:func:`~thermocontact.discretisation.operator.temperature_kernels`)."""
+    t1 = t2 = 0.0
     for z in zones:
         u = _local(z, at, s)
-        c = z.parameters.cylinder_scale if body == 1 else z.parameters.half_plane_scale
-        if body == 1 or c:
-            # q1, q2 = ((1 +- eta) p +- q')/2 with the body's own signed kernel scale.
-            ib, iq = rep.integrate(lambda w, c=c: cylinder_temperature(c * w), u)
-            t = unit * 0.5 * ((1 + sign * eta) * (ib @ z.phi) + sign * (iq @ z.psi))
+        (tb, tq), (hb, hq) = temperature_kernels(z.parameters, rep, u)
+        # q1, q2 = ((1 +- eta) p +- q')/2, each body with its own signed kernel scale.
+        a = units[0] * 0.5 * ((1 + eta) * (tb @ z.phi) + tq @ z.psi)
+        if z.parameters.half_plane_scale:
+            b = units[1] * 0.5 * ((1 - eta) * (hb @ z.phi) - hq @ z.psi)
         else:
-            lb, lq = rep.integrate(lambda w: np.log(np.abs(w)), u)
             if z.half != 1.0:
                 # ln|x - xi| in units of ell: ln h_j more per unit of heat.
                 lg = np.log(z.half)
-                lb = lb + lg * rep.pressure_rule.weights[None, :]
-                lq = lq + lg * rep.flux_rule.weights[None, :]
-            t = -unit * 0.5 * ((1 - eta) * (lb @ z.phi) - lq @ z.psi)
-        total = total + (t if z.half == 1.0 else z.half * t)
-    return total
+                hb = hb + lg * rep.pressure_rule.weights[None, :]
+                hq = hq + lg * rep.flux_rule.weights[None, :]
+            b = -units[1] * 0.5 * ((1 - eta) * (hb @ z.phi) - hq @ z.psi)
+        t1 = t1 + (a if z.half == 1.0 else z.half * a)
+        t2 = t2 + (b if z.half == 1.0 else z.half * b)
+    return t1, t2
 
 
 def surface_temperatures(sol, s, *, zone=0, temperature_units=None):
@@ -149,8 +148,7 @@ def surface_temperatures(sol, s, *, zone=0, temperature_units=None):
         temperature_units = (1.0, 1.0 / sol.parameters.K2_over_K1)
     s = np.atleast_1d(np.asarray(s, dtype=float))
     at = zones[zone]
-    return (_temperature(zones, rep, eta, 1, temperature_units[0], at, s),
-            _temperature(zones, rep, eta, 2, temperature_units[1], at, s))
+    return _temperatures(zones, rep, eta, temperature_units, at, s)
 
 
 def slopes_and_strains(length_over_radius, reach, load_ratio, slope_factors, strain_pressure,
@@ -324,9 +322,10 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
         ip = int(np.argmax(p))
         _, neg_peak = polish_minimum(lambda x, z=z: -unit_p * rep.pressure_at(z.phi, x), s, -p, ip)
         peak = max(peak, -neg_peak)
-        t1s.append(_temperature(zones, rep, eta, 1, u1, z, s_in))
-        t2s.append(_temperature(zones, rep, eta, 2, u2, z, s_in))
-        t_edges = _temperature(zones, rep, eta, 1, u1, z, np.array([-1.0, 1.0]))
+        t1, t2 = _temperatures(zones, rep, eta, (u1, u2), z, s_in)
+        t1s.append(t1)
+        t2s.append(t2)
+        t_edges = _temperatures(zones, rep, eta, (u1, u2), z, np.array([-1.0, 1.0]))[0]
         t1_all.append(np.concatenate([t_edges[:1], t1s[-1], t_edges[1:]]))
     t1, t2 = np.concatenate(t1s), np.concatenate(t2s)
     if perfect_contact:
@@ -343,7 +342,7 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
     s_t = np.concatenate([[-1.0], s_in, [1.0]])
     zb = zones[best]
     _, neg_flash = polish_minimum(
-        lambda x: -_temperature(zones, rep, eta, 1, u1, zb, np.asarray(x, dtype=float)),
+        lambda x: -_temperatures(zones, rep, eta, (u1, u2), zb, np.asarray(x, dtype=float))[0],
         s_t, -t_all, it)
     rises = np.concatenate([*t1_all, t2])
     rises = rises[np.isfinite(rises)]
