@@ -579,12 +579,12 @@ def physical_contact_set(problem, *, conductance=None, n=32,
         raise InputError("--zones needs a stationary half-plane (speed2 = 0), got speed2 = "
                          f"{problem.speed2:g} m/s")
     ell = problem.hertz_half_width
-    c, h = problem.cylinder, problem.half_plane
+    groups = problem.ray_parameters()
     conductance = None if conductance is None else _physical(conductance)
-    res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), h.K / c.K, lam=problem.lam,
-                           k2_over_k1=h.k / c.k,
-                           delta1_over_delta2=c.distortivity / h.distortivity,
-                           beta_f=problem.beta_f, n=n, progress=progress,
+    res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), groups["K2_over_K1"],
+                           lam=problem.lam, k2_over_k1=groups["k2_over_k1"],
+                           delta1_over_delta2=groups["delta1_over_delta2"],
+                           beta_f=groups["beta_f"], n=n, progress=progress,
                            conductance=None if conductance is None else
                            conductance.biot(problem))
     fields = app = None
