@@ -104,7 +104,7 @@ def repeats_for(n):
 
 def clear_point_caches():
     """Forget the per-``n`` point geometry of the graded moments (a first call's cost)."""
-    from thermocontact.numerics import edge_graded as graded
+    from thermocontact.numerics import moment_engine as graded
 
     graded.GEOMETRY.clear()
 

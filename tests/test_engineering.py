@@ -11,8 +11,9 @@ from scipy.special import k0
 
 from thermocontact import InputError, solve
 from thermocontact.cli import main
-from thermocontact.studies.physical_contact import PhysicalProblem, _temperatures, contact
+from thermocontact.analysis.fields import contact_fields, surface_temperatures
 from thermocontact.numerics.continuation import secant
+from thermocontact.studies.physical_contact import PhysicalProblem, contact
 from thermocontact.studies.ray import brackets, follow, interpolated_roots
 from thermocontact.problem.materials import MaterialError, get_material
 
@@ -146,8 +147,8 @@ def test_temperature_mismatch_falls_with_n():
     2.5e-3, 9.5e-5, 3.0e-6 K at n = 32, 64, 128, against a flash temperature of 881 K)."""
     p = problem()
     d = 1.7648431799916604e-05  # the branch of test_coupled_contact_has_branch_with_fields
-    s = np.cos(np.linspace(np.pi, 0.0, 201))[1:-1]
-    mismatch = [_temperatures(p, solve(**p.to_dimensionless(d), n=n), d, s)[2]
+    mismatch = [contact_fields(solve(**p.to_dimensionless(d), n=n), length=d, load=p.load,
+                               temperature_units=p.temperature_units).temperature_mismatch
                 for n in (32, 64, 128)]
     assert mismatch[0] > 10 * mismatch[1] > 100 * mismatch[2]
     assert mismatch[2] < 1e-8 * 881
@@ -164,12 +165,12 @@ def test_temperature_against_carslaw_jaeger_quadrature(speed2):
     d = 4e-5
     sol = solve(**p.to_dimensionless(d), n=48)
     s = np.array([-0.6, 0.1, 0.8])
-    t1, t2, _, incoming = _temperatures(p, sol, d, s)
+    t1, t2 = surface_temperatures(sol, s, temperature_units=p.temperature_units)
     basis = sol.representation
     eta = sol.eta
     bodies = [(t1, sol.parameters.cylinder_scale, STEEL.K, 1.0)]
     if speed2:
-        bodies.append((t2 - incoming, sol.parameters.half_plane_scale, IRON.K, -1.0))
+        bodies.append((t2, sol.parameters.half_plane_scale, IRON.K, -1.0))
     scale = p.friction * p.sliding_speed * p.load / np.pi
     for temps, c, K, sign in bodies:
         for si, ti in zip(s, temps):
@@ -268,7 +269,7 @@ def test_flash_temperature_and_peak_pressure_are_true_maxima():
                         0.35, -1.0)
     b = contact(p).primary
     s = np.linspace(-1.0, 1.0, 4001)
-    t1 = _temperatures(p, b.solution, b.half_width, s)[0]
+    t1 = surface_temperatures(b.solution, s, temperature_units=p.temperature_units)[0]
     pr = p.load / b.half_width * b.solution.pressure_at(s)
     for top, dense in ((b.flash_temperature, t1.max()), (b.peak_pressure, pr.max())):
         assert dense <= top * (1 + 1e-12) and top - dense < 1e-6 * abs(top)

@@ -8,7 +8,7 @@ import pytest
 
 from conftest import references
 from thermocontact import solve
-from thermocontact.numerics import edge_graded as graded
+from thermocontact.numerics import moment_engine as graded
 from thermocontact.numerics.moments import chebyshev_lagrange
 from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
 

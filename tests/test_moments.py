@@ -7,7 +7,7 @@ import pytest
 import thermocontact.numerics.moments as mm
 from conftest import references
 from thermocontact.physics.green_functions import cylinder_slope, cylinder_temperature_gradient_regular
-from thermocontact.numerics.edge_graded import chebyshev_moments as kernel_moments
+from thermocontact.numerics.moment_engine import chebyshev_moments as kernel_moments
 from thermocontact.numerics.moments import sgn_moments
 
 S = np.array([-0.999, -0.3, 0.0, 0.5, 0.99999, 1.0, 1.001, -1.2])
@@ -32,7 +32,7 @@ def test_kernel_moments_match_quadrature(key, tol):
 
 def _clear_rules():
     """Forget every cached rule and geometry, so that a changed GAUSS_POINTS takes effect."""
-    from thermocontact.numerics import edge_graded as graded
+    from thermocontact.numerics import moment_engine as graded
 
     for f in (mm.gauss_legendre, mm._graded_reference, mm.inner_reference, mm.panel_rule,
               graded._common, graded.weight_integrals):
@@ -46,7 +46,7 @@ def test_moments_stable_under_refinement(c, monkeypatch):
     less than 1e-13 relative to their largest value when every Gauss-Legendre rule,
     the common panels' included, goes from 16 to 24 points (c up to 1e6: kernels of
     width 1e-6 and the near-pole -1/u beyond it)."""
-    from thermocontact.numerics import edge_graded as graded
+    from thermocontact.numerics import moment_engine as graded
 
     kernels = [(lambda u: cylinder_temperature_gradient_regular(u, c), True),
                (lambda u: cylinder_slope(c * u), False)]

@@ -90,17 +90,32 @@ def test_manifest_holds_the_materials_values():
         parse_physical_axis("--y", "speed:0.1:10:2:log"), {"radius": 0.01}).manifest()
 
 
-def test_contact_sets_over_a_map_equal_the_single_patch_where_it_is_valid(tmp_path):
+#: Steel on copper, lambda = 1, R = 10 mm: every point of ``zones_map`` a valid single
+#: patch of one zone; the heavier load strains the copper beyond 1 %.
+STEEL_ON_COPPER = ["--cylinder", "steel", "--half-plane", "copper", "--friction", "0.3",
+                   "--lam", "1", "--radius", "0.01"]
+
+
+@pytest.fixture(scope="module")
+def zones_map(tmp_path_factory):
+    """``map STEEL_ON_COPPER --x speed:2:5:2 --y load:1e5:2e5:2 --zones`` (the operating
+    map and its contact sets, as the command computes it), once for this module, with
+    its chunks kept."""
+    s = OperatingSpec(ST, CU, 0.3, 1.0, parse_physical_axis("--x", "speed:2:5:2"),
+                      parse_physical_axis("--y", "load:1e5:2e5:2"), {"radius": 0.01},
+                      zones=True)
+    parts = tmp_path_factory.mktemp("zones_map") / "parts"
+    return s, compute_operating_map(s, store_path=parts), parts
+
+
+def test_contact_sets_over_a_map_equal_the_single_patch_where_it_is_valid(zones_map):
     """With --zones every point also gets its contact set, followed from Hertz's zone in
     the friction heat at the point's load (an independent route: the map's single patch
     comes from the one ray in Pe, interpolated). Where the single patch is valid (steel on
     copper, lambda = 1, Pe_H 1.1-3.8), the contact set is that one zone: edges to 1e-8 of
     the half-width (observed 5e-10), peak pressure to 1e-8 relative, the whole load. The
     contact sets are kept beside the ray's chunks and a second run reads them back."""
-    s = OperatingSpec(ST, CU, 0.3, 1.0, parse_physical_axis("--x", "speed:2:5:2"),
-                      parse_physical_axis("--y", "load:1e5:2e5:2"), {"radius": 0.01},
-                      zones=True)
-    ds = compute_operating_map(s, store_path=tmp_path / "parts")
+    s, ds, parts = zones_map
     assert (ds.valid.values == 1).all()
     assert (ds.zones_status.values == "solved").all() and (ds.zones_count.values == 1).all()
     assert (ds.zones_valid.values == 1).all()
@@ -117,9 +132,52 @@ def test_contact_sets_over_a_map_equal_the_single_patch_where_it_is_valid(tmp_pa
                                rtol=1e-8)
     np.testing.assert_allclose(ds.zones_load.values, ds["load"].values[:, None] + 0 * d,
                                rtol=1e-12)
-    assert sorted(p.name for p in (tmp_path / "parts" / "contact_sets").iterdir()) == [
+    assert sorted(p.name for p in (parts / "contact_sets").iterdir()) == [
         "chunk-000000.json", "chunk-000001.json", "manifest.json"]
-    assert compute_operating_map(s, store_path=tmp_path / "parts").identical(ds)
+    assert compute_operating_map(s, store_path=parts).identical(ds)
+
+
+def test_one_point_one_answer_from_every_command(zones_map, capsys):
+    """The same operating point (steel on copper, 200 kN/m at 2 m/s, the map's corner)
+    through `contact`, `contact --zones` (one zone), the operating map and `map --zones`:
+    the same `applicable`, the same reasons (here the copper's strain, one judgement in
+    one wording) and the same flash temperature: the contact set's to 1e-8 (its own
+    solve, n = 32 per zone; observed 6e-15), the map's to 1e-5, the map's stated
+    interpolation accuracy (ray in ln Pe to degree 5 at 24 samples per decade; observed
+    1.4e-10). The contact set's slopes and strains equal the map's to 1e-5 as well."""
+    import json
+
+    from thermocontact.cli import main
+
+    _, ds, _ = zones_map
+    point = ["--load", "2e5", "--speed", "2", "--json"]
+    args = STEEL_ON_COPPER
+    assert main(["contact", *args, *point]) == 0
+    patch = json.loads(capsys.readouterr().out)
+    assert main(["contact", *args, *point, "--zones"]) == 0
+    zones = json.loads(capsys.readouterr().out)
+    here = ds.sel(load=2e5, speed=2.0)
+    assert len(zones["zones"]) == 1 and zones["status"] == "solved"
+    reasons = patch["applicability_reasons"]
+    assert reasons and "half-plane strain" in reasons[0]  # not vacuous
+    for applicable, why in (
+            (zones["applicable"], zones["applicability_reasons"]),
+            (zones["theory_applicable"], zones["theory_reasons"]),
+            (bool(here.applicable), str(here.applicability_reasons.values).split("; ")),
+            (bool(here.zones_applicable),
+             str(here.zones_applicability_reasons.values).split("; "))):
+        assert applicable is patch["applicable"] is False
+        assert why == reasons
+    assert str(here.reason.values) == "valid; not applicable: " + "; ".join(reasons)
+    flash = patch["flash_temperature"]
+    assert zones["flash_temperature"] == pytest.approx(flash, rel=1e-8)
+    assert float(here.zones_flash_temperature) == pytest.approx(flash, rel=1e-8)
+    assert float(here.flash_temperature) == pytest.approx(flash, rel=1e-5)
+    for i, body in enumerate(("cylinder", "half_plane")):
+        assert zones["max_slope"][i] == pytest.approx(float(here[f"max_slope_{body}"]),
+                                                      rel=1e-5)
+        assert zones["max_strain"][i] == pytest.approx(float(here[f"max_strain_{body}"]),
+                                                       rel=1e-5)
 
 
 def test_contact_set_options_of_a_map_are_checked():

@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from thermocontact import METHODS, InputError, SolveError, solve
-from thermocontact.numerics.edge_graded import stretch, stretch_derivative
+from thermocontact.numerics.moment_engine import stretch, stretch_derivative
 
 
 def integral_over_contact(f, singular=False):

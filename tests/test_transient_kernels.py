@@ -23,7 +23,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import dawsn, i0, k0, modstruve
 
-from thermocontact.numerics import edge_graded
+from thermocontact.numerics import moment_engine
 from thermocontact.physics import green_functions as steady
 from thermocontact.physics import transient_green_functions as tk
 from thermocontact.problem.validation import InputError
@@ -257,14 +257,14 @@ def test_bad_input_is_refused(c, b):
 
 def _split_moments(kernel, s, n, **kw):
     """Moments of a complex kernel: of its real and imaginary parts, separately."""
-    re = edge_graded.moments(lambda u: kernel(u).real, s, n, **kw)
-    im = edge_graded.moments(lambda u: kernel(u).imag, s, n, **kw)
+    re = moment_engine.moments(lambda u: kernel(u).real, s, n, **kw)
+    im = moment_engine.moments(lambda u: kernel(u).imag, s, n, **kw)
     return [r + 1j * i for r, i in zip(re, im)]
 
 
 def test_graded_moments_at_small_rate_equal_the_steady_ones():
     n = 8
-    s = np.cos(edge_graded.stretch(np.pi * (np.arange(n, 0, -1) - 0.5) / n))
+    s = np.cos(moment_engine.stretch(np.pi * (np.arange(n, 0, -1) - 0.5) / n))
     c, b = 5.0, 1e-30 * np.exp(0.3j * np.pi)
     pairs = [
         (lambda u: tk.transient_temperature_gradient_regular(u, c, b),
@@ -276,7 +276,7 @@ def test_graded_moments_at_small_rate_equal_the_steady_ones():
     ]
     for transient, reference, kw in pairs:
         for got, ref in zip(_split_moments(transient, s, n, **kw),
-                            edge_graded.moments(reference, s, n, **kw)):
+                            moment_engine.moments(reference, s, n, **kw)):
             assert np.max(np.abs(got - ref)) < 1e-12 * np.max(np.abs(ref))
 
 
@@ -292,7 +292,7 @@ def test_graded_moments_of_a_complex_rate_against_quadrature(kernel, kw):
     n, j, row = 8, 3, 5
     tau = np.pi * (np.arange(n, 0, -1) - 0.5) / n  # the points of the test above
     tau_s = tau[row]
-    bounded, singular = _split_moments(kernel, np.cos(edge_graded.stretch(tau)), n, **kw)
+    bounded, singular = _split_moments(kernel, np.cos(moment_engine.stretch(tau)), n, **kw)
     x, w = np.polynomial.legendre.leggauss(20)
     offsets, weights = [], []
     for length, side in ((tau_s, -1.0), (np.pi - tau_s, 1.0)):
@@ -303,11 +303,11 @@ def test_graded_moments_of_a_complex_rate_against_quadrature(kernel, kw):
         weights.append((0.5 * (far - near)[:, None] * w).ravel())
     d, w_nodes = np.concatenate(offsets), np.concatenate(weights)
     t_nodes = tau_s + d
-    t = edge_graded.stretch(t_nodes)
+    t = moment_engine.stretch(t_nodes)
     # s - cos t without cancellation next to tau_s: t - t_s = d - cos(2 tau_s + d) sin d.
     dt = d - np.cos(2.0 * tau_s + d) * np.sin(d)
-    u = 2.0 * np.sin(edge_graded.stretch(tau_s) + 0.5 * dt) * np.sin(0.5 * dt)
-    common = w_nodes * kernel(u) * edge_graded.stretch_derivative(t_nodes) * np.cos(j * t_nodes)
+    u = 2.0 * np.sin(moment_engine.stretch(tau_s) + 0.5 * dt) * np.sin(0.5 * dt)
+    common = w_nodes * kernel(u) * moment_engine.stretch_derivative(t_nodes) * np.cos(j * t_nodes)
     b_ref, s_ref = np.sum(common * np.sin(t) ** 2), np.sum(common)
     assert abs(bounded[row, j] - b_ref) < 1e-12 * np.max(np.abs(bounded))
     assert abs(singular[row, j] - s_ref) < 1e-12 * np.max(np.abs(singular))

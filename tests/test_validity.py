@@ -7,7 +7,7 @@ from scipy.integrate import quad
 
 from thermocontact import solve
 from thermocontact.discretisation.representations import EdgeGraded
-from thermocontact.numerics.edge_graded import cosine_value, stretch, stretch_derivative
+from thermocontact.numerics.moment_engine import cosine_value, stretch, stretch_derivative
 from thermocontact.physics.green_functions import cylinder_slope
 
 HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz

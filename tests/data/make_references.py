@@ -73,7 +73,7 @@ def mp_kernels(c):
 
 
 def graded_moments():
-    from thermocontact.numerics import edge_graded as graded
+    from thermocontact.numerics import moment_engine as graded
 
     out = {}
     for name, kernel in mp_kernels(C).items():
@@ -152,7 +152,7 @@ def graded_cauchy_edge_row():
 
 
 def graded_cauchy():
-    from thermocontact.numerics import edge_graded as graded
+    from thermocontact.numerics import moment_engine as graded
 
     s = [-0.999999, -0.4, 0.1, 0.95, 0.999999]
     js = [0, 3, 9]

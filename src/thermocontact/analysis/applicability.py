@@ -35,9 +35,11 @@ import numpy as np
 
 from ..discretisation.operator import distortion_operators
 from ..io.results import Result
+from .fields import slope_factors, slopes_and_strains
 
 __all__ = ["AMBIENT_TEMPERATURE", "Applicability", "MAX_HALF_WIDTH_OVER_RADIUS",
-           "MAX_SLOPE", "MAX_STRAIN", "applicability", "surface_slopes"]
+           "MAX_SLOPE", "MAX_STRAIN", "applicability", "assess", "physical_applicability",
+           "surface_slopes"]
 
 #: Half-plane theory replaces the cylinder by a half-plane: the contact must be small
 #: against the radius (the curvature's error in the Hertz load is O((Delta/R)^2)).
@@ -127,7 +129,7 @@ def surface_slopes(sol, points=201):
 
 def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
                   temperature_rises=None, max_temperature=None) -> Applicability:
-    """Measure the theory's assumptions for one solution.
+    """Measure the theory's assumptions for one solution (:func:`assess`).
 
     Parameters
     ----------
@@ -147,16 +149,42 @@ def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
     Applicability
     """
     ratio = float(half_width_over_radius)
-    L = sol.load_ratio
-    scale = ratio * np.pi / (2.0 * abs(L)) if L != 0.0 else np.inf
     frac = (1.0, 1.0) if compliance_fractions is None else tuple(compliance_fractions)
-    s, elastic, t1, t2 = surface_slopes(sol)
-    rigid = (abs(sol.sigma_over_delta) + 1.0) * ratio
-    slope = (float(rigid + scale * np.max(frac[0] * np.abs(elastic) + np.abs(t1))),
-             float(rigid + scale * np.max(frac[1] * np.abs(elastic) + np.abs(t2))))
-    p_max = float(np.max(sol.pressure_at(s)))
-    strain = (float(frac[0] * p_max * scale), float(frac[1] * p_max * scale))
+    factors, p_max = slope_factors(sol, frac)
+    slope, strain = slopes_and_strains(ratio, abs(sol.sigma_over_delta) + 1.0, sol.load_ratio,
+                                       factors, p_max, frac)
+    t_range = None
+    if temperature_rises is not None:
+        rises = np.asarray(temperature_rises, dtype=float)
+        rises = rises[np.isfinite(rises)]
+        t_range = (float(rises.min()), float(rises.max()))
+    return assess(ratio, slope, strain, temperature_rises=t_range,
+                  max_temperature=max_temperature)
 
+
+def assess(half_width_over_radius, max_slope, max_strain, *, temperature_rises=None,
+           max_temperature=None) -> Applicability:
+    """Judge the theory's assumptions from their measures: the one judgement of a
+    single patch, a contact set and an operating map's point, in one wording.
+
+    Parameters
+    ----------
+    half_width_over_radius : float
+        The contact's half-width (a contact set's: half its extent) over the radius.
+    max_slope, max_strain : pair of float
+        The cylinder's and the half-plane's (:func:`~.fields.slopes_and_strains`).
+    temperature_rises : pair of float, optional
+        The least and the greatest surface temperature rise over the contact, K
+        (physical units only); added to :data:`AMBIENT_TEMPERATURE`.
+    max_temperature : pair of float or None, optional
+        The cylinder's and the half-plane's limits, K.
+
+    Returns
+    -------
+    Applicability
+    """
+    ratio = float(half_width_over_radius)
+    slope, strain = tuple(max_slope), tuple(max_strain)
     reasons = []
     if ratio > MAX_HALF_WIDTH_OVER_RADIUS:
         reasons.append(f"half-width/radius {ratio:.3g} > {MAX_HALF_WIDTH_OVER_RADIUS:g}: "
@@ -171,13 +199,11 @@ def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
                            f"{MAX_STRAIN:g}: not small strains")
     t_range = limits = None
     if temperature_rises is not None:
-        rises = np.asarray(temperature_rises, dtype=float)
-        rises = rises[np.isfinite(rises)]
-        t_range = (float(AMBIENT_TEMPERATURE + rises.min()),
-                   float(AMBIENT_TEMPERATURE + rises.max()))
+        low, high = (float(t) for t in temperature_rises)
+        t_range = (AMBIENT_TEMPERATURE + low, AMBIENT_TEMPERATURE + high)
         if t_range[0] <= 0.0:
             reasons.append(f"surface temperature down to {t_range[0]:.4g} K (a fall of "
-                           f"{-rises.min():.4g} K below {AMBIENT_TEMPERATURE:g} K): below "
+                           f"{-low:.4g} K below {AMBIENT_TEMPERATURE:g} K): below "
                            f"absolute zero, the linear heat conduction model does not hold")
         if max_temperature is not None:
             limits = tuple(max_temperature)
@@ -188,3 +214,22 @@ def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
     return Applicability(applicable=not reasons, reasons=tuple(reasons),
                          half_width_over_radius=ratio, max_slope=slope, max_strain=strain,
                          temperature_range=t_range, max_temperature=limits)
+
+
+def physical_applicability(problem, fields) -> Applicability:
+    """Whether the theory applies to a contact of a physical problem: :func:`assess`
+    of its fields (:func:`~.fields.contact_fields` in SI units), the one judgement of a
+    single patch's branch and of a contact set.
+
+    Parameters
+    ----------
+    problem : PhysicalProblem
+        The radius, the compliances and the materials' temperature limits.
+    fields : ContactFields
+        In metres, pascals and kelvin.
+    """
+    slope, strain = fields.slopes_and_strains(problem.radius, problem.compliance_fractions)
+    return assess(fields.extent * fields.length / problem.radius, slope, strain,
+                  temperature_rises=fields.temperature_range,
+                  max_temperature=(problem.cylinder.max_temperature,
+                                   problem.half_plane.max_temperature))

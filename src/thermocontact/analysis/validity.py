@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..io.results import Result
-from ..numerics.edge_graded import MIN_BLOCK
+from ..numerics.moment_engine import MIN_BLOCK
 from ..numerics.extrema import interpolated_minimum, polish_minimum
 from ..physics.green_functions import cylinder_displacement_drop, moving_slope
 from ..problem.parameters import Parameters

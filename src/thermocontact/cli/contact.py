@@ -5,73 +5,15 @@ and the contact set at one load (:func:`thermocontact.contact`,
 from __future__ import annotations
 
 import json
-import math
 import os
 
 import click
 
 from .._version import __version__
-from ..problem.validation import InputError, check_positive
+from ..problem.validation import InputError
 from .options import contact_set_options, parse_conductance, physical_options
 
 __all__ = ["contact_cmd", "zones_cmd"]
-
-
-def branch_record(b) -> dict:
-    v = b.solution.validity
-    return {
-        "half_width": b.half_width, "offset": b.offset, "a": b.a, "b": b.b,
-        "peak_pressure": b.peak_pressure, "mean_pressure": b.mean_pressure,
-        "pe": b.pe, "fhpe": b.fhpe, "lam": b.lam, "load_ratio": b.load_ratio,
-        "valid": b.valid, "flash_temperature": b.flash_temperature,
-        "heat_cylinder": b.heat_cylinder, "heat_half_plane": b.heat_half_plane,
-        "temperature_mismatch": b.temperature_mismatch,
-        "half_plane_incoming_temperature": b.half_plane_incoming_temperature,
-        "flash_temperature_half_plane": b.flash_temperature_half_plane,
-        "n": b.solution.n, "error_estimate": b.error_estimate, "converged": b.converged,
-        "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
-        "reason": v.reason, "strictly_valid": v.strictly_valid,
-        "applicable": b.applicable,
-        "applicability_reasons": list(b.applicability.reasons),
-    }
-
-
-def contact_record(res) -> dict:
-    """The JSON record of a :class:`~thermocontact.studies.physical_contact.PhysicalContact` (SI units)."""
-    prob = res.problem
-    prim = res.primary
-    rec = {key: (getattr(prim, key) if prim is not None else None) for key in (
-        "half_width", "offset", "a", "b", "peak_pressure", "mean_pressure", "pe", "fhpe",
-        "flash_temperature", "heat_cylinder", "heat_half_plane")}
-    rec.update({
-        "hertz_half_width": prob.hertz_half_width,
-        "hertz_peak_pressure": prob.hertz_peak_pressure,
-        "lam": prob.lam,
-        "valid": bool(prim is not None and prim.valid),
-        "applicable": bool(prim is not None and prim.applicable),
-        "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
-                                  else []),
-        "error_estimate": prim.error_estimate if prim is not None else None,
-        "converged": prim.converged if prim is not None else None,
-        "message": res.message,
-        "largest_valid_load": res.largest_valid_load,
-        "searched": (None if res.searched is None else dict(zip(
-            ("half_width_min", "half_width_max", "fhpe_min", "fhpe_max"), res.searched))),
-        "branches": [branch_record(b) for b in res.branches],
-        "inputs": {
-            "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
-            "radius": prob.radius, "load": prob.load, "speed": prob.speed,
-            "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
-            "dundurs": prob.dundurs,
-        },
-        "beta_f": prob.beta_f,
-        "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's incoming "
-                 "surface temperature), W/m",
-        "version": __version__,
-    })
-    if rec["largest_valid_load"] is not None and not math.isfinite(rec["largest_valid_load"]):
-        rec["largest_valid_load"] = "unbounded"
-    return rec
 
 
 def contact_summary(res) -> str:
@@ -143,11 +85,11 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     cylinder's lowest point (the leading edge at larger x); loads as fractions of P,
     pressures in units of P/l.
     """
-    from ..studies.contact_sets import find_contact_set
+    from ..api import contact_set
 
-    res = find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
-                           delta1_over_delta2=delta1_over_delta2, n=n,
-                           conductance=parse_conductance(conductance, "the Biot number h0 l/K2"))
+    res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+                      delta1_over_delta2=delta1_over_delta2, n=n,
+                      conductance=parse_conductance(conductance, "the Biot number h0 l/K2"))
     if as_json:
         click.echo(json.dumps(res.to_dict(), allow_nan=False))
         return
@@ -181,10 +123,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
                 lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
     """Contact width, pressures and temperatures from materials, load and speed."""
+    from ..api import contact
     from ..io.files import check_output_file
-    from ..problem.materials import get_material, load_materials
-    from ..problem.units import parse_quantity
-    from ..studies.physical_contact import PhysicalProblem, contact
 
     # Output paths are checked before the computation, whose result would be lost.
     if csv_file is not None:
@@ -194,37 +134,28 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     if (csv_file is not None and plot_file is not None
             and os.path.realpath(csv_file) == os.path.realpath(plot_file)):
         raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
-    if materials_file is not None:
-        load_materials(materials_file)  # read and checked even when both materials are inline
-    prob = PhysicalProblem(
-        get_material(cylinder, materials_file), get_material(half_plane, materials_file),
-        parse_quantity(radius, "m", "radius"), parse_quantity(load, "N/m", "load"),
-        parse_quantity(speed, "m/s", "speed"), friction, lam,
-        parse_quantity(speed2, "m/s", "speed2"), dundurs=dundurs is not False)
-    tol = check_positive("tol", tol)
-    if conductance is not None and not zones:
-        raise InputError("--conductance needs --zones (the single patch assumes perfect "
-                         "thermal contact)")
-    if zones:
-        if csv_file is not None or plot_file is not None:
-            raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
-        from ..studies.contact_sets import physical_contact_set
-
-        rec = physical_contact_set(prob, conductance=parse_conductance(
-            conductance, "in W/(m^2 K)", physical=True))
+    if zones and (csv_file is not None or plot_file is not None):
+        raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
+    inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
+                  speed2=speed2, dundurs=dundurs is not False, materials=materials_file,
+                  tol=tol)
+    if zones or conductance is not None:
+        found = contact(cylinder, half_plane, zones=zones, conductance=parse_conductance(
+            conductance, "in W/(m^2 K)", physical=True), **inputs)
         if as_json:
-            click.echo(json.dumps(rec, allow_nan=False))
+            click.echo(json.dumps(found.to_dict(), allow_nan=False))
             return
-        lines = [f"status: {rec['status']}: {rec['message']}",
-                 f"  Hertz half-width {rec['hertz_half_width']:.6g} m"]
-        for k, z in enumerate(rec["zones"], 1):
+        lines = [f"status: {found.status}: {found.message}",
+                 f"  Hertz half-width {found.hertz_half_width:.6g} m"]
+        for k, z in enumerate(found.zones, 1):
             lines.append(f"  zone {k}: {z['a']:.6g} m < x < {z['b']:.6g} m, load "
                          f"{z['load']:.6g} N/m, peak pressure {z['peak_pressure']:.6g} Pa")
-        lines.append(f"  valid: {rec['valid']}")
-        lines.append("  theory applicable (contact size, strains; slopes and temperatures "
-                     "not checked for contact sets): "
-                     + ("yes" if rec["theory_applicable"] else
-                        "NO: " + "; ".join(rec["theory_reasons"])))
+        if found.fields is not None:
+            lines.append(f"  flash temperature {found.fields.flash_temperature:.4g} K")
+        lines.append(f"  valid: {found.valid}")
+        if found.applicability is not None:
+            lines.append("  theory applicable: yes" if found.applicable else
+                         "  theory NOT applicable: " + "; ".join(found.applicability.reasons))
         click.echo("\n".join(lines))
         return
     from ..execution.executors import side_process
@@ -236,7 +167,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         "thermocontact.plotting.curves", "matplotlib.figure", "matplotlib.backends.backend_agg")
     try:
         bar = ProgressLine("contact: half-widths followed", "%")
-        res = contact(prob, tol=tol, progress=bar)
+        res = contact(cylinder, half_plane, progress=bar, **inputs)
         bar.close()
         if csv_file is not None:
             write_contact_csv(res, csv_file)
@@ -251,7 +182,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         if side is not None:
             side.shutdown(wait=False, cancel_futures=True)
     if as_json:
-        click.echo(json.dumps(contact_record(res), allow_nan=False))
+        click.echo(json.dumps(res.to_dict(), allow_nan=False))
     else:
         click.echo(contact_summary(res))
 

@@ -16,7 +16,7 @@ from ..physics.green_functions import (cylinder_displacement_drop, cylinder_slop
 from ..problem.parameters import Parameters
 
 __all__ = ["contact_operators", "distortion_operators", "heat_operators", "outside_operators",
-           "temperature_operators"]
+           "temperature_kernels", "temperature_operators"]
 
 
 def distortion_operators(par: Parameters, rep, s, aux=None):
@@ -238,17 +238,39 @@ def temperature_operators(par: Parameters, rep, s, aux=None):
     Up, Uq : ndarray, shape (k, n)
         On ``phi`` and ``psi``.
     """
-    rho, c, eta = par.K2_over_K1, par.cylinder_scale, par.eta
-    tb, tq = rep.integrate(lambda u: cylinder_temperature(c * u), s, scale=c,
-                           logarithmic=True, aux=aux)
-    c2 = par.half_plane_scale
-    if c2:
-        t2b, t2q = rep.integrate(lambda u: cylinder_temperature(c2 * u), s, scale=abs(c2),
-                                 logarithmic=True, aux=aux)
-        lb, lq = -t2b, -t2q
-    else:
-        lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0, logarithmic=True,
-                               aux=aux)
+    rho, eta = par.K2_over_K1, par.eta
+    (tb, tq), (hb, hq) = temperature_kernels(par, rep, s, aux)
+    # ln|u| of a stationary half-plane; -T(c2 u) of a moving one (D33b).
+    lb, lq = (-hb, -hq) if par.half_plane_scale else (hb, hq)
     Up = 0.5 * rho * (1.0 + eta) * tb + 0.5 * (1.0 - eta) * lb
     Uq = 0.5 * rho * tq - 0.5 * lq
     return Up, Uq
+
+
+def temperature_kernels(par: Parameters, rep, s, aux=None):
+    """Each body's surface temperature kernel integrated against ``(p, q')`` at ``s``.
+
+    The cylinder's ``T(c u) = exp(-c u) K0(c |u|)`` (D8); the half-plane's ``ln|u|``
+    when stationary (D12), or ``T(c2 u)`` with its own signed scale ``c2 = R Pe`` when
+    moving through the contact (section 5b); ``u = s - r`` in units of the contact's
+    half-width.  Each body's rise over its incoming temperature is, in units of
+    ``f |v1 - v2| P/(pi K_i)``, ``(1/2)((1 + eta) Tb phi + Tq psi)`` for the cylinder,
+    ``(1/2)((1 - eta) Hb phi - Hq psi)`` for a moving half-plane and minus that for a
+    stationary one (up to its free level).  The one quadrature of these kernels: of
+    the temperature equation (D33) and of the surfaces' temperatures alike.
+
+    Returns
+    -------
+    cylinder, half_plane : pair of ndarray, shape (k, n)
+        Each ``(on phi, on psi)``.
+    """
+    c, c2 = par.cylinder_scale, par.half_plane_scale
+    cylinder = rep.integrate(lambda u: cylinder_temperature(c * u), s, scale=c,
+                             logarithmic=True, aux=aux)
+    if c2:
+        half_plane = rep.integrate(lambda u: cylinder_temperature(c2 * u), s, scale=abs(c2),
+                                   logarithmic=True, aux=aux)
+    else:
+        half_plane = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0,
+                                   logarithmic=True, aux=aux)
+    return cylinder, half_plane

@@ -22,10 +22,10 @@ Three representations:
   low algebraic order);
 * :class:`Chebyshev`: the same series, every kernel integrated exactly against
   them (section 10: closed forms for ``1/u`` and ``sgn``, moments to rounding by
-  :func:`~thermocontact.numerics.edge_graded.chebyshev_moments` otherwise);
+  :func:`~thermocontact.numerics.moment_engine.chebyshev_moments` otherwise);
 * :class:`EdgeGraded`: cosine series in the edge-graded variable ``tau`` (section
   12), every integral a moment by
-  :func:`~thermocontact.numerics.edge_graded.moments`.
+  :func:`~thermocontact.numerics.moment_engine.moments`.
 
 A representation is identified by its class and ``n``: it pickles as that pair,
 and what it computes is kept in per-process caches bounded in bytes
@@ -39,7 +39,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..numerics import edge_graded as graded
+from ..numerics import moment_engine as graded
 from ..numerics.cache import BoundedCache, small_cache
 from ..numerics.moments import sgn_moments
 from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_matrix,
@@ -280,7 +280,7 @@ class Chebyshev(_ChebyshevSeries):
     def integrate(self, kernel, s, *, scale=None, logarithmic=False, aux=None):
         """Row operators ``(I_p, I_q)`` of ``integral K(s - r) (p, q')(r) dr``.
 
-        By :func:`~thermocontact.numerics.edge_graded.chebyshev_moments`; ``scale`` and
+        By :func:`~thermocontact.numerics.moment_engine.chebyshev_moments`; ``scale`` and
         ``logarithmic`` describe the kernel as there.
 
         Returns
@@ -340,7 +340,7 @@ class EdgeGraded(Representation):
 
     ``r = cos T(tau)``, ``T(tau) = tau - sin(2 tau)/2``; the unknowns are carried by
     their values at ``tau_i = pi (i - 1/2)/n``.  Every integral, the Cauchy ones
-    included, is a moment by :func:`~thermocontact.numerics.edge_graded.moments`.
+    included, is a moment by :func:`~thermocontact.numerics.moment_engine.moments`.
     """
 
     name = "edge-graded"
@@ -396,7 +396,7 @@ class EdgeGraded(Representation):
                   from_edge=False):
         """Row operators ``(I_p, I_q)``; ``aux`` is the points' ``tau`` (keeps points
         within rounding of an edge apart from it), ``from_edge`` as in
-        :func:`~thermocontact.numerics.edge_graded.moments`."""
+        :func:`~thermocontact.numerics.moment_engine.moments`."""
         b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
                               logarithmic=logarithmic, tau=aux, from_edge=from_edge,
                               cmap=self._cmap)

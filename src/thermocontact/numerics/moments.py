@@ -1,7 +1,7 @@
 """The panel machinery of the kernel moments, and the step kernel's closed form.
 
 The moments of a convolution kernel ``K(s - r)`` against the bases of the unknowns
-are computed by one engine, :func:`thermocontact.numerics.edge_graded.moments`,
+are computed by one engine, :func:`thermocontact.numerics.moment_engine.moments`,
 for either coordinate map (the edge-graded variable of derivation section 12 or
 ``t = arccos r``, section 10).  Its pieces live here: a common rule of equal
 panels with ``GAUSS_POINTS``-point Gauss–Legendre each (:func:`panel_rule`); the panel

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..analysis.applicability import MAX_HALF_WIDTH_OVER_RADIUS, MAX_STRAIN
+from ..analysis.applicability import Applicability, physical_applicability
+from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
 from ..problem.parameters import SolveError
@@ -23,7 +24,7 @@ from ..problem.validation import InputError, check_nonnegative, check_positive, 
 from ..solvers.elements import solve_elements
 from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
 
-__all__ = ["ContactSetResult", "PhysicalConductance", "find_contact_set",
+__all__ = ["ContactSetResult", "PhysicalConductance", "PhysicalContactSet", "find_contact_set",
            "follow_contact_set", "other_starts", "physical_contact_set"]
 
 #: Relative width to which the event of the first failing inequality is located.
@@ -474,7 +475,99 @@ def _physical(conductance) -> PhysicalConductance:
     return PhysicalConductance(*conductance)
 
 
-def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> dict:
+@dataclass(frozen=True, eq=False, repr=False)
+class PhysicalContactSet:
+    """The contact set of a physical problem, in SI units (:func:`physical_contact_set`).
+
+    Attributes
+    ----------
+    problem : PhysicalProblem
+    result : ContactSetResult
+        The answer in units of the Hertz half-width.
+    conductance : PhysicalConductance or None
+    fields : ContactFields or None
+        Pressure, both surfaces' temperatures, slopes and strains of the contact set
+        at the point asked for (:func:`~thermocontact.analysis.fields.contact_fields`,
+        SI units); None where there is none.
+    applicability : Applicability or None
+        Whether the theory applies
+        (:func:`~thermocontact.analysis.applicability.physical_applicability`, as for
+        a single patch); None without a contact set.
+    """
+
+    problem: object
+    result: ContactSetResult
+    conductance: PhysicalConductance | None = None
+    fields: ContactFields | None = None
+    applicability: Applicability | None = None
+
+    @property
+    def status(self) -> str:
+        return self.result.status
+
+    @property
+    def message(self) -> str:
+        return self.result.message
+
+    @property
+    def valid(self):
+        """Whether the contact set satisfies every inequality (None without one)."""
+        sol = self.result.answer
+        return None if sol is None else sol.valid
+
+    @property
+    def applicable(self) -> bool:
+        return bool(self.applicability is not None and self.applicability.applicable)
+
+    @property
+    def hertz_half_width(self) -> float:
+        return self.problem.hertz_half_width
+
+    @property
+    def zones(self) -> list:
+        """Each zone's ``a``, ``b`` (m, from the undeformed cylinder's lowest point, the
+        leading edge at larger x), ``load`` (N/m) and ``peak_pressure`` (Pa)."""
+        ell, P = self.problem.hertz_half_width, self.problem.load
+        sol = self.result.answer
+        return [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
+                 "peak_pressure": z["peak_pressure"] * P / ell}
+                for z in ([] if sol is None else sol.zone_records())]
+
+    def to_dict(self) -> dict:
+        """The JSON record of ``contact --zones``."""
+        app, f = self.applicability, self.fields
+        rec = {"status": self.status, "message": self.message, "valid": self.valid,
+               "theory_applicable": self.applicable,
+               "theory_reasons": [] if app is None else list(app.reasons),
+               "theory_checked": ["contact size against the radius", "slopes", "strains",
+                                  "temperatures"],
+               "hertz_half_width": self.hertz_half_width, "zones": self.zones,
+               "dimensionless": self.result.to_dict()}
+        if f is not None:
+            rec.update({
+                "peak_pressure": f.peak_pressure, "mean_pressure": f.mean_pressure,
+                "flash_temperature": f.flash_temperature,
+                "temperature_mismatch": (f.temperature_mismatch
+                                         if np.isfinite(f.temperature_mismatch) else None)})
+        if app is not None:
+            rec.update(app.to_dict())
+        return rec
+
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        return self.problem == other.problem and self.to_dict() == other.to_dict()
+
+    __hash__ = None
+
+    def __repr__(self):
+        z = ", ".join(f"[{q['a']:.4g}, {q['b']:.4g}] m" for q in self.zones)
+        return (f"PhysicalContactSet(status={self.status!r}, zones={z or 'none'}, "
+                f"valid={self.valid}, applicable={self.applicable})")
+
+
+def physical_contact_set(problem, *, conductance=None, n=32,
+                         progress=None) -> PhysicalContactSet:
     """:func:`find_contact_set` for a problem in SI units, the answer in SI units.
 
     Parameters
@@ -487,44 +580,27 @@ def physical_contact_set(problem, *, conductance=None, n=32, progress=None) -> d
 
     Returns
     -------
-    dict
-        ``status``, ``message``, ``valid``, ``hertz_half_width`` (m) and ``zones``
-        with ``a``, ``b`` (m, from the undeformed cylinder's lowest point, the leading
-        edge at larger x), ``load`` (N/m) and ``peak_pressure`` (Pa); ``dimensionless``
-        holds the answer in units of the Hertz half-width.
+    PhysicalContactSet
+        With the fields of the contact set (pressure, both surfaces' temperatures
+        from the zones' heat fluxes, slopes, strains) and whether the theory applies.
     """
     if problem.speed2:
         raise InputError("--zones needs a stationary half-plane (speed2 = 0), got speed2 = "
                          f"{problem.speed2:g} m/s")
     ell = problem.hertz_half_width
-    c, h = problem.cylinder, problem.half_plane
-    res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), h.K / c.K, lam=problem.lam,
-                           k2_over_k1=h.k / c.k,
-                           delta1_over_delta2=c.distortivity / h.distortivity,
-                           beta_f=problem.beta_f, n=n, progress=progress,
+    groups = problem.ray_parameters()
+    conductance = None if conductance is None else _physical(conductance)
+    res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), groups["K2_over_K1"],
+                           lam=problem.lam, k2_over_k1=groups["k2_over_k1"],
+                           delta1_over_delta2=groups["delta1_over_delta2"],
+                           beta_f=groups["beta_f"], n=n, progress=progress,
                            conductance=None if conductance is None else
-                           _physical(conductance).biot(problem))
-    P = problem.load
-    zones = [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
-              "peak_pressure": z["peak_pressure"] * P / ell}
-             for z in (res.answer.zone_records() if res.answer is not None else [])]
-    # What the theory needs that these numbers can say: a contact small against the
-    # radius and small strains (section 11a); slopes and temperatures of contact sets
-    # are not evaluated yet, and the record says so.
-    reasons = []
-    if zones:
-        reach = max(max(abs(z["a"]), abs(z["b"])) for z in zones)
-        if reach > MAX_HALF_WIDTH_OVER_RADIUS * problem.radius:
-            reasons.append(f"contact reaches {reach:.3g} m from the axis > "
-                           f"{MAX_HALF_WIDTH_OVER_RADIUS:g} R: not small against the radius")
-        peak = max(z["peak_pressure"] for z in zones)
-        for name, body in (("cylinder", c), ("half-plane", h)):
-            strain = peak * body.compliance
-            if strain > MAX_STRAIN:
-                reasons.append(f"{name} strain (peak pressure x compliance) {strain:.3g} > "
-                               f"{MAX_STRAIN:g}: not small strains")
-    return {"status": res.status, "message": res.message,
-            "valid": None if res.answer is None else res.answer.valid,
-            "theory_applicable": not reasons, "theory_reasons": reasons,
-            "theory_checked": ["contact size against the radius", "strains"],
-            "hertz_half_width": ell, "zones": zones, "dimensionless": res.to_dict()}
+                           conductance.biot(problem))
+    fields = app = None
+    if res.answer is not None:
+        fields = contact_fields(res.answer, length=ell, load=problem.load,
+                                temperature_units=problem.temperature_units,
+                                fractions=problem.compliance_fractions,
+                                perfect_contact=conductance is None)
+        app = physical_applicability(problem, fields)
+    return PhysicalContactSet(problem, res, conductance, fields, app)

@@ -29,17 +29,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._version import __version__
-from ..analysis.applicability import (AMBIENT_TEMPERATURE, MAX_HALF_WIDTH_OVER_RADIUS,
-                                      MAX_SLOPE, MAX_STRAIN, surface_slopes)
+from ..analysis.applicability import assess
+from ..analysis.fields import contact_fields, slopes_and_strains
 from ..problem.materials import Material
 from ..problem.parameters import ConvergenceWarning, SolveError
+from ..problem.physical import PhysicalProblem, hertz_half_width, scan_range
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
 from .contact_sets import PhysicalConductance, physical_contact_set
-from ..problem.axes import PHYSICAL_UNITS
 from ..execution.resumable import run_chunks
+from ..problem.axes import PHYSICAL_UNITS
 from .maps import Axis, check_axis_name, parse_axis
-from .physical_contact import MAX_WIDTH, PhysicalProblem
+from .physical_contact import problem_ray
 from .ray import Ray
 from .ray import interpolated_roots as _interpolated_roots
 from .ray import local as _local
@@ -153,19 +154,25 @@ class OperatingSpec:
                                                    for k, v in self.fixed.items()}}
         return kw["load"], kw["speed"], kw["radius"]
 
+    def reference(self) -> PhysicalProblem:
+        """The problem at the map's first corner: what every point shares (materials,
+        friction, heat partition, speed ratio) is read from it."""
+        return self.problem(**{self.x.name: self.x.start, self.y.name: self.y.start})
+
     @property
     def compliance(self) -> float:
-        return self.cylinder.compliance + self.half_plane.compliance
+        """``A`` of the materials, 1/Pa (:class:`PhysicalProblem`)."""
+        return self.reference().compliance
 
     def pe_hertz(self, load, speed, radius):
-        """``Pe_H = v Delta_H/(2 k2)``, ``Delta_H = sqrt(2 A R P/pi)``."""
-        return speed * np.sqrt(2.0 * self.compliance * radius * load / np.pi) / (
+        """``Pe_H = v Delta_H/(2 k2)`` elementwise (:class:`PhysicalProblem`'s, on arrays)."""
+        return speed * hertz_half_width(self.compliance, radius, load) / (
             2.0 * self.half_plane.k)
 
     def ray(self) -> Ray:
         """The dimensionless problems of the whole plane: those of any of its points
-        (:meth:`PhysicalProblem.ray`, which does not depend on load, speed or radius)."""
-        return self.problem(**{self.x.name: self.x.start, self.y.name: self.y.start}).ray()
+        (the ray does not depend on load, speed or radius)."""
+        return problem_ray(self.reference())
 
     @property
     def fh(self) -> float:
@@ -174,8 +181,7 @@ class OperatingSpec:
 
     def fractions(self) -> tuple:
         """Each body's compliance over their sum ``A``."""
-        return (self.cylinder.compliance / self.compliance,
-                self.half_plane.compliance / self.compliance)
+        return self.reference().compliance_fractions
 
     def manifest(self) -> dict:
         return {"kind": "thermocontact operating map", "version": __version__,
@@ -186,7 +192,7 @@ class OperatingSpec:
                 # The values, not only the names: a materials file may redefine a name.
                 "materials": [_material_values(self.cylinder),
                               _material_values(self.half_plane)],
-                "fields": "slopes and strains",
+                "fields": "slopes, strains and temperatures",
                 **({"zones": True, "conductance": None if self.conductance is None else
                     [self.conductance.h0, self.conductance.exponent, self.conductance.p_ref]}
                    if self.zones else {})}
@@ -198,43 +204,11 @@ def _material_values(m: Material) -> dict:
             "max_temperature": m.max_temperature}
 
 
-def _shape(sol):
-    """Peak of the normalised pressure and of the cylinder's temperature in units of
-    ``f v P/(pi K1)`` (derivation D24): the maxima of local interpolants of 257
-    samples, even in the angle ``s = -cos(theta)``."""
-    from ..numerics.extrema import interpolated_minimum
-    from ..physics.green_functions import cylinder_temperature
-
-    par, rep = sol.parameters, sol.representation
-    s = np.cos(np.linspace(np.pi, 0.0, 257))
-    k = np.arange(s.size, dtype=float)
-    p = sol.pressure_at(s)
-    _, neg_p = interpolated_minimum(k, -p, int(np.argmax(p)))
-    c, eta = par.cylinder_scale, par.eta
-    ib, iq = rep.integrate(lambda u: cylinder_temperature(c * u), s)
-    t = 0.5 * ((1 + eta) * (ib @ sol.phi) + iq @ sol.psi)
-    _, neg_t = interpolated_minimum(k, -t, int(np.argmax(t)))
-    return -neg_p, -neg_t
-
-
-def _slope_factors(sol, fractions):
-    """Per body, the largest ``fraction |elastic| + |thermal|`` of the slope terms of
-    (D14) over the contact (:func:`~thermocontact.analysis.applicability.surface_slopes`):
-    times ``(Delta/R) pi/(2L)``, plus the rigid profile's ``(|sigma| + 1) Delta/R``, the
-    bound on each surface's slope that ``contact`` reports; and the peak pressure on
-    the same points, whose product with that scale and a fraction is its strain."""
-    s, elastic, t1, t2 = surface_slopes(sol)
-    return (float(np.max(fractions[0] * np.abs(elastic) + np.abs(t1))),
-            float(np.max(fractions[1] * np.abs(elastic) + np.abs(t2))),
-            float(np.max(sol.pressure_at(s))))
-
-
 def evaluate_ray(task) -> dict:
     """Solve the ray at the chunk's Péclet numbers: ``P_H/P``, offset, margins, shapes."""
     out = {k: [] for k in ("pe", "load_ratio", "sigma_over_delta", "valid", "peak", "flash",
-                           "slope_cylinder", "slope_half_plane", "strain", "error_estimate",
-                           "n",
-                           "status", "reason")}
+                           "slope_cylinder", "slope_half_plane", "strain", "temperature_low",
+                           "temperature_high", "error_estimate", "n", "status", "reason")}
     for pe in task["pe"]:
         try:
             with warnings.catch_warnings():
@@ -242,14 +216,17 @@ def evaluate_ray(task) -> dict:
                 ray = task["ray"]
                 sol = ray.model(pe, tol=task["tol"]).solve(ray.fh * pe, lam=ray.lam,
                                                            polish=False)
-            peak, flash = _shape(sol)
-            rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), peak, flash,
-                   *_slope_factors(sol, task["fractions"]),
+            # The single patch's fields in units of its half-width: pressures of P/Delta,
+            # temperatures of f |v1 - v2| P/(pi K1) (D24).
+            f = contact_fields(sol, fractions=task["fractions"])
+            rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), f.peak_pressure,
+                   f.flash_temperature, *f.slope_factors, f.strain_pressure,
+                   *f.temperature_range,
                    sol.error_estimate if sol.error_estimate is not None else math.nan, sol.n,
                    sol.status, sol.validity.reason)
         except (SolveError, InputError) as exc:
             nan = math.nan
-            rec = (nan, nan, 0, nan, nan, nan, nan, nan, nan, 0, "failed", str(exc))
+            rec = (nan, nan, 0, nan, nan, nan, nan, nan, nan, nan, nan, 0, "failed", str(exc))
         for k, v in zip(list(out)[1:], rec):
             out[k].append(v)
         out["pe"].append(pe)
@@ -297,30 +274,33 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
 
 #: Fields of a map's contact sets (``zones_*``), by point.
 ZONE_FIELDS = ("status", "count", "valid", "applicable", "start", "end", "load",
-               "peak_pressure", "message")
+               "peak_pressure", "message", "flash_temperature", "applicability_reasons")
 
 
 def evaluate_contact_sets(task) -> dict:
     """The contact set at each of the task's points (:func:`physical_contact_set`):
     its status, number of zones, validity, whether the theory applies, the first
     zone's trailing and the last zone's leading edge (m), the load carried (N/m, the
-    sum over zones: the imposed load where solved), the peak pressure (Pa), and the
-    message."""
+    sum over zones: the imposed load where solved), the peak pressure (Pa), the
+    message, the flash temperature (K) and why the theory does not apply (the
+    reasons joined by "; ", as the single patch's ``applicability_reasons``)."""
     spec = task["spec"]
     out = {k: [] for k in ZONE_FIELDS}
     for load, speed, radius in task["points"]:
         nan = math.nan
         try:
-            rec = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
-                                       conductance=spec.conductance)
-            z = rec["zones"]
-            row = (rec["status"], len(z), int(bool(rec["valid"])),
-                   int(bool(rec["theory_applicable"])),
+            found = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
+                                         conductance=spec.conductance)
+            z = found.zones
+            row = (found.status, len(z), int(bool(found.valid)), int(found.applicable),
                    z[0]["a"] if z else nan, z[-1]["b"] if z else nan,
                    sum(q["load"] for q in z) if z else nan,
-                   max(q["peak_pressure"] for q in z) if z else nan, rec["message"])
+                   max(q["peak_pressure"] for q in z) if z else nan, found.message,
+                   found.fields.flash_temperature if found.fields is not None else nan,
+                   "; ".join(found.applicability.reasons)
+                   if found.applicability is not None else "")
         except (SolveError, InputError) as exc:
-            row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc))
+            row = ("failed", 0, 0, 0, nan, nan, nan, nan, str(exc), nan, "")
         for k, v in zip(ZONE_FIELDS, row):
             out[k].append(v)
     return out
@@ -384,7 +364,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         ``mean_pressure``, ``flash_temperature``, ``load_ratio``, ``pe``, ``fhpe``,
         ``max_slope_*`` and ``max_strain_*`` of the cylinder and the half-plane (as
         ``contact`` measures them), ``valid``, ``applicable`` (size, slopes, strains,
-        flash temperature), ``branches``, ``status``, ``reason``; the boundary
+        temperatures: :func:`~thermocontact.analysis.applicability.assess`, as
+        ``contact``), ``applicability_reasons`` (joined by "; "), ``branches``,
+        ``status``, ``reason``; the boundary
         as values of ``Pe_H`` and as curves in the plane; with ``spec.zones`` the
         contact sets' ``zones_*`` (:func:`evaluate_contact_sets`).
     """
@@ -392,9 +374,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
 
     load, speed, radius = spec.grid()
     pe_h = spec.pe_hertz(load, speed, radius)
-    fhpe_min = 0.05
-    pe_lo = 0.5 * min(pe_h.min(), fhpe_min / spec.fh if spec.fh > 0 else pe_h.min())
-    pe_hi = MAX_WIDTH * pe_h.max()
+    # The single patch's range (PhysicalProblem.scan_range), in Pe over the whole plane.
+    pe_lo, pe_hi = scan_range(pe_h.min(), pe_h.max(), spec.fh)
     # One progress for both parts: the ray's chunks, then the contact sets' lines.
     lines = spec.y.count if spec.zones else 0
     ray_total = [0]  # chunks of the ray still to compute (none when resumed)
@@ -435,10 +416,10 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     branches = np.zeros(shape, dtype=np.int32)
     status = np.full(shape, "solved", dtype=object)
     reason = np.full(shape, "", dtype=object)
+    reasons_of = np.full(shape, "", dtype=object)
     k2, K1 = spec.half_plane.k, spec.cylinder.K
     fractions = spec.fractions()
-    limits = [t for t in (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
-              if t is not None]
+    limits = (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
     for idx in np.ndindex(shape):
         roots = _interpolated_roots(ray["pe"], ray["load_ratio"], pe_h[idx])
         branches[idx] = len(roots)
@@ -458,38 +439,31 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
                                        r) / Lr * d
         fields["peak_pressure"][idx] = P / d * _local(lp, ray["peak"], r)
         fields["mean_pressure"][idx] = P / (2.0 * d)
-        # Heat at the sliding speed |1 - R| v (section 5b).
-        flash = (spec.friction * v * abs(1.0 - spec.speed_ratio) * P / (np.pi * K1)
-                 * _local(lp, ray["flash"], r))
+        # Heat at the sliding speed |1 - R| v (section 5b); temperatures in units of
+        # f |1 - R| v P/(pi K1) along the ray.
+        unit = spec.friction * v * abs(1.0 - spec.speed_ratio) * P / (np.pi * K1)
+        flash = unit * _local(lp, ray["flash"], r)
         fields["flash_temperature"][idx] = flash
         fields["load_ratio"][idx] = Lr
         fields["pe"][idx] = pe
         fields["fhpe"][idx] = spec.fh * pe
         valid[idx] = int(valid_at(pe))
-        # Slopes and strains as contact's applicability measures them (module notes of
-        # thermocontact.analysis.applicability), from the ray's per-sample factors.
-        scale = d / R * np.pi / (2.0 * abs(Lr))
+        # Slopes and strains as contact measures them (thermocontact.analysis.fields),
+        # from the ray's per-sample factors.
         sigma = fields["offset"][idx] / d
-        peak_hat = _local(lp, ray["strain"], r)
-        bodies = (("cylinder", "slope_cylinder", 0), ("half_plane", "slope_half_plane", 1))
-        for body, key, i in bodies:
-            fields[f"max_slope_{body}"][idx] = (abs(sigma) + 1.0) * d / R + scale * _local(
-                lp, ray[key], r)
-            fields[f"max_strain_{body}"][idx] = fractions[i] * peak_hat * scale
-        reasons = []
-        if d / R > MAX_HALF_WIDTH_OVER_RADIUS:
-            reasons.append(f"half-width/radius {d / R:.3g} > {MAX_HALF_WIDTH_OVER_RADIUS:g}")
-        for body, _, _ in bodies:
-            name = body.replace("_", "-")
-            if not fields[f"max_slope_{body}"][idx] <= MAX_SLOPE:
-                reasons.append(f"{name} slope {fields[f'max_slope_{body}'][idx]:.3g} > "
-                               f"{MAX_SLOPE:g}")
-            if not fields[f"max_strain_{body}"][idx] <= MAX_STRAIN:
-                reasons.append(f"{name} strain {fields[f'max_strain_{body}'][idx]:.3g} > "
-                               f"{MAX_STRAIN:g}")
-        if limits and AMBIENT_TEMPERATURE + flash > min(limits):
-            reasons.append(f"flash temperature {flash:.3g} K above ambient exceeds a "
-                           f"material's limit")
+        slope, strain = slopes_and_strains(
+            d / R, abs(sigma) + 1.0, Lr,
+            (_local(lp, ray["slope_cylinder"], r), _local(lp, ray["slope_half_plane"], r)),
+            _local(lp, ray["strain"], r), fractions)
+        for i, body in enumerate(("cylinder", "half_plane")):
+            fields[f"max_slope_{body}"][idx] = slope[i]
+            fields[f"max_strain_{body}"][idx] = strain[i]
+        app = assess(d / R, slope, strain,
+                     temperature_rises=(unit * _local(lp, ray["temperature_low"], r),
+                                        unit * _local(lp, ray["temperature_high"], r)),
+                     max_temperature=limits)
+        reasons = app.reasons
+        reasons_of[idx] = "; ".join(reasons)
         applicable[idx] = int(not reasons)
         reason[idx] = ("valid" if valid[idx] else "invalid single patch") + (
             "; not applicable: " + "; ".join(reasons) if reasons else "")
@@ -514,7 +488,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         {**{k: (dims, v) for k, v in fields.items()},
          "valid": (dims, valid), "applicable": (dims, applicable),
          "branches": (dims, branches), "status": (dims, status.astype(str)),
-         "reason": (dims, reason.astype(str)), "pe_hertz": (dims, pe_h),
+         "reason": (dims, reason.astype(str)),
+         "applicability_reasons": (dims, reasons_of.astype(str)), "pe_hertz": (dims, pe_h),
          "boundary_pe_hertz": ("event", bounds),
          "boundary_pe_hertz_error": ("event", np.array([
              _pe_hertz_error(lp, ray["load_ratio"], e) for e in ray["events"]],

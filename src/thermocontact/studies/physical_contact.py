@@ -21,187 +21,45 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..analysis.applicability import Applicability, applicability
-from ..physics.green_functions import cylinder_temperature
-from ..problem.materials import Material, dundurs_beta
-from ..problem.parameters import Parameters, SolveError
-from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
+from .._version import __version__
+from ..analysis.applicability import Applicability, physical_applicability
+from ..analysis.fields import contact_fields
+from ..problem.parameters import SolveError
+from ..problem.physical import FHPE_MIN, MAX_WIDTH, PhysicalProblem
+from ..problem.validation import check_nonnegative, check_positive
 from ..numerics.continuation import secant
-from ..numerics.extrema import polish_minimum
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import DEFAULT_TOL
 from .boundaries import EVENT_RTOL, Path, trace
 from .ray import Ray, brackets, follow, root, start_of_root
 
-__all__ = ["ALONG", "Branch", "PhysicalContact", "PhysicalProblem", "contact", "follow_along"]
+__all__ = ["ALONG", "Branch", "FHPE_MIN", "MAX_WIDTH", "PhysicalContact", "PhysicalProblem",
+           "contact", "follow_along", "problem_ray"]
 
 #: The physical inputs a path may follow (SI units), and whether it is sampled
 #: geometrically.
 ALONG = {"load": True, "speed": True, "radius": True, "friction": False}
 
-#: Half-widths searched: from below fHPe = FHPE_MIN (or half the Hertz half-width)
-#: up to MAX_WIDTH Hertz half-widths, whatever fHPe that reaches.  Past fHPe ~ 0.6
-#: (Barber's limiting width) P_H/P is negative, and from about 2 the formal solution
-#: has poles between which P_H/P turns positive again: such branches exist formally
-#: and are reported with their validity (roots were found at fHPe = 2.8 and 14 for
-#: steel on cast iron).
-FHPE_MIN = 0.05
-MAX_WIDTH = 4.0
 #: Unknowns per function of the validity checks behind the largest valid load.
 VALIDITY_N = 64
 
 
-@dataclass(frozen=True)
-class PhysicalProblem:
-    """Inputs in SI units, validated on construction.
-
-    Attributes
-    ----------
-    cylinder, half_plane : Material
-        Body 1 (moving surface) and body 2 (stationary).
-    radius : float
-        Cylinder radius R, m.
-    load : float
-        Normal load per unit length P, N/m.
-    speed : float
-        Speed of the cylinder's surface through the contact v1 > 0, m/s (the sliding
-        speed when the half-plane is stationary).
-    friction : float
-        Coulomb coefficient f >= 0.
-    lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2).
-    speed2 : float, optional
-        Speed of the half-plane's surface through the contact v2, m/s, positive in
-        the cylinder's direction (derivation section 5b); 0, the default, is a
-        stationary half-plane.  The frictional heat is ``f p |v1 - v2|``.
-    dundurs : bool, optional
-        Keep the Dundurs term ``-(beta f/2) p`` with ``beta`` of the two materials
-        (default; derivation section 5c), or drop it as the paper does.
-    """
-
-    cylinder: Material
-    half_plane: Material
-    radius: float
-    load: float
-    speed: float
-    friction: float
-    lam: float
-    speed2: float = 0.0
-    dundurs: bool = True
-
-    def __post_init__(self):
-        for name in ("cylinder", "half_plane"):
-            if not isinstance(getattr(self, name), Material):
-                raise InputError(f"{name} must be a Material (see thermocontact.problem.materials."
-                                 f"get_material), got {getattr(self, name)!r}")
-            getattr(self, name).check_conducts(name)  # K = 0: only the TEI study takes it
-        for name in ("radius", "load", "speed"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
-        object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
-        object.__setattr__(self, "lam", check_finite("lam", self.lam))
-        object.__setattr__(self, "speed2", check_finite("speed2", self.speed2))
-        # A derived group out of the solver's range is reported with the inputs it
-        # comes from, not only as the dimensionless group.
-        dh = self.hertz_half_width
-        try:
-            if not (np.isfinite(dh) and dh > 0.0):
-                raise InputError(f"the Hertz half-width sqrt(2 A R P / pi) is {dh:.3g} m")
-            self.parameters(dh)
-        except InputError as exc:
-            raise InputError(
-                f"the inputs are out of the solver's range at the Hertz half-width "
-                f"{dh:.3g} m: {exc}; it follows from radius {self.radius:.3g} m, load "
-                f"{self.load:.3g} N/m, speed {self.speed:.3g} m/s"
-                + (f", speed2 {self.speed2:.3g} m/s" if self.speed2 else "") +
-                f", friction {self.friction:g} "
-                f"and the materials' E, nu, K and k ({self.cylinder.name}: E = "
-                f"{self.cylinder.E:.3g} Pa, k = {self.cylinder.k:.3g} m^2/s; "
-                f"{self.half_plane.name}: E = {self.half_plane.E:.3g} Pa, "
-                f"k = {self.half_plane.k:.3g} m^2/s)") from None
-
-    @property
-    def compliance(self) -> float:
-        """``A = (1 - nu1)/mu1 + (1 - nu2)/mu2``, 1/Pa."""
-        return self.cylinder.compliance + self.half_plane.compliance
-
-    @property
-    def H(self) -> float:
-        """``H = k2 delta2 / A``, dimensionless (the paper's eq. 10, corrected; D13)."""
-        return self.half_plane.k * self.half_plane.distortivity / self.compliance
-
-    @property
-    def hertz_half_width(self) -> float:
-        """``Delta_H = sqrt(2 A R P / pi)`` (D2), m."""
-        return float(np.sqrt(2.0 * self.compliance * self.radius * self.load / np.pi))
-
-    @property
-    def hertz_peak_pressure(self) -> float:
-        """``p0 = 2 P / (pi Delta_H)``, Pa."""
-        return 2.0 * self.load / (np.pi * self.hertz_half_width)
-
-    @property
-    def beta_f(self) -> float:
-        """``B = beta f`` of the materials (0 with ``dundurs=False``)."""
-        return dundurs_beta(self.cylinder, self.half_plane) * self.friction if self.dundurs else 0.0
-
-    @property
-    def speed_ratio(self) -> float:
-        """``R = v2/v1``."""
-        return self.speed2 / self.speed
-
-    @property
-    def sliding_speed(self) -> float:
-        """``|v1 - v2|``, m/s: the speed that makes the heat."""
-        return abs(self.speed - self.speed2)
-
-    def pe(self, half_width):
-        """``Pe = v1 Delta / (2 k2)``."""
-        return self.speed * half_width / (2.0 * self.half_plane.k)
-
-    def fhpe(self, half_width):
-        """``fHPe = f H |v1 - v2| Delta / (2 k2)`` at half-width ``Delta`` (D13b)."""
-        return self.friction * self.H * abs(1.0 - self.speed_ratio) * self.pe(half_width)
-
-    @property
-    def pe_hertz(self) -> float:
-        """``Pe_H = v Delta_H / (2 k2)``: with the ray, all that load, radius and speed
-        decide (D26)."""
-        return self.pe(self.hertz_half_width)
-
-    def half_width(self, pe):
-        """The half-width at ``Pe``, m."""
-        return pe * 2.0 * self.half_plane.k / self.speed
-
-    def ray(self) -> Ray:
-        """The dimensionless problems of every trial half-width."""
-        c, h = self.cylinder, self.half_plane
-        return Ray(h.K / c.K, h.k / c.k, c.distortivity / h.distortivity,
-                   self.friction * self.H * abs(1.0 - self.speed_ratio), self.lam,
-                   speed_ratio=self.speed_ratio, beta_f=self.beta_f)
-
-    def hertz_load(self, half_width):
-        """``P_H = pi Delta^2 / (2 A R)``, N/m."""
-        return np.pi * half_width**2 / (2.0 * self.compliance * self.radius)
-
-    def parameters(self, half_width) -> Parameters:
-        """Dimensionless parameters at half-width ``Delta``."""
-        c, h = self.cylinder, self.half_plane
-        return Parameters(self.pe(half_width), self.fhpe(half_width), h.K / c.K, h.k / c.k,
-                          c.distortivity / h.distortivity, self.speed_ratio, self.beta_f)
-
-    def to_dimensionless(self, half_width) -> dict:
-        """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
-        p = self.parameters(half_width)
-        out = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
-                   delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
-        if p.speed_ratio:
-            out["speed_ratio"] = p.speed_ratio
-        if p.beta_f:
-            out["beta_f"] = p.beta_f
-        return out
+def problem_ray(problem: PhysicalProblem) -> Ray:
+    """The dimensionless problems of every trial half-width of ``problem``
+    (:meth:`~thermocontact.problem.physical.PhysicalProblem.ray_parameters`)."""
+    return Ray(**problem.ray_parameters())
 
 
-@dataclass(frozen=True)
+def _same(a, b) -> bool:
+    """Value equality of two results' fields: arrays element by element (NaN equal to
+    NaN), everything else by ``==``."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)
+                and np.array_equal(a, b, equal_nan=True))
+    return bool(a == b)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class Branch:
     """One half-width that carries the load, with its physical fields.
 
@@ -254,8 +112,42 @@ class Branch:
         """Whether the theory applies (:mod:`thermocontact.analysis.applicability`)."""
         return bool(self.applicability is not None and self.applicability.applicable)
 
+    def to_dict(self) -> dict:
+        """The branch's JSON record (SI units; without the distributions)."""
+        v = self.solution.validity
+        return {
+            "half_width": self.half_width, "offset": self.offset, "a": self.a, "b": self.b,
+            "peak_pressure": self.peak_pressure, "mean_pressure": self.mean_pressure,
+            "pe": self.pe, "fhpe": self.fhpe, "lam": self.lam, "load_ratio": self.load_ratio,
+            "valid": self.valid, "flash_temperature": self.flash_temperature,
+            "heat_cylinder": self.heat_cylinder, "heat_half_plane": self.heat_half_plane,
+            "temperature_mismatch": self.temperature_mismatch,
+            "half_plane_incoming_temperature": self.half_plane_incoming_temperature,
+            "flash_temperature_half_plane": self.flash_temperature_half_plane,
+            "n": self.solution.n, "error_estimate": self.error_estimate,
+            "converged": self.converged,
+            "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
+            "reason": v.reason, "strictly_valid": v.strictly_valid,
+            "applicable": self.applicable,
+            "applicability_reasons": list(self.applicability.reasons),
+        }
 
-@dataclass(frozen=True)
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(_same(getattr(self, f.name), getattr(other, f.name))
+                   for f in dataclasses.fields(self))
+
+    __hash__ = None
+
+    def __repr__(self):
+        return (f"Branch(half_width={self.half_width:.6g} m, offset={self.offset:.6g} m, "
+                f"peak_pressure={self.peak_pressure:.6g} Pa, flash_temperature="
+                f"{self.flash_temperature:.6g} K, valid={self.valid}, "
+                f"applicable={self.applicable})")
+
+
+@dataclass(frozen=True, repr=False)
 class PhysicalContact:
     """All solution branches of one physical problem.
 
@@ -285,68 +177,48 @@ class PhysicalContact:
     largest_valid_load: float | None
     searched: tuple | None = None
 
+    def to_dict(self) -> dict:
+        """The JSON record of the contact (SI units): the primary branch's numbers at
+        the top level, every branch under ``branches``, the inputs."""
+        prob = self.problem
+        prim = self.primary
+        rec = {key: (getattr(prim, key) if prim is not None else None) for key in (
+            "half_width", "offset", "a", "b", "peak_pressure", "mean_pressure", "pe", "fhpe",
+            "flash_temperature", "heat_cylinder", "heat_half_plane")}
+        rec.update({
+            "hertz_half_width": prob.hertz_half_width,
+            "hertz_peak_pressure": prob.hertz_peak_pressure,
+            "lam": prob.lam,
+            "valid": bool(prim is not None and prim.valid),
+            "applicable": bool(prim is not None and prim.applicable),
+            "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
+                                      else []),
+            "error_estimate": prim.error_estimate if prim is not None else None,
+            "converged": prim.converged if prim is not None else None,
+            "message": self.message,
+            "largest_valid_load": self.largest_valid_load,
+            "searched": (None if self.searched is None else dict(zip(
+                ("half_width_min", "half_width_max", "fhpe_min", "fhpe_max"), self.searched))),
+            "branches": [b.to_dict() for b in self.branches],
+            "inputs": {
+                "cylinder": prob.cylinder.name, "half_plane": prob.half_plane.name,
+                "radius": prob.radius, "load": prob.load, "speed": prob.speed,
+                "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
+                "dundurs": prob.dundurs,
+            },
+            "beta_f": prob.beta_f,
+            "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's "
+                     "incoming surface temperature), W/m",
+            "version": __version__,
+        })
+        if rec["largest_valid_load"] is not None and not np.isfinite(rec["largest_valid_load"]):
+            rec["largest_valid_load"] = "unbounded"
+        return rec
 
-def _scan_range(prob: PhysicalProblem):
-    dh = prob.hertz_half_width
-    beta = prob.fhpe(1.0)  # fHPe per metre of half-width
-    hi = MAX_WIDTH * dh
-    lo = 0.5 * min(dh, FHPE_MIN / beta)
-    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 < lo < hi):
-        raise InputError(
-            f"the inputs put the contact scale out of range (Hertz half-width {dh:.3g} m, "
-            f"fHPe per metre {beta:.3g}): check radius, load, speed, friction and materials")
-    return lo, hi
-
-
-def _cylinder_temperature(prob: PhysicalProblem, sol: ContactSolution, s):
-    """The cylinder's surface temperature rise at ``s`` (derivation D8)."""
-    return _moving_temperature(prob, sol, s, body=1)
-
-
-def _moving_temperature(prob: PhysicalProblem, sol: ContactSolution, s, body):
-    """A moving body's surface temperature rise over its own incoming temperature at
-    ``s``: Carslaw and Jaeger's (D8) over the heat it receives, with its own signed
-    kernel scale (the cylinder's ``c``, the half-plane's ``c2``; section 5b)."""
-    par = sol.parameters
-    c = par.cylinder_scale if body == 1 else par.half_plane_scale
-    K = prob.cylinder.K if body == 1 else prob.half_plane.K
-    sign = 1.0 if body == 1 else -1.0
-    # q1, q2 = ((1 +- eta) p +- q')/2, in units f |v1 - v2| P / Delta.
-    ib, iq = sol.representation.integrate(lambda u: cylinder_temperature(c * u), s)
-    return (prob.friction * prob.sliding_speed * prob.load / (np.pi * K) * 0.5
-            * ((1 + sign * par.eta) * (ib @ sol.phi) + sign * (iq @ sol.psi)))
-
-
-def _temperatures(prob: PhysicalProblem, sol: ContactSolution, half_width, s):
-    """Surface temperature rises of both bodies over the contact (derivation D8, D12),
-    the half-plane's level set by continuity with the cylinder in the contact.
-
-    Returns
-    -------
-    t1, t2 : ndarray
-    mismatch : float
-        The largest departure of ``t1 - t2`` from its mean over the contact (zero
-        for the exact solution: perfect thermal contact).
-    incoming : float or None
-        For a moving half-plane, its incoming temperature over the cylinder's that the
-        heat partition implies (each moving body's rise is over its own incoming
-        temperature; section 5b); None for a stationary half-plane, whose level the
-        2-D model leaves free.
-    """
-    rep = sol.representation
-    eta = sol.parameters.eta
-    t1 = _cylinder_temperature(prob, sol, s)
-    if sol.parameters.half_plane_scale:
-        t2 = _moving_temperature(prob, sol, s, body=2)
-    else:
-        # q2 = ((1 - eta) p - q')/2, in units f |v1 - v2| P / Delta.
-        lb, lq = rep.integrate(lambda u: np.log(np.abs(u)), s)
-        t2 = (-prob.friction * prob.sliding_speed * prob.load / (np.pi * prob.half_plane.K)
-              * 0.5 * ((1 - eta) * (lb @ sol.phi) - lq @ sol.psi))
-    shift = float(np.mean(t1 - t2))
-    t2 = t2 + shift
-    return (t1, t2, float(np.max(np.abs(t1 - t2))),
-            shift if sol.parameters.half_plane_scale else None)
+    def __repr__(self):
+        p = self.problem
+        return (f"PhysicalContact({p.cylinder.name} on {p.half_plane.name}, load={p.load:.6g} "
+                f"N/m, branches={len(self.branches)}, primary={self.primary!r})")
 
 
 def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
@@ -356,46 +228,30 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
     est = estimate
     # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
     est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
-    sol = prob.ray().solve_at(pe, n, check_validity=True).replace(error_estimate=est, tol=tol)
-    s = np.cos(np.linspace(np.pi, 0.0, 201))
-    p = prob.load / half_width * sol.pressure_at(s)
-    s_in = s[1:-1]
-    t1, t2, mismatch, incoming = _temperatures(prob, sol, half_width, s_in)
-    # Peak pressure and flash temperature: the maxima of the closed forms, not of
-    # the samples (edges included for the temperature, which is finite there).
-    ip = int(np.argmax(p))
-    _, neg_peak = polish_minimum(lambda x: -prob.load / half_width * sol.pressure_at(x), s, -p, ip)
-    s_t = np.concatenate([[-1.0], s_in, [1.0]])
-    t_edges = _cylinder_temperature(prob, sol, [-1.0, 1.0])
-    t_all = np.concatenate([t_edges[:1], t1, t_edges[1:]])
-    it = int(np.argmax(t_all))
-    _, neg_flash = polish_minimum(lambda x: -_cylinder_temperature(prob, sol, x), s_t, -t_all,
-                                  it)
+    sol = problem_ray(prob).solve_at(pe, n, check_validity=True).replace(error_estimate=est, tol=tol)
+    f = contact_fields(sol, length=half_width, load=prob.load,
+                       temperature_units=prob.temperature_units,
+                       fractions=prob.compliance_fractions)
     offset = sol.sigma_over_delta * half_width
     lam = sol.lam
     q = prob.friction * prob.sliding_speed * prob.load
     return Branch(
         half_width=float(half_width), offset=float(offset),
         a=float(offset - half_width), b=float(offset + half_width),
-        peak_pressure=float(-neg_peak), mean_pressure=prob.load / (2.0 * half_width),
+        peak_pressure=f.peak_pressure, mean_pressure=f.mean_pressure,
         pe=float(sol.parameters.pe), fhpe=float(sol.parameters.fhpe), lam=float(lam),
         load_ratio=float(sol.load_ratio), valid=bool(sol.valid),
-        flash_temperature=float(-neg_flash),
+        flash_temperature=f.flash_temperature,
         heat_cylinder=0.5 * q * (1.0 + lam), heat_half_plane=0.5 * q * (1.0 - lam),
-        temperature_mismatch=mismatch,
-        half_plane_incoming_temperature=incoming,
+        temperature_mismatch=f.temperature_mismatch,
+        half_plane_incoming_temperature=f.half_plane_incoming_temperature,
         error_estimate=float(sol.error_estimate),
         converged=bool(sol.error_estimate <= tol),
-        x=offset + half_width * s, pressure=p,
-        temperature_cylinder=np.concatenate([[np.nan], t1, [np.nan]]),
-        temperature_half_plane=np.concatenate([[np.nan], t2, [np.nan]]),
+        x=f.x, pressure=f.pressure,
+        temperature_cylinder=f.temperature_cylinder,
+        temperature_half_plane=f.temperature_half_plane,
         solution=sol,
-        applicability=applicability(
-            sol, half_width / prob.radius,
-            compliance_fractions=(prob.cylinder.compliance / prob.compliance,
-                                  prob.half_plane.compliance / prob.compliance),
-            temperature_rises=np.concatenate([t_all, t2]),
-            max_temperature=(prob.cylinder.max_temperature, prob.half_plane.max_temperature)),
+        applicability=physical_applicability(prob, f),
     )
 
 
@@ -422,8 +278,8 @@ def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContac
         roots = [(prob.pe_hertz, 16, 0.0)]
         scan = None
     else:
-        lo, hi = _scan_range(prob)
-        ray, pe_h = prob.ray(), prob.pe_hertz
+        lo, hi = prob.scan_range()
+        ray, pe_h = problem_ray(prob), prob.pe_hertz
         scan = follow(ray, prob.pe(lo), prob.pe(hi), pe_h=pe_h, progress=progress)
         roots = []
         for i in brackets(scan.pe, scan.load_ratio, pe_h):
@@ -484,7 +340,7 @@ def _largest_valid_load(prob, scan):
     """
     from .boundaries import locate_events
 
-    ray = prob.ray()
+    ray = problem_ray(prob)
     pe, L = scan.pe, scan.load_ratio
     inside = np.cos(np.linspace(np.pi, 0.0, 257))[1:-1]  # 7.5e-5 from the edges
 
@@ -531,7 +387,7 @@ def _primary(problem: PhysicalProblem, along: str):
 
     def at(n, x):
         prob = _moved(problem, along, x)
-        ray, pe_h = prob.ray(), prob.pe_hertz
+        ray, pe_h = problem_ray(prob), prob.pe_hertz
         if ray.fh == 0.0:
             return ray.solve_at(pe_h, n, check_validity=True)
 
@@ -551,7 +407,7 @@ def _primary(problem: PhysicalProblem, along: str):
         if step is None:
             # No root found so far near enough, or the steps from it failed: bracket
             # the first root on the ray (poles, where |h| stays large, skipped).
-            a, b = _scan_range(prob)
+            a, b = prob.scan_range()
             scan = follow(ray, prob.pe(a), prob.pe(b), pe_h=pe_h)
             for i in brackets(scan.pe, scan.load_ratio, pe_h):
                 lo, hi = math.log(scan.pe[i]), math.log(scan.pe[i + 1])

@@ -1,4 +1,5 @@
-"""Representation of the unknowns graded toward the contact edges.
+"""The one moment engine: every integral of the unknowns, Cauchy ones included, as a
+moment of the kernel, on the edge-graded or the identity coordinate map.
 
 With ``r = cos t`` and ``t = T(tau) = tau - sin(2 tau)/2`` (a map of ``[0, pi]``
 onto itself with ``T ~ (2/3) tau^3`` at both ends) the unknowns are expanded as
