@@ -67,7 +67,7 @@ ALLOWED = {
     "problem": set(),
     "io": {"_version", "problem"},
     "execution": {"problem", "io"},
-    "physics": {"problem"},
+    "physics": {"problem", "io"},
     "numerics": set(),
     "discretisation": {"problem", "physics", "numerics"},
     "analysis": {"problem", "io", "physics", "numerics", "discretisation"},

@@ -8,7 +8,7 @@ import click
 
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..problem.validation import InputError, check_positive
+from ..problem.validation import InputError
 from .options import parse_conductance, problem_options
 from .progress import RefinementProgress
 
@@ -77,19 +77,14 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     from ..api import solve
 
     if (lam is None) == (sigma is None):
-        raise InputError("give exactly one of --lam and --sigma")
+        raise InputError("give exactly one of lam and sigma", parameters=("lam", "sigma"))
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
-                delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
-                lam=lam,
-                sigma_over_delta=sigma, n=n, method=method, tol=tol,
-                check_convergence=check, progress=RefinementProgress(),
+                delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
+                speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,
+                method=method, tol=tol, check_convergence=check,
+                progress=RefinementProgress(), delta_over_r=delta_over_r,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))
-    app = None
-    if delta_over_r is not None:
-        from ..analysis.applicability import applicability
-
-        app = applicability(sol, check_positive("delta_over_r", delta_over_r))
-        sol = sol.replace(applicability=app)
+    app = sol.applicability
     if as_json:
         click.echo(json.dumps(sol.to_dict(), allow_nan=False))
     else:

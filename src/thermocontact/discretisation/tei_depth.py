@@ -17,7 +17,6 @@ spectrum (``Re b <= -kappa m^2``) appears as a cloud of eigenvalues to be ignore
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import scipy.linalg

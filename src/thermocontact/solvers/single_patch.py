@@ -466,7 +466,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           speed_ratio=0.0, beta_f=0.0, lam=None, sigma_over_delta=None, n=None,
           method=DEFAULT_METHOD,
           tol=DEFAULT_TOL, check_convergence=False, progress=None,
-          conductance=None) -> ContactSolution:
+          conductance=None, delta_over_r=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
@@ -498,6 +498,10 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     conductance : tuple, optional
         ``(Bi0, m)`` of an interface conductance, ``Bi0 = h0 Delta/K2`` (section 16);
         default perfect thermal contact.
+    delta_over_r : float, optional
+        Half-width over the cylinder's radius, > 0: also judge whether the theory
+        applies (contact size, slopes, strains; derivation section 11a), recorded as
+        the result's ``applicability``.
 
     Returns
     -------
@@ -517,8 +521,15 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     1.0
     """
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
+    if delta_over_r is not None:
+        delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                   method=method, n=n, tol=tol, conductance=conductance)
-    return model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
-                       check_convergence=check_convergence, progress=progress, _stacklevel=3)
+    sol = model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
+                      check_convergence=check_convergence, progress=progress, _stacklevel=3)
+    if delta_over_r is None:
+        return sol
+    from ..analysis.applicability import applicability
+
+    return sol.replace(applicability=applicability(sol, delta_over_r))
