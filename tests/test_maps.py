@@ -211,6 +211,44 @@ def test_no_scheduler_at_the_address():
         connect(f"tcp://127.0.0.1:{port}", timeout=1.0)
 
 
+def test_every_output_path_checked_before_any_work(tmp_path, capsys, monkeypatch):
+    """A folder where the picture goes, or a file where the unfinished work goes, is
+    refused in one line before any work, leaving nothing: a rerun cannot claim a
+    complete map without its picture."""
+    import thermocontact.api as api
+
+    def boom(*args, **kwargs):
+        raise AssertionError("computed before the output paths were checked")
+    monkeypatch.setattr(api, "compute_map", boom)
+    argv = ["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1", "--out"]
+    (tmp_path / "pic.png").mkdir()
+    (tmp_path / "w.nc.parts").write_text("x")
+    for out, words in (("pic.nc", "--out's picture must be a file"),
+                       ("w.nc", "--out's unfinished work must be a folder")):
+        assert main(argv + [str(tmp_path / out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and words in err[0], err
+    assert sorted(os.listdir(tmp_path)) == ["pic.png", "w.nc.parts"]
+
+
+def test_map_out_where_nothing_can_be_created(capsys):
+    """As root, os.access says /proc is writable: the dataset is refused in one line
+    anyway, before any work."""
+    import tempfile
+
+    if not (os.path.isdir("/proc") and os.access("/proc", os.W_OK)):
+        pytest.skip("os.access does not claim /proc is writable here")
+    try:
+        os.close(tempfile.mkstemp(dir="/proc")[0])
+        pytest.skip("files can be created in /proc here")
+    except OSError:
+        pass
+    assert main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
+                 "--out", "/proc/m.nc"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--out must be in a writable folder" in err[0]
+
+
 def test_command_writes_refuses_and_completes(tmp_path, capsys):
     """The command writes dataset and picture and removes its parts; run again it has
     nothing to compute; with other arguments on the same --out it refuses."""

@@ -31,6 +31,11 @@ def executor_of(workers, scheduler):
     return workers
 
 
+def picture_of(out) -> str:
+    """The picture written beside the dataset ``out``."""
+    return os.path.splitext(out)[0] + ".png"
+
+
 def run_map(spec, out, workers, title, command):
     """Compute (or resume) a map, write the dataset and its picture, keep nothing else."""
     import time
@@ -43,7 +48,7 @@ def run_map(spec, out, workers, title, command):
     from ..api import compute_map
     from ..io.datasets import parts_folder, read_dataset, write_dataset
 
-    picture = os.path.splitext(out)[0] + ".png"
+    picture = picture_of(out)
     manifest = json.dumps(spec.manifest(), sort_keys=True)
     if os.path.exists(out):
         try:
@@ -133,6 +138,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     Interrupted, the same command resumes; finished work is kept beside --out.
     """
     from ..api import map_spec
+    from ..io.datasets import parts_folder
     from ..io.files import check_output_dir, check_output_file
     from ..problem.axes import Axis
 
@@ -168,5 +174,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                              "'thermocontact[zarr]', or write .nc") from None
     else:
         out = check_output_file("--out", out, suffixes=(".nc", ".zarr"))
+    # Every path is checked before the work whose result it receives.
+    check_output_file("--out's picture", picture_of(out))
+    check_output_dir("--out's unfinished work", parts_folder(out))
     run_map(spec, out, executor_of(workers, scheduler), title,
              "thermocontact " + " ".join(sys.argv[1:]))
