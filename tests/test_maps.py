@@ -5,6 +5,7 @@ import concurrent.futures as cf
 from concurrent.futures.process import BrokenProcessPool
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -190,6 +191,9 @@ def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
     ("localhost", "scheduler must be an address"),
     ("tcp://", "scheduler must be an address"),
     ("tcp://127.0.0.1:99999", "port must be 1 to 65535"),
+    ("tcp://127.0.0.1", "must be an address with a port"),
+    ("tcp://[::1]", "must be an address with a port"),
+    ("tcp://[::1:8786", "must be an address with a port"),
 ])
 def test_bad_scheduler_addresses(address, words, capsys):
     with pytest.raises(InputError, match=words):
@@ -200,15 +204,29 @@ def test_bad_scheduler_addresses(address, words, capsys):
     assert rc == 2 and err.startswith("error: scheduler") and err.count("\n") == 1
 
 
-def test_no_scheduler_at_the_address():
+def test_ipv6_scheduler_address_accepted():
+    for address in ("tcp://[::1]:8786", "[::1]:8786", "tls://[fe80::1%eth0]:8786"):
+        assert check_scheduler(address) == address
+
+
+@pytest.mark.parametrize("family,host", [("AF_INET", "127.0.0.1"), ("AF_INET6", "[::1]")])
+def test_no_scheduler_at_the_address(family, host):
+    """A refused connection is one line at once, not after the client's timeout."""
     pytest.importorskip("distributed")
     import socket
+    import time
 
-    with socket.socket() as s:  # a port nobody listens on
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    with pytest.raises(InputError, match="did not answer within 1 s"):
-        connect(f"tcp://127.0.0.1:{port}", timeout=1.0)
+    try:
+        with socket.socket(getattr(socket, family)) as s:  # a port nobody listens on
+            s.bind((host.strip("[]"), 0))
+            port = s.getsockname()[1]
+    except OSError:
+        pytest.skip(f"no {family} loopback here")
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=f"scheduler tcp://{re.escape(host)}:{port} did not "
+                                         f"answer"):
+        connect(f"tcp://{host}:{port}", timeout=5.0)
+    assert time.perf_counter() - t0 < 2.5
 
 
 def test_every_output_path_checked_before_any_work(tmp_path, capsys, monkeypatch):
