@@ -318,11 +318,30 @@ def test_progress_line_reports_rate_and_time_left():
     assert bar.text(10, 100, now=105.0) == "map: 10/100 lines (10%), 2 lines/s, 0:45 left"
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["--x", "fhpe:0:0.5:2", "--y", "pe:1:5:2", "--K2-over-K1", "10", "--lam", "0",
+      "--fhpe", "0.3"], "--fhpe must not be given: it is an axis"),
+    (["--x", "sigma:0:0.1:2", "--y", "pe:1:5:2", "--K2-over-K1", "10", "--fhpe", "0.2",
+      "--sigma", "0.05"], "--sigma must not be given: it is an axis"),
+    (["--x", "fhpe:0:0.5:2", "--y", "K2-over-K1:1:5:2", "--pe", "5", "--lam", "0",
+      "--K2-over-K1", "10"], "--K2-over-K1 must not be given: it is an axis"),
+])
+def test_value_for_a_dimensionless_axis_refused_in_one_line(argv, words, capsys, tmp_path):
+    """A value for the parameter an axis maps is refused, not silently replaced."""
+    rc = main(["map", *argv, "--out", str(tmp_path / "never.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and words in err and err.count("\n") == 1, err
+    assert os.listdir(tmp_path) == []
+
+
 @pytest.mark.parametrize("extra, words", [
     (["--friction", "-0.1"], "friction must be"),
     (["--friction", "0.2", "--speed", "1"], "--speed must not be given: it is an axis"),
     (["--friction", "0.2", "--pe", "5"], "--pe belongs to a dimensionless map"),
     (["--friction", "0.2", "--radius", "-1mm"], "radius"),
+    (["--friction", "0.2", "--method", "paper"], "--method belongs to a dimensionless map"),
+    (["--friction", "0.2", "--delta1-over-delta2", "2"],
+     "--delta1-over-delta2 belongs to a dimensionless map"),
 ])
 def test_bad_operating_maps_are_refused_in_one_line(extra, words, capsys):
     rc = main(["map", "--cylinder", "copper", "--half-plane", "steel", "--lam", "-1",

@@ -113,8 +113,8 @@ def run_map(spec, out, workers, title, command):
               help="Half-width over radius > 0: also map whether the theory applies.")
 @click.option("--tol", type=float, default=1e-6, show_default=True,
               help="Error target of every point.")
-@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation method.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
+              help=f"Discretisation method (dimensionless maps) [default: {DEFAULT_METHOD}].")
 @click.option("--out", required=True,
               help="Dataset to write: .nc (NetCDF) or .zarr; the picture goes beside it (.png).")
 @click.option("--workers", type=int, default=None,
@@ -145,7 +145,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     operating = cylinder is not None or half_plane is not None
     spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
                     K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
-                    delta1_over_delta2=None if operating else delta1_over_delta2,
+                    delta1_over_delta2=delta1_over_delta2,
                     speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
                     delta_over_r=delta_over_r, method=method, cylinder=cylinder,
                     half_plane=half_plane, friction=friction, radius=radius, load=load,
@@ -163,7 +163,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                 f"h = {c.h0:g} W/m2K" + (f" (p/{c.p_ref:g} Pa)^{c.exponent:g}"
                                          if c.exponent else "")))
     else:
-        title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "
+        title = (f"{fixed}; method {spec.method}, tol {tol:g}\nvalid where not shaded; theory not "
                  f"applicable where hatched")
     if out.lower().endswith(".zarr"):
         out = check_output_dir("--out", out)
