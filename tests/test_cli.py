@@ -206,3 +206,12 @@ def test_boundary_refuses_a_value_for_the_parameter_followed(capsys, along, extr
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and f"--{along} must not be given: it is the parameter followed" \
         in err[0], err
+
+
+def test_physical_path_refuses_a_method(capsys):
+    """A physical path solves with the default method: --method is refused, not ignored."""
+    assert main(["boundary", "--along", "load", "--from", "1e4", "--to", "1e5", "--cylinder",
+                 "steel", "--half-plane", "copper", "--friction", "0.3", "--lam", "1",
+                 "--radius", "0.01", "--speed", "2", "--method", "paper"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--method belongs to a dimensionless path" in err[0], err

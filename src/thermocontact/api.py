@@ -218,7 +218,7 @@ _PHYSICAL = ("cylinder", "half_plane", "radius", "load", "speed", "friction", "d
 def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
-             friction=None, dundurs=None, materials=None, method=DEFAULT_METHOD,
+             friction=None, dundurs=None, materials=None, method=None,
              tol=DEFAULT_TOL, n=None, progress=None):
     """Every change of validity along one parameter, located to 1e-9 relative.
 
@@ -247,8 +247,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         physical paths take ``lam``).
     cylinder, half_plane, radius, load, speed, friction, dundurs, materials
         The physical problem, as for :func:`contact`.
-    method : str
-        Discretisation method (dimensionless paths).
+    method : str, optional
+        Discretisation method of a dimensionless path (default ``"graded"``); a
+        physical path refuses it.
     tol : float
         Error target for the choice of ``n``.
     n : int, optional
@@ -277,12 +278,13 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": beta_f or None, "sigma": sigma}
+                         "beta_f": beta_f or None, "sigma": sigma, "method": method}
         return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
                               dimensionless, tol, n, progress)
     from .studies.boundaries import SPELLINGS, follow
     from .studies.maps import NAMES
 
+    method = DEFAULT_METHOD if method is None else method
     for name, value in physical.items():
         if value is not None:
             raise InputError(f"{name} belongs to a physical path: give cylinder and "
