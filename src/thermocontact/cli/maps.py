@@ -36,6 +36,30 @@ def picture_of(out) -> str:
     return os.path.splitext(out)[0] + ".png"
 
 
+def announce_cost(spec, workers):
+    """A line on standard error before contact sets are searched over a map: they cost
+    seconds per point, where the rest of a map costs milliseconds."""
+    if not getattr(spec, "zones", False):
+        return
+    from ..studies.operating_maps import CONTACT_SET_SECONDS, contact_set_cost
+
+    cores = (sum(workers.nthreads().values()) if hasattr(workers, "nthreads")
+             else int(workers))
+    points = spec.x.count * spec.y.count
+    total = contact_set_cost(spec, cores)
+    click.echo(f"contact sets at {points} point{'s' * (points != 1)}: about "
+               f"{CONTACT_SET_SECONDS:g} s each on one core, about "
+               f"{_duration(total)} on {cores} worker{'s' * (cores != 1)}", err=True)
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
+
+
 def run_map(spec, out, workers, title, command):
     """Compute (or resume) a map, write the dataset and its picture, keep nothing else."""
     import time
@@ -63,6 +87,7 @@ def run_map(spec, out, workers, title, command):
         click.echo(f"{out} is complete (same arguments): nothing to compute")
         return
     parts = parts_folder(out)
+    announce_cost(spec, workers)
     bar = ProgressLine("map", "lines")
     t0 = time.perf_counter()
     try:
