@@ -25,7 +25,16 @@ NAME_MAX = 255
 
 class WriteError(InputError):
     """A file could not be written (a full disk, a folder in the way, a place where
-    nothing can be created): one line naming the file and the system's reason."""
+    nothing can be created): one line naming the file and the system's reason.
+
+    Parameters
+    ----------
+    path : str
+        The file; without ``exc``, the whole message (so that the error survives a
+        trip from a worker process, as every :class:`InputError` does).
+    exc : OSError, optional
+        What the system said.
+    """
 
     def __init__(self, path, exc=None, *, parameters=()):
         reason = f" ({exc.strerror or type(exc).__name__})" if isinstance(exc, OSError) else ""
