@@ -244,13 +244,13 @@ def test_contact_sets_cost_announced_before_the_work(capsys, tmp_path, monkeypat
     points x seconds per set, in rounds of one line per worker."""
     import thermocontact.api as api
     from thermocontact.cli import main
-    from thermocontact.studies.operating_maps import CONTACT_SET_SECONDS, contact_set_cost
+    from thermocontact.studies.operating_maps import CONTACT_SET_SECONDS
 
     ax = parse_physical_axis("--x", "speed:2:5:3"), parse_physical_axis("--y", "load:1e5:2e5:2")
     s = OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True)
-    assert contact_set_cost(s, 1) == 6 * CONTACT_SET_SECONDS
-    assert contact_set_cost(s, 2) == contact_set_cost(s, 8) == 3 * CONTACT_SET_SECONDS
-    assert contact_set_cost(OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}), 1) == 0
+    assert s.contact_set_cost(1) == 6 * CONTACT_SET_SECONDS
+    assert s.contact_set_cost(2) == s.contact_set_cost(8) == 3 * CONTACT_SET_SECONDS
+    assert OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}).contact_set_cost(1) == 0
     seen = []
 
     def stop(*args, **kwargs):

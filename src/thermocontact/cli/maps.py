@@ -41,15 +41,13 @@ def announce_cost(spec, workers):
     seconds per point, where the rest of a map costs milliseconds."""
     if not getattr(spec, "zones", False):
         return
-    from ..studies.operating_maps import CONTACT_SET_SECONDS, contact_set_cost
-
     cores = (sum(workers.nthreads().values()) if hasattr(workers, "nthreads")
              else int(workers))
     points = spec.x.count * spec.y.count
-    total = contact_set_cost(spec, cores)
     click.echo(f"contact sets at {points} point{'s' * (points != 1)}: about "
-               f"{CONTACT_SET_SECONDS:g} s each on one core, about "
-               f"{_duration(total)} on {cores} worker{'s' * (cores != 1)}", err=True)
+               f"{spec.contact_set_cost(1) / points:g} s each on one core, about "
+               f"{_duration(spec.contact_set_cost(cores))} on {cores} "
+               f"worker{'s' * (cores != 1)}", err=True)
 
 
 def _duration(seconds: float) -> str:
