@@ -193,3 +193,25 @@ def test_comparison_methods_do_not_claim_convergence_they_lack():
                    abs(g.sigma_over_delta - ref.sigma_over_delta)
                    / max(abs(ref.sigma_over_delta), 0.01))
         assert true < g.error_estimate
+
+
+@pytest.mark.parametrize("along, extra", [
+    ("fhpe", ["--fhpe", "0.2", "--lam", "-1"]),
+    ("sigma", ["--fhpe", "0.2", "--sigma", "0.05"]),
+])
+def test_boundary_refuses_a_value_for_the_parameter_followed(capsys, along, extra):
+    """A value for the parameter followed is refused in one line, not silently dropped."""
+    assert main(["boundary", "--along", along, "--from", "0", "--to", "1", "--pe", "5",
+                 "--K2-over-K1", "10", *extra]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"--{along} must not be given: it is the parameter followed" \
+        in err[0], err
+
+
+def test_physical_path_refuses_a_method(capsys):
+    """A physical path solves with the default method: --method is refused, not ignored."""
+    assert main(["boundary", "--along", "load", "--from", "1e4", "--to", "1e5", "--cylinder",
+                 "steel", "--half-plane", "copper", "--friction", "0.3", "--lam", "1",
+                 "--radius", "0.01", "--speed", "2", "--method", "paper"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--method belongs to a dimensionless path" in err[0], err

@@ -51,6 +51,60 @@ def test_bad_output_paths_refused_before_computing(tmp_path, capsys, no_solve, o
         assert msg.startswith(f"error: {option} must"), (what, msg)
 
 
+def _lying_access(folder):
+    """Whether ``os.access`` says ``folder`` is writable while nothing can be created in
+    it (as root in /proc and /sys): only then can the probe be tested there."""
+    import tempfile
+
+    if not (os.path.isdir(folder) and os.access(folder, os.W_OK | os.X_OK)):
+        return False
+    try:
+        fd, tmp = tempfile.mkstemp(dir=folder)
+    except OSError:
+        return True
+    os.close(fd)
+    os.unlink(tmp)
+    return False
+
+
+@pytest.mark.parametrize("option,path", [("--csv", "/proc/x.csv"), ("--plot", "/sys/x.png")])
+def test_unwritable_places_refused_even_where_access_says_yes(capsys, no_solve, option, path):
+    if not _lying_access(os.path.dirname(path)):
+        pytest.skip("os.access does not claim this folder is writable here")
+    msg = _error(capsys, CONTACT + [option, path])
+    assert msg.startswith(f"error: {option} must be in a writable folder"), msg
+
+
+def test_probe_refuses_where_nothing_can_be_created(tmp_path, monkeypatch):
+    """Whatever os.access says, a folder where no file can be created is refused."""
+    import tempfile
+
+    from thermocontact.io.files import check_output_dir, check_output_file
+    from thermocontact.problem.validation import InputError
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    with pytest.raises(InputError, match="--csv must be in a writable folder.*Permission"):
+        check_output_file("--csv", str(tmp_path / "x.csv"))
+    with pytest.raises(InputError, match="--out must be in a writable folder.*Permission"):
+        check_output_dir("--out", str(tmp_path / "m.zarr"))
+
+
+def test_failed_write_is_one_line_error(tmp_path):
+    """An OSError while writing (here a folder where the file goes) is a one-line
+    error naming the file, and leaves nothing behind."""
+    from thermocontact.io.files import WriteError
+    from thermocontact.problem.validation import InputError
+
+    (tmp_path / "x.csv").mkdir()
+    with pytest.raises(WriteError, match=r"could not write .*x\.csv \(") as info:
+        with atomic_write(tmp_path / "x.csv") as fh:
+            fh.write("a")
+    assert isinstance(info.value, InputError) and "\n" not in str(info.value)
+    assert sorted(os.listdir(tmp_path)) == ["x.csv"]
+
+
 def test_plot_needs_a_picture_extension_and_csv_plot_differ(tmp_path, capsys, no_solve):
     assert "must end in one of .png" in _error(capsys, CONTACT + ["--plot", str(tmp_path / "x")])
     same = str(tmp_path / "x.png")

@@ -5,6 +5,7 @@ import concurrent.futures as cf
 from concurrent.futures.process import BrokenProcessPool
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -190,6 +191,9 @@ def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
     ("localhost", "scheduler must be an address"),
     ("tcp://", "scheduler must be an address"),
     ("tcp://127.0.0.1:99999", "port must be 1 to 65535"),
+    ("tcp://127.0.0.1", "must be an address with a port"),
+    ("tcp://[::1]", "must be an address with a port"),
+    ("tcp://[::1:8786", "must be an address with a port"),
 ])
 def test_bad_scheduler_addresses(address, words, capsys):
     with pytest.raises(InputError, match=words):
@@ -200,15 +204,67 @@ def test_bad_scheduler_addresses(address, words, capsys):
     assert rc == 2 and err.startswith("error: scheduler") and err.count("\n") == 1
 
 
-def test_no_scheduler_at_the_address():
+def test_ipv6_scheduler_address_accepted():
+    for address in ("tcp://[::1]:8786", "[::1]:8786", "tls://[fe80::1%eth0]:8786"):
+        assert check_scheduler(address) == address
+
+
+@pytest.mark.parametrize("family,host", [("AF_INET", "127.0.0.1"), ("AF_INET6", "[::1]")])
+def test_no_scheduler_at_the_address(family, host):
+    """A refused connection is one line at once, not after the client's timeout."""
     pytest.importorskip("distributed")
     import socket
+    import time
 
-    with socket.socket() as s:  # a port nobody listens on
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    with pytest.raises(InputError, match="did not answer within 1 s"):
-        connect(f"tcp://127.0.0.1:{port}", timeout=1.0)
+    try:
+        with socket.socket(getattr(socket, family)) as s:  # a port nobody listens on
+            s.bind((host.strip("[]"), 0))
+            port = s.getsockname()[1]
+    except OSError:
+        pytest.skip(f"no {family} loopback here")
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=f"scheduler tcp://{re.escape(host)}:{port} did not "
+                                         f"answer"):
+        connect(f"tcp://{host}:{port}", timeout=5.0)
+    assert time.perf_counter() - t0 < 2.5
+
+
+def test_every_output_path_checked_before_any_work(tmp_path, capsys, monkeypatch):
+    """A folder where the picture goes, or a file where the unfinished work goes, is
+    refused in one line before any work, leaving nothing: a rerun cannot claim a
+    complete map without its picture."""
+    import thermocontact.api as api
+
+    def boom(*args, **kwargs):
+        raise AssertionError("computed before the output paths were checked")
+    monkeypatch.setattr(api, "compute_map", boom)
+    argv = ["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1", "--out"]
+    (tmp_path / "pic.png").mkdir()
+    (tmp_path / "w.nc.parts").write_text("x")
+    for out, words in (("pic.nc", "--out's picture must be a file"),
+                       ("w.nc", "--out's unfinished work must be a folder")):
+        assert main(argv + [str(tmp_path / out)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and words in err[0], err
+    assert sorted(os.listdir(tmp_path)) == ["pic.png", "w.nc.parts"]
+
+
+def test_map_out_where_nothing_can_be_created(capsys):
+    """As root, os.access says /proc is writable: the dataset is refused in one line
+    anyway, before any work."""
+    import tempfile
+
+    if not (os.path.isdir("/proc") and os.access("/proc", os.W_OK)):
+        pytest.skip("os.access does not claim /proc is writable here")
+    try:
+        os.close(tempfile.mkstemp(dir="/proc")[0])
+        pytest.skip("files can be created in /proc here")
+    except OSError:
+        pass
+    assert main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
+                 "--out", "/proc/m.nc"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--out must be in a writable folder" in err[0]
 
 
 def test_command_writes_refuses_and_completes(tmp_path, capsys):
@@ -262,11 +318,30 @@ def test_progress_line_reports_rate_and_time_left():
     assert bar.text(10, 100, now=105.0) == "map: 10/100 lines (10%), 2 lines/s, 0:45 left"
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["--x", "fhpe:0:0.5:2", "--y", "pe:1:5:2", "--K2-over-K1", "10", "--lam", "0",
+      "--fhpe", "0.3"], "--fhpe must not be given: it is an axis"),
+    (["--x", "sigma:0:0.1:2", "--y", "pe:1:5:2", "--K2-over-K1", "10", "--fhpe", "0.2",
+      "--sigma", "0.05"], "--sigma must not be given: it is an axis"),
+    (["--x", "fhpe:0:0.5:2", "--y", "K2-over-K1:1:5:2", "--pe", "5", "--lam", "0",
+      "--K2-over-K1", "10"], "--K2-over-K1 must not be given: it is an axis"),
+])
+def test_value_for_a_dimensionless_axis_refused_in_one_line(argv, words, capsys, tmp_path):
+    """A value for the parameter an axis maps is refused, not silently replaced."""
+    rc = main(["map", *argv, "--out", str(tmp_path / "never.nc")])
+    err = capsys.readouterr().err
+    assert rc == 2 and words in err and err.count("\n") == 1, err
+    assert os.listdir(tmp_path) == []
+
+
 @pytest.mark.parametrize("extra, words", [
     (["--friction", "-0.1"], "friction must be"),
     (["--friction", "0.2", "--speed", "1"], "--speed must not be given: it is an axis"),
     (["--friction", "0.2", "--pe", "5"], "--pe belongs to a dimensionless map"),
     (["--friction", "0.2", "--radius", "-1mm"], "radius"),
+    (["--friction", "0.2", "--method", "paper"], "--method belongs to a dimensionless map"),
+    (["--friction", "0.2", "--delta1-over-delta2", "2"],
+     "--delta1-over-delta2 belongs to a dimensionless map"),
 ])
 def test_bad_operating_maps_are_refused_in_one_line(extra, words, capsys):
     rc = main(["map", "--cylinder", "copper", "--half-plane", "steel", "--lam", "-1",

@@ -237,3 +237,30 @@ def test_dimensionless_map_has_no_contact_sets(capsys, tmp_path):
     assert main(["map", "--x", "fhpe:0:0.5:2", "--y", "pe:1:5:2", "--K2-over-K1", "10",
                  "--lam", "0", "--zones", "--out", str(tmp_path / "m.nc")]) == 2
     assert "--zones belongs to an operating map" in capsys.readouterr().err
+
+
+def test_contact_sets_cost_announced_before_the_work(capsys, tmp_path, monkeypatch):
+    """`map --zones` says on standard error, before any work, what the contact sets cost:
+    points x seconds per set, in rounds of one line per worker."""
+    import thermocontact.api as api
+    from thermocontact.cli import main
+    from thermocontact.studies.operating_maps import CONTACT_SET_SECONDS
+
+    ax = parse_physical_axis("--x", "speed:2:5:3"), parse_physical_axis("--y", "load:1e5:2e5:2")
+    s = OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True)
+    assert s.contact_set_cost(1) == 6 * CONTACT_SET_SECONDS
+    assert s.contact_set_cost(2) == s.contact_set_cost(8) == 3 * CONTACT_SET_SECONDS
+    assert OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}).contact_set_cost(1) == 0
+    seen = []
+
+    def stop(*args, **kwargs):
+        seen.append(capsys.readouterr().err)
+        raise KeyboardInterrupt
+    monkeypatch.setattr(api, "compute_map", stop)
+    argv = ["map", *STEEL_ON_COPPER, "--x", "speed:2:5:3", "--y", "load:1e5:2e5:2",
+            "--workers", "2", "--out", str(tmp_path / "m.nc")]
+    assert main(argv + ["--zones"]) == 130
+    assert seen[0].startswith(f"contact sets at 6 points: about {CONTACT_SET_SECONDS:g} s "
+                              f"each on one core, about "
+                              f"{3 * CONTACT_SET_SECONDS:.0f} s on 2 workers\n"), seen
+    assert main(argv) == 130 and "contact sets" not in seen[1]

@@ -218,7 +218,7 @@ _PHYSICAL = ("cylinder", "half_plane", "radius", "load", "speed", "friction", "d
 def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
-             friction=None, dundurs=None, materials=None, method=DEFAULT_METHOD,
+             friction=None, dundurs=None, materials=None, method=None,
              tol=DEFAULT_TOL, n=None, progress=None):
     """Every change of validity along one parameter, located to 1e-9 relative.
 
@@ -247,8 +247,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         physical paths take ``lam``).
     cylinder, half_plane, radius, load, speed, friction, dundurs, materials
         The physical problem, as for :func:`contact`.
-    method : str
-        Discretisation method (dimensionless paths).
+    method : str, optional
+        Discretisation method of a dimensionless path (default ``"graded"``); a
+        physical path refuses it.
     tol : float
         Error target for the choice of ``n``.
     n : int, optional
@@ -277,12 +278,13 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": beta_f or None, "sigma": sigma}
+                         "beta_f": beta_f or None, "sigma": sigma, "method": method}
         return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
                               dimensionless, tol, n, progress)
     from .studies.boundaries import SPELLINGS, follow
     from .studies.maps import NAMES
 
+    method = DEFAULT_METHOD if method is None else method
     for name, value in physical.items():
         if value is not None:
             raise InputError(f"{name} belongs to a physical path: give cylinder and "
@@ -295,6 +297,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              "delta1_over_delta2": delta1_over_delta2,
              "speed_ratio": speed_ratio or None,  # 0, the default, is left out
              "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma}
+    if given[name] is not None:
+        raise InputError(f"{name} must not be given: it is the parameter followed",
+                         parameters=(name,))
     fixed = {k: v for k, v in given.items() if v is not None and k != name}
     for k in ("pe", "fhpe", "K2_over_K1"):
         if k != name and k not in fixed:
@@ -450,7 +455,7 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, loa
 
 def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
-             delta_over_r=None, method=DEFAULT_METHOD, cylinder=None, half_plane=None,
+             delta_over_r=None, method=None, cylinder=None, half_plane=None,
              friction=None, radius=None, load=None, speed=None, dundurs=None,
              materials=None, zones=False, conductance=None, tol=1e-6):
     """What identifies a map, every input checked, nothing computed.
@@ -473,20 +478,24 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                 "dundurs": dundurs, "materials": materials, "zones": zones or None,
                 "conductance": conductance}
     if cylinder is None and half_plane is None:
-        from .studies.maps import MapSpec
+        from .studies.maps import NAMES, MapSpec
 
         for name, value in physical.items():
             if value is not None:
                 raise InputError(f"{name} belongs to an operating map: give cylinder and "
                                  f"half_plane too", parameters=(name, "cylinder", "half_plane"))
-        return MapSpec(x, y, {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
-                              "k2_over_k1": k2_over_k1,
-                              "delta1_over_delta2": delta1_over_delta2,
-                              "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
-                              "lam": lam, "sigma_over_delta": sigma},
-                       method=method, tol=tol, delta_over_r=delta_over_r)
+        fixed = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
+                 "delta1_over_delta2": delta1_over_delta2,
+                 "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
+                 "lam": lam, "sigma_over_delta": sigma}
+        _refuse_axis_values((x, y), fixed, NAMES)
+        return MapSpec(x, y, fixed, method=DEFAULT_METHOD if method is None else method,
+                       tol=tol, delta_over_r=delta_over_r)
     from .studies.operating_maps import OperatingSpec
 
+    # The operating map derives the distortivity ratio from the materials and solves
+    # with the default method: either given is refused rather than ignored.
+    dimensionless["method"] = method
     for name, value in dimensionless.items():
         if value is not None:
             raise InputError(f"{name} belongs to a dimensionless map, not to an operating "
@@ -498,14 +507,22 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     cyl, half = _materials(cylinder, half_plane, materials)
     units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
     fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
-    for axis in (x, y):
-        if isinstance(axis, Axis) and axis.name in fixed:
-            raise InputError(f"{axis.name} must not be given: it is an axis",
-                             parameters=(axis.name,))
+    _refuse_axis_values((x, y), fixed)
     return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
                          tol=check_positive("tol", tol), dundurs=dundurs is not False,
                          speed_ratio=speed_ratio or 0.0, zones=bool(zones),
                          conductance=_physical_conductance(conductance))
+
+
+def _refuse_axis_values(axes, given, names=None):
+    """A value given for a parameter that is an axis is refused, not silently replaced
+    by the axis (``names``: spellings of an axis name to the parameter's)."""
+    for axis in axes:
+        if isinstance(axis, Axis):
+            name = (names or {}).get(axis.name, axis.name)
+            if given.get(name) is not None:
+                raise InputError(f"{name} must not be given: it is an axis",
+                                 parameters=(name,))
 
 
 def compute_map(spec, *, workers=1, store=None, progress=None, command=None):

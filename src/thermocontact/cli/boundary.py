@@ -30,8 +30,8 @@ __all__ = ["boundary_cmd"]
 @click.option("-n", "n", type=int, default=None,
               help="Unknowns per function of the whole path (default: chosen by --tol); "
                    "each event's error estimate compares with n/2.")
-@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation method (dimensionless paths).")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
+              help=f"Discretisation method (dimensionless paths) [default: {DEFAULT_METHOD}].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,

@@ -31,6 +31,33 @@ def executor_of(workers, scheduler):
     return workers
 
 
+def picture_of(out) -> str:
+    """The picture written beside the dataset ``out``."""
+    return os.path.splitext(out)[0] + ".png"
+
+
+def announce_cost(spec, workers):
+    """A line on standard error before contact sets are searched over a map: they cost
+    seconds per point, where the rest of a map costs milliseconds."""
+    if not getattr(spec, "zones", False):
+        return
+    cores = (sum(workers.nthreads().values()) if hasattr(workers, "nthreads")
+             else int(workers))
+    points = spec.x.count * spec.y.count
+    click.echo(f"contact sets at {points} point{'s' * (points != 1)}: about "
+               f"{spec.contact_set_cost(1) / points:g} s each on one core, about "
+               f"{_duration(spec.contact_set_cost(cores))} on {cores} "
+               f"worker{'s' * (cores != 1)}", err=True)
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
+
+
 def run_map(spec, out, workers, title, command):
     """Compute (or resume) a map, write the dataset and its picture, keep nothing else."""
     import time
@@ -43,7 +70,7 @@ def run_map(spec, out, workers, title, command):
     from ..api import compute_map
     from ..io.datasets import parts_folder, read_dataset, write_dataset
 
-    picture = os.path.splitext(out)[0] + ".png"
+    picture = picture_of(out)
     manifest = json.dumps(spec.manifest(), sort_keys=True)
     if os.path.exists(out):
         try:
@@ -58,6 +85,7 @@ def run_map(spec, out, workers, title, command):
         click.echo(f"{out} is complete (same arguments): nothing to compute")
         return
     parts = parts_folder(out)
+    announce_cost(spec, workers)
     bar = ProgressLine("map", "lines")
     t0 = time.perf_counter()
     try:
@@ -108,8 +136,8 @@ def run_map(spec, out, workers, title, command):
               help="Half-width over radius > 0: also map whether the theory applies.")
 @click.option("--tol", type=float, default=1e-6, show_default=True,
               help="Error target of every point.")
-@click.option("--method", type=click.Choice(sorted(METHODS)), default=DEFAULT_METHOD,
-              show_default=True, help="Discretisation method.")
+@click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
+              help=f"Discretisation method (dimensionless maps) [default: {DEFAULT_METHOD}].")
 @click.option("--out", required=True,
               help="Dataset to write: .nc (NetCDF) or .zarr; the picture goes beside it (.png).")
 @click.option("--workers", type=int, default=None,
@@ -133,13 +161,14 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     Interrupted, the same command resumes; finished work is kept beside --out.
     """
     from ..api import map_spec
+    from ..io.datasets import parts_folder
     from ..io.files import check_output_dir, check_output_file
     from ..problem.axes import Axis
 
     operating = cylinder is not None or half_plane is not None
     spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
                     K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
-                    delta1_over_delta2=None if operating else delta1_over_delta2,
+                    delta1_over_delta2=delta1_over_delta2,
                     speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
                     delta_over_r=delta_over_r, method=method, cylinder=cylinder,
                     half_plane=half_plane, friction=friction, radius=radius, load=load,
@@ -157,7 +186,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                 f"h = {c.h0:g} W/m2K" + (f" (p/{c.p_ref:g} Pa)^{c.exponent:g}"
                                          if c.exponent else "")))
     else:
-        title = (f"{fixed}; method {method}, tol {tol:g}\nvalid where not shaded; theory not "
+        title = (f"{fixed}; method {spec.method}, tol {tol:g}\nvalid where not shaded; theory not "
                  f"applicable where hatched")
     if out.lower().endswith(".zarr"):
         out = check_output_dir("--out", out)
@@ -168,5 +197,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                              "'thermocontact[zarr]', or write .nc") from None
     else:
         out = check_output_file("--out", out, suffixes=(".nc", ".zarr"))
+    # Every path is checked before the work whose result it receives.
+    check_output_file("--out's picture", picture_of(out))
+    check_output_dir("--out's unfinished work", parts_folder(out))
     run_map(spec, out, executor_of(workers, scheduler), title,
              "thermocontact " + " ".join(sys.argv[1:]))

@@ -93,17 +93,28 @@ def side_process(*modules):
     return pool
 
 
-_ADDRESS = re.compile(r"^(tcp|tls|inproc|ucx|ws|wss)://[^\s/:]+(:\d{1,5})?/?$|^[^\s/:]+:\d{1,5}$")
+#: A scheduler address: protocol://host:port (an IPv6 host in brackets) or host:port.
+#: The port is required: distributed refuses an address without one only after a long
+#: wait.  (``inproc://`` names a scheduler in this process, which an address given here
+#: cannot reach.)
+_ADDRESS = re.compile(r"^(?:(?P<protocol>tcp|tls|ucx|ws|wss)://)?"
+                      r"(?P<host>\[[0-9A-Fa-f:.%\w]+\]|[^\s/:\[\]]+):(?P<port>\d{1,5})/?$")
+
+
+def _host_port(address):
+    """``(host, port)`` of a checked address."""
+    m = _ADDRESS.match(address)
+    return m.group("host").strip("[]"), int(m.group("port"))
 
 
 def check_scheduler(address) -> str:
-    """``address`` if it looks like a Dask scheduler address (``tcp://host:port``)."""
+    """``address`` if it looks like a Dask scheduler address (``tcp://host:port``,
+    ``tcp://[::1]:port``)."""
     if not isinstance(address, str) or not _ADDRESS.match(address.strip()):
-        raise InputError(f"scheduler must be an address such as tcp://127.0.0.1:8786, "
-                         f"got {address!r}")
+        raise InputError(f"scheduler must be an address with a port, such as "
+                         f"tcp://127.0.0.1:8786, got {address!r}")
     address = address.strip()
-    port = address.rsplit(":", 1)[-1].rstrip("/")
-    if port.isdigit() and not 0 < int(port) < 65536:
+    if not 0 < _host_port(address)[1] < 65536:
         raise InputError(f"scheduler port must be 1 to 65535, got {address!r}")
     return address
 
@@ -115,17 +126,27 @@ def connect(address, timeout=10.0):
     ------
     InputError
         dask.distributed is not installed, the address is malformed, or no scheduler
-        answers there within ``timeout`` seconds.
+        answers there within ``timeout`` seconds (at once where the connection is
+        refused).
     """
+    import socket
+
     address = check_scheduler(address)
     try:
         from distributed import Client
     except ImportError:
         raise InputError("scheduler needs dask.distributed: pip install "
                          "'thermocontact[dask]'") from None
+    # A plain connection first: refused, it fails at once, where a Client would retry
+    # until its timeout and then take as long again to close.
+    try:
+        socket.create_connection(_host_port(address), timeout=timeout).close()
+    except OSError as exc:
+        raise InputError(f"scheduler {address} did not answer "
+                         f"({exc.strerror or type(exc).__name__})") from None
     try:
         return Client(address, timeout=timeout, set_as_default=False)
-    except (OSError, TimeoutError) as exc:
+    except Exception as exc:  # noqa: BLE001 - any failure to connect is one line
         raise InputError(f"scheduler {address} did not answer within {timeout:g} s "
                          f"({type(exc).__name__})") from None
 

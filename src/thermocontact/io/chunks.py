@@ -16,7 +16,7 @@ import re
 import shutil
 
 from ..problem.validation import InputError
-from .files import atomic_write
+from .files import WriteError, atomic_write
 
 __all__ = ["ChunkStore", "discard", "manifest_difference"]
 
@@ -65,7 +65,10 @@ class ChunkStore:
             raise InputError(f"{self.folder} exists and is not a folder: cannot keep "
                              f"the finished work of {what} there")
         else:
-            os.makedirs(self.folder, exist_ok=True)
+            try:
+                os.makedirs(self.folder, exist_ok=True)
+            except OSError as exc:
+                raise WriteError(self.folder, exc) from None
             with atomic_write(path) as fh:
                 json.dump(self.manifest, fh, indent=1)
 

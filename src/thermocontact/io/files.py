@@ -17,10 +17,29 @@ import tempfile
 
 from ..problem.validation import InputError
 
-__all__ = ["atomic_path", "atomic_write", "check_output_dir", "check_output_file"]
+__all__ = ["WriteError", "atomic_path", "atomic_write", "check_output_dir", "check_output_file"]
 
 #: Longest file name most file systems accept.
 NAME_MAX = 255
+
+
+class WriteError(InputError):
+    """A file could not be written (a full disk, a folder in the way, a place where
+    nothing can be created): one line naming the file and the system's reason.
+
+    Parameters
+    ----------
+    path : str
+        The file; without ``exc``, the whole message (so that the error survives a
+        trip from a worker process, as every :class:`InputError` does).
+    exc : OSError, optional
+        What the system said.
+    """
+
+    def __init__(self, path, exc=None, *, parameters=()):
+        reason = f" ({exc.strerror or type(exc).__name__})" if isinstance(exc, OSError) else ""
+        message = path if exc is None else f"could not write {path}{reason}"
+        super().__init__(message, parameters=parameters)
 
 
 def _umask() -> int:
@@ -51,24 +70,29 @@ def atomic_path(path, folder=False):
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
     suffix = "-" + os.path.basename(path)[:64]
-    if folder:
-        tmp = tempfile.mkdtemp(prefix=".tmp-", suffix=suffix, dir=parent)
-    else:
-        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=suffix, dir=parent)
-        os.close(fd)
-    # Ordinary permissions, not the temporary's private ones.
-    os.chmod(tmp, (0o777 if folder else 0o666) & ~_umask())
+    try:
+        if folder:
+            tmp = tempfile.mkdtemp(prefix=".tmp-", suffix=suffix, dir=parent)
+        else:
+            fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=suffix, dir=parent)
+            os.close(fd)
+        # Ordinary permissions, not the temporary's private ones.
+        os.chmod(tmp, (0o777 if folder else 0o666) & ~_umask())
+    except OSError as exc:
+        raise WriteError(path, exc) from None
     try:
         yield tmp
         if folder and os.path.isdir(path):
             shutil.rmtree(path)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         if folder:
             shutil.rmtree(tmp, ignore_errors=True)
         else:
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
+        if isinstance(exc, OSError):
+            raise WriteError(path, exc) from None
         raise
 
 
@@ -113,6 +137,20 @@ def _check_folder(option: str, folder: str, path: str):
         raise InputError(f"{option} must be in a folder, got {path!r} ({folder!r} is a file)")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise InputError(f"{option} must be in a writable folder, got {path!r}")
+    _probe(option, folder, path)
+
+
+def _probe(option: str, folder: str, path: str):
+    """Create and remove a file in ``folder``: ``os.access`` answers yes for root even
+    where nothing can be created (``/proc``, ``/sys``, a read-only mount)."""
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-probe-", dir=folder)
+    except OSError as exc:
+        raise InputError(f"{option} must be in a writable folder, got {path!r} "
+                         f"({exc.strerror or type(exc).__name__})") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(tmp)
 
 
 def check_output_file(option: str, path, suffixes=None) -> str:
@@ -147,6 +185,7 @@ def check_output_dir(option: str, path) -> str:
             raise InputError(f"{option} must be a folder, got the file {path!r}")
         if not os.access(path, os.W_OK | os.X_OK):
             raise InputError(f"{option} must be a writable folder, got {path!r}")
+        _probe(option, path, path)
         return path
     _check_folder(option, os.path.dirname(os.path.normpath(path)), path)
     return path
