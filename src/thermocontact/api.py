@@ -313,10 +313,16 @@ def _number(name, value) -> float:
 
     if isinstance(value, str):
         try:
-            value = float(value)
+            number = float(value)
         except ValueError:
             raise InputError(f"{name} must be a number, got {value!r}",
                              parameters=(name,)) from None
+        # A number written with a non-zero digit that rounds to 0 (1e-400) underflowed.
+        if number == 0.0 and any(c in "123456789" for c in value.lower().split("e")[0]):
+            raise InputError(f"{name} must be 0 or at least 5e-324 in magnitude, "
+                             f"got {value!r}, which rounds to 0",
+                             parameters=(name,))
+        value = number
     return check_finite(name, value)
 
 

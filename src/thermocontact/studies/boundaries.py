@@ -414,17 +414,19 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     """
     along = check_choice("along", along, ALONG)
     start, stop = check_finite("start", start), check_finite("stop", stop)
+    if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
+            fixed.get("beta_f", 0.0) or fixed.get("fhpe", 0.0)):
+        # Pure rolling makes no frictional heat, and the friction (with the Dundurs
+        # term) reverses there: with either, R = 1 is no point of the path, at an end
+        # or inside it alike (without them the solution is continuous through it).
+        raise InputError("a path along speed_ratio must not reach 1 with fhpe or beta_f "
+                         "!= 0: pure rolling makes no frictional heat and reverses the "
+                         "friction; follow each side of 1 on its own",
+                         parameters=("start", "stop"))
     # The path's ends are problems the method accepts (every parameter's range is an
     # interval, so the ends check them all): a refusal is one error, not a failed sample.
     for x in (start, stop):
         check_problem({**fixed, along: x}, method)
-    if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
-            fixed.get("beta_f", 0.0)):
-        # The friction, and with it the Dundurs term, reverses at pure rolling: the
-        # solution jumps there (without the term it is continuous through R = 1).
-        raise InputError("a path along speed_ratio must not reach 1 with beta_f != 0: the "
-                         "friction, and the Dundurs term with it, reverses at pure rolling; "
-                         "follow each side of 1 on its own")
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
                  method=method, tol=tol, rtol=rtol, points=points, n=n, event_rtol=event_rtol,
                  progress=progress)

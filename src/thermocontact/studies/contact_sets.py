@@ -19,7 +19,7 @@ from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import SolveError
+from ..problem.parameters import C_MAX, C_MIN, SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
@@ -135,6 +135,13 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     """
     pe = check_positive("pe_hertz", pe_hertz)
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
+    # The cylinder's kernel scale at this Peclet number (the zone model's own check
+    # knows no Peclet number yet).
+    k = check_positive("k2_over_k1", K2_over_K1 if k2_over_k1 is None else k2_over_k1)
+    if not C_MIN <= pe * k <= C_MAX:
+        raise InputError(f"pe_hertz * k2_over_k1 (the cylinder's kernel scale) must be in "
+                         f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
+                         f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
     def attempt(n_):
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
