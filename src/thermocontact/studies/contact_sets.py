@@ -19,7 +19,7 @@ from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import C_MAX, C_MIN, SolveError
+from ..problem.parameters import C_MAX, C_MIN, PARTITION, SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
@@ -181,7 +181,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     method (:func:`~thermocontact.numerics.continuation.locate`).  Events carry ``t``,
     ``pe_hertz`` and ``fhpe_hertz``.
     """
-    lam = check_range("lam", lam, -1e6, 1e6)
+    lam = check_range("lam", lam, *PARTITION)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
     def model_at(t):
