@@ -184,3 +184,18 @@ def test_events_chain_and_say_whether_validity_changes():
             assert solve(5, 0.2, 10, lam=x, n=32).valid == valid
     assert [e.changes_validity for e in path.events] == [True, True, False]
     assert path.to_dict()["events"][2]["changes_validity"] is False
+
+
+def test_solutions_narrower_than_the_samples_spacing_are_found():
+    """With sigma/Delta = 0 solutions exist only for fHPe > 0: along fHPe to 1e30 no
+    evenly spaced sample solves; sampled again in asinh, the path finds where they
+    begin and the load event, equal to that of the path ending at 2 at the same n."""
+    fixed = dict(pe=5, K2_over_K1=10, sigma_over_delta=0.0)
+    far = follow(fixed, "fhpe", 0.0, 1e30, n=16, points=9)
+    near = follow(fixed, "fhpe", 0.0, 2.0, n=16, points=9)
+    assert far.events[0].inequality == "solution_begins" and far.events[0].valid_after
+    far_load = [e for e in far.events if e.inequality == "load"][0]
+    near_load = [e for e in near.events if e.inequality == "load"][0]
+    assert abs(far_load.at - near_load.at) < 1e-9 * near_load.at
+    assert not far_load.valid_after
+    assert [e.inequality for e in near.events].count("solution_begins") == 1

@@ -258,6 +258,13 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
     return tuple(events)
 
 
+def _asinh_spaced(start, stop, points):
+    """``points`` samples from ``start`` to ``stop``, evenly in ``asinh x`` (the ends
+    exact)."""
+    t = np.linspace(np.arcsinh(start), np.arcsinh(stop), points)
+    return [float(start), *map(float, np.sinh(t[1:-1])), float(stop)]
+
+
 def _existence_events(at, xs, sols, xtol):
     """Where solutions stop or start existing between neighbouring samples: the solved
     and the failed sample brought within ``xtol`` of each other by bisection in
@@ -267,7 +274,7 @@ def _existence_events(at, xs, sols, xtol):
     Returns
     -------
     xs : list of float
-        The samples with the last solved point of each bracket added.
+        The ends of each bracket, the solved and the failed, to join the samples.
     events : list of Event
         ``"solution"`` events at the last solved points.
     """
@@ -290,7 +297,9 @@ def _existence_events(at, xs, sols, xtol):
                 bad = mid
             else:
                 ok, sols[mid] = mid, sol
-        new.append(ok)
+        # Both ends of the bracket join the samples: a second pass finds it resolved.
+        sols.setdefault(bad, None)
+        new += [ok, bad]
         valid = bool(sols[ok].valid)
         stops = sols[a] is not None  # solutions stop existing (else they start)
         events.append(Event(float(ok), NO_SOLUTION[0 if stops else 1], None,
@@ -459,6 +468,9 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
         # n is chosen where solutions exist: the ends and middle of the solved part,
         # found with the fewest unknowns.
         coarse = {x: at(lo, x) for x in xs}
+        if all(v is None for v in coarse.values()):
+            xs = _asinh_spaced(start, stop, points)
+            coarse = {x: at(lo, x) for x in xs}
         edges, _ = _existence_events(lambda x: at(lo, x), xs, coarse, xtol)
         solved = [x for x in sorted(set(xs) | set(edges), reverse=stop < start)
                   if coarse[x] is not None]
@@ -477,6 +489,13 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     for i, x in enumerate(xs):
         sols[x] = at(n, x)
         report("samples", i + 1, len(xs))
+    if all(v is None for v in sols.values()):
+        # Solutions may exist in a stretch narrower than the samples' spacing (near 0
+        # of a path to 1e300): sampled again, evenly in asinh x.
+        xs = _asinh_spaced(start, stop, points)
+        for i, x in enumerate(xs):
+            sols[x] = sols[x] if x in sols else at(n, x)
+            report("samples (asinh)", i + 1, len(xs))
 
     def suspicious(sa, sb):
         ma, mb = validity_margins(sa), validity_margins(sb)
@@ -491,7 +510,7 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     # The interval from an edge to its solved neighbour may span many decades (a path
     # to 1e300): sampled again, evenly in asinh x, so that the events in it are
     # bracketed to their own scale.
-    for edge in edges:
+    for edge in [x for x in edges if sols[x] is not None]:
         i = xs.index(edge)
         for other in [xs[j] for j in (i - 1, i + 1)
                       if 0 <= j < len(xs) and sols[xs[j]] is not None]:
