@@ -220,9 +220,12 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=DEFAULT_METHOD,
              tol=DEFAULT_TOL, n=None, progress=None):
-    """Every change of validity along one parameter, located to 1e-9 relative.
+    """Every sign change of a contact inequality's margin along one parameter, and
+    where solutions stop or start existing, located to 1e-9 relative.
 
-    ``thermocontact boundary`` from Python.  Dimensionless: give the problem as for
+    ``thermocontact boundary`` from Python.  Events chain (each one's ``valid_before``
+    is the previous one's ``valid_after``); ``Event.changes_validity`` is False for a
+    margin that changes sign where another inequality already fails.  Dimensionless: give the problem as for
     :func:`thermocontact.solve` less the parameter followed.  Physical: give
     ``cylinder`` and ``half_plane`` and the others of :func:`contact` less the one
     followed (``load``, ``speed``, ``radius`` or ``friction``); the branch of least
