@@ -147,3 +147,55 @@ def test_slowly_converging_events_are_located_again_with_more_unknowns():
     for a, b in zip(auto.events, fixed.events):
         assert abs(a.at / b.at - 1) < 1e-9
         assert a.error_estimate < 1e-3 * a.at
+
+
+def test_where_solutions_end_is_resolved_and_the_events_before_it_found():
+    """Along fHPe to 1e300 (Pe = 5, K2/K1 = 10, lam = -1) the first samples past 0 have
+    no solution: the load event (0.64) is still found, equal to the one of the path
+    ending at 2 at the same n, and the last solution is located where a plain solve
+    still succeeds and one 1e-6 past it fails (or the path's samples say so)."""
+    fixed = dict(pe=5, K2_over_K1=10, lam=-1.0)
+    far = follow(fixed, "fhpe", 0.0, 1e300, n=16, points=9)
+    near = follow(fixed, "fhpe", 0.0, 2.0, n=16, points=9)
+    (load,) = [e for e in far.events if e.inequality == "load"]
+    assert abs(load.at - near.events[0].at) < 1e-9 * load.at
+    (end,) = [e for e in far.events if e.inequality == "solution_ends"]
+    assert end.at > load.at and not end.valid_after and end.changes_validity is False
+    solve(5, end.at, 10, lam=-1.0, n=16)
+    with pytest.raises(Exception):
+        solve(5, end.at * (1 + 1e-6), 10, lam=-1.0, n=16)
+    # Backwards: the first solution, then the load event the other way round.
+    back = follow(fixed, "fhpe", 1e300, 0.0, n=16, points=9)
+    assert [e.inequality for e in back.events] == ["solution_begins", "load"]
+    assert abs(back.events[0].at - end.at) < 1e-9 * end.at
+
+
+def test_events_chain_and_say_whether_validity_changes():
+    """Along lam over +-1e6 (Pe = 5, fHPe = 0.2, K2/K1 = 10): each event starts from the
+    validity the previous one left; the pressure margin's sign change at 6.46, where
+    the gap already fails, is an event that does not change validity, as plain solves
+    either side confirm."""
+    path = follow(dict(pe=5, fhpe=0.2, K2_over_K1=10), "lam", -1e6, 1e6, n=32)
+    assert [e.inequality for e in path.events] == ["load", "gap", "pressure"]
+    for prev, e in zip(path.events[:-1], path.events[1:]):
+        assert e.valid_before == prev.valid_after
+    for e in path.events:
+        for x, valid in ((e.at - 1e-6, e.valid_before), (e.at + 1e-6, e.valid_after)):
+            assert solve(5, 0.2, 10, lam=x, n=32).valid == valid
+    assert [e.changes_validity for e in path.events] == [True, True, False]
+    assert path.to_dict()["events"][2]["changes_validity"] is False
+
+
+def test_solutions_narrower_than_the_samples_spacing_are_found():
+    """With sigma/Delta = 0 solutions exist only for fHPe > 0: along fHPe to 1e30 no
+    evenly spaced sample solves; sampled again in asinh, the path finds where they
+    begin and the load event, equal to that of the path ending at 2 at the same n."""
+    fixed = dict(pe=5, K2_over_K1=10, sigma_over_delta=0.0)
+    far = follow(fixed, "fhpe", 0.0, 1e30, n=16, points=9)
+    near = follow(fixed, "fhpe", 0.0, 2.0, n=16, points=9)
+    assert far.events[0].inequality == "solution_begins" and far.events[0].valid_after
+    far_load = [e for e in far.events if e.inequality == "load"][0]
+    near_load = [e for e in near.events if e.inequality == "load"][0]
+    assert abs(far_load.at - near_load.at) < 1e-9 * near_load.at
+    assert not far_load.valid_after
+    assert [e.inequality for e in near.events].count("solution_begins") == 1

@@ -215,3 +215,30 @@ def test_physical_path_refuses_a_method(capsys):
                  "--radius", "0.01", "--speed", "2", "--method", "paper"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--method belongs to a dimensionless path" in err[0], err
+
+
+@pytest.mark.parametrize("args, words", [
+    # An underflowing number written as non-zero is not taken for 0.
+    (["boundary", "--along", "fhpe", "--from", "1e-400", "--to", "1", "--pe", "5",
+      "--K2-over-K1", "10", "--lam", "1"], "--from must be 0 or at least 5e-324"),
+    (["boundary", "--along", "fhpe", "--from", "0", "--to", "-2.5e-999", "--pe", "5",
+      "--K2-over-K1", "10", "--lam", "1"], "--to must be 0 or at least 5e-324"),
+    # Through R = 1 as at an end of the path: refused alike, with the reason.
+    (["boundary", "--along", "speed-ratio", "--from", "0", "--to", "2", "--pe", "5",
+      "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "1"], "pure rolling makes no"),
+    # The kernel scale is named with the Peclet number given, not a placeholder.
+    (["zones", "--pe-hertz", "5.43", "--fhpe-hertz", "0.5", "--K2-over-K1", "10",
+      "--lam", "1", "--k2-over-k1", "1e-300"], "(--pe-hertz = 5.43, --k2-over-k1 = 1e-300)"),
+])
+def test_hostile_numbers_refused_in_one_line(args, words, capsys):
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and words in err[0], err
+
+
+def test_a_zero_written_with_an_exponent_is_zero(capsys):
+    """"0e-400" is 0, as written: the path from it equals the one from "0"."""
+    args = ["boundary", "--along", "fhpe", "--to", "1", "--pe", "5", "--K2-over-K1", "10",
+            "--lam", "1", "-n", "16"]
+    zero = run_json(capsys, args + ["--from", "0"])
+    assert run_json(capsys, args + ["--from", "0e-400"]) == zero

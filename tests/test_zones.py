@@ -409,3 +409,37 @@ def test_a_set_found_short_of_the_point_is_not_the_answer():
     assert rec["last_followed"]["t"] == 0.3 and rec["last_followed"]["valid"] is True
     done = ContactSetResult("solved", "one zone", hertz).to_dict()
     assert done["valid"] is True and len(done["zones"]) == 1 and "last_followed" not in done
+
+
+@pytest.mark.parametrize("lam", [1e6, -1e6, 1.0 + 1e-9, -1.5])
+def test_a_partition_outside_minus_one_to_one_refused_at_once(lam):
+    """lam = (Q1 - Q2)/(Q1 + Q2) with both heats into the bodies non-negative lies in
+    [-1, 1]: a contact set outside it is refused in one line before any solve (at 1e6
+    the continuation ran for minutes)."""
+    import time
+
+    from thermocontact import contact_set
+    from thermocontact.problem.validation import InputError
+
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=r"lam must be in \[-1, 1\]"):
+        contact_set(5.43, 0.5, 10, lam=lam)
+    with pytest.raises(InputError, match=r"lam must be in \[-1, 1\]"):
+        ZoneModel(10).solve([[-1.0, 1.0]], 5.43, 0.5, lam=lam)
+    assert time.perf_counter() - t0 < 1.0
+
+
+def test_a_continuation_needing_too_many_steps_ends_in_bounded_time(monkeypatch):
+    """With a step budget of 3 the path from Hertz's zone to fHPe_l = 0.5 (solved in
+    more steps without it: test_zones_command_solves_and_reports) ends short of it, as "not converged", naming where it got to; the
+    distortivity ratio far past the materials' (1e6) is refused at once."""
+    from thermocontact import contact_set
+    from thermocontact.problem.validation import InputError
+    from thermocontact.studies import contact_sets
+
+    monkeypatch.setattr(contact_sets, "MAX_STEPS", 3)
+    res = contact_set(5.43, 0.5, 10, lam=1, n=8)
+    assert res.status == "not converged" and "3 steps, the most allowed" in res.message
+    assert 0.0 < res.reached < 1.0
+    with pytest.raises(InputError, match=r"delta1_over_delta2 must be in \[0, 1000\]"):
+        contact_set(5.43, 0.5, 10, lam=1, delta1_over_delta2=1e6)

@@ -220,9 +220,12 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=None,
              tol=DEFAULT_TOL, n=None, progress=None):
-    """Every change of validity along one parameter, located to 1e-9 relative.
+    """Every sign change of a contact inequality's margin along one parameter, and
+    where solutions stop or start existing, located to 1e-9 relative.
 
-    ``thermocontact boundary`` from Python.  Dimensionless: give the problem as for
+    ``thermocontact boundary`` from Python.  Events chain (each one's ``valid_before``
+    is the previous one's ``valid_after``); ``Event.changes_validity`` is False for a
+    margin that changes sign where another inequality already fails.  Dimensionless: give the problem as for
     :func:`thermocontact.solve` less the parameter followed.  Physical: give
     ``cylinder`` and ``half_plane`` and the others of :func:`contact` less the one
     followed (``load``, ``speed``, ``radius`` or ``friction``); the branch of least
@@ -318,10 +321,16 @@ def _number(name, value) -> float:
 
     if isinstance(value, str):
         try:
-            value = float(value)
+            number = float(value)
         except ValueError:
             raise InputError(f"{name} must be a number, got {value!r}",
                              parameters=(name,)) from None
+        # A number written with a non-zero digit that rounds to 0 (1e-400) underflowed.
+        if number == 0.0 and any(c in "123456789" for c in value.lower().split("e")[0]):
+            raise InputError(f"{name} must be 0 or at least 5e-324 in magnitude, "
+                             f"got {value!r}, which rounds to 0",
+                             parameters=(name,))
+        value = number
     return check_finite(name, value)
 
 

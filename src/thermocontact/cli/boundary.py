@@ -1,5 +1,5 @@
-"""``thermocontact boundary``: every change of validity along one parameter
-(:func:`thermocontact.boundary`)."""
+"""``thermocontact boundary``: every sign change of a margin along one parameter, and
+where solutions stop existing (:func:`thermocontact.boundary`)."""
 
 from __future__ import annotations
 
@@ -36,7 +36,13 @@ __all__ = ["boundary_cmd"]
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
                  friction, dundurs, tol, n, method, as_json):
-    """Every change of validity along one parameter, located to 1e-9 relative."""
+    """Every sign change of a contact inequality's margin along one parameter, and
+    where solutions stop or start existing, located to 1e-9 relative.
+
+    Events chain (each starts from the validity the previous one left); one that
+    does not change validity (a margin changing sign where another inequality
+    already fails) is listed as such ("changes_validity": false in --json).
+    """
     from ..api import PHYSICAL_ALONG, boundary
 
     bar = StageProgress(f"boundary along {along}")
@@ -61,5 +67,12 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         where = f" at the {e.edge} edge" if e.edge else ""
         err = ("" if e.error_estimate is None else
                f" (discretisation error estimate {e.error_estimate:.1e})")
+        if e.inequality in ("solution_ends", "solution_begins"):
+            what = ("the last solution: none past it" if e.inequality == "solution_ends" else
+                    "the first solution: none before it")
+        else:
+            what = e.inequality + where
+        change = (f"valid {e.valid_before} -> {e.valid_after}" if e.changes_validity else
+                  f"validity unchanged ({e.valid_before})")
         click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
-                   f"{e.inequality}{where}; valid {e.valid_before} -> {e.valid_after}")
+                   f"{what}; {change}")

@@ -68,8 +68,10 @@ def contact_summary(res) -> str:
 @click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
               help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
 @click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
-              help="Distortivity ratio >= 0.")
-@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+              help="Distortivity ratio in [0, 1000] (the materials known span 550).")
+@click.option("--lam", type=float, required=True,
+              help="Heat partition (Q1 - Q2)/(Q1 + Q2), in [-1, 1]: both bodies take a "
+                   "non-negative share of the heat.")
 @click.option("--conductance", default=None,
               help="h0:m, an interface conductance h = h0 (p/p_ref)^m with h0 as the Biot "
                    "number h0 l/K2 at the mean Hertz pressure p_ref = P/(2 l), m >= 0 "
@@ -86,10 +88,15 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     pressures in units of P/l.
     """
     from ..api import contact_set
+    from ..execution.progress import ProgressLine
 
+    # Shown once the command has run 2 s: the share of the path to fHPe_l followed.
+    bar = ProgressLine("zones: fHPe_l followed", "%")
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,
-                      conductance=parse_conductance(conductance, "the Biot number h0 l/K2"))
+                      conductance=parse_conductance(conductance, "the Biot number h0 l/K2"),
+                      progress=lambda fraction: bar(round(100 * fraction), 100))
+    bar.close()
     if as_json:
         click.echo(json.dumps(res.to_dict(), allow_nan=False))
         return

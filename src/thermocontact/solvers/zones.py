@@ -36,7 +36,7 @@ from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
                                      contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
-from ..problem.parameters import Parameters, SolveError
+from ..problem.parameters import PARTITION, Parameters, SolveError
 from ..problem.validation import InputError, check_exactly_one, check_range
 from .refinement import N_RANGE, refine
 from .single_patch import solve_contact_system
@@ -349,7 +349,7 @@ class ZoneModel:
         check_range("pe_hertz", pe, 1e-12, 1e6)
         check_range("fhpe_hertz", fhpe, 0.0, 1e6)
         if lam is not None:
-            lam = check_range("lam", lam, -1e6, 1e6)
+            lam = check_range("lam", lam, *PARTITION)
             e, x, rcond, err, it = self._newton_edges(edges, pe, fhpe, lam, max_iter)
         else:
             sigma = check_range("sigma_over_delta", sigma_over_delta, -1e6, 1e6)

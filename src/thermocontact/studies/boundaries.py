@@ -9,7 +9,13 @@ its change across the interval, so that a margin that dips below zero and back
 within one step is not missed), and every sign change of a margin (the load ratio,
 the pressure, the gap, the edge layers; :meth:`Validity.margins
 <thermocontact.analysis.validity.Validity.margins>`) is located by Brent's method on
-that margin to ``rtol`` relative in the parameter.
+that margin to ``rtol`` relative in the parameter.  Where solutions stop (or start)
+existing, the last solved and the first failed sample are brought together by
+bisection to the same tolerance (in ``asinh`` of the parameter, so that a path of any
+length needs few solves) and the place is an event of its own kind, ``"solution_ends"`` or ``"solution_begins"``.
+Events chain: each one's ``valid_before`` is the previous one's ``valid_after``; a
+margin that changes sign where another inequality already fails is an event that
+does not change validity (:attr:`Event.changes_validity`).
 """
 
 from __future__ import annotations
@@ -27,8 +33,8 @@ from ..problem.validation import InputError, check_choice, check_finite, check_i
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
-__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "check_problem", "closure", "estimate_events",
-           "follow", "locate_events", "model_for", "trace", "validity_margins"]
+__all__ = ["ALONG", "Event", "Path", "SPELLINGS", "NO_SOLUTION", "check_problem", "closure",
+           "estimate_events", "follow", "locate_events", "model_for", "trace", "validity_margins"]
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
@@ -40,6 +46,10 @@ SPELLINGS = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delt
              "beta-f": "beta_f"}
 #: Margins, each >= 0 exactly when its inequality holds.
 MARGINS = ("load", "pressure", "gap", "edge")
+#: The events where solutions stop, and where they start, existing along a path.
+NO_SOLUTION = ("solution_ends", "solution_begins")
+#: The most bisections of the interval between a solved and a failed sample.
+MAX_BISECTIONS = 200
 #: An event's error estimate (against n/2) is brought below this fraction of its
 #: value (or of a thousandth of the path) by doubling n for the events alone, when n is
 #: chosen automatically.
@@ -51,14 +61,16 @@ MAX_HALVINGS = 5
 
 @dataclass(frozen=True, eq=False, repr=False)
 class Event(Result):
-    """A change of validity along a path.
+    """A sign change of a margin along a path, or where solutions stop existing.
 
     Attributes
     ----------
     at : float
         The parameter's value, to ``rtol`` relative.
-    inequality : {"load", "pressure", "gap", "edge"}
-        The inequality whose margin changes sign.
+    inequality : {"load", "pressure", "gap", "edge", "solution_ends", "solution_begins"}
+        The inequality whose margin changes sign; ``"solution_ends"``
+        (``"solution_begins"``): ``at`` is the last (first) point solved, to ``rtol``,
+        with none just after (before) it along the path, where ``valid`` is False.
     edge : {"leading", "trailing"} or None
         Where it fails (None for the load).
     valid_before, valid_after : bool
@@ -79,6 +91,15 @@ class Event(Result):
     valid_after: bool
     position: float | None = None
     error_estimate: float | None = None
+
+    @property
+    def changes_validity(self) -> bool:
+        """Whether validity differs either side (False: a margin changes sign where
+        another inequality already fails)."""
+        return self.valid_before != self.valid_after
+
+    def _record(self) -> dict:
+        return {**super()._record(), "changes_validity": self.changes_validity}
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -222,6 +243,8 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
                 continue
             found.append((abs(root - a), root, k))
         found.sort()
+        # Events chain: each starts from the validity the previous one left.
+        before = bool(sa.valid)
         for _, root, k in found[:1] if only_validity_changes else found:
             step = 10 * xtol(a, b) * np.sign(b - a)
             try:
@@ -230,9 +253,59 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
                 past = None
             past = past if past is not None else sb
             position, edge = _where(past, k)
-            events.append(Event(float(root), k, edge, bool(sa.valid), bool(past.valid),
-                                position))
+            events.append(Event(float(root), k, edge, before, bool(past.valid), position))
+            before = bool(past.valid)
     return tuple(events)
+
+
+def _asinh_spaced(start, stop, points):
+    """``points`` samples from ``start`` to ``stop``, evenly in ``asinh x`` (the ends
+    exact)."""
+    t = np.linspace(np.arcsinh(start), np.arcsinh(stop), points)
+    return [float(start), *map(float, np.sinh(t[1:-1])), float(stop)]
+
+
+def _existence_events(at, xs, sols, xtol):
+    """Where solutions stop or start existing between neighbouring samples: the solved
+    and the failed sample brought within ``xtol`` of each other by bisection in
+    ``asinh x`` (linear near 0, logarithmic far from it: about 40 halvings from
+    1e300 to 1e-9 relative).  The bisection's solved points join ``sols``.
+
+    Returns
+    -------
+    xs : list of float
+        The ends of each bracket, the solved and the failed, to join the samples.
+    events : list of Event
+        ``"solution"`` events at the last solved points.
+    """
+    new, events = [], []
+    for a, b in zip(xs[:-1], xs[1:]):
+        if (sols[a] is None) == (sols[b] is None):
+            continue
+        ok, bad = (a, b) if sols[a] is not None else (b, a)
+        for _ in range(MAX_BISECTIONS):
+            if abs(bad - ok) <= xtol(ok, bad):
+                break
+            mid = float(np.sinh(0.5 * (np.arcsinh(ok) + np.arcsinh(bad))))
+            if not min(ok, bad) < mid < max(ok, bad):
+                break  # the floating-point numbers between them are exhausted
+            try:
+                sol = at(mid)
+            except SolveError:
+                sol = None
+            if sol is None:
+                bad = mid
+            else:
+                ok, sols[mid] = mid, sol
+        # Both ends of the bracket join the samples: a second pass finds it resolved.
+        sols.setdefault(bad, None)
+        new += [ok, bad]
+        valid = bool(sols[ok].valid)
+        stops = sols[a] is not None  # solutions stop existing (else they start)
+        events.append(Event(float(ok), NO_SOLUTION[0 if stops else 1], None,
+                            valid if stops else False,
+                            False if stops else valid))
+    return new, events
 
 
 def _relocated(at, event, lo, hi, xtol):
@@ -350,17 +423,19 @@ def follow(fixed: dict, along: str, start, stop, *, method=DEFAULT_METHOD, tol=D
     """
     along = check_choice("along", along, ALONG)
     start, stop = check_finite("start", start), check_finite("stop", stop)
+    if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
+            fixed.get("beta_f", 0.0) or fixed.get("fhpe", 0.0)):
+        # Pure rolling makes no frictional heat, and the friction (with the Dundurs
+        # term) reverses there: with either, R = 1 is no point of the path, at an end
+        # or inside it alike (without them the solution is continuous through it).
+        raise InputError("a path along speed_ratio must not reach 1 with fhpe or beta_f "
+                         "!= 0: pure rolling makes no frictional heat and reverses the "
+                         "friction; follow each side of 1 on its own",
+                         parameters=("start", "stop"))
     # The path's ends are problems the method accepts (every parameter's range is an
     # interval, so the ends check them all): a refusal is one error, not a failed sample.
     for x in (start, stop):
         check_problem({**fixed, along: x}, method)
-    if along == "speed_ratio" and min(start, stop) <= 1.0 <= max(start, stop) and (
-            fixed.get("beta_f", 0.0)):
-        # The friction, and with it the Dundurs term, reverses at pure rolling: the
-        # solution jumps there (without the term it is continuous through R = 1).
-        raise InputError("a path along speed_ratio must not reach 1 with beta_f != 0: the "
-                         "friction, and the Dundurs term with it, reverses at pure rolling; "
-                         "follow each side of 1 on its own")
     return trace(_solver(fixed, along, method), along, dict(fixed), start, stop,
                  method=method, tol=tol, rtol=rtol, points=points, n=n, event_rtol=event_rtol,
                  progress=progress)
@@ -387,6 +462,20 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     probes = [start, middle(start, stop), stop]
     lo, n_max = METHODS[method].auto_range
     auto = n is None
+    xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
+    xs = list((np.geomspace if log else np.linspace)(start, stop, points))
+    if auto and any(at(lo, x) is None for x in probes):
+        # n is chosen where solutions exist: the ends and middle of the solved part,
+        # found with the fewest unknowns.
+        coarse = {x: at(lo, x) for x in xs}
+        if all(v is None for v in coarse.values()):
+            xs = _asinh_spaced(start, stop, points)
+            coarse = {x: at(lo, x) for x in xs}
+        edges, _ = _existence_events(lambda x: at(lo, x), xs, coarse, xtol)
+        solved = [x for x in sorted(set(xs) | set(edges), reverse=stop < start)
+                  if coarse[x] is not None]
+        if solved:
+            probes = [solved[0], middle(solved[0], solved[-1]), solved[-1]]
     if n is None:
         levels, est = refine(lambda m: tuple(at(m, x) for x in probes), [lo, 2 * lo, 4 * lo],
                              tol=tol, n_max=n_max, p_max=METHODS[method].order_cap)
@@ -396,11 +485,17 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
         _, est = refine(lambda m: tuple(at(m, x) for x in probes), [n // 4, n // 2, n],
                         p_max=METHODS[method].order_cap)
 
-    xs = list((np.geomspace if log else np.linspace)(start, stop, points))
     sols = {}
     for i, x in enumerate(xs):
         sols[x] = at(n, x)
         report("samples", i + 1, len(xs))
+    if all(v is None for v in sols.values()):
+        # Solutions may exist in a stretch narrower than the samples' spacing (near 0
+        # of a path to 1e300): sampled again, evenly in asinh x.
+        xs = _asinh_spaced(start, stop, points)
+        for i, x in enumerate(xs):
+            sols[x] = sols[x] if x in sols else at(n, x)
+            report("samples (asinh)", i + 1, len(xs))
 
     def suspicious(sa, sb):
         ma, mb = validity_margins(sa), validity_margins(sb)
@@ -408,15 +503,39 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
             return False
         return any(min(abs(ma[k]), abs(mb[k])) < abs(ma[k] - mb[k]) for k in MARGINS)
 
+    # Where solutions stop existing is resolved first, so that the margins' sign
+    # changes next to it are bracketed by solved samples.
+    edges, existence = _existence_events(lambda x: at(n, x), xs, sols, xtol)
+    xs = sorted(set(xs) | set(edges), reverse=stop < start)
+    # The interval from an edge to its solved neighbour may span many decades (a path
+    # to 1e300): sampled again, evenly in asinh x, so that the events in it are
+    # bracketed to their own scale.
+    for edge in [x for x in edges if sols[x] is not None]:
+        i = xs.index(edge)
+        for other in [xs[j] for j in (i - 1, i + 1)
+                      if 0 <= j < len(xs) and sols[xs[j]] is not None]:
+            for t in np.linspace(np.arcsinh(other), np.arcsinh(edge), points)[1:-1]:
+                x = float(np.sinh(t))
+                if x not in sols:
+                    sols[x] = at(n, x)
+                    xs.append(x)
+    xs = sorted(set(xs), reverse=stop < start)
     xs = subdivide(xs, sols, lambda x: at(n, x), suspicious, middle, times=MAX_HALVINGS,
                    reverse=stop < start,
                    progress=lambda done, total: report("samples halved", done, total))
+    # Again for a halving that failed (the brackets resolved above give the same events).
+    edges, more = _existence_events(lambda x: at(n, x), xs, sols, xtol)
+    xs = sorted(set(xs) | set(edges), reverse=stop < start)
+    existence = list({e.at: e for e in [*existence, *more]}.values())
 
-    xtol = lambda a, b: rtol * max(abs(a), abs(b), 1e-300)  # noqa: E731
     events = locate_events(lambda x: at(n, x), xs, [sols[x] for x in xs], xtol=xtol)
-    events, event_n = estimate_events(at, events, n, start, stop, xtol,
+    # The events' brackets are widened within the solved part of the path.
+    solved = [x for x in xs if sols[x] is not None] or [start, stop]
+    events, event_n = estimate_events(at, events, n, solved[0], solved[-1], xtol,
                                       event_rtol=event_rtol if auto else None, n_max=n_max,
                                       progress=report)
+    # The solution events are located at n alone (no margin to compare at n/2).
+    events = sorted([*events, *existence], key=lambda e: e.at, reverse=stop < start)
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
     return Path(along, fixed, xs_arr, valid, tuple(events), n, method,

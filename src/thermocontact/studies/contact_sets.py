@@ -19,7 +19,7 @@ from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import SolveError
+from ..problem.parameters import C_MAX, C_MIN, PARTITION, SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
@@ -135,6 +135,13 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     """
     pe = check_positive("pe_hertz", pe_hertz)
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
+    # The cylinder's kernel scale at this Peclet number (the zone model's own check
+    # knows no Peclet number yet).
+    k = check_positive("k2_over_k1", K2_over_K1 if k2_over_k1 is None else k2_over_k1)
+    if not C_MIN <= pe * k <= C_MAX:
+        raise InputError(f"pe_hertz * k2_over_k1 (the cylinder's kernel scale) must be in "
+                         f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
+                         f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
     def attempt(n_):
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
@@ -154,6 +161,15 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
 #: Largest correction of any edge's predicted position in one continuation step, in
 #: half-widths of the smallest zone.
 MAX_EDGE_MOVE = 0.25
+#: Most steps (accepted or not) of one stretch of continuation: a path that needs more
+#: (far past the boundary, at a large distortivity ratio) ends where it got to, so
+#: that every contact set is answered in bounded time.
+MAX_STEPS = 150
+#: Largest distortivity ratio delta1/delta2 of a contact set.  The materials in the
+#: library span 550 (copper against an organic brake block); the cylinder's
+#: distortion, ~ delta1 Q1 + delta2 Q2, grows with the ratio as fHPe_l does, so that
+#: beyond 1e3 a path from Hertz's zone crosses ever more of its branch.
+DISTORTIVITY_RATIO_MAX = 1e3
 
 
 def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
@@ -174,7 +190,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     method (:func:`~thermocontact.numerics.continuation.locate`).  Events carry ``t``,
     ``pe_hertz`` and ``fhpe_hertz``.
     """
-    lam = check_range("lam", lam, -1e6, 1e6)
+    lam = check_range("lam", lam, *PARTITION)
+    check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
     def model_at(t):
@@ -197,9 +214,14 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         # asked.  Returns the last solution, its t, and the t where it failed.
         last = None  # the previous (t, edges), for the secant predictor
         failed_at = None
+        steps = 0
 
         def attempt(t, trial, _):
-            nonlocal sol, last, failed_at
+            nonlocal sol, last, failed_at, steps
+            steps += 1
+            if steps > MAX_STEPS:
+                budget.append(where(t))
+                return STOP
             guess = sol.edges
             if last is not None and last[1].shape == sol.edges.shape:
                 guess = sol.edges + (trial - t) / (t - last[0]) * (sol.edges - last[1])
@@ -264,9 +286,14 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         except (SolveError, InputError, np.linalg.LinAlgError):
             return "failed", None
 
-    history, folds = [], []
+    history, folds, budget = [], [], []
     sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
     if failed_at is None and t < 1.0:
+        if budget:
+            return ContactSetResult(
+                "not converged", f"the single zone was followed to {_point(where(t))} in "
+                f"{MAX_STEPS} steps, the most allowed, and no further", sol,
+                history=history, reached=t)
         if folds:
             return ContactSetResult(
                 "no steady solution", f"the single zone's branch folds back at "
