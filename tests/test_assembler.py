@@ -3,8 +3,7 @@
 import numpy as np
 import pytest
 
-from thermocontact.discretisation.operator import (contact_operators, heat_operators,
-                                                   outside_operators, temperature_operators)
+from thermocontact.discretisation.operator import heat_operators, temperature_operators
 from thermocontact.discretisation.representations import EdgeGraded
 from thermocontact.problem.parameters import Parameters
 from thermocontact.problem.validation import InputError
@@ -29,28 +28,6 @@ def test_one_zone_is_the_single_patch_with_moving_half_plane_and_dundurs(speed_r
     assert sigma == pytest.approx(core.sigma_over_delta, abs=1e-10)
     assert sol.valid == core.valid
     assert sol.to_dict().get("speed_ratio", 0.0) == speed_ratio
-
-
-@pytest.mark.parametrize("speed_ratio", [0.6, -0.4])
-def test_outside_integrals_of_a_moving_half_plane_are_its_operators_integrated(speed_ratio):
-    """d/dtt of the integrated contact and heat operators (D32b) is the moving
-    half-plane's contact and heat operator outside, on either side of the contact
-    (where its material has and has not yet passed)."""
-    par = Parameters(3.0, 0.3, 10.0, 4.0, 0.5, speed_ratio)
-    rep = EdgeGraded(20)
-    rng = np.random.default_rng(5)
-    phi, psi = rng.standard_normal(20), rng.standard_normal(20)
-    h = 1e-3
-    for side in (1.0, -1.0):
-        for tt in (0.2, 0.7):
-            ops = outside_operators(par, rep, side, tt + h * np.array([-2, -1, 1, 2]))
-            s = np.array([side * (1 + tt)])
-            C, Tp, Tq = contact_operators(par, rep, s)
-            Hp, Hq = heat_operators(par, rep, s)
-            for M, ref, v in ((ops[0], C, phi), (ops[1], Tp, phi), (ops[2], Tq, psi),
-                              (ops[3], Hp, phi), (ops[4], Hq, psi)):
-                deriv = side * (STENCIL / (12 * h)) @ (M @ v)
-                assert deriv == pytest.approx((ref @ v)[0], rel=1e-7, abs=1e-10)
 
 
 @pytest.mark.parametrize("speed_ratio", [0.0, 0.6, -0.4])

@@ -31,14 +31,22 @@ def test_outside_integrals_against_mpmath():
         assert (lq @ psi)[0] == pytest.approx(float(ref), rel=1e-9, abs=1e-12)
 
 
-def test_outside_integrals_are_the_operators_integrated():
-    """d/dtt of the integrated contact operator is the contact operator outside
-    (central differences of the closed forms against contact_operators)."""
+@pytest.mark.parametrize("args, n, seed", [
+    ((5.0, 0.3, 10.0, 10.0, 0.5), 24, 2),
+    # The moving half-plane (D32b), on either side of the contact: where its material
+    # has and has not yet passed.
+    ((3.0, 0.3, 10.0, 4.0, 0.5, 0.6), 20, 5),
+    ((3.0, 0.3, 10.0, 4.0, 0.5, -0.4), 20, 5),
+])
+def test_outside_integrals_are_the_operators_integrated(args, n, seed):
+    """d/dtt of the integrated contact and heat operators is the contact and heat
+    operator outside (central differences of the closed forms against
+    contact_operators and heat_operators)."""
     from thermocontact.discretisation.operator import contact_operators, heat_operators
-    par = Parameters(5.0, 0.3, 10.0, 10.0, 0.5)
-    rep = EdgeGraded(24)
-    rng = np.random.default_rng(2)
-    phi, psi = rng.standard_normal(24), rng.standard_normal(24)
+    par = Parameters(*args)
+    rep = EdgeGraded(n)
+    rng = np.random.default_rng(seed)
+    phi, psi = rng.standard_normal(n), rng.standard_normal(n)
     h = 1e-3
     for side in (1.0, -1.0):
         for tt in (0.2, 0.7):
