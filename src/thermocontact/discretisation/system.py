@@ -36,6 +36,7 @@ import numpy as np
 
 from dataclasses import replace
 
+from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError, check_range
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
@@ -199,10 +200,12 @@ class ContactSetSystem:
 
     The unknowns ``x`` are each zone's ``phi`` (``n`` each), then each zone's
     ``psi``, then the closure's unknowns (each zone's defects ``(mu, nu)`` with the
-    heat partition given; the one zone's ``nu`` with the offset given), then (with an
-    interface conductance) the temperature difference's constant.  The rows are each
-    zone's contact equation, the load, each zone's heat (or temperature) equation,
-    the heat partition (``lam`` given) and the returns between zones.  With a
+    heat partition or the far temperatures given; the one zone's ``nu`` with the
+    offset given), then (with an interface conductance) the temperature difference's
+    constant.  The rows are each zone's contact equation, the load, each zone's heat
+    (or temperature) equation, the heat partition (``lam`` given) or the temperature
+    row (the far temperatures given, row ``temperature_row`` with a conductance, D41)
+    and the returns between zones.  With a
     conductance each zone's temperature rows (D33) depend on the Biot numbers at its
     points (``points``): they are formed by :meth:`matrix` from ``local``.
     """
@@ -215,11 +218,12 @@ class ContactSetSystem:
     local: tuple = ()
     points: tuple = ()
     closure: str = "lam"
+    temperature_row: int | None = None
 
     @property
     def closure_slice(self) -> slice:
         """The closure's unknowns in ``x``."""
-        k = 2 * self.zones if self.closure == "lam" else 1
+        k = 1 if self.closure == "sigma" else 2 * self.zones
         return slice(2 * self.zones * self.n, 2 * self.zones * self.n + k)
 
     def matrix(self, F, biot=None, scale=None):
@@ -236,6 +240,9 @@ class ContactSetSystem:
             point_rows = (bi * w)[:, None] * U + (0.5 * np.pi * w)[:, None] * Lq
             point_rows[:, -1] /= scale
             A[rows] = point_rows if P is None else P @ point_rows
+        if self.temperature_row is not None:
+            # The temperature closure fixes the constant itself (D41), carried as above.
+            A[self.temperature_row, -1] = 1.0 / scale
         return A
 
     @staticmethod
@@ -258,8 +265,8 @@ class ContactSetSystem:
 
 
 def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
-                       sigma_over_delta=None, profile=None, conductance=False,
-                       blocks=None) -> ContactSetSystem:
+                       sigma_over_delta=None, temperatures=None, profile=None,
+                       conductance=False, blocks=None) -> ContactSetSystem:
     """Assemble the equations of a contact set with given edges (derivation sections
     14 and 16): the one assembler of the single patch and of contact sets.
 
@@ -270,7 +277,11 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     rows are instead ``n`` rows of the temperature equation (D33), whose constant is
     one more unknown, and (D31b) is not needed.  With the heat partition given, each
     zone's right side gains ``(2/pi)(mu_j + nu_j s)``; with the offset given (one
-    zone only) ``(2/pi) nu (sigma + s)`` and no partition row (section 16).
+    zone only) ``(2/pi) nu (sigma + s)`` and no partition row (section 16).  With
+    the far temperatures given (one zone only) the partition row becomes the
+    temperature row (D41): the mean over ``n`` points of the surfaces' temperature
+    difference (D33) with each body's far temperature, or with a conductance its
+    constant, equal to ``Theta`` (section 17).
 
     Parameters
     ----------
@@ -283,7 +294,10 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
         from an edge).
     scheme : {"collocation", "projection"}
     lam, sigma_over_delta : float
-        Exactly one: the heat partition, or (one zone) the offset ``centre/half``.
+        The heat partition, or (one zone) the offset ``centre/half``.
+    temperatures : Temperatures
+        Or (one zone) the far temperatures, the sink distance in the unit of
+        ``edges`` (section 17).  Exactly one of the three.
     profile : numpy.polynomial.Polynomial, optional
         The initial gap in units of ``l^2/R`` against ``X``; None: none (the single
         patch in its own scaling, whose ``X^2/2`` is carried by the defects).
@@ -298,19 +312,24 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     Raises
     ------
     InputError
-        The offset given with more than one zone.
+        The offset or the temperatures given with more than one zone; a sink
+        distance with a moving half-plane, or none with a stationary one.
     """
     m, n = len(edges), rep.n
-    if (lam is None) == (sigma_over_delta is None):
-        raise InputError("give exactly one of lam and sigma_over_delta")
-    if sigma_over_delta is not None and m != 1:
-        raise InputError(f"sigma_over_delta closes a single zone only (section 16), got "
-                         f"{m} zones; give lam instead")
+    if sum(c is not None for c in (lam, sigma_over_delta, temperatures)) != 1:
+        raise InputError("give exactly one of lam, sigma_over_delta and temperatures",
+                         parameters=("lam", "sigma_over_delta", "temperatures"))
+    for name, given in (("sigma_over_delta", sigma_over_delta), ("temperatures", temperatures)):
+        if given is not None and m != 1:
+            raise InputError(f"{name} closes a single zone only (sections 16, 17), got "
+                             f"{m} zones; give lam instead", parameters=(name,))
+    if temperatures is not None:
+        temperatures = check_temperatures(par, temperatures)
     centre = 0.5 * (edges[:, 0] + edges[:, 1])
     half = 0.5 * (edges[:, 1] - edges[:, 0])
     zpar = [zone_parameters(par, h) for h in half]
     nh = n if conductance else n - 1
-    closing = 2 * m if lam is not None else 1
+    closing = 1 if sigma_over_delta is not None else 2 * m
 
     def reduce(P, M):
         return M if P is None else P @ M
@@ -341,7 +360,7 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
         if sc is not None:
             xc, xh = centre[i] + half[i] * sc, centre[i] + half[i] * sh
         if conductance:
-            U = np.zeros((sh.size, size))
+            U = zone_temperature_rows(par, zpar, rep, centre, half, i, sh, ah, size)
         for j in range(m):
             own = i == j
             if own:
@@ -356,15 +375,8 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
             A1[rc, phi[j]] = -half[j] * Tp
             A1[rc, psi[j]] = -half[j] * Tq
             if conductance:
-                s_h = sh if own else (xh - centre[j]) / half[j]
-                # (D33) in units of l: zone j's integrals carry Delta_j, and a stationary
-                # half-plane's logarithm ln(Delta_j) times the heat it puts into it.
-                Up, Uq = temperature_operators(zpar[j], rep, s_h, ah if own else None)
-                lg = 0.0 if par.half_plane_scale else np.log(half[j])
-                U[:, phi[j]] = half[j] * (Up + 0.5 * (1.0 - par.eta) * lg
-                                          * rep.pressure_rule.weights[None, :])
-                U[:, psi[j]] = half[j] * (Uq - 0.5 * lg * rep.flux_rule.weights[None, :])
-            elif own:
+                continue
+            if own:
                 A0[rh, phi[j]] = own_blocks.Hp
                 A0[rh, psi[j]] = own_blocks.Hq
             else:
@@ -381,8 +393,8 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
             points.append((sh, ah))
         if profile is not None:
             b[rc] = (2.0 / np.pi) * reduce(p1, profile.deriv()(xc))
-        first = 2 * m * n + (2 * i if lam is not None else 0)
-        if lam is not None:
+        first = 2 * m * n + (2 * i if sigma_over_delta is None else 0)
+        if sigma_over_delta is None:
             A0[rc, first] = -(2.0 / np.pi) * e0
             A0[rc, first + 1] = -(2.0 / np.pi) * e1
         else:
@@ -397,6 +409,21 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
             A0[part, psi[j]] = half[j] * wq
     if lam is not None:
         b[part] = lam - par.eta
+    theta_row = None
+    if temperatures is not None:
+        # (D41): the temperature difference's mean over zone 0's points, less the
+        # sink's ln(L/l) times the heat into the half-plane, is Theta; with a
+        # conductance, the constant of (D33) less that term.
+        if conductance:
+            theta_row = part
+        else:
+            st, at, _ = temperature_points(rep, "collocation")
+            U = zone_temperature_rows(par, zpar, rep, centre, half, 0, st, at, size)
+            A0[part] = U.mean(axis=0)
+        for j in range(m):
+            A0[part, phi[j]] -= temperatures.log_sink * half[j] * 0.5 * (1.0 - par.eta) * wp
+            A0[part, psi[j]] += temperatures.log_sink * half[j] * 0.5 * wq
+        b[part] = temperatures.theta
     for k in range(m - 1):
         lo, hi = edges[k, 1], edges[k + 1, 0]
         rg, rt = part + 1 + k, part + m + k
@@ -409,8 +436,47 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
                 A0[rt, phi[j]] += half[j] * Hp
                 A0[rt, psi[j]] += half[j] * Hq
         b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
-    return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points),
-                            "lam" if lam is not None else "sigma")
+    closure = ("lam" if lam is not None else "sigma" if sigma_over_delta is not None
+               else "temperatures")
+    return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points), closure, theta_row)
+
+
+def zone_temperature_rows(par, zpar, rep, centre, half, i, s, aux, size):
+    """The temperature difference (D33) at zone ``i``'s points ``s`` (its own
+    coordinate, ``aux`` its representation's), without the constant: rows of
+    ``size`` columns on every zone's ``phi`` and ``psi``."""
+    n, m = rep.n, len(half)
+    U = np.zeros((s.size, size))
+    x = centre[i] + half[i] * s
+    for j in range(m):
+        own = i == j
+        s_j = s if own else (x - centre[j]) / half[j]
+        # (D33) in units of l: zone j's integrals carry Delta_j, and a stationary
+        # half-plane's logarithm ln(Delta_j) times the heat it puts into it.
+        Up, Uq = temperature_operators(zpar[j], rep, s_j, aux if own else None)
+        lg = 0.0 if par.half_plane_scale else np.log(half[j])
+        U[:, j * n:(j + 1) * n] = half[j] * (Up + 0.5 * (1.0 - par.eta) * lg
+                                             * rep.pressure_rule.weights[None, :])
+        U[:, (m + j) * n:(m + j + 1) * n] = half[j] * (Uq - 0.5 * lg
+                                                       * rep.flux_rule.weights[None, :])
+    return U
+
+
+def check_temperatures(par: Parameters, temperatures) -> Temperatures:
+    """The closure if it suits the half-plane: a sink distance for a stationary one
+    (its logarithm needs a length, D38), none for a moving one (its incoming
+    temperature is absolute, section 17)."""
+    if not isinstance(temperatures, Temperatures):
+        temperatures = Temperatures(*temperatures)
+    moving = par.half_plane_scale != 0.0
+    if moving and temperatures.sink_distance is not None:
+        raise InputError("sink_distance applies to a stationary half-plane only: a moving "
+                         "half-plane's far temperature is its incoming one",
+                         parameters=("sink_distance",))
+    if not moving and temperatures.sink_distance is None:
+        raise InputError("a stationary half-plane needs sink_distance (> 1, in half-widths) "
+                         "with the temperatures", parameters=("sink_distance",))
+    return temperatures
 
 
 def region_integral(zpar: Parameters, rep, edge_pair, half, lo, hi):

@@ -16,7 +16,8 @@ import numpy as np
 
 from ..io.results import Result
 
-__all__ = ["N_RANGE", "P_MAX", "Refinement", "error_estimate", "refine"]
+__all__ = ["N_RANGE", "P_MAX", "QUANTITIES", "QUANTITIES_WITH_LAM", "Refinement", "error_estimate",
+           "refine"]
 
 log = logging.getLogger("thermocontact")
 
@@ -31,6 +32,8 @@ N_RANGE = (4, 1024)
 P_MAX = 5.0
 #: The quantities whose errors are estimated.
 QUANTITIES = ("load_ratio", "sigma_over_delta")
+#: And with the heat partition an output of the far temperatures (section 17).
+QUANTITIES_WITH_LAM = QUANTITIES + ("lam",)
 
 
 def _relative(x: float) -> float:
@@ -131,19 +134,20 @@ class Refinement(Result):
                 "reason": self.reason, "tol": self.tol}
 
 
-def _measure(levels, p_max):
+def _measure(levels, p_max, quantities=QUANTITIES):
     """The largest :func:`error_estimate` over the cases that have a solution at the
     finest level and at a coarser one of the last three (None when none has)."""
     est = None
     for case in zip(*levels):
         sols = [s for s in case[-3:] if s is not None]
         if len(sols) > 1 and case[-1] is not None:
-            e = error_estimate(sols, p_max=p_max)
+            e = error_estimate(sols, quantities, p_max=p_max)
             est = e if est is None else max(est, e)
     return est
 
 
-def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None) -> Refinement:
+def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None,
+           quantities=QUANTITIES) -> Refinement:
     """Solve at ``sizes``, then at doubled ``n`` until the estimate meets ``tol``.
 
     The doubling also stops where no case has a solution at the finest level: a
@@ -166,6 +170,9 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None) -> Re
     progress : callable, optional
         Called as ``progress(n, estimate)`` before each level is solved (``estimate``
         None before the first two), for a caller that shows progress.
+    quantities : tuple of str
+        Passed to :func:`error_estimate` (``lam`` too where it is an output of the
+        far temperatures).
 
     Returns
     -------
@@ -184,7 +191,7 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None) -> Re
             progress(m, None)
         levels.append(at(m))
     while True:
-        est = _measure(levels, p_max) if len(levels) > 1 else None
+        est = _measure(levels, p_max, quantities) if len(levels) > 1 else None
         log.debug("refinement: n = %d, error estimate %s", n, est)
         unsolved = all(s is None for s in levels[-1])
         if (tol is None or (est is not None and est <= tol) or 2 * n > n_max

@@ -67,6 +67,14 @@ class ContactSolution(FieldResult):
         Whether the theory's assumptions hold, when judged for a given ``Delta/R``
         (:func:`~thermocontact.analysis.applicability.applicability`); its entries
         then end the record.
+    conductance : Conductance or None
+        The interface conductance, if any.
+    temperatures : Temperatures or None
+        The far temperatures when they closed the problem (``lam`` an output,
+        derivation section 17).
+    lam_error : float or None
+        The estimated absolute error of ``lam`` where it is an output of the
+        temperatures and was measured (the Richardson estimate of the refinement).
     """
 
     parameters: Parameters
@@ -87,6 +95,8 @@ class ContactSolution(FieldResult):
     estimate_is_bound: bool = True
     applicability: Applicability | None = None
     conductance: object = None
+    temperatures: object = None
+    lam_error: float | None = None
 
     # Status, in the manner of scipy's OptimizeResult.
     @property
@@ -259,6 +269,10 @@ class ContactSolution(FieldResult):
             # Flat scalars, so that the dataset's attributes hold them.
             rec["conductance_biot0"] = self.conductance.biot0
             rec["conductance_exponent"] = self.conductance.exponent
+        if self.temperatures is not None:
+            rec["theta"] = self.temperatures.theta
+            rec["sink_distance"] = self.temperatures.sink_distance
+            rec["lam_error"] = self.lam_error
         if self.applicability is not None:
             rec.update(self.applicability.to_dict())
         return rec

@@ -9,6 +9,9 @@ Two ways to close the problem (derivation section 5):
 * ``sigma_over_delta`` given: the unknowns are ``phi``, ``psi`` and ``L``; ``lam``
   follows from the heat flux.  With ``fhpe = 0`` this problem has no bounded
   solution unless ``sigma = 0``, and then ``lam`` is undetermined: refused.
+* ``temperatures`` given (the bodies' far temperatures, section 17): the unknowns
+  are those of ``lam`` given, the partition row becomes the temperature row (D41),
+  and ``lam`` follows from the heat flux.
 
 The system is the one-zone contact set ``(-1, 1)`` in the contact's own scaling,
 assembled by :func:`~thermocontact.discretisation.system.contact_set_system` from the
@@ -28,12 +31,14 @@ from scipy.linalg.lapack import dgecon
 
 from ..analysis.validity import assess
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..discretisation.system import Blocks, Conductance, ContactSetSystem, contact_set_system
+from ..discretisation.system import (Blocks, Conductance, ContactSetSystem, check_temperatures,
+                                     contact_set_system)
 from ..numerics.cache import BoundedCache
+from ..problem.closure import Temperatures
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
                                   check_positive, check_range)
-from .refinement import N_RANGE, error_estimate, refine
+from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine
 from .result import ContactSolution
 
 __all__ = [
@@ -184,8 +189,8 @@ _PATCH = np.array([[-1.0, 1.0]])
 
 def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
                  sigma_over_delta=None, check_validity=True, polish=True,
-                 conductance=None) -> ContactSolution:
-    """Solve the assembled system for one ``fhpe`` and one of ``lam``/``sigma``.
+                 conductance=None, temperatures=None) -> ContactSolution:
+    """Solve the assembled system for one ``fhpe`` and one closure.
 
     Parameters
     ----------
@@ -195,7 +200,10 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
         ``sigma``.
     method : str
     lam, sigma_over_delta : float
-        Exactly one of them.
+        The heat partition or the offset.
+    temperatures : Temperatures or tuple, optional
+        Or the far temperatures ``(Theta, L/Delta)`` (derivation section 17); exactly
+        one of the three closures.
     check_validity : bool, optional
         Evaluate the contact inequalities (default); without, ``validity`` is
         None (for scans that need only ``P_H/P``).
@@ -213,13 +221,12 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     Raises
     ------
     InputError
-        Both or neither of ``lam`` and ``sigma_over_delta``; or ``sigma`` given
-        with ``fhpe = 0``.
+        Not exactly one closure; or ``sigma`` given with ``fhpe = 0``.
     SolveError
-        A singular or ill-conditioned system, or a ``lam`` that no finite
-        ``sigma`` reaches.
+        A singular or ill-conditioned system, or a ``lam`` (given or implied by the
+        temperatures) that no finite ``sigma`` reaches.
     """
-    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     n = blocks.n
     F = par.fhpe
     rep = blocks.representation
@@ -228,6 +235,8 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
 
     if lam is not None:
         lam = check_range("lam", lam, -LIMIT, LIMIT)
+    elif temperatures is not None:
+        temperatures = check_temperatures(par, temperatures)
     else:
         sigma = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
         if F == 0.0:
@@ -238,17 +247,19 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
             )
     # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
     system = contact_set_system(par, _PATCH, rep, METHODS[method].scheme, lam=lam,
-                                sigma_over_delta=sigma_over_delta, blocks=blocks,
-                                conductance=conductance is not None)
+                                sigma_over_delta=sigma_over_delta, temperatures=temperatures,
+                                blocks=blocks, conductance=conductance is not None)
     x, rcond = solve_contact_system(system, F, rep, [1.0], conductance, "the linear system")
     phi, psi = x[:n], x[n:2 * n]
-    if lam is not None:
+    if sigma_over_delta is None:
         L_sigma, L = x[2 * n], x[2 * n + 1]
+        if lam is None:
+            lam = float(fr.weights @ psi + eta * (pr.weights @ phi))
         if abs(L) <= 1e-12 * max(1.0, abs(L_sigma)):
             raise SolveError(
                 f"lam = {lam:g} is reached by no finite sigma_over_delta (it is the "
                 f"limit of lam as sigma_over_delta -> +-infinity); choose another lam"
-            )
+                + ("" if temperatures is None else " or other temperatures"))
         sigma = L_sigma / L
     else:
         L = x[2 * n]
@@ -261,7 +272,8 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
-        validity=validity, rcond=rcond, conductance=conductance)
+        validity=validity, rcond=rcond, conductance=conductance,
+        temperatures=temperatures)
 
 
 def check_n(n) -> int:
@@ -372,11 +384,12 @@ class Model:
         return replace(self.parameters, fhpe=fhpe)
 
     def solve_at(self, n: int, fhpe, *, lam=None, sigma_over_delta=None,
-                 check_validity=True, polish=True) -> ContactSolution:
+                 check_validity=True, polish=True, temperatures=None) -> ContactSolution:
         """One solve at ``n`` without error estimate."""
         return solve_system(self.parameters_at(fhpe), self.blocks(n), self.method, lam=lam,
                             sigma_over_delta=sigma_over_delta, check_validity=check_validity,
-                            polish=polish, conductance=self.conductance)
+                            polish=polish, conductance=self.conductance,
+                            temperatures=temperatures)
 
     def sizes(self):
         """The first levels of the refinement and the largest ``n``."""
@@ -387,15 +400,20 @@ class Model:
         return coarse + [self.n], self.n
 
     def solve(self, fhpe, *, lam=None, sigma_over_delta=None, check_convergence=False,
-              progress=None, polish=True, _stacklevel=2) -> ContactSolution:
-        """Solve at ``fhpe`` with the heat partition or the offset given.
+              progress=None, polish=True, temperatures=None, _stacklevel=2) -> ContactSolution:
+        """Solve at ``fhpe`` with the heat partition, the offset or the far
+        temperatures given.
 
         Parameters
         ----------
         fhpe : float
             ``f H Pe >= 0``.
         lam, sigma_over_delta : float
-            Exactly one: the heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the offset.
+            The heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the offset.
+        temperatures : Temperatures or tuple ``(Theta, L/Delta)``, optional
+            Or the bodies' far temperatures (derivation section 17): ``lam`` is then
+            an output, its error estimated with ``P_H/P`` and ``sigma/Delta`` and
+            reported as ``lam_error``.  Exactly one of the three closures.
         check_convergence : bool, optional
             Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``)
             and report the change in ``P_H/P``.
@@ -415,14 +433,19 @@ class Model:
             :class:`ConvergenceWarning`.
         """
         par = self.parameters_at(fhpe)
-        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
+        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
+        if temperatures is not None and not isinstance(temperatures, Temperatures):
+            temperatures = Temperatures(*temperatures)
+        # lam is an output of the offset and of the temperatures, but its error is
+        # estimated only where the temperatures make it (the offset's estimates stay).
+        quantities = QUANTITIES if temperatures is None else QUANTITIES_WITH_LAM
 
         def at(m):
             # Validity only for the solution returned: the coarser levels feed the
             # error estimate alone.
             return (solve_system(par, self.blocks(m), self.method, lam=lam,
                                  sigma_over_delta=sigma_over_delta, check_validity=False,
-                                 conductance=self.conductance),)
+                                 conductance=self.conductance, temperatures=temperatures),)
 
         def validity_of(sol):
             return assess(par, sol.representation, sol.phi, sol.psi, sol.load_ratio,
@@ -431,7 +454,7 @@ class Model:
         sizes, n_max = self.sizes()
         method = METHODS[self.method]
         levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max,
-                             p_max=method.order_cap, progress=progress)
+                             p_max=method.order_cap, progress=progress, quantities=quantities)
         fin = levels[-1][0]
         validity = validity_of(fin)
         if len(levels) > 1:
@@ -447,11 +470,18 @@ class Model:
                     progress(2 * fin.n, est)
                 levels.append(at(2 * fin.n))
                 fin = levels[-1][0]
-                est = error_estimate([lv[0] for lv in levels], p_max=method.order_cap)
+                est = error_estimate([lv[0] for lv in levels], quantities,
+                                     p_max=method.order_cap)
                 validity = validity_of(fin)
+        lam_error = None
+        if temperatures is not None and len(levels) > 1:
+            # Absolute: error_estimate is relative to max(|lam|, 0.01).
+            lam_error = float(error_estimate([lv[0] for lv in levels], ("lam",),
+                                             p_max=method.order_cap)
+                              * max(abs(fin.lam), 0.01))
         sol = fin.replace(validity=validity, error_estimate=None if est is None else float(est),
                           auto_n=self.n is None, tol=self.tol,
-                          estimate_is_bound=method.estimate_is_bound)
+                          estimate_is_bound=method.estimate_is_bound, lam_error=lam_error)
         if sol.converged is False and self.n is None:
             warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
                           stacklevel=_stacklevel)
@@ -466,7 +496,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
           speed_ratio=0.0, beta_f=0.0, lam=None, sigma_over_delta=None, n=None,
           method=DEFAULT_METHOD,
           tol=DEFAULT_TOL, check_convergence=False, progress=None,
-          conductance=None, delta_over_r=None) -> ContactSolution:
+          conductance=None, delta_over_r=None, theta=None,
+          sink_distance=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
@@ -483,7 +514,15 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     beta_f : float, optional
         ``B = beta f`` of the Dundurs term (default 0).
     lam, sigma_over_delta : float
-        Exactly one: the heat partition or the contact offset.
+        The heat partition or the contact offset.
+    theta : float
+        Or the far temperatures' group ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)``
+        (D39; derivation section 17): ``lam`` is then an output with its error
+        (``lam_error``).  Exactly one of ``lam``, ``sigma_over_delta`` and ``theta``.
+    sink_distance : float
+        With ``theta`` and a stationary half-plane: ``L/Delta > 1``, the distance of
+        the half-plane's sink at ``T2`` (D38); a moving half-plane's ``T2`` is its
+        incoming temperature (none given).
     n : int, optional
         Unknowns per function; by default chosen until the estimate meets ``tol``.
     method : str, optional
@@ -520,14 +559,19 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     >>> round(solve(5, 0.0, 10, lam=-1).load_ratio, 12)
     1.0
     """
-    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, theta=theta)
+    if sink_distance is not None and theta is None:
+        raise InputError("sink_distance is given with theta only (the temperature closure)",
+                         parameters=("sink_distance",))
+    temperatures = None if theta is None else Temperatures(theta, sink_distance)
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                   method=method, n=n, tol=tol, conductance=conductance)
     sol = model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
-                      check_convergence=check_convergence, progress=progress, _stacklevel=3)
+                      temperatures=temperatures, check_convergence=check_convergence,
+                      progress=progress, _stacklevel=3)
     if delta_over_r is None:
         return sol
     from ..analysis.applicability import applicability

@@ -1,0 +1,89 @@
+"""The far temperatures of the bodies as the closure of the heat partition
+(derivation section 17).
+
+Perfect thermal contact makes the surfaces' temperatures equal in the contact; what
+fixes the heat partition ``lam`` is each body's temperature far from it: a moving
+body's incoming (bulk) temperature, or a stationary half-plane's temperature at a
+sink distance ``L`` (the logarithmic law (D38)), or at the cooled back face of a
+layer of thickness ``h`` (``L = 4 h/pi``, (D40)).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .validation import InputError, check_finite, check_range
+
+__all__ = ["SINK_RANGE", "Temperatures", "layer_sink_distance", "temperature_group"]
+
+#: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
+#: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
+#: from swamping the rows' other terms.
+SINK_RANGE = (1.0, 1e12)
+
+
+@dataclass(frozen=True)
+class Temperatures:
+    """The temperature closure in dimensionless form (derivation section 17).
+
+    Attributes
+    ----------
+    theta : float
+        ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)`` (D39): the half-plane's far
+        temperature less the cylinder's incoming one, in units of the temperature
+        that the frictional heat per unit length makes in the half-plane.
+    sink_distance : float or None
+        ``L/l > 1``: the stationary half-plane's sink distance in the system's length
+        unit (the half-width ``Delta`` for the single patch), at which its
+        temperature is ``T2`` (D38); None for a half-plane moving through the
+        contact, whose incoming temperature is ``T2``.
+    """
+
+    theta: float
+    sink_distance: float | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "theta", check_finite("theta", self.theta))
+        if self.sink_distance is not None:
+            lo, hi = SINK_RANGE
+            x = check_range("sink_distance", self.sink_distance, lo, hi)
+            if x == lo:
+                raise InputError(f"sink_distance must be > {lo:g} (beyond the contact's "
+                                 f"half-width) and <= {hi:.0e}, got {x!r}",
+                                 parameters=("sink_distance",))
+            object.__setattr__(self, "sink_distance", x)
+
+    @property
+    def log_sink(self) -> float:
+        """``ln(L/l)`` of a stationary half-plane's sink (0 for a moving one)."""
+        return 0.0 if self.sink_distance is None else math.log(self.sink_distance)
+
+    def in_unit(self, scale: float) -> Temperatures:
+        """The same closure with lengths in units of ``scale`` times today's unit."""
+        if self.sink_distance is None:
+            return self
+        return Temperatures(self.theta, self.sink_distance / scale)
+
+
+def temperature_group(T1, T2, K2, friction, sliding_speed, load) -> float:
+    """``Theta = pi K2 (T2 - T1)/(f v P)`` (D39), from SI inputs.
+
+    Parameters
+    ----------
+    T1, T2 : float
+        The cylinder's incoming and the half-plane's far (incoming or sink)
+        temperature, K.
+    K2 : float
+        The half-plane's conductivity, W/(m K).
+    friction, sliding_speed, load : float
+        ``f``, ``|v1 - v2|`` (m/s) and the load per unit length ``P`` (N/m), all > 0.
+    """
+    return math.pi * K2 * (T2 - T1) / (friction * sliding_speed * load)
+
+
+def layer_sink_distance(thickness: float) -> float:
+    """The sink distance ``L = 4 h/pi`` of a layer of thickness ``h`` on an isothermal
+    base (D40): its line source's surface temperature ``(Q/(pi K)) ln coth(pi |x|/(4h))``
+    is the sink law's ``(Q/(pi K)) ln(L/|x|)`` to ``O((x/h)^2)``."""
+    return 4.0 * thickness / math.pi
