@@ -1,0 +1,216 @@
+"""The far temperatures as the closure of the heat partition (derivation section 17):
+lam an output, the limits of the closure, the sink law's constant and the layer."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import sici
+
+from thermocontact import solve
+from thermocontact.analysis.fields import contact_fields
+from thermocontact.problem.closure import Temperatures, layer_sink_distance
+from thermocontact.problem.validation import InputError
+from thermocontact.solvers.single_patch import Model
+
+
+@pytest.mark.parametrize("kw, temperatures", [
+    (dict(), (0.5, 10.0)),
+    (dict(), (-2.0, 3.0)),
+    (dict(speed_ratio=-0.5, delta1_over_delta2=0.5), (0.3, None)),
+    (dict(beta_f=0.4), (1.0, 30.0)),
+    (dict(conductance=(3.0, 0.0)), (0.5, 10.0)),
+    (dict(conductance=(3.0, 1.0)), (0.5, 10.0)),
+])
+def test_the_closures_lam_fed_back_gives_the_same_solution(kw, temperatures):
+    """The temperature row replaces the partition row only: the solution with the
+    far temperatures, solved again with its own lam given, is the same to 1e-10
+    (measured 1e-16 to 2e-14; the pressure's factor to 1e-12)."""
+    model = Model(5.0, 10.0, n=32, **kw)
+    a = model.solve_at(32, 0.2, temperatures=temperatures)
+    b = model.solve_at(32, 0.2, lam=a.lam)
+    assert abs(a.load_ratio - b.load_ratio) < 1e-10
+    assert abs(a.sigma_over_delta - b.sigma_over_delta) < 1e-10
+    assert np.max(np.abs(a.phi - b.phi)) < 1e-10
+    assert np.max(np.abs(a.psi - b.psi)) < 1e-10
+    assert a.validity.valid == b.validity.valid
+    # The closure moves lam: the thermal terms matter here.
+    assert abs(a.lam - model.solve_at(32, 0.2, temperatures=(temperatures[0] + 1.0,
+                                                             temperatures[1])).lam) > 0.05
+
+
+def test_lam_comes_back_with_its_estimate():
+    """Solved with n chosen, lam carries the Richardson estimate of the refinement,
+    which bounds its change to n = 128, and the record says so."""
+    sol = solve(5, 0.2, 10, theta=1.0, sink_distance=30, tol=1e-6)
+    fine = solve(5, 0.2, 10, theta=1.0, sink_distance=30, n=128)
+    assert sol.lam_error is not None and sol.lam_error > 0
+    assert abs(sol.lam - fine.lam) <= sol.lam_error
+    rec = sol.to_dict()
+    assert rec["theta"] == 1.0 and rec["sink_distance"] == 30.0
+    assert rec["lam_error"] == sol.lam_error
+    # With lam given there is no lam_error, and the record is today's.
+    assert "lam_error" not in solve(5, 0.2, 10, lam=sol.lam).to_dict()
+
+
+def test_high_peclet_split_is_the_effusivity_law():
+    """Both surfaces moving the same way at high Peclet numbers with equal incoming
+    temperatures: q1/q2 -> e1 sqrt(v1)/(e2 sqrt(v2)), e = sqrt(K rho c) (Jaeger's
+    T = (1/K) sqrt(k/(pi v)) integral q/sqrt(xi - x) on both sides), i.e.
+    q1/q2 = (K1/K2) sqrt(k2/k1) / sqrt(R).  The error falls as Pe^-2 (observed order
+    1.96, 1.98, 1.99 from Pe = 10 to 80)."""
+    rho, kappa, R = 2.0, 1.0, 0.5
+    ratio = np.sqrt(kappa / R) / rho
+    limit = (ratio - 1.0) / (ratio + 1.0)
+    errors = [abs(solve(pe, 0.0, rho, k2_over_k1=kappa, speed_ratio=R, theta=0.0, n=64).lam
+                  - limit) for pe in (10.0, 20.0, 40.0, 80.0)]
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all((orders > 1.9) & (orders < 2.1))
+    assert errors[-1] < 5e-6
+
+
+def test_exchanging_the_bodies_exchanges_the_temperatures():
+    """(body 1, body 2, Pe, R < 0, Theta) mirrored with the bodies exchanged
+    (section 5b) is (body 2, body 1, |R| Pe k2/k1, 1/R, 1/rho, k1/k2, 1/d, F d) with
+    Theta' = pi K1 (T1 - T2)/(f v P) = -Theta/rho: lam' = -lam, the same P_H/P, the
+    opposite offset."""
+    pe, F, rho, kappa, R, d, theta = 2.0, 0.4, 3.0, 2.0, -0.5, 0.5, 0.7
+    a = solve(pe, F, rho, k2_over_k1=kappa, delta1_over_delta2=d, speed_ratio=R, theta=theta,
+              n=64)
+    b = solve(abs(R) * pe * kappa, F * d, 1 / rho, k2_over_k1=1 / kappa,
+              delta1_over_delta2=1 / d, speed_ratio=1 / R, theta=-theta / rho, n=64)
+    assert abs(a.lam + b.lam) < 1e-11
+    assert abs(a.load_ratio - b.load_ratio) < 1e-11
+    assert abs(a.sigma_over_delta + b.sigma_over_delta) < 1e-11
+    assert abs(a.lam) > 0.05 and abs(a.load_ratio - 1.0) > 0.1
+
+
+@pytest.mark.parametrize("kw, temperatures", [
+    (dict(pe=5.0, fhpe=0.2, K2_over_K1=10.0), (0.5, 10.0)),
+    (dict(pe=3.0, fhpe=0.3, K2_over_K1=0.5, k2_over_k1=2.0, speed_ratio=-0.7), (-0.4, None)),
+])
+def test_the_surfaces_meet_at_the_far_temperatures(kw, temperatures):
+    """The fields' evaluator (201 points, independent of the row's n-point mean) finds
+    each body's level where the closure put it: a moving half-plane's incoming
+    temperature over the cylinder's is T2 - T1, i.e. Theta K1/K2 in the cylinder's
+    units; a stationary one's temperature at the sink (D38) is T2, i.e. the level
+    that perfect contact gives its logarithm is Theta + ln(L/Delta) (1 - lam)/2 in
+    its units.  To 1e-7 at n = 64."""
+    sol = solve(**kw, theta=temperatures[0], sink_distance=temperatures[1], n=64)
+    rho = sol.parameters.K2_over_K1
+    f = contact_fields(sol)                       # units f v P/(pi K1)
+    if temperatures[1] is None:
+        assert f.half_plane_incoming_temperature == pytest.approx(temperatures[0] / rho,
+                                                                  abs=1e-7)
+    else:
+        # The level of T2 (as shifted by the evaluator) over its logarithm's, in units
+        # of f v P/(pi K2): the evaluator's mean of T1 - T2, times rho.
+        level = rho * np.nanmean(f.temperature_half_plane - _log_rise(sol))
+        expected = temperatures[0] + np.log(temperatures[1]) * 0.5 * (1.0 - sol.lam)
+        assert level == pytest.approx(expected, abs=1e-7)
+
+
+def _log_rise(sol):
+    """The stationary half-plane's -integral q2 ln|s - r| dr at the evaluator's points,
+    in units of f v P/(pi K1) (its own unit over rho), NaN at the edges."""
+    from thermocontact.analysis.fields import SAMPLES, surface_temperatures
+    s = np.cos(np.linspace(np.pi, 0.0, SAMPLES))[1:-1]
+    _, t2 = surface_temperatures(sol, s)
+    return np.concatenate([[np.nan], t2, [np.nan]])
+
+
+# The sink law (D38) and the layer (D40), against independent quadrature.
+
+def _half_disc(q, a, L, x):
+    """The exact surface temperature (times pi K) at x of a half-disc of radius L held
+    at 0 on its arc, insulated on its flat face but for the flux q on |xi| < a:
+    the full disc's Green's function with the source doubled (the flat face a
+    symmetry line), integral q(xi) ln(|L^2 - x xi|/(L |x - xi|)) dxi."""
+    f = lambda xi: q(xi) * np.log(abs(L * L - x * xi) / (L * abs(x - xi)))
+    return quad(f, -a, x, limit=200, epsabs=1e-13)[0] + quad(f, x, a, limit=200, epsabs=1e-13)[0]
+
+
+FLUXES = {
+    # Q = 1 on |xi| < 1, and the law's constant C(x) = pi K T(x)/Q - ln(L/a) (D38a).
+    "uniform": (lambda xi: 0.5 * np.ones_like(xi),
+                lambda x: 1.0 - 0.5 * ((1 + x) * np.log1p(x) + (1 - x) * np.log1p(-x))),
+    "semi-elliptic": (lambda xi: (2 / np.pi) * np.sqrt(np.maximum(1 - xi * xi, 0.0)),
+                      lambda x: 0.5 + np.log(2.0) - x * x),
+}
+
+
+@pytest.mark.parametrize("name", FLUXES)
+def test_the_sink_laws_constant_against_quadrature(name):
+    """A flux of total Q on |x| < a into a stationary half-plane whose temperature at
+    distance L is T2: T - T2 = (Q/(pi K)) (ln(L/a) + C(x/a)) by the law (D38), C(0) =
+    1 (uniform) and 1/2 + ln 2 (semi-elliptic).  The exact half-disc of radius L
+    (its arc at T2, checked) is the law at the centre to rounding and elsewhere to
+    (x^2/(2 L^4)) integral q xi^2 for these symmetric fluxes (observed order 4.0 at
+    x = a/2; an asymmetric flux's first moment gives O((a/L)^2))."""
+    q, constant = FLUXES[name]
+    errors = []
+    for L in (4.0, 8.0, 16.0):
+        assert _half_disc(q, 1.0, L, 0.0) == pytest.approx(np.log(L) + constant(0.0),
+                                                           abs=1e-12)
+        exact = _half_disc(q, 1.0, L, 0.5)
+        errors.append(abs(exact - (np.log(L) + constant(0.5))))
+        second = quad(lambda xi: q(xi) * xi * xi, -1.0, 1.0)[0]
+        assert errors[-1] == pytest.approx(0.25 * second / (2 * L**4), rel=0.02)
+        # The arc at T2: the field at |z| = L, by the same quadrature.
+        z = L * np.exp(-0.7j)
+        arc = quad(lambda xi: q(xi) * np.log(abs(L * L - np.conj(z) * xi) / (L * abs(z - xi))),
+                   -1.0, 1.0)[0]
+        assert abs(arc) < 1e-12
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(orders - 4.0) < 0.05)
+    # The law's own form by quadrature: integral q ln(L/|x - xi|) at x = 0.3.
+    law = sum(quad(lambda xi: q(xi) * np.log(16.0 / abs(0.3 - xi)), lo, hi)[0]
+              for lo, hi in ((-1.0, 0.3), (0.3, 1.0)))
+    assert law == pytest.approx(np.log(16.0) + constant(0.3), abs=1e-10)
+
+
+def test_the_layer_is_the_sink_law_with_l_4h_over_pi():
+    """A layer of thickness h on an isothermal base: the line source's surface
+    temperature, the inverse transform of Q tanh(|k| h)/(K |k|), is (Q/(pi K))
+    ln coth(pi |x|/(4h)) (quadrature of the transform to 1e-9), and a flux on |x| < a
+    has the sink law's temperature with L = 4h/pi to O((a/h)^2) (observed order 2)."""
+    h = 3.0
+    for x in (0.3, 1.0, 2.5):
+        # integral_0^inf tanh(k h) cos(k x)/k dk = head (k < 1) + the exponentially
+        # small tail of (tanh(k h) - 1) + integral_1^inf cos(k x)/k dk = -Ci(x).
+        head = quad(lambda k: np.tanh(k * h) / k * np.cos(k * x) if k > 0 else h, 0.0, 1.0,
+                    epsabs=1e-13)[0]
+        tail = quad(lambda k: (np.tanh(k * h) - 1.0) / k, 1.0, 40.0, weight="cos", wvar=x,
+                    epsabs=1e-13)[0]
+        transform = head + tail - sici(x)[1]
+        assert transform == pytest.approx(np.log(1.0 / np.tanh(np.pi * x / (4 * h))), abs=1e-9)
+    errors = []
+    q = FLUXES["semi-elliptic"][0]
+    for h in (4.0, 8.0, 16.0):
+        layer = quad(lambda xi: q(xi) * np.log(1 / np.tanh(np.pi * abs(xi) / (4 * h))),
+                     -1.0, 0.0)[0] * 2
+        law = np.log(layer_sink_distance(h)) + FLUXES["semi-elliptic"][1](0.0)
+        errors.append(abs(layer - law))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(np.abs(orders - 2.0) < 0.05)
+    assert layer_sink_distance(np.pi / 4) == pytest.approx(1.0, abs=1e-15)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(theta=0.0, sink_distance=1.0), "sink_distance must be > 1"),
+    (dict(theta=0.0), "stationary half-plane needs sink_distance"),
+    (dict(theta=0.0, sink_distance=5.0, speed_ratio=-0.5), "stationary half-plane only"),
+    (dict(theta=0.0, sink_distance=5.0, lam=0.2), "exactly one of"),
+    (dict(lam=0.2, sink_distance=5.0), "with theta only"),
+    (dict(theta=float("nan"), sink_distance=5.0), "theta must be"),
+])
+def test_bad_closures_are_refused_in_one_line(kw, message):
+    with pytest.raises(InputError, match=message) as err:
+        solve(5, 0.2, 10, n=16, **kw)
+    assert "\n" not in str(err.value)
+
+
+def test_temperatures_record():
+    t = Temperatures(0.5, 20.0)
+    assert t.in_unit(2.0) == Temperatures(0.5, 10.0)
+    assert t.log_sink == pytest.approx(np.log(20.0), abs=1e-15)
+    assert Temperatures(0.5).log_sink == 0.0
