@@ -196,7 +196,7 @@ def test_the_layer_is_the_sink_law_with_l_4h_over_pi():
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(theta=0.0, sink_distance=1.0), "sink_distance must be > 1"),
+    (dict(theta=0.0, sink_distance=1.0), r"sink_distance must be in \(1, 1e\+12\]"),
     (dict(theta=0.0), "stationary half-plane needs sink_distance"),
     (dict(theta=0.0, sink_distance=5.0, speed_ratio=-0.5), "stationary half-plane only"),
     (dict(theta=0.0, sink_distance=5.0, lam=0.2), "exactly one of"),
@@ -214,3 +214,20 @@ def test_temperatures_record():
     assert t.in_unit(2.0) == Temperatures(0.5, 10.0)
     assert t.log_sink == pytest.approx(np.log(20.0), abs=1e-15)
     assert Temperatures(0.5).log_sink == 0.0
+
+
+def test_solve_command_takes_the_temperatures(capsys):
+    """``solve --theta --sink-distance`` is the Python call; a closure given twice is
+    refused in one line naming the flags."""
+    import json
+
+    from thermocontact.cli import main
+
+    args = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "-n", "16"]
+    assert main(args + ["--theta", "1", "--sink-distance", "30", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    sol = solve(5, 0.2, 10, theta=1.0, sink_distance=30.0, n=16)
+    assert rec["lam"] == sol.lam and rec["sink_distance"] == 30.0
+    assert main(args + ["--theta", "1", "--sink-distance", "30", "--lam", "0.2"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == "error: give exactly one of --lam, --sigma and --theta"

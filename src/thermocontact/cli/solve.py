@@ -33,7 +33,13 @@ def solve_summary(sol) -> str:
            f"{par.edge_exponent:.4g})" if par.beta_f else ""),
         f"  {sol.status}: {sol.estimate_message} (n {'chosen' if sol.auto_n else 'given'})",
         f"  P_H/P         = {sol.load_ratio:.10g}",
-        f"  lambda        = {sol.lam:.10g}",
+        f"  lambda        = {sol.lam:.10g}"
+        + ("" if sol.temperatures is None else
+           f"  (from theta = {sol.temperatures.theta:g}"
+           + ("" if sol.temperatures.sink_distance is None else
+              f", L/Delta = {sol.temperatures.sink_distance:g}")
+           + ("; error not estimated)" if sol.lam_error is None else
+              f"; error {sol.lam_error:.1e})")),
         f"  sigma/Delta   = {sol.sigma_over_delta:.10g}",
     ]
     if sol.load_ratio_change is not None:
@@ -70,17 +76,29 @@ def solve_summary(sol) -> str:
               help="BI0:m, an interface conductance h = h0 (p/p_ref)^m with BI0 the Biot "
                    "number h0 Delta/K2 at the contact's mean pressure p_ref = P/(2 Delta), "
                    "m >= 0 [default: perfect thermal contact].")
+@click.option("--theta", type=float, default=None,
+              help="The bodies' far temperatures as the closure instead of --lam or --sigma: "
+                   "theta = pi K2 (T2 - T1)/(f |v1 - v2| P), T1 the cylinder's incoming "
+                   "temperature, T2 the half-plane's (moving) or its sink's (stationary, "
+                   "with --sink-distance); lambda is then an output with its error.")
+@click.option("--sink-distance", "sink_distance", type=float, default=None,
+              help="With --theta and a stationary half-plane: L/Delta > 1, the distance "
+                   "from the contact at which the half-plane is at T2 (a layer of thickness "
+                   "h on a sink at T2: L = 4h/pi).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
-              sigma, n, tol, method, check, delta_over_r, conductance, as_json):
+              sigma, n, tol, method, check, delta_over_r, conductance, theta, sink_distance,
+              as_json):
     """Solve one case in dimensionless form."""
     from ..api import solve
 
-    if (lam is None) == (sigma is None):
-        raise InputError("give exactly one of lam and sigma", parameters=("lam", "sigma"))
+    if sum(c is not None for c in (lam, sigma, theta)) != 1:
+        raise InputError("give exactly one of lam, sigma and theta",
+                         parameters=("lam", "sigma", "theta"))
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
                 speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,
+                theta=theta, sink_distance=sink_distance,
                 method=method, tol=tol, check_convergence=check,
                 progress=RefinementProgress(), delta_over_r=delta_over_r,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import InputError, check_finite, check_range
+from .validation import check_finite, check_range
 
 __all__ = ["SINK_RANGE", "Temperatures", "layer_sink_distance", "temperature_group"]
 
@@ -46,13 +46,10 @@ class Temperatures:
     def __post_init__(self):
         object.__setattr__(self, "theta", check_finite("theta", self.theta))
         if self.sink_distance is not None:
-            lo, hi = SINK_RANGE
-            x = check_range("sink_distance", self.sink_distance, lo, hi)
-            if x == lo:
-                raise InputError(f"sink_distance must be > {lo:g} (beyond the contact's "
-                                 f"half-width) and <= {hi:.0e}, got {x!r}",
-                                 parameters=("sink_distance",))
-            object.__setattr__(self, "sink_distance", x)
+            # Beyond the contact's half-width: the law holds for a flux inside the
+            # semicircle of radius L (D38).
+            object.__setattr__(self, "sink_distance", check_range(
+                "sink_distance", self.sink_distance, *SINK_RANGE, open_low=True))
 
     @property
     def log_sink(self) -> float:

@@ -562,7 +562,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, theta=theta)
     if sink_distance is not None and theta is None:
         raise InputError("sink_distance is given with theta only (the temperature closure)",
-                         parameters=("sink_distance",))
+                         parameters=("sink_distance", "theta"))
     temperatures = None if theta is None else Temperatures(theta, sink_distance)
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
