@@ -54,14 +54,34 @@ def _quantity(name, value, unit):
 
 
 def _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam, speed2=0.0,
-                      dundurs=True, materials=None):
+                      dundurs=True, materials=None, bulk_temperatures=None,
+                      sink_distance=None, layer_thickness=None):
     from .studies.physical_contact import PhysicalProblem
 
     cyl, half = _materials(cylinder, half_plane, materials)
     return PhysicalProblem(cyl, half, _quantity("radius", radius, "m"),
                            _quantity("load", load, "N/m"), _quantity("speed", speed, "m/s"),
                            friction, lam, _quantity("speed2", speed2, "m/s"),
-                           dundurs=bool(dundurs))
+                           dundurs=bool(dundurs),
+                           bulk_temperatures=_temperatures(bulk_temperatures),
+                           sink_distance=_quantity("sink_distance", sink_distance, "m"),
+                           layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
+
+
+def _temperatures(value):
+    """Two temperatures in K from ``"150C,40C"`` or a pair of numbers (K) or strings."""
+    from .problem.units import parse_temperature
+
+    if value is None:
+        return None
+    parts = value.split(",") if isinstance(value, str) else value
+    try:
+        t1, t2 = parts
+    except (TypeError, ValueError):
+        raise InputError(f"bulk_temperatures must be two temperatures, the cylinder's and "
+                         f"the half-plane's ('150C,40C'), got {value!r}",
+                         parameters=("bulk_temperatures",)) from None
+    return tuple(parse_temperature(t, "bulk_temperatures") for t in (t1, t2))
 
 
 def _physical_conductance(conductance):
@@ -83,9 +103,10 @@ def _physical_conductance(conductance):
     return PhysicalConductance(h0, m, p_ref)
 
 
-def contact(cylinder, half_plane, *, radius, load, speed, friction, lam, speed2=0.0,
+def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, speed2=0.0,
             dundurs=True, materials=None, tol=1e-6, zones=False, conductance=None,
-            progress=None):
+            progress=None, bulk_temperatures=None, sink_distance=None,
+            layer_thickness=None):
     """The contact of a cylinder on a half-plane from materials, load and speed.
 
     ``thermocontact contact`` from Python: every half-width that carries the load
@@ -109,10 +130,22 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam, speed2=
     friction : float
         Coefficient of friction f >= 0.
     lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2).
+        Heat partition (Q1 - Q2)/(Q1 + Q2); or give ``bulk_temperatures``.
     speed2 : float or str
         The half-plane's surface speed v2, m/s, positive in the cylinder's direction;
         0 (default) is a stationary half-plane.  The heat is made at ``|v1 - v2|``.
+    bulk_temperatures : str or pair, optional
+        Instead of ``lam``: the cylinder's incoming temperature and the half-plane's
+        (its incoming one when it moves, its sink's when stationary), K or with units
+        (``"150C,40C"``, ``(423.15, 313.15)``).  ``lam`` is then an output with its
+        error, and each body's absolute peak temperature is judged against its
+        material's limit (derivation section 17).  Single patch only.
+    sink_distance : float or str, optional
+        With ``bulk_temperatures`` and a stationary half-plane: the distance from the
+        contact at which the half-plane is at its temperature, m (``"30mm"``), larger
+        than the Hertz half-width.
+    layer_thickness : float or str, optional
+        Or the thickness h of a layer on a sink at that temperature (``L = 4h/pi``).
     dundurs : bool
         Keep the Dundurs term ``-(beta f/2) p`` (default; derivation section 5c).
     materials : str or path, optional
@@ -142,8 +175,12 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam, speed2=
     0.0776
     """
     problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam,
-                                speed2, dundurs, materials)
+                                speed2, dundurs, materials, bulk_temperatures, sink_distance,
+                                layer_thickness)
     tol = check_positive("tol", tol)
+    if zones and bulk_temperatures is not None:
+        raise InputError("bulk_temperatures close the single patch only (derivation section "
+                         "17); give lam with zones", parameters=("bulk_temperatures", "zones"))
     if conductance is not None and not zones:
         raise InputError("conductance needs zones (the single patch assumes perfect "
                          "thermal contact)", parameters=("conductance", "zones"))

@@ -163,7 +163,7 @@ def applicability(sol, half_width_over_radius, *, compliance_fractions=None,
 
 
 def assess(half_width_over_radius, max_slope, max_strain, *, temperature_rises=None,
-           max_temperature=None) -> Applicability:
+           max_temperature=None, datum=AMBIENT_TEMPERATURE) -> Applicability:
     """Judge the theory's assumptions from their measures: the one judgement of a
     single patch, a contact set and an operating map's point, in one wording.
 
@@ -178,6 +178,9 @@ def assess(half_width_over_radius, max_slope, max_strain, *, temperature_rises=N
         (physical units only); added to :data:`AMBIENT_TEMPERATURE`.
     max_temperature : pair of float or None, optional
         The cylinder's and the half-plane's limits, K.
+    datum : float
+        The temperature the rises are over, K: :data:`AMBIENT_TEMPERATURE`, or the
+        cylinder's bulk temperature where it is given (derivation section 17).
 
     Returns
     -------
@@ -200,10 +203,10 @@ def assess(half_width_over_radius, max_slope, max_strain, *, temperature_rises=N
     t_range = limits = None
     if temperature_rises is not None:
         low, high = (float(t) for t in temperature_rises)
-        t_range = (AMBIENT_TEMPERATURE + low, AMBIENT_TEMPERATURE + high)
+        t_range = (datum + low, datum + high)
         if t_range[0] <= 0.0:
             reasons.append(f"surface temperature down to {t_range[0]:.4g} K (a fall of "
-                           f"{-low:.4g} K below {AMBIENT_TEMPERATURE:g} K): below "
+                           f"{-low:.4g} K below {datum:g} K): below "
                            f"absolute zero, the linear heat conduction model does not hold")
         if max_temperature is not None:
             limits = tuple(max_temperature)
@@ -232,4 +235,6 @@ def physical_applicability(problem, fields) -> Applicability:
     return assess(fields.extent * fields.length / problem.radius, slope, strain,
                   temperature_rises=fields.temperature_range,
                   max_temperature=(problem.cylinder.max_temperature,
-                                   problem.half_plane.max_temperature))
+                                   problem.half_plane.max_temperature),
+                  datum=(AMBIENT_TEMPERATURE if getattr(problem, "bulk_temperatures", None)
+                         is None else problem.bulk_temperatures[0]))

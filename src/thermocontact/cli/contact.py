@@ -23,7 +23,12 @@ def contact_summary(res) -> str:
         + (f"sliding at {prob.speed:g} m/s on {prob.half_plane.name}" if not prob.speed2 else
            f"at {prob.speed:g} m/s on {prob.half_plane.name} at {prob.speed2:g} m/s "
            f"(sliding speed {prob.sliding_speed:g} m/s)"),
-        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, lambda {prob.lam:g}, "
+        f"  load {prob.load:.4g} N/m, friction {prob.friction:g}, "
+        + (f"lambda {prob.lam:g}, " if prob.lam is not None else
+           f"bulk temperatures {prob.bulk_temperatures[0]:.5g} K, "
+           f"{prob.bulk_temperatures[1]:.5g} K"
+           + (f" (sink at {prob.sink_length:.4g} m)" if prob.sink_length is not None else "")
+           + ", ")
         + (f"beta f = {prob.beta_f:.4g} (Dundurs term)" if prob.dundurs
            else "Dundurs term dropped"),
         f"  Hertz: half-width {prob.hertz_half_width:.4g} m, peak pressure "
@@ -42,7 +47,17 @@ def contact_summary(res) -> str:
             f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
             f"{'met' if b.converged else 'NOT met'})",
         ]
-        if b.half_plane_incoming_temperature is not None:
+        if b.bulk_temperatures is not None:
+            under = ["no limit" if u is None else ("under its limit" if u else "OVER its limit")
+                     for u in b.under_limits]
+            lines += [
+                f"    lambda {b.lam:.6g} (error {b.lam_error:.1e}) from the bulk temperatures",
+                f"    peak surface temperature {b.peak_temperatures[0]:.5g} K: cylinder "
+                f"{under[0]}, half-plane {under[1]}; flash temperatures "
+                f"{b.flash_temperatures[0]:.4g} K and {b.flash_temperatures[1]:.4g} K over "
+                f"each body's own",
+            ]
+        elif b.half_plane_incoming_temperature is not None:
             dt = b.half_plane_incoming_temperature
             lines.append(f"    the heat partition implies the half-plane enters {abs(dt):.4g} K "
                          f"{'above' if dt >= 0 else 'below'} the cylinder's temperature; its "
@@ -111,7 +126,20 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 
 @click.command("contact")
 @physical_options(required=True)
-@click.option("--lam", type=float, required=True, help="Heat partition (Q1 - Q2)/(Q1 + Q2).")
+@click.option("--lam", type=float, default=None,
+              help="Heat partition (Q1 - Q2)/(Q1 + Q2); or give --bulk-temperatures.")
+@click.option("--bulk-temperatures", "bulk_temperatures", default=None,
+              help="T1,T2 instead of --lam (K, or 150C,40C): the cylinder's incoming "
+                   "temperature and the half-plane's (its incoming one with --speed2, else "
+                   "its sink's, with --sink-distance or --layer-thickness); lambda is then "
+                   "an output, and each body's absolute peak temperature is judged against "
+                   "its material's limit (derivation section 17).")
+@click.option("--sink-distance", "sink_distance", default=None,
+              help="With --bulk-temperatures, a stationary half-plane: the distance from the "
+                   "contact at which it is at T2 (m, or 30mm), beyond the contact.")
+@click.option("--layer-thickness", "layer_thickness", default=None,
+              help="Or: the half-plane is a layer of this thickness on a sink at T2 (m, or "
+                   "20mm; sink distance 4h/pi).")
 @click.option("--speed2", default="0", show_default=True,
               help="Speed of the half-plane's surface through the contact (m/s, or with "
                    "units), positive in the cylinder's direction; --speed is then the "
@@ -128,7 +156,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
                       "section 14), instead of the single patch's branches.",
                       "omitted: the mean Hertz pressure")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
-                lam, speed2, tol, as_json, csv_file, plot_file, zones, conductance):
+                lam, bulk_temperatures, sink_distance, layer_thickness, speed2, tol, as_json,
+                csv_file, plot_file, zones, conductance):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from ..api import contact
     from ..io.files import check_output_file
@@ -146,6 +175,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   speed2=speed2, dundurs=dundurs is not False, materials=materials_file,
                   tol=tol)
+    if bulk_temperatures is not None or sink_distance is not None or layer_thickness is not None:
+        inputs.update(bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
+                      layer_thickness=layer_thickness)
     if zones or conductance is not None:
         found = contact(cylinder, half_plane, zones=zones, conductance=parse_conductance(
             conductance, "in W/(m^2 K)", physical=True), **inputs)

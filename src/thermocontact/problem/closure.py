@@ -13,9 +13,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import check_finite, check_range
+from .validation import check_finite, check_positive, check_range
 
-__all__ = ["SINK_RANGE", "Temperatures", "layer_sink_distance", "temperature_group"]
+__all__ = ["SINK_RANGE", "Temperatures", "check_sink_distance", "layer_sink_distance",
+           "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
@@ -34,7 +35,7 @@ class Temperatures:
         temperature less the cylinder's incoming one, in units of the temperature
         that the frictional heat per unit length makes in the half-plane.
     sink_distance : float or None
-        ``L/l > 1``: the stationary half-plane's sink distance in the system's length
+        ``L/l > 0`` (beyond the contact, ``> 1``, where a user gives it): the stationary half-plane's sink distance in the system's length
         unit (the half-width ``Delta`` for the single patch), at which its
         temperature is ``T2`` (D38); None for a half-plane moving through the
         contact, whose incoming temperature is ``T2``.
@@ -46,10 +47,10 @@ class Temperatures:
     def __post_init__(self):
         object.__setattr__(self, "theta", check_finite("theta", self.theta))
         if self.sink_distance is not None:
-            # Beyond the contact's half-width: the law holds for a flux inside the
-            # semicircle of radius L (D38).
-            object.__setattr__(self, "sink_distance", check_range(
-                "sink_distance", self.sink_distance, *SINK_RANGE, open_low=True))
+            # Any length for the formula; a user's sink beyond the contact is checked
+            # where it is given (check_sink_distance).
+            object.__setattr__(self, "sink_distance",
+                               check_positive("sink_distance", self.sink_distance))
 
     @property
     def log_sink(self) -> float:
@@ -61,6 +62,13 @@ class Temperatures:
         if self.sink_distance is None:
             return self
         return Temperatures(self.theta, self.sink_distance / scale)
+
+
+def check_sink_distance(value, name="sink_distance") -> float:
+    """A sink distance ``L/Delta`` given for a contact of half-width ``Delta``: in
+    :data:`SINK_RANGE`, beyond the contact (the law holds for a flux inside the
+    semicircle of radius ``L``, D38)."""
+    return check_range(name, value, *SINK_RANGE, open_low=True)
 
 
 def temperature_group(T1, T2, K2, friction, sliding_speed, load) -> float:

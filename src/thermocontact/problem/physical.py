@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .closure import Temperatures, layer_sink_distance, temperature_group
 from .materials import Material, dundurs_beta
 from .parameters import Parameters
 from .validation import InputError, check_finite, check_nonnegative, check_positive
@@ -82,8 +83,8 @@ class PhysicalProblem:
         speed when the half-plane is stationary).
     friction : float
         Coulomb coefficient f >= 0.
-    lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2).
+    lam : float or None
+        Heat partition (Q1 - Q2)/(Q1 + Q2); or None with ``bulk_temperatures``.
     speed2 : float, optional
         Speed of the half-plane's surface through the contact v2, m/s, positive in
         the cylinder's direction (derivation section 5b); 0, the default, is a
@@ -91,6 +92,17 @@ class PhysicalProblem:
     dundurs : bool, optional
         Keep the Dundurs term ``-(beta f/2) p`` with ``beta`` of the two materials
         (default; derivation section 5c), or drop it as the paper does.
+    bulk_temperatures : pair of float, optional
+        Instead of ``lam`` (derivation section 17): the cylinder's incoming
+        temperature and the half-plane's (its incoming one when it moves, its sink's
+        when stationary), K; ``lam`` is then an output.
+    sink_distance : float, optional
+        With ``bulk_temperatures`` and a stationary half-plane: the distance L from
+        the contact at which the half-plane is at its temperature, m (D38), larger
+        than the Hertz half-width.
+    layer_thickness : float, optional
+        Or the thickness h of a half-plane layer on a sink at its temperature, m:
+        ``L = 4 h/pi`` (D40).
     """
 
     cylinder: Material
@@ -99,9 +111,12 @@ class PhysicalProblem:
     load: float
     speed: float
     friction: float
-    lam: float
+    lam: float | None
     speed2: float = 0.0
     dundurs: bool = True
+    bulk_temperatures: tuple | None = None
+    sink_distance: float | None = None
+    layer_thickness: float | None = None
 
     def __post_init__(self):
         for name in ("cylinder", "half_plane"):
@@ -112,8 +127,8 @@ class PhysicalProblem:
         for name in ("radius", "load", "speed"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
-        object.__setattr__(self, "lam", check_finite("lam", self.lam))
         object.__setattr__(self, "speed2", check_finite("speed2", self.speed2))
+        self._check_closure()
         # A derived group out of the solver's range is reported with the inputs it
         # comes from, not only as the dimensionless group.
         dh = self.hertz_half_width
@@ -132,6 +147,87 @@ class PhysicalProblem:
                 f"{self.cylinder.E:.3g} Pa, k = {self.cylinder.k:.3g} m^2/s; "
                 f"{self.half_plane.name}: E = {self.half_plane.E:.3g} Pa, "
                 f"k = {self.half_plane.k:.3g} m^2/s)") from None
+
+    def _check_closure(self):
+        """Exactly one closure: ``lam``, or the bulk temperatures with (stationary
+        half-plane) one sink, larger than the contact (section 17)."""
+        names = ("lam", "bulk_temperatures")
+        if (self.lam is None) == (self.bulk_temperatures is None):
+            raise InputError("give exactly one of lam and bulk_temperatures", parameters=names)
+        sinks = {k: getattr(self, k) for k in ("sink_distance", "layer_thickness")
+                 if getattr(self, k) is not None}
+        if self.lam is not None:
+            object.__setattr__(self, "lam", check_finite("lam", self.lam))
+            if sinks:
+                raise InputError(f"{' and '.join(sinks)} need bulk_temperatures (not lam)",
+                                 parameters=tuple(sinks) + names)
+            return
+        try:
+            t1, t2 = self.bulk_temperatures
+        except (TypeError, ValueError):
+            raise InputError(f"bulk_temperatures must be two temperatures (the cylinder's, "
+                             f"the half-plane's), got {self.bulk_temperatures!r}",
+                             parameters=("bulk_temperatures",)) from None
+        temps = tuple(check_finite("bulk_temperatures", t) for t in (t1, t2))
+        if min(temps) < 0.0:
+            raise InputError(f"bulk_temperatures must be >= 0 K, got {temps}",
+                             parameters=("bulk_temperatures",))
+        object.__setattr__(self, "bulk_temperatures", temps)
+        if self.friction == 0.0 or self.speed == self.speed2:
+            raise InputError("bulk_temperatures need frictional heat (friction > 0 and "
+                             "speed2 != speed): give lam", parameters=("bulk_temperatures",
+                                                                       "friction"))
+        if len(sinks) > 1:
+            raise InputError("give at most one of sink_distance and layer_thickness",
+                             parameters=tuple(sinks))
+        if self.speed2 != 0.0:
+            if sinks:
+                raise InputError(f"{next(iter(sinks))} applies to a stationary half-plane "
+                                 f"only (a moving one's temperature is its incoming one)",
+                                 parameters=tuple(sinks) + ("speed2",))
+            return
+        if not sinks:
+            raise InputError("a stationary half-plane needs sink_distance or "
+                             "layer_thickness with bulk_temperatures",
+                             parameters=("sink_distance", "layer_thickness"))
+        name, value = next(iter(sinks.items()))
+        object.__setattr__(self, name, check_positive(name, value))
+        dh = self.hertz_half_width
+        if self.sink_length <= dh:
+            raise InputError(f"{name} must put the sink beyond the contact: L = "
+                             f"{self.sink_length:.3g} m is not larger than the Hertz "
+                             f"half-width {dh:.3g} m", parameters=(name,))
+
+    @property
+    def sink_length(self) -> float | None:
+        """The stationary half-plane's sink distance L, m (``4 h/pi`` for a layer, D40);
+        None without one."""
+        if self.layer_thickness is not None:
+            return layer_sink_distance(self.layer_thickness)
+        return self.sink_distance
+
+    @property
+    def theta(self) -> float | None:
+        """``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)`` of the bulk temperatures (D39)."""
+        if self.bulk_temperatures is None:
+            return None
+        t1, t2 = self.bulk_temperatures
+        return temperature_group(t1, t2, self.half_plane.K, self.friction,
+                                 self.sliding_speed, self.load)
+
+    @property
+    def sink_pe(self) -> float | None:
+        """``v1 L/(2 k2)``: the sink distance as a Peclet number, so that
+        ``L/Delta = sink_pe/Pe`` at every trial half-width (section 17)."""
+        L = self.sink_length
+        return None if L is None else self.pe(L)
+
+    def temperatures(self, half_width) -> Temperatures | None:
+        """The temperature closure at half-width ``Delta`` (None with ``lam``)."""
+        if self.bulk_temperatures is None:
+            return None
+        L = self.sink_length
+        return Temperatures(self.theta, None if L is None else L / half_width)
 
     @property
     def compliance(self) -> float:
@@ -194,7 +290,9 @@ class PhysicalProblem:
         return dict(K2_over_K1=h.K / c.K, k2_over_k1=h.k / c.k,
                     delta1_over_delta2=c.distortivity / h.distortivity,
                     fh=self.friction * self.H * abs(1.0 - self.speed_ratio), lam=self.lam,
-                    speed_ratio=self.speed_ratio, beta_f=self.beta_f)
+                    speed_ratio=self.speed_ratio, beta_f=self.beta_f,
+                    **({} if self.lam is not None else
+                       dict(theta=self.theta, sink_pe=self.sink_pe)))
 
     @property
     def compliance_fractions(self) -> tuple:
@@ -236,7 +334,12 @@ class PhysicalProblem:
         """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
         p = self.parameters(half_width)
         out = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
-                   delta1_over_delta2=p.delta1_over_delta2, lam=self.lam)
+                   delta1_over_delta2=p.delta1_over_delta2)
+        if self.lam is not None:
+            out["lam"] = self.lam
+        else:
+            t = self.temperatures(half_width)
+            out.update(theta=t.theta, sink_distance=t.sink_distance)
         if p.speed_ratio:
             out["speed_ratio"] = p.speed_ratio
         if p.beta_f:

@@ -21,7 +21,7 @@ from functools import lru_cache
 
 from .validation import InputError, check_finite
 
-__all__ = ["parse_quantity"]
+__all__ = ["parse_quantity", "parse_temperature"]
 
 
 #: SI symbols: (scale to SI, exponents of m, kg, s, K).
@@ -183,3 +183,33 @@ def parse_quantity(value, unit: str, name: str) -> float:
             f"{name}: cannot read {str(value)!r} as a quantity in {shown}"
         ) from None
     return _finite(name, x, value)
+
+
+#: Temperature units: (scale, offset) to kelvin, T_K = scale * value + offset.
+_TEMPERATURE_UNITS = {"": (1.0, 0.0), "K": (1.0, 0.0), "C": (1.0, 273.15),
+                      "\u00b0C": (1.0, 273.15), "degC": (1.0, 273.15),
+                      "F": (5.0 / 9.0, 273.15 - 32.0 * 5.0 / 9.0),
+                      "\u00b0F": (5.0 / 9.0, 273.15 - 32.0 * 5.0 / 9.0),
+                      "degF": (5.0 / 9.0, 273.15 - 32.0 * 5.0 / 9.0)}
+
+
+def parse_temperature(value, name: str) -> float:
+    """An absolute temperature in kelvin from a number (K) or a string with ``K``,
+    ``C`` (``degC``, ``°C``) or ``F``: ``"150C"`` is 423.15 K.  Temperatures below
+    0 K are refused (one line naming ``name``)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        kelvin = float(value)
+    else:
+        text = str(value).strip()
+        match = _NUMBER.match(text)
+        unit = text[match.end():].strip() if match is not None else None
+        if match is None or unit not in _TEMPERATURE_UNITS:
+            raise InputError(f"{name}: cannot read {value!r} as a temperature (K, C or F: "
+                             f"'150C', '300K')", parameters=(name,))
+        scale, offset = _TEMPERATURE_UNITS[unit]
+        kelvin = scale * float(match.group(0)) + offset
+    kelvin = _finite(name, kelvin, value)
+    if kelvin < 0.0:
+        raise InputError(f"{name} must be >= 0 K, got {value!r} ({kelvin:.6g} K)",
+                         parameters=(name,))
+    return kelvin

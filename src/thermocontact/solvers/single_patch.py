@@ -34,7 +34,7 @@ from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..discretisation.system import (Blocks, Conductance, ContactSetSystem, check_temperatures,
                                      contact_set_system)
 from ..numerics.cache import BoundedCache
-from ..problem.closure import Temperatures
+from ..problem.closure import Temperatures, check_sink_distance
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
                                   check_positive, check_range)
@@ -563,7 +563,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     if sink_distance is not None and theta is None:
         raise InputError("sink_distance is given with theta only (the temperature closure)",
                          parameters=("sink_distance", "theta"))
-    temperatures = None if theta is None else Temperatures(theta, sink_distance)
+    temperatures = None if theta is None else Temperatures(
+        theta, None if sink_distance is None else check_sink_distance(sink_distance))
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,

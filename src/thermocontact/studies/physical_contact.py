@@ -71,6 +71,15 @@ class Branch:
     the bodies' boundary conditions outside this 2-D model; a moving half-plane's
     incoming temperature, over the cylinder's, is the one the heat partition
     implies (``half_plane_incoming_temperature``).
+
+    With the bulk temperatures given (derivation section 17), ``lam`` is the
+    partition they imply, ``lam_error`` its estimated error (at most the branch's
+    relative estimate times ``max(|lam|, 0.01)``), and the absolute temperatures are
+    reported: ``peak_temperatures`` (each body's greatest surface temperature, the
+    cylinder's bulk temperature plus the flash temperature: the surfaces are at one
+    temperature in the contact, where both peak), ``flash_temperatures`` (each body's
+    rise over its own bulk or sink temperature) and ``under_limits`` (each peak below
+    its material's ``max_temperature``; None where the material has none).
     """
 
     half_width: float
@@ -97,6 +106,36 @@ class Branch:
     temperature_half_plane: np.ndarray = field(repr=False)
     solution: ContactSolution = field(repr=False)
     applicability: Applicability | None = field(default=None, repr=False)
+    lam_error: float | None = None
+    bulk_temperatures: tuple | None = None
+    temperature_limits: tuple | None = None
+
+    @property
+    def peak_temperatures(self) -> tuple | None:
+        """Each body's greatest absolute surface temperature, K (bulk temperatures
+        given), else None."""
+        if self.bulk_temperatures is None:
+            return None
+        peak = self.bulk_temperatures[0] + self.flash_temperature
+        return (peak, peak)
+
+    @property
+    def flash_temperatures(self) -> tuple | None:
+        """Each body's greatest surface temperature over its own bulk (or sink)
+        temperature, K (bulk temperatures given), else None."""
+        if self.bulk_temperatures is None:
+            return None
+        t1, t2 = self.bulk_temperatures
+        return (self.flash_temperature, t1 + self.flash_temperature - t2)
+
+    @property
+    def under_limits(self) -> tuple | None:
+        """Whether each body's peak stays below its material's limit (None for a
+        material without one), bulk temperatures given; else None."""
+        if self.bulk_temperatures is None:
+            return None
+        return tuple(None if limit is None else bool(peak < limit)
+                     for peak, limit in zip(self.peak_temperatures, self.temperature_limits))
 
     @property
     def flash_temperature_half_plane(self) -> float | None:
@@ -130,6 +169,11 @@ class Branch:
             "reason": v.reason, "strictly_valid": v.strictly_valid,
             "applicable": self.applicable,
             "applicability_reasons": list(self.applicability.reasons),
+            **({} if self.bulk_temperatures is None else {
+                "lam_error": self.lam_error,
+                "peak_temperatures": list(self.peak_temperatures),
+                "flash_temperatures": list(self.flash_temperatures),
+                "under_limits": list(self.under_limits)}),
         }
 
     def __eq__(self, other):
@@ -188,7 +232,8 @@ class PhysicalContact:
         rec.update({
             "hertz_half_width": prob.hertz_half_width,
             "hertz_peak_pressure": prob.hertz_peak_pressure,
-            "lam": prob.lam,
+            "lam": prob.lam if prob.lam is not None else (
+                prim.lam if prim is not None else None),
             "valid": bool(prim is not None and prim.valid),
             "applicable": bool(prim is not None and prim.applicable),
             "applicability_reasons": (list(prim.applicability.reasons) if prim is not None
@@ -205,12 +250,24 @@ class PhysicalContact:
                 "radius": prob.radius, "load": prob.load, "speed": prob.speed,
                 "speed2": prob.speed2, "friction": prob.friction, "lam": prob.lam,
                 "dundurs": prob.dundurs,
+                **({} if prob.bulk_temperatures is None else {
+                    "bulk_temperatures": list(prob.bulk_temperatures),
+                    "sink_distance": prob.sink_distance,
+                    "layer_thickness": prob.layer_thickness}),
             },
             "beta_f": prob.beta_f,
             "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's "
                      "incoming surface temperature), W/m",
             "version": __version__,
         })
+        if prob.bulk_temperatures is not None:
+            rec.update({key: (getattr(prim, key) if prim is not None else None) for key in (
+                "lam_error", "peak_temperatures", "flash_temperatures", "under_limits")})
+            rec["theta"] = prob.theta
+            rec["units"] = rec["units"].replace(
+                "temperature rises above the cylinder's incoming surface temperature",
+                "temperature rises above the cylinder's incoming surface temperature; "
+                "peak_temperatures absolute")
         if rec["largest_valid_load"] is not None and not np.isfinite(rec["largest_valid_load"]):
             rec["largest_valid_load"] = "unbounded"
         return rec
@@ -252,6 +309,11 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
         temperature_half_plane=f.temperature_half_plane,
         solution=sol,
         applicability=physical_applicability(prob, f),
+        **({} if prob.bulk_temperatures is None else dict(
+            lam_error=float(est * max(abs(lam), 0.01)),
+            bulk_temperatures=prob.bulk_temperatures,
+            temperature_limits=(prob.cylinder.max_temperature,
+                                prob.half_plane.max_temperature))),
     )
 
 

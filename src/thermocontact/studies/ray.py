@@ -25,7 +25,8 @@ from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult
 from ..numerics.continuation import REJECT, locate, march, secant, sign_changes
 from ..problem.parameters import SolveError
-from ..solvers.refinement import refine
+from ..problem.closure import Temperatures
+from ..solvers.refinement import QUANTITIES, QUANTITIES_WITH_LAM, refine
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
 __all__ = ["Ray", "RayScan", "follow", "interpolated_roots", "lagrange", "local", "root",
@@ -67,6 +68,10 @@ class Ray:
         ``f H |1 - R|``.
     beta_f : float
         ``B = beta f`` of the Dundurs term (section 5c).
+    theta, sink_pe : float or None
+        The far temperatures instead of ``lam`` (None; section 17): ``Theta`` (D39),
+        the same at every trial half-width of one load, and a stationary half-plane's
+        sink distance as ``v1 L/(2 k2)``, so that ``L/Delta = sink_pe/Pe``.
     """
 
     K2_over_K1: float
@@ -77,6 +82,8 @@ class Ray:
     method: str = DEFAULT_METHOD
     speed_ratio: float = 0.0
     beta_f: float = 0.0
+    theta: float | None = None
+    sink_pe: float | None = None
 
     def model(self, pe, tol=DEFAULT_TOL, n=None) -> Model:
         """The :class:`Model` at ``Pe``."""
@@ -88,7 +95,14 @@ class Ray:
     def solve_at(self, pe, n, check_validity=False, polish=True):
         """The solution at ``Pe`` with ``n`` unknowns per function."""
         return self.model(pe).solve_at(n, self.fh * pe, lam=self.lam,
-                                       check_validity=check_validity, polish=polish)
+                                       check_validity=check_validity, polish=polish,
+                                       temperatures=self.temperatures(pe))
+
+    def temperatures(self, pe):
+        """The far temperatures at ``Pe`` (None with ``lam`` given)."""
+        if self.theta is None:
+            return None
+        return Temperatures(self.theta, None if self.sink_pe is None else self.sink_pe / pe)
 
     def load_ratio(self, pe, n) -> float:
         """``L = P_H/P`` at ``Pe`` (0 where the closure is singular, ``L = 0`` exactly)."""
@@ -284,7 +298,8 @@ def root(ray: Ray, pe_h, scan: RayScan, i, tol, pole_tol=1e-6):
         return None
     start, n_max = METHODS[ray.method].auto_range
     levels, estimate = refine(lambda m: (ray.solve_at(math.exp(x), m),),
-                              [start, 2 * start, 4 * start], tol=tol, n_max=n_max)
+                              [start, 2 * start, 4 * start], tol=tol, n_max=n_max,
+                              quantities=QUANTITIES if ray.theta is None else QUANTITIES_WITH_LAM)
     fine = levels[-1][0]
     n = fine.n
     width = max(b - a, 1e-9)
