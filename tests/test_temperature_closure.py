@@ -231,3 +231,79 @@ def test_solve_command_takes_the_temperatures(capsys):
     assert main(args + ["--theta", "1", "--sink-distance", "30", "--lam", "0.2"]) == 2
     err = capsys.readouterr().err.strip()
     assert err == "error: give exactly one of --lam, --sigma and --theta"
+
+
+# The physical front end (derivation section 17; `contact --bulk-temperatures`).
+
+COPPER_ON_STEEL = dict(radius="10mm", load="50kN/m", speed="2m/s", friction=0.2)
+
+
+@pytest.mark.parametrize("closure", [dict(bulk_temperatures="20C,20C", speed2="-1m/s"),
+                                     dict(bulk_temperatures="80C,20C", sink_distance="1mm")])
+def test_contact_with_bulk_temperatures_fed_back_as_lam(closure):
+    """The contact found with the bulk temperatures is the one found with its lam
+    given, to 1e-10 (measured 2e-16); a moving half-plane's incoming temperature,
+    found independently by the fields' evaluator, is T2 - T1 = 0 to 1e-9 K (measured
+    2e-12 K, against a flash temperature of 37 K); the absolute peaks are the
+    cylinder's bulk temperature plus the flash temperature."""
+    import thermocontact as tc
+
+    res = tc.contact("copper", "steel", **COPPER_ON_STEEL, **closure)
+    b = res.primary
+    again = tc.contact("copper", "steel", **COPPER_ON_STEEL, lam=b.lam,
+                       speed2=closure.get("speed2", 0)).primary
+    assert again.half_width == pytest.approx(b.half_width, rel=1e-10)
+    assert again.offset == pytest.approx(b.offset, rel=1e-10)
+    assert 0 < b.lam_error < 1e-8
+    t1, t2 = res.problem.bulk_temperatures
+    assert b.peak_temperatures == (t1 + b.flash_temperature,) * 2
+    assert b.flash_temperatures[1] == pytest.approx(t1 + b.flash_temperature - t2, abs=1e-12)
+    assert b.under_limits == (True, True)
+    rec = res.to_dict()
+    assert rec["lam"] == b.lam and rec["peak_temperatures"] == list(b.peak_temperatures)
+    if "speed2" in closure:
+        assert abs(b.half_plane_incoming_temperature) < 1e-9
+        assert b.flash_temperature > 30
+
+
+def test_theta_by_hand_and_the_layer_is_its_sink():
+    """Theta = pi K2 (T2 - T1)/(f |v1 - v2| P) from the SI inputs, and a layer of
+    thickness h is the sink at 4h/pi."""
+    from thermocontact.problem.materials import get_material
+    from thermocontact.problem.physical import PhysicalProblem
+
+    cu, st = get_material("copper"), get_material("steel")
+    p = PhysicalProblem(cu, st, 0.01, 5e4, 2.0, 0.2, None, bulk_temperatures=(353.15, 293.15),
+                        layer_thickness=1e-3)
+    assert p.theta == pytest.approx(np.pi * st.K * (-60.0) / (0.2 * 2.0 * 5e4), rel=1e-14)
+    assert p.sink_length == pytest.approx(4e-3 / np.pi, rel=1e-15)
+    q = PhysicalProblem(cu, st, 0.01, 5e4, 2.0, 0.2, None, bulk_temperatures=(353.15, 293.15),
+                        sink_distance=4e-3 / np.pi)
+    assert p.temperatures(1e-4) == q.temperatures(1e-4)
+    assert q.to_dimensionless(1e-4)["sink_distance"] == pytest.approx(40 / np.pi, rel=1e-14)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--lam", "1", "--bulk-temperatures", "20C,20C", "--sink-distance", "30mm"],
+     "give exactly one of --lam and --bulk-temperatures"),
+    (["--bulk-temperatures", "-300C,20C", "--sink-distance", "30mm"],
+     "--bulk-temperatures must be >= 0 K"),
+    (["--bulk-temperatures", "20C,20C", "--sink-distance", "0.01mm"],
+     "--sink-distance must put the sink beyond the contact"),
+    (["--bulk-temperatures", "20C,20C"], "needs --sink-distance or --layer-thickness"),
+    (["--bulk-temperatures", "20C,20C", "--sink-distance", "3mm", "--layer-thickness", "2mm"],
+     "give at most one of --sink-distance and --layer-thickness"),
+    (["--bulk-temperatures", "20C,20C", "--speed2", "1", "--sink-distance", "3mm"],
+     "--sink-distance applies to a stationary half-plane only"),
+    (["--lam", "1", "--layer-thickness", "3mm"], "not --lam, with --layer-thickness"),
+    (["--bulk-temperatures", "20C,20C", "--sink-distance", "3mm", "--zones"],
+     "--bulk-temperatures close the single patch only"),
+])
+def test_contact_refuses_bad_closures_in_one_line(capsys, args, message):
+    from thermocontact.cli import main
+
+    base = ["contact", "--cylinder", "copper", "--half-plane", "steel", "--radius", "10mm",
+            "--load", "50kN/m", "--speed", "2m/s", "--friction", "0.2"]
+    assert main(base + args) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: ") and message in err and "\n" not in err

@@ -159,8 +159,8 @@ class PhysicalProblem:
         if self.lam is not None:
             object.__setattr__(self, "lam", check_finite("lam", self.lam))
             if sinks:
-                raise InputError(f"{' and '.join(sinks)} need bulk_temperatures (not lam)",
-                                 parameters=tuple(sinks) + names)
+                raise InputError(f"give bulk_temperatures, not lam, with "
+                                 f"{' and '.join(sinks)}", parameters=tuple(sinks) + names)
             return
         try:
             t1, t2 = self.bulk_temperatures
@@ -189,7 +189,8 @@ class PhysicalProblem:
         if not sinks:
             raise InputError("a stationary half-plane needs sink_distance or "
                              "layer_thickness with bulk_temperatures",
-                             parameters=("sink_distance", "layer_thickness"))
+                             parameters=("sink_distance", "layer_thickness",
+                                         "bulk_temperatures"))
         name, value = next(iter(sinks.items()))
         object.__setattr__(self, name, check_positive(name, value))
         dh = self.hertz_half_width

@@ -261,7 +261,7 @@ class PhysicalContact:
             "version": __version__,
         })
         if prob.bulk_temperatures is not None:
-            rec.update({key: (getattr(prim, key) if prim is not None else None) for key in (
+            rec.update({key: (prim.to_dict()[key] if prim is not None else None) for key in (
                 "lam_error", "peak_temperatures", "flash_temperatures", "under_limits")})
             rec["theta"] = prob.theta
             rec["units"] = rec["units"].replace(
