@@ -307,3 +307,22 @@ def test_contact_refuses_bad_closures_in_one_line(capsys, args, message):
     assert main(base + args) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: ") and message in err and "\n" not in err
+
+
+@pytest.mark.parametrize("name", ["electrical_contact.md", "brake_block.md",
+                                  "gear_rolling_sliding.md"])
+def test_examples_with_the_bulk_temperatures_print_what_they_show(name, capsys, tmp_path,
+                                                                  monkeypatch):
+    """Each worked example's command with --bulk-temperatures prints its block."""
+    import pathlib
+    import re
+    import shlex
+
+    from thermocontact.cli import main
+
+    text = (pathlib.Path(__file__).parent.parent / "docs" / "examples" / name).read_text()
+    blocks = re.findall(r"```console\n((?:(?!```).)*)```\n\n```\n((?:(?!```).)*)```", text, re.S)
+    (command, shown), = [(c, o) for c, o in blocks if "--bulk-temperatures" in c]
+    monkeypatch.chdir(tmp_path)  # a --plot file goes there
+    assert main(shlex.split(command.replace("\\\n", " ").strip()[2:])[1:]) == 0
+    assert capsys.readouterr().out == shown

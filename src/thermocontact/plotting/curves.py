@@ -222,7 +222,11 @@ def contact_figure(res, path):
         ax.grid(alpha=0.3)
     fig.suptitle(f"{prob.cylinder.name} on {prob.half_plane.name}: R = {prob.radius:g} m, "
                  f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
-                 f"lambda = {prob.lam:g}\nHertz: half-width {prob.hertz_half_width:.3g} m, "
+                 + (f"lambda = {prob.lam:g}" if prob.lam is not None else
+                    f"lambda = {res.primary.lam:.4g} (bulk temperatures "
+                    f"{prob.bulk_temperatures[0]:.5g} K, {prob.bulk_temperatures[1]:.5g} K)"
+                    if res.primary is not None else "bulk temperatures given")
+                 + f"\nHertz: half-width {prob.hertz_half_width:.3g} m, "
                  f"p0 = {prob.hertz_peak_pressure:.3g} Pa", fontsize=8)
     # Fixed margins: tight_layout would draw the figure once more to measure it.
     fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.9, hspace=0.08)
