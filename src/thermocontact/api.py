@@ -457,10 +457,11 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
-def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, load=None,
+def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None, load=None,
                   speed=None, speed_ratio=0.0, dundurs=True, materials=None, tol=1e-6,
                   zones=False, conductance=None, workers=1, store=None, progress=None,
-                  command=None):
+                  command=None, bulk_temperatures=None, sink_distance=None,
+                  layer_thickness=None):
     """The contact of one material pair over a grid of load, speed or radius.
 
     ``thermocontact map --cylinder ... --half-plane ...`` from Python.  Load,
@@ -474,6 +475,11 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, loa
         units (``Axis("load", "1kN/m", "1MN/m", 41, log=True)``).
     cylinder, half_plane, friction, lam, dundurs, materials
         As for :func:`contact`.
+    bulk_temperatures, sink_distance, layer_thickness : optional
+        Instead of ``lam``, as for :func:`contact`: ``lam`` then varies over the plane
+        and each point is solved as its own contact (derivation section 17); the
+        dataset holds ``lam``, ``lam_error``, ``peak_temperature`` (absolute, K) and
+        whether each body stays under its material's limit.
     radius, load, speed : float or str
         The third of them, the one that is not an axis.
     speed_ratio : float
@@ -495,7 +501,8 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam, radius=None, loa
     spec = map_spec(x, y, cylinder=cylinder, half_plane=half_plane, friction=friction,
                     lam=lam, radius=radius, load=load, speed=speed, speed_ratio=speed_ratio,
                     dundurs=dundurs, materials=materials, tol=tol, zones=zones,
-                    conductance=conductance)
+                    conductance=conductance, bulk_temperatures=bulk_temperatures,
+                    sink_distance=sink_distance, layer_thickness=layer_thickness)
     return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
@@ -503,7 +510,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
              delta_over_r=None, method=None, cylinder=None, half_plane=None,
              friction=None, radius=None, load=None, speed=None, dundurs=None,
-             materials=None, zones=False, conductance=None, tol=1e-6):
+             materials=None, zones=False, conductance=None, tol=1e-6,
+             bulk_temperatures=None, sink_distance=None, layer_thickness=None):
     """What identifies a map, every input checked, nothing computed.
 
     With ``cylinder`` and ``half_plane``, the
@@ -522,7 +530,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                      "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r}
     physical = {"radius": radius, "load": load, "speed": speed, "friction": friction,
                 "dundurs": dundurs, "materials": materials, "zones": zones or None,
-                "conductance": conductance}
+                "conductance": conductance, "bulk_temperatures": bulk_temperatures,
+                "sink_distance": sink_distance, "layer_thickness": layer_thickness}
     if cylinder is None and half_plane is None:
         from .studies.maps import NAMES, MapSpec
 
@@ -547,9 +556,12 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
             raise InputError(f"{name} belongs to a dimensionless map, not to an operating "
                              f"map (cylinder)", parameters=(name, "cylinder"))
     for name, value in (("cylinder", cylinder), ("half_plane", half_plane),
-                        ("friction", friction), ("lam", lam)):
+                        ("friction", friction)):
         if value is None:
             raise InputError(f"{name} must be given for an operating map", parameters=(name,))
+    if (lam is None) == (bulk_temperatures is None):
+        raise InputError("give exactly one of lam and bulk_temperatures for an operating map",
+                         parameters=("lam", "bulk_temperatures"))
     cyl, half = _materials(cylinder, half_plane, materials)
     units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
     fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
@@ -557,7 +569,10 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
                          tol=check_positive("tol", tol), dundurs=dundurs is not False,
                          speed_ratio=speed_ratio or 0.0, zones=bool(zones),
-                         conductance=_physical_conductance(conductance))
+                         conductance=_physical_conductance(conductance),
+                         bulk_temperatures=_temperatures(bulk_temperatures),
+                         sink_distance=_quantity("sink_distance", sink_distance, "m"),
+                         layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
 
 
 def _refuse_axis_values(axes, given, names=None):

@@ -81,7 +81,7 @@ def run_map(spec, out, workers, title, command):
             raise InputError(f"--out {out} exists and holds a different map; remove it or "
                              f"choose another --out")
         if not os.path.exists(picture):
-            map_figure(done, picture, title=title)
+            map_figure(done, picture, done.attrs.get("picture_field", "load_ratio"), title)
         click.echo(f"{out} is complete (same arguments): nothing to compute")
         return
     parts = parts_folder(out)
@@ -103,7 +103,7 @@ def run_map(spec, out, workers, title, command):
             workers.close()
     bar.close()
     write_dataset(ds, out)
-    map_figure(ds, picture, title=title)
+    map_figure(ds, picture, ds.attrs.get("picture_field", "load_ratio"), title)
     from ..io.chunks import discard
 
     discard(parts)  # the dataset holds everything now
@@ -149,10 +149,18 @@ def run_map(spec, out, workers, title, command):
 @contact_set_options("Operating maps: also the contact set, of one zone or several, at "
                       "every point (what exists past the single patch's boundary).",
                       "needed unless m = 0")
+@click.option("--bulk-temperatures", "bulk_temperatures", default=None,
+              help="Operating maps: T1,T2 instead of --lam (K, or 150C,40C), as for contact; "
+                   "lambda then varies over the plane and each point is its own contact.")
+@click.option("--sink-distance", "sink_distance", default=None,
+              help="With --bulk-temperatures, a stationary half-plane: its sink's distance.")
+@click.option("--layer-thickness", "layer_thickness", default=None,
+              help="Or the thickness of a half-plane layer on its sink (distance 4h/pi).")
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
-            materials_file, radius, load, speed, friction, dundurs, zones, conductance):
+            materials_file, radius, load, speed, friction, dundurs, zones, conductance,
+            bulk_temperatures, sink_distance, layer_thickness):
     """The solution over a grid of two parameters, and where it stops being valid.
 
     Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
@@ -174,11 +182,19 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                     half_plane=half_plane, friction=friction, radius=radius, load=load,
                     speed=speed, dundurs=dundurs, materials=materials_file, zones=zones,
                     conductance=parse_conductance(conductance, "in W/(m^2 K)", physical=True),
-                    tol=tol)
+                    tol=tol, **{k: v for k, v in (("bulk_temperatures", bulk_temperatures),
+                                                  ("sink_distance", sink_distance),
+                                                  ("layer_thickness", layer_thickness))
+                                if v is not None})
     fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
     if operating:
+        closure = (f"lambda = {spec.lam:g}" if spec.bulk_temperatures is None else
+                   "bulk temperatures " + ", ".join(f"{t:.5g} K" for t in spec.bulk_temperatures)
+                   + (f", sink at {spec.reference().sink_length:.3g} m"
+                      if spec.reference().sink_length is not None else "")
+                   + " (colour: lambda)")
         title = (f"{spec.cylinder.name} on {spec.half_plane.name}, f = {spec.friction:g}, "
-                 f"lambda = {spec.lam:g}, {fixed} (SI)\nsingle patch (perfect contact) "
+                 f"{closure}, {fixed} (SI)\nsingle patch (perfect contact) "
                  f"valid where not shaded; theory not applicable where hatched")
         if spec.zones:
             c = spec.conductance

@@ -87,6 +87,11 @@ class OperatingSpec:
     conductance : PhysicalConductance, optional
         With ``zones``: an interface conductance (section 15), one law for the whole
         map (so with a reference pressure unless constant).
+    bulk_temperatures, sink_distance, layer_thickness : optional
+        Instead of ``lam`` (None): the bodies' far temperatures, K, and a stationary
+        half-plane's sink, m (:class:`PhysicalProblem`; section 17).  ``lam`` then
+        varies over the plane, and each point is its own contact
+        (:mod:`.temperature_maps`).
     """
 
     cylinder: Material
@@ -101,6 +106,9 @@ class OperatingSpec:
     speed_ratio: float = 0.0
     zones: bool = False
     conductance: PhysicalConductance | None = None
+    bulk_temperatures: tuple | None = None
+    sink_distance: float | None = None
+    layer_thickness: float | None = None
 
     def __post_init__(self):
         for key in ("x", "y"):
@@ -117,7 +125,12 @@ class OperatingSpec:
                 raise InputError("conductance must be h0:m:p_ref in an operating map "
                                  "(one law h = h0 (p/p_ref)^m for every load), got no p_ref",
                                  parameters=("conductance",))
-        check_finite("lam", self.lam)
+        if self.bulk_temperatures is None:
+            check_finite("lam", self.lam)
+        elif self.zones:
+            raise InputError("bulk_temperatures close the single patch only (derivation "
+                             "section 17); give lam with zones",
+                             parameters=("bulk_temperatures", "zones"))
         check_positive("tol", self.tol)
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
         if self.zones and self.speed_ratio:
@@ -146,7 +159,10 @@ class OperatingSpec:
         kw = {**self.fixed, **values}
         return PhysicalProblem(self.cylinder, self.half_plane, kw["radius"], kw["load"],
                                kw["speed"], self.friction, self.lam,
-                               speed2=kw["speed"] * self.speed_ratio, dundurs=self.dundurs)
+                               speed2=kw["speed"] * self.speed_ratio, dundurs=self.dundurs,
+                               bulk_temperatures=self.bulk_temperatures,
+                               sink_distance=self.sink_distance,
+                               layer_thickness=self.layer_thickness)
 
     def grid(self):
         """``(load, speed, radius)`` arrays of shape ``(y.count, x.count)``."""
@@ -204,6 +220,10 @@ class OperatingSpec:
                 "materials": [_material_values(self.cylinder),
                               _material_values(self.half_plane)],
                 "fields": "slopes, strains and temperatures",
+                **({} if self.bulk_temperatures is None else {
+                    "bulk_temperatures": list(self.bulk_temperatures),
+                    "sink_distance": self.sink_distance,
+                    "layer_thickness": self.layer_thickness}),
                 **({"zones": True, "conductance": None if self.conductance is None else
                     [self.conductance.h0, self.conductance.exponent, self.conductance.p_ref]}
                    if self.zones else {})}
@@ -389,6 +409,10 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     """
     import xarray as xr
 
+    if spec.bulk_temperatures is not None:
+        from .temperature_maps import temperature_map
+
+        return temperature_map(spec, workers, progress, command, store_path)
     load, speed, radius = spec.grid()
     pe_h = spec.pe_hertz(load, speed, radius)
     # The single patch's range (PhysicalProblem.scan_range), in Pe over the whole plane.
