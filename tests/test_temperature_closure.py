@@ -326,3 +326,23 @@ def test_examples_with_the_bulk_temperatures_print_what_they_show(name, capsys, 
     monkeypatch.chdir(tmp_path)  # a --plot file goes there
     assert main(shlex.split(command.replace("\\\n", " ").strip()[2:])[1:]) == 0
     assert capsys.readouterr().out == shown
+
+
+def test_operating_map_at_fixed_bulk_temperatures_is_contact_at_its_points():
+    """Each point of the map is the contact at its load and speed: lam (which varies
+    over the plane, of either sign) and the half-width equal, the peak temperature
+    the cylinder's bulk temperature plus the flash temperature."""
+    import thermocontact as tc
+
+    kw = dict(cylinder="copper", half_plane="steel", friction=0.2, radius="10mm",
+              bulk_temperatures="80C,20C", sink_distance="2mm")
+    ds = tc.operating_map(tc.Axis("load", 2e4, 2e5, 2, log=True), tc.Axis("speed", 1, 4, 2),
+                          **kw)
+    lam = ds["lam"].values
+    assert lam.min() < 0 < lam.max() and np.all(ds["valid"].values == 1)
+    res = tc.contact(load=float(ds["load"][1]), speed=float(ds["speed"][0]), **kw).primary
+    assert ds["lam"].values[0, 1] == res.lam
+    assert ds["half_width"].values[0, 1] == res.half_width
+    assert np.allclose(ds["peak_temperature"].values,
+                       353.15 + ds["flash_temperature"].values, rtol=0, atol=1e-9)
+    assert ds.attrs["picture_field"] == "lam"
