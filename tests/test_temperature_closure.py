@@ -230,7 +230,8 @@ def test_solve_command_takes_the_temperatures(capsys):
     assert rec["lam"] == sol.lam and rec["sink_distance"] == 30.0
     assert main(args + ["--theta", "1", "--sink-distance", "30", "--lam", "0.2"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err == "error: give exactly one of --lam, --sigma and --theta"
+    assert err == ("error: give exactly one of --lam and --sigma (or --theta, the far "
+                   "temperatures)")
 
 
 # The physical front end (derivation section 17; `contact --bulk-temperatures`).
@@ -346,3 +347,31 @@ def test_operating_map_at_fixed_bulk_temperatures_is_contact_at_its_points():
     assert np.allclose(ds["peak_temperature"].values,
                        353.15 + ds["flash_temperature"].values, rtol=0, atol=1e-9)
     assert ds.attrs["picture_field"] == "lam"
+
+
+def test_paths_move_the_temperature_difference_and_the_sink():
+    """A physical path along the sink distance or T2 - T1 (the cylinder's T1 kept)
+    follows the branch of the moved problem: its solution is the dimensionless solve
+    with that problem's Theta and L/Delta at the same Pe, and a farther sink or a
+    hotter half-plane sends more of the heat into the cylinder (lam grows)."""
+    from thermocontact.problem.materials import get_material
+    from thermocontact.problem.physical import PhysicalProblem
+    from thermocontact.studies.physical_contact import _moved, _primary
+
+    p = PhysicalProblem(get_material("copper"), get_material("steel"), 0.01, 5e4, 2.0, 0.2,
+                        None, bulk_temperatures=(353.15, 293.15), sink_distance=2e-3)
+    q = _moved(p, "temperature_difference", 10.0)
+    assert q.bulk_temperatures == (353.15, 363.15) and q.sink_distance == 2e-3
+    for along, values in (("sink_distance", (2e-3, 4e-3)), ("temperature_difference",
+                                                             (-60.0, 10.0))):
+        at = _primary(p, along)
+        sols = [at(16, v) for v in values]
+        assert sols[1].lam > sols[0].lam + 0.01
+        moved = _moved(p, along, values[1])
+        pe = sols[1].parameters.pe
+        ref = solve(**moved.to_dimensionless(moved.half_width(pe)), n=16)
+        assert abs(ref.lam - sols[1].lam) < 1e-12
+        assert abs(ref.load_ratio - sols[1].load_ratio) < 1e-12
+    with pytest.raises(InputError, match="needs bulk_temperatures"):
+        _moved(PhysicalProblem(get_material("copper"), get_material("steel"), 0.01, 5e4, 2.0,
+                               0.2, 0.5), "sink_distance", 1e-3)

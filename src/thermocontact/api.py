@@ -31,7 +31,8 @@ __all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set",
            "operating_map", "parameter_map", "solve", "tei"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
-PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
+PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": "",
+                  "temperature_difference": "K", "sink_distance": "m"}
 
 
 def _materials(cylinder, half_plane, materials):
@@ -256,7 +257,8 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=None,
-             tol=DEFAULT_TOL, n=None, progress=None):
+             tol=DEFAULT_TOL, n=None, progress=None, bulk_temperatures=None,
+             sink_distance=None, layer_thickness=None):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -287,6 +289,10 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         physical paths take ``lam``).
     cylinder, half_plane, radius, load, speed, friction, dundurs, materials
         The physical problem, as for :func:`contact`.
+    bulk_temperatures, sink_distance, layer_thickness : optional
+        Instead of ``lam`` for a physical path, as for :func:`contact`; then also
+        ``along="temperature_difference"`` (T2 - T1 in K, T1 kept) and
+        ``along="sink_distance"`` (m) (derivation section 17).
     method : str, optional
         Discretisation method of a dimensionless path (default ``"graded"``); a
         physical path refuses it.
@@ -313,7 +319,8 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     tol = check_positive("tol", tol)
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
-                "materials": materials}
+                "materials": materials, "bulk_temperatures": bulk_temperatures,
+                "sink_distance": sink_distance, "layer_thickness": layer_thickness}
     along_name = along.replace("-", "_") if isinstance(along, str) else along
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
@@ -387,19 +394,24 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
         if name != along and physical[name] is None:
             raise InputError(f"{name} must be given (it is not the parameter followed)",
                              parameters=(name,))
-    if lam is None:
-        raise InputError("lam must be given", parameters=("lam",))
+    if (lam is None) == (physical["bulk_temperatures"] is None):
+        raise InputError("give exactly one of lam and bulk_temperatures",
+                         parameters=("lam", "bulk_temperatures"))
     unit = PHYSICAL_ALONG[along]
     ends = [_quantity(o, v, unit) if unit else _number(o, v)
             for o, v in (("start", start), ("stop", stop))]
     values = {k: (ends[0] if k == along else physical[k])
               for k in ("radius", "load", "speed", "friction")}
     speed = _quantity("speed", values["speed"], "m/s")
+    # Along the sink distance the path's start stands for it.
+    sink = ends[0] if along == "sink_distance" else physical["sink_distance"]
     prob = _physical_problem(physical["cylinder"], physical["half_plane"], values["radius"],
                              values["load"], speed, values["friction"], lam,
                              speed2=speed * speed_ratio,
                              dundurs=physical["dundurs"] is not False,
-                             materials=physical["materials"])
+                             materials=physical["materials"],
+                             bulk_temperatures=physical["bulk_temperatures"],
+                             sink_distance=sink, layer_thickness=physical["layer_thickness"])
     return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
 
 

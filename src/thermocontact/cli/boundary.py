@@ -19,7 +19,8 @@ __all__ = ["boundary_cmd"]
 @click.option("--along", required=True,
               help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
                    "delta1-over-delta2, speed-ratio, beta-f; or, with --cylinder and --half-plane, load, speed, "
-                   "radius or friction.")
+                   "radius or friction; with --bulk-temperatures also temperature-difference "
+                   "(T2 - T1 in K, T1 kept) or sink-distance.")
 @click.option("--from", "start", required=True,
               help="Start of the path (physical parameters in SI units or with units).")
 @click.option("--to", "stop", required=True, help="End of the path.")
@@ -32,10 +33,17 @@ __all__ = ["boundary_cmd"]
                    "each event's error estimate compares with n/2.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
               help=f"Discretisation method (dimensionless paths) [default: {DEFAULT_METHOD}].")
+@click.option("--bulk-temperatures", "bulk_temperatures", default=None,
+              help="Physical paths: T1,T2 instead of --lam, as for contact.")
+@click.option("--sink-distance", "sink_distance", default=None,
+              help="With --bulk-temperatures, a stationary half-plane: its sink's distance.")
+@click.option("--layer-thickness", "layer_thickness", default=None,
+              help="Or the thickness of a half-plane layer on its sink.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
-                 friction, dundurs, tol, n, method, as_json):
+                 friction, dundurs, tol, n, method, bulk_temperatures, sink_distance,
+                 layer_thickness, as_json):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -51,13 +59,15 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                     speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
                     cylinder=cylinder, half_plane=half_plane, radius=radius, load=load,
                     speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
-                    method=method, tol=tol, n=n, progress=bar)
+                    method=method, tol=tol, n=n, progress=bar,
+                    bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
+                    layer_thickness=layer_thickness)
     method = path.method
     bar.close()
     if as_json:
         click.echo(json.dumps(path.to_dict(), allow_nan=False))
         return
-    unit = PHYSICAL_ALONG.get(along, "")
+    unit = PHYSICAL_ALONG.get(along.replace("-", "_"), "")
     click.echo(f"thermocontact {__version__}: along {along} from {path.x[0]:g} to "
                f"{path.x[-1]:g}{' ' + unit if unit else ''} (method {method}, n = {path.n}"
                + (f"; events at n = {path.event_n}" if path.event_n != path.n else "") + ")")

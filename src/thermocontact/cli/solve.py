@@ -93,7 +93,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     from ..api import solve
 
     if sum(c is not None for c in (lam, sigma, theta)) != 1:
-        raise InputError("give exactly one of lam, sigma and theta",
+        raise InputError("give exactly one of lam and sigma (or theta, the far temperatures)",
                          parameters=("lam", "sigma", "theta"))
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,

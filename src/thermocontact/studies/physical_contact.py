@@ -26,7 +26,7 @@ from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import contact_fields
 from ..problem.parameters import SolveError
 from ..problem.physical import FHPE_MIN, MAX_WIDTH, PhysicalProblem
-from ..problem.validation import check_nonnegative, check_positive
+from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..numerics.continuation import secant
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import DEFAULT_TOL
@@ -38,7 +38,10 @@ __all__ = ["ALONG", "Branch", "FHPE_MIN", "MAX_WIDTH", "PhysicalContact", "Physi
 
 #: The physical inputs a path may follow (SI units), and whether it is sampled
 #: geometrically.
-ALONG = {"load": True, "speed": True, "radius": True, "friction": False}
+ALONG = {"load": True, "speed": True, "radius": True, "friction": False,
+         # With the bulk temperatures (derivation section 17): T2 - T1 (K), the
+         # cylinder's T1 kept, and a stationary half-plane's sink distance (m).
+         "temperature_difference": False, "sink_distance": True}
 
 #: Unknowns per function of the validity checks behind the largest valid load.
 VALIDITY_N = 64
@@ -494,6 +497,14 @@ def _moved(problem: PhysicalProblem, along: str, value) -> PhysicalProblem:
     scale together (the ratio v2/v1, and so the ray, is kept)."""
     if along == "speed":
         return dataclasses.replace(problem, speed=value, speed2=value * problem.speed_ratio)
+    if along in ("temperature_difference", "sink_distance") and problem.bulk_temperatures is None:
+        raise InputError(f"a path along {along} needs bulk_temperatures (not lam)",
+                         parameters=("along", "bulk_temperatures"))
+    if along == "temperature_difference":
+        t1 = problem.bulk_temperatures[0]
+        return dataclasses.replace(problem, bulk_temperatures=(t1, t1 + value))
+    if along == "sink_distance":
+        return dataclasses.replace(problem, sink_distance=value, layer_thickness=None)
     return dataclasses.replace(problem, **{along: value})
 
 
@@ -512,9 +523,13 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
     problem : PhysicalProblem
         The fixed inputs (its value of ``along`` is replaced; along the speed, with a
         moving half-plane, both speeds scale together).
-    along : {"load", "speed", "radius", "friction"}
+    along : {"load", "speed", "radius", "friction", "temperature_difference", "sink_distance"}
+        The last two with the bulk temperatures (derivation section 17): the
+        half-plane's far temperature less the cylinder's (K, the cylinder's kept), a
+        stationary half-plane's sink distance (m).
     start, stop : float
-        SI units; load, speed and radius positive, friction non-negative.
+        SI units; load, speed, radius and sink distance positive, friction
+        non-negative, the temperature difference any.
     tol, rtol, points, n, event_rtol, progress
         As in :func:`~.boundaries.follow`.
 
@@ -527,12 +542,21 @@ def follow_along(problem: PhysicalProblem, along: str, start, stop, *, tol=DEFAU
 
     along = check_choice("along", along, tuple(ALONG))
     for name, value in (("start", start), ("stop", stop)):
-        check = check_nonnegative if along == "friction" else check_positive
+        check = {"friction": check_nonnegative, "temperature_difference": check_finite}.get(
+            along, check_positive)
         check(name, value)
         _moved(problem, along, value)  # validated as a problem
     fixed = {"cylinder": problem.cylinder.name, "half_plane": problem.half_plane.name,
              **{k: getattr(problem, k) for k in ("radius", "load", "speed", "friction", "lam")
                 if k != along}}
+    if problem.bulk_temperatures is not None:
+        del fixed["lam"]
+        if along == "temperature_difference":
+            fixed["cylinder_temperature"] = problem.bulk_temperatures[0]
+        else:
+            fixed["bulk_temperatures"] = list(problem.bulk_temperatures)
+        if along != "sink_distance" and problem.sink_length is not None:
+            fixed["sink_distance"] = problem.sink_length
     if problem.speed2:
         fixed["speed_ratio"] = problem.speed_ratio
     fixed["dundurs"] = problem.dundurs
