@@ -346,14 +346,21 @@ CONTACT_SET_SECONDS = 5.0
 def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path=None):
     """``zones_*`` fields over the map (:func:`evaluate_contact_sets`), one task per
     line of constant y, kept in ``store_path`` as they finish."""
+    return line_fields(spec, evaluate_contact_sets, "contact sets", ZONE_FIELDS, workers,
+                       progress, store_path)
+
+
+def line_fields(spec: OperatingSpec, func, part, names, workers=1, progress=None,
+                store_path=None):
+    """``func`` over the map's points, one task (``{"spec", "points"}``) per line of
+    constant y, kept in ``store_path`` as they finish: ``{name: array (y, x)}``."""
     load, speed, radius = spec.grid()
     tasks = [{"spec": spec, "points": [(float(load[i, j]), float(speed[i, j]),
                                         float(radius[i, j])) for j in range(load.shape[1])]}
              for i in range(load.shape[0])]
-    manifest = {**spec.manifest(), "part": "contact sets"}
-    parts = run_chunks(evaluate_contact_sets, tasks, manifest, store_path, workers=workers,
-                       progress=progress)
-    return {k: np.array([parts[i][k] for i in range(len(tasks))]) for k in ZONE_FIELDS}
+    manifest = {**spec.manifest(), "part": part}
+    parts = run_chunks(func, tasks, manifest, store_path, workers=workers, progress=progress)
+    return {k: np.array([parts[i][k] for i in range(len(tasks))]) for k in names}
 
 
 CURVE_POINTS = 201

@@ -18,9 +18,9 @@ import math
 import numpy as np
 
 from .._version import __version__
-from ..execution.resumable import run_chunks
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
+from .operating_maps import line_fields
 from .physical_contact import contact
 
 __all__ = ["TEMPERATURE_FIELDS", "temperature_map"]
@@ -83,17 +83,10 @@ def temperature_map(spec, workers=1, progress=None, command=None, store_path=Non
     import xarray as xr
 
     load, speed, radius = spec.grid()
-    tasks = [{"spec": spec, "points": [(float(load[i, j]), float(speed[i, j]),
-                                        float(radius[i, j])) for j in range(load.shape[1])]}
-             for i in range(load.shape[0])]
-    manifest = {**spec.manifest(), "part": "bulk temperatures"}
-    parts = run_chunks(evaluate_line, tasks, manifest, store_path, workers=workers,
-                       progress=progress)
+    found = line_fields(spec, evaluate_line, "bulk temperatures", TEMPERATURE_FIELDS, workers,
+                        progress, store_path)
     dims = (spec.y.name, spec.x.name)
-    data = {}
-    for k in TEMPERATURE_FIELDS:
-        v = np.array([parts[i][k] for i in range(len(tasks))])
-        data[k] = (dims, v.astype(str) if k in WORDS else v)
+    data = {k: (dims, v.astype(str) if k in WORDS else v) for k, v in found.items()}
     theta = np.vectorize(lambda P, v, R: spec.problem(load=P, speed=v, radius=R).theta)(
         load, speed, radius)
     ds = xr.Dataset({**data, "pe_hertz": (dims, spec.pe_hertz(load, speed, radius)),
