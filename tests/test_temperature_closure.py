@@ -375,3 +375,19 @@ def test_paths_move_the_temperature_difference_and_the_sink():
     with pytest.raises(InputError, match="needs bulk_temperatures"):
         _moved(PhysicalProblem(get_material("copper"), get_material("steel"), 0.01, 5e4, 2.0,
                                0.2, 0.5), "sink_distance", 1e-3)
+
+
+def test_a_path_along_theta_meets_the_path_along_lam():
+    """The gap event along Theta (sink at 10 half-widths) is where the solution's lam
+    is the gap event along lam: the same solution, closed two ways (1e-8; measured
+    1e-15 at n = 32)."""
+    import thermocontact as tc
+
+    kw = dict(pe=5, fhpe=0.7, K2_over_K1=10, n=16)
+    lam = [tc.solve(5, 0.7, 10, theta=t, sink_distance=10, n=16).lam for t in (0.0, 1.0)]
+    ends = [(target - lam[0]) / (lam[1] - lam[0]) for target in (0.0, 1.0)]
+    along_lam = tc.boundary("lam", 0, 1, **kw).events
+    along_theta = tc.boundary("theta", *ends, sink_distance=10, **kw).events
+    assert [e.inequality for e in along_lam] == [e.inequality for e in along_theta] == ["gap"]
+    at = tc.solve(5, 0.7, 10, theta=along_theta[0].at, sink_distance=10, n=16).lam
+    assert abs(at - along_lam[0].at) < 1e-8

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from .discretisation.methods import DEFAULT_METHOD
 from .problem.axes import Axis
+from .problem.closure import check_sink_distance
 from .problem.validation import InputError, check_positive
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
@@ -258,7 +259,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=None,
              tol=DEFAULT_TOL, n=None, progress=None, bulk_temperatures=None,
-             sink_distance=None, layer_thickness=None):
+             sink_distance=None, layer_thickness=None, theta=None):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -293,6 +294,10 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         Instead of ``lam`` for a physical path, as for :func:`contact`; then also
         ``along="temperature_difference"`` (T2 - T1 in K, T1 kept) and
         ``along="sink_distance"`` (m) (derivation section 17).
+    theta : float, optional
+        Instead of ``lam`` or ``sigma`` for a dimensionless path (or followed,
+        ``along="theta"``): the far temperatures' group, with ``sink_distance`` as
+        ``L/Delta`` for a stationary half-plane (:func:`thermocontact.solve`).
     method : str, optional
         Discretisation method of a dimensionless path (default ``"graded"``); a
         physical path refuses it.
@@ -325,13 +330,18 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": beta_f or None, "sigma": sigma, "method": method}
+                         "beta_f": beta_f or None, "sigma": sigma, "method": method,
+                         "theta": theta}
         return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
                               dimensionless, tol, n, progress)
     from .studies.boundaries import SPELLINGS, follow
     from .studies.maps import NAMES
 
     method = DEFAULT_METHOD if method is None else method
+    # A dimensionless path's sink distance is L/Delta, with theta (section 17).
+    dimensionless_sink = None
+    if theta is not None or along_name == "theta":
+        dimensionless_sink, physical["sink_distance"] = physical["sink_distance"], None
     for name, value in physical.items():
         if value is not None:
             raise InputError(f"{name} belongs to a physical path: give cylinder and "
@@ -343,7 +353,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
              "delta1_over_delta2": delta1_over_delta2,
              "speed_ratio": speed_ratio or None,  # 0, the default, is left out
-             "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma}
+             "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma,
+             "theta": theta, "sink_distance": None if dimensionless_sink is None else
+             check_sink_distance(_number("sink_distance", dimensionless_sink))}
     if given[name] is not None:
         raise InputError(f"{name} must not be given: it is the parameter followed",
                          parameters=(name,))
@@ -352,10 +364,10 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         if k != name and k not in fixed:
             raise InputError(f"{k} must be given (it is not the parameter followed)",
                              parameters=(k,))
-    closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k == name]
+    closures = [k for k in ("lam", "sigma_over_delta", "theta") if k in fixed or k == name]
     if len(closures) != 1:
-        raise InputError("give exactly one of lam and sigma, or follow one of them",
-                         parameters=("lam", "sigma"))
+        raise InputError("give exactly one of lam and sigma (or theta), or follow one of them",
+                         parameters=("lam", "sigma", "theta"))
     return follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
 

@@ -18,7 +18,7 @@ __all__ = ["boundary_cmd"]
 @click.command("boundary")
 @click.option("--along", required=True,
               help="The parameter followed: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, "
-                   "delta1-over-delta2, speed-ratio, beta-f; or, with --cylinder and --half-plane, load, speed, "
+                   "delta1-over-delta2, speed-ratio, beta-f, theta; or, with --cylinder and --half-plane, load, speed, "
                    "radius or friction; with --bulk-temperatures also temperature-difference "
                    "(T2 - T1 in K, T1 kept) or sink-distance.")
 @click.option("--from", "start", required=True,
@@ -33,16 +33,20 @@ __all__ = ["boundary_cmd"]
                    "each event's error estimate compares with n/2.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
               help=f"Discretisation method (dimensionless paths) [default: {DEFAULT_METHOD}].")
+@click.option("--theta", type=float, default=None,
+              help="Dimensionless paths: the far temperatures' group instead of --lam or "
+                   "--sigma, as for solve (or follow it: --along theta).")
 @click.option("--bulk-temperatures", "bulk_temperatures", default=None,
               help="Physical paths: T1,T2 instead of --lam, as for contact.")
 @click.option("--sink-distance", "sink_distance", default=None,
-              help="With --bulk-temperatures, a stationary half-plane: its sink's distance.")
+              help="With --bulk-temperatures, a stationary half-plane: its sink's distance "
+                   "(m, or 30mm); with --theta: L/Delta > 1.")
 @click.option("--layer-thickness", "layer_thickness", default=None,
               help="Or the thickness of a half-plane layer on its sink.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
-                 friction, dundurs, tol, n, method, bulk_temperatures, sink_distance,
+                 friction, dundurs, tol, n, method, theta, bulk_temperatures, sink_distance,
                  layer_thickness, as_json):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
@@ -61,7 +65,7 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                     speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
                     method=method, tol=tol, n=n, progress=bar,
                     bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
-                    layer_thickness=layer_thickness)
+                    layer_thickness=layer_thickness, theta=theta)
     method = path.method
     bar.close()
     if as_json:

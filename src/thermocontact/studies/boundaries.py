@@ -28,6 +28,7 @@ import numpy as np
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult, Result
 from ..numerics.continuation import locate, subdivide, widen
+from ..problem.closure import Temperatures
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_choice, check_finite, check_integer
 from ..solvers.refinement import refine
@@ -38,12 +39,12 @@ __all__ = ["ALONG", "Event", "Path", "SPELLINGS", "NO_SOLUTION", "check_problem"
 
 #: The parameters a path may follow.
 ALONG = ("fhpe", "pe", "lam", "sigma_over_delta", "K2_over_K1", "k2_over_k1",
-         "delta1_over_delta2", "speed_ratio", "beta_f")
+         "delta1_over_delta2", "speed_ratio", "beta_f", "theta")
 #: The command line's spellings of :data:`ALONG`.
 SPELLINGS = {"fhpe": "fhpe", "pe": "pe", "lam": "lam", "sigma": "sigma_over_delta",
              "K2-over-K1": "K2_over_K1", "k2-over-k1": "k2_over_k1",
              "delta1-over-delta2": "delta1_over_delta2", "speed-ratio": "speed_ratio",
-             "beta-f": "beta_f"}
+             "beta-f": "beta_f", "theta": "theta"}
 #: Margins, each >= 0 exactly when its inequality holds.
 MARGINS = ("load", "pressure", "gap", "edge")
 #: The events where solutions stop, and where they start, existing along a path.
@@ -136,10 +137,14 @@ class Path(FieldResult):
 
 def _inputs(fixed: dict, along: str, x: float) -> dict:
     kw = {**fixed, along: x}
-    if along == "lam":
-        kw.pop("sigma_over_delta", None)
-    if along == "sigma_over_delta":
-        kw.pop("lam", None)
+    # The parameter followed replaces whichever closure was given (section 17's theta
+    # with its sink distance among them).
+    if along in ("lam", "sigma_over_delta", "theta"):
+        for k in ("lam", "sigma_over_delta", "theta"):
+            if k != along:
+                kw.pop(k, None)
+        if along != "theta":
+            kw.pop("sink_distance", None)
     return kw
 
 
@@ -159,7 +164,10 @@ def check_problem(kw: dict, method=DEFAULT_METHOD) -> None:
 
 
 def closure(kw: dict) -> dict:
-    """``lam`` or ``sigma_over_delta`` of the inputs ``kw``, as given."""
+    """``lam`` or ``sigma_over_delta`` of the inputs ``kw``, as given; or the far
+    temperatures of ``theta`` and ``sink_distance`` (``L/Delta``; section 17)."""
+    if "theta" in kw:
+        return {"temperatures": Temperatures(kw["theta"], kw.get("sink_distance"))}
     return {k: kw[k] for k in ("lam", "sigma_over_delta") if k in kw}
 
 
