@@ -391,3 +391,18 @@ def test_a_path_along_theta_meets_the_path_along_lam():
     assert [e.inequality for e in along_lam] == [e.inequality for e in along_theta] == ["gap"]
     at = tc.solve(5, 0.7, 10, theta=along_theta[0].at, sink_distance=10, n=16).lam
     assert abs(at - along_lam[0].at) < 1e-8
+
+
+def test_a_dimensionless_map_over_theta_is_solve_at_its_points():
+    """Theta as a map's axis (or fixed) with the sink distance L/Delta: each point is
+    the solve with that closure; Theta with lam is a closure given twice."""
+    import thermocontact as tc
+
+    ds = tc.parameter_map(tc.Axis("fhpe", 0, 0.4, 2), tc.Axis("theta", 0, 1, 2), pe=5,
+                          K2_over_K1=10, sink_distance=10)
+    ref = solve(5, 0.4, 10, theta=1.0, sink_distance=10, tol=1e-6)
+    assert abs(ds["lam"].values[1, 1] - ref.lam) < 1e-8
+    assert abs(ds["load_ratio"].values[1, 1] - ref.load_ratio) < 1e-8
+    with pytest.raises(InputError, match="exactly one of lam and sigma \\(or theta\\)"):
+        tc.parameter_map(tc.Axis("fhpe", 0, 0.4, 2), tc.Axis("theta", 0, 1, 2), pe=5,
+                         K2_over_K1=10, lam=1.0)

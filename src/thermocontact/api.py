@@ -430,7 +430,7 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
 def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                   delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
                   sigma=None, delta_over_r=None, method=DEFAULT_METHOD, tol=1e-6, workers=1,
-                  store=None, progress=None, command=None):
+                  store=None, progress=None, command=None, theta=None, sink_distance=None):
     """The single patch over a grid of two dimensionless parameters.
 
     ``thermocontact map`` from Python: every point solved to ``tol``, and where
@@ -441,10 +441,13 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     ----------
     x, y : Axis
         Over two of ``fhpe``, ``pe``, ``lam``, ``sigma``, ``K2_over_K1``,
-        ``k2_over_k1``, ``delta1_over_delta2``, ``speed_ratio``, ``beta_f``.
+        ``k2_over_k1``, ``delta1_over_delta2``, ``speed_ratio``, ``beta_f``, ``theta``.
     pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam, sigma
         The other inputs, as for :func:`thermocontact.solve` (exactly one closure,
-        ``lam`` or ``sigma``, unless an axis).
+        ``lam``, ``sigma`` or ``theta``, unless an axis).
+    theta, sink_distance : float, optional
+        The far temperatures' closure, as for :func:`thermocontact.solve`
+        (``sink_distance`` is ``L/Delta``; derivation section 17).
     delta_over_r : float, optional
         Half-width over radius: also map whether the theory applies.
     method : str
@@ -477,7 +480,7 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     spec = map_spec(x, y, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
                     beta_f=beta_f, lam=lam, sigma=sigma, delta_over_r=delta_over_r,
-                    method=method, tol=tol)
+                    method=method, tol=tol, theta=theta, sink_distance=sink_distance)
     return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
@@ -535,7 +538,7 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
              delta_over_r=None, method=None, cylinder=None, half_plane=None,
              friction=None, radius=None, load=None, speed=None, dundurs=None,
              materials=None, zones=False, conductance=None, tol=1e-6,
-             bulk_temperatures=None, sink_distance=None, layer_thickness=None):
+             bulk_temperatures=None, sink_distance=None, layer_thickness=None, theta=None):
     """What identifies a map, every input checked, nothing computed.
 
     With ``cylinder`` and ``half_plane``, the
@@ -551,7 +554,13 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     """
     dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                      "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                     "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r}
+                     "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r,
+                     "theta": theta}
+    # With theta (a dimensionless map) the sink distance is L/Delta (section 17).
+    dimensionless_sink = None
+    if cylinder is None and half_plane is None and (
+            theta is not None or "theta" in (getattr(x, "name", None), getattr(y, "name", None))):
+        dimensionless_sink, sink_distance = sink_distance, None
     physical = {"radius": radius, "load": load, "speed": speed, "friction": friction,
                 "dundurs": dundurs, "materials": materials, "zones": zones or None,
                 "conductance": conductance, "bulk_temperatures": bulk_temperatures,
@@ -566,7 +575,9 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
         fixed = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
                  "delta1_over_delta2": delta1_over_delta2,
                  "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
-                 "lam": lam, "sigma_over_delta": sigma}
+                 "lam": lam, "sigma_over_delta": sigma, "theta": theta,
+                 "sink_distance": None if dimensionless_sink is None else
+                 check_sink_distance(_number("sink_distance", dimensionless_sink))}
         _refuse_axis_values((x, y), fixed, NAMES)
         return MapSpec(x, y, fixed, method=DEFAULT_METHOD if method is None else method,
                        tol=tol, delta_over_r=delta_over_r)

@@ -149,6 +149,9 @@ def run_map(spec, out, workers, title, command):
 @contact_set_options("Operating maps: also the contact set, of one zone or several, at "
                       "every point (what exists past the single patch's boundary).",
                       "needed unless m = 0")
+@click.option("--theta", type=float, default=None,
+              help="Dimensionless maps: the far temperatures' group instead of --lam or "
+                   "--sigma, as for solve (with --sink-distance as L/Delta), or an axis.")
 @click.option("--bulk-temperatures", "bulk_temperatures", default=None,
               help="Operating maps: T1,T2 instead of --lam (K, or 150C,40C), as for contact; "
                    "lambda then varies over the plane and each point is its own contact.")
@@ -160,7 +163,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,
             materials_file, radius, load, speed, friction, dundurs, zones, conductance,
-            bulk_temperatures, sink_distance, layer_thickness):
+            theta, bulk_temperatures, sink_distance, layer_thickness):
     """The solution over a grid of two parameters, and where it stops being valid.
 
     Parameters: fhpe, pe, lam, sigma, K2-over-K1, k2-over-k1, delta1-over-delta2,
@@ -182,7 +185,8 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
                     half_plane=half_plane, friction=friction, radius=radius, load=load,
                     speed=speed, dundurs=dundurs, materials=materials_file, zones=zones,
                     conductance=parse_conductance(conductance, "in W/(m^2 K)", physical=True),
-                    tol=tol, **{k: v for k, v in (("bulk_temperatures", bulk_temperatures),
+                    tol=tol, **{k: v for k, v in (("theta", theta),
+                                                  ("bulk_temperatures", bulk_temperatures),
                                                   ("sink_distance", sink_distance),
                                                   ("layer_thickness", layer_thickness))
                                 if v is not None})

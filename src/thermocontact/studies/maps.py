@@ -135,10 +135,13 @@ class MapSpec:
         for k in ("pe", "fhpe", "K2_over_K1"):
             if k not in axes and k not in fixed:
                 raise InputError(f"{k} must be given (it is not an axis)", parameters=(k,))
-        closures = [k for k in ("lam", "sigma_over_delta") if k in fixed or k in axes]
+        closures = [k for k in ("lam", "sigma_over_delta", "theta") if k in fixed or k in axes]
         if len(closures) != 1:
-            raise InputError("give exactly one of lam and sigma, or make one of them an axis",
-                             parameters=("lam", "sigma"))
+            raise InputError("give exactly one of lam and sigma (or theta), or make one of "
+                             "them an axis", parameters=("lam", "sigma", "theta"))
+        if "sink_distance" in fixed and closures != ["theta"]:
+            raise InputError("sink_distance is given with theta only (section 17)",
+                             parameters=("sink_distance", "theta"))
         object.__setattr__(self, "fixed", fixed)
         # Every parameter's range is an interval: the grid's corners check them all.
         for xv in (self.x.start, self.x.stop):
