@@ -28,7 +28,7 @@ from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
 __all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec",
-           "operating_map", "parameter_map", "solve", "tei"]
+           "operating_map", "parameter_map", "solve", "stability", "tei"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
 PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": ""}
@@ -606,3 +606,56 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     s, c = _materials(slider, counterface, materials)
     return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
+
+
+def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16,
+              rate_unit=None):
+    """Eigenvalues of largest real part of a steady single patch: is it stable?
+
+    The contact linearised about ``solution`` at fixed load, its edges free, for a
+    perturbation growing as ``exp(b t)`` (docs/derivation.md, section 17): ``M(b) c = 0``
+    solved by Beyn's contour-integral method in an ellipse of the right half-plane
+    and each eigenvalue checked by Newton's method; the error estimate is the change
+    of the eigenvalues from ``n`` to ``n/2``.  A stationary half-plane (``speed_ratio
+    = 0``), no Dundurs term and perfect thermal contact only.
+
+    Parameters
+    ----------
+    solution : ContactSolution
+        From :func:`solve` (or a :class:`Model`); edge-graded methods only.
+    n : int, optional
+        Unknowns per function of the analysis (default 8, from 8 to 64; the steady
+        solution is solved again at ``n`` and ``n/2``).
+    re_min, re_max, im_max : float, optional
+        The ellipse searched, in units of ``k2/Delta^2``: real parts from ``re_min > 0``
+        to ``re_max``, imaginary parts within ``+-im_max`` (``b = 0`` is a branch
+        point of the stationary half-plane's kernels, which the contour avoids).
+    points : int, optional
+        Points of the contour (even; half of them are computed).
+    rate_unit : float, optional
+        ``k2/Delta^2`` in 1/s: report the eigenvalues in 1/s.
+
+    Returns
+    -------
+    StabilityResult
+        ``to_dict()`` is the ``"stability"`` record of ``solve --stability``.
+
+    Raises
+    ------
+    InputError
+        A moving half-plane, a Dundurs term, an interface conductance, a Chebyshev
+        method or a region out of range.
+    """
+    from .solvers.stability import stability_of
+
+    model = Model(solution.parameters.pe, solution.parameters.K2_over_K1,
+                  k2_over_k1=solution.parameters.k2_over_k1,
+                  delta1_over_delta2=solution.parameters.delta1_over_delta2,
+                  speed_ratio=solution.parameters.speed_ratio,
+                  beta_f=solution.parameters.beta_f, method=solution.method)
+
+    def solve_at(m):
+        return model.solve_at(m, solution.parameters.fhpe, lam=solution.lam,
+                              check_validity=False)
+    return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
+                        points=points, rate_unit=rate_unit)

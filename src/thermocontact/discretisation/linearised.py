@@ -35,11 +35,12 @@ import numpy as np
 from ..physics.green_functions import (cylinder_displacement, cylinder_slope,
                                        cylinder_temperature,
                                        cylinder_temperature_gradient_regular)
-from ..physics.transient_green_functions import (transient_displacement, transient_slope,
+from ..physics.transient_green_functions import (transient_displacement_and_slope,
                                                  transient_temperature,
                                                  transient_temperature_gradient_regular)
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError
+from .representations import EdgeGraded
 
 __all__ = ["LinearisedContact", "logarithm_constant", "projections"]
 
@@ -91,7 +92,7 @@ class LinearisedContact:
         if par.free_term:
             raise InputError(f"stability: beta_f must be 0, got {par.beta_f!r}",
                              parameters=("beta_f",))
-        if not hasattr(self.representation, "alpha"):
+        if not isinstance(self.representation, EdgeGraded):
             raise InputError("stability needs an edge-graded method (graded, "
                              "graded-collocation)", parameters=("method",))
 
@@ -124,14 +125,15 @@ class LinearisedContact:
         b1 = b / par.k2_over_k1
         ell = logarithm_constant(b)
         w0 = 2.0 / (np.pi * np.sqrt(complex(b)))
-        cyl = dict(W=lambda u: transient_displacement(u, c, b1),
+        ws1, ws2 = _shared(c, b1), _shared(0.0, b)
+        cyl = dict(W=lambda u: ws1(u)[0],
                    T=lambda u: transient_temperature(u, c, b1),
-                   dS=lambda u: transient_slope(u, c, b1) - cylinder_slope(c * u),
+                   dS=lambda u: ws1(u)[1] - cylinder_slope(c * u),
                    dG=lambda u: (transient_temperature_gradient_regular(u, c, b1)
                                  - cylinder_temperature_gradient_regular(u, c)), **steady1)
-        half = dict(W=lambda u: transient_displacement(u, 0.0, b) - w0,
+        half = dict(W=lambda u: ws2(u)[0] - w0,
                     T=lambda u: transient_temperature(u, 0.0, b) - ell,
-                    dS=lambda u: transient_slope(u, 0.0, b) - 0.5 * np.sign(u),
+                    dS=lambda u: ws2(u)[1] - 0.5 * np.sign(u),
                     dG=lambda u: transient_temperature_gradient_regular(u, 0.0, b), **steady2)
         return ((cyl, max(1.0, c, abs(np.sqrt(complex(b1))))),
                 (half, max(1.0, abs(np.sqrt(complex(b))))), ell)
@@ -229,3 +231,16 @@ class LinearisedContact:
         else:
             rows[n + 3] += ell * row
         return rows
+
+
+def _shared(c, b):
+    """``u -> (W(u), S(u))`` of one body, each array of ``u`` computed once: the moment
+    engine asks for ``W`` and then ``S`` at the same arguments (same points, scale)."""
+    memo = {}
+
+    def both(u):
+        key = (u.shape, hash(u.tobytes()))
+        if key not in memo:
+            memo[key] = transient_displacement_and_slope(u, c, b)
+        return memo[key]
+    return both
