@@ -200,3 +200,29 @@ def test_LinearisedContact_size():
     lin = LinearisedContact(sol.parameters, sol.representation, sol.phi, sol.psi,
                             sol.load_ratio, sol.sigma_over_delta)
     assert lin.matrix(0).shape == (lin.size, lin.size) == (15, 15)
+
+
+def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
+    """``solve --stability``: the record of :func:`thermocontact.stability` of the very
+    solution printed, under ``"stability"`` (the eigenvalues themselves are tested
+    above; here a stand-in keeps the command fast)."""
+    import thermocontact.api as api
+    from thermocontact.cli import main
+
+    seen = []
+
+    def stand_in(sol):
+        seen.append(sol)
+        return StabilityResult(eigenvalues=np.array([0.5 + 1.0j, 0.5 - 1.0j]), stable=False,
+                               error_estimate=2e-3, newton_change=1e-9,
+                               region=(0.02, 10.0, 10.0), n=8)
+    monkeypatch.setattr(api, "stability", stand_in)
+    args = ["solve", "--pe", "1", "--fhpe", "0.3", "--K2-over-K1", "1", "--lam", "-1",
+            "--stability"]
+    assert main(args + ["--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["stability"]["stable"] is False
+    assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
+    assert seen[0].load_ratio == rec["load_ratio"]
+    assert main(args) == 0
+    assert "stable        = False" in capsys.readouterr().out
