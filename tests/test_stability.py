@@ -218,7 +218,7 @@ def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
                                region=(0.02, 10.0, 10.0), n=8)
     monkeypatch.setattr(api, "stability", stand_in)
     args = ["solve", "--pe", "1", "--fhpe", "0.3", "--K2-over-K1", "1", "--lam", "-1",
-            "--stability"]
+            "-n", "16", "--stability"]
     assert main(args + ["--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["stability"]["stable"] is False
@@ -226,3 +226,40 @@ def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
     assert seen[0].load_ratio == rec["load_ratio"]
     assert main(args) == 0
     assert "stable        = False" in capsys.readouterr().out
+
+
+def _result(eigenvalues):
+    eigenvalues = np.array(eigenvalues, dtype=complex)
+    return StabilityResult(eigenvalues=eigenvalues, stable=not np.any(eigenvalues.real > 0),
+                           error_estimate=None, newton_change=None,
+                           region=(0.02, 10.0, 10.0), n=8)
+
+
+def test_kinds_of_events(monkeypatch):
+    """Each event's kind from the eigenvalues of the steady contact at the event itself
+    (a stand-in for the eigenvalues; the solution it is given is checked), and the
+    record carries ``kind`` only where it was computed."""
+    from thermocontact.studies import event_kinds
+    from thermocontact.studies.boundaries import Event, Path
+
+    assert event_kinds.kind_of(_result([])) == "grazing"
+    assert event_kinds.kind_of(_result([0.3, 0.1 + 2j, 0.1 - 2j])) == "fold"
+    assert event_kinds.kind_of(_result([0.3 + 1j, 0.3 - 1j, 0.2])) == "hopf"
+    events = tuple(Event(at=a, inequality="gap", edge="leading", valid_before=True,
+                         valid_after=False) for a in (0.2, 0.3, 0.4))
+    path = Path(along="fhpe", fixed={"pe": 1.0, "K2_over_K1": 1.0, "lam": 0.5},
+                x=np.array([0.0, 1.0]), valid=np.array([True, False]), events=events, n=8,
+                method="graded", error_estimate=float("nan"))
+    answers = iter([_result([]), _result([0.5]), _result([0.1 + 1j, 0.1 - 1j])])
+    seen = []
+
+    def stand_in(solve_at, n, **region):
+        seen.append(solve_at(n))
+        return next(answers)
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    out = event_kinds.classify(path)
+    assert [e.kind for e in out.events] == ["grazing", "fold", "hopf"]
+    assert [s.parameters.fhpe for s in seen] == [0.2, 0.3, 0.4]
+    assert all(s.lam == pytest.approx(0.5, abs=1e-12) for s in seen)
+    assert "kind" not in path.to_dict()["events"][0]
+    assert out.to_dict()["events"][1]["kind"] == "fold"

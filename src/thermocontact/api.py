@@ -219,7 +219,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=None,
-             tol=DEFAULT_TOL, n=None, progress=None):
+             tol=DEFAULT_TOL, n=None, progress=None, stability=False):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -259,6 +259,10 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         Unknowns per function of the whole path instead of the choice by ``tol``.
     progress : callable, optional
         ``progress(stage, done, total)``.
+    stability : bool, optional
+        Also each event's ``kind``, ``"fold"``, ``"hopf"`` or ``"grazing"``, from the
+        eigenvalues of the steady contact there (:func:`stability`; dimensionless paths;
+        about a minute per event).
 
     Returns
     -------
@@ -282,6 +286,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
                          "beta_f": beta_f or None, "sigma": sigma, "method": method}
+        if stability:
+            raise InputError("the kinds of events (stability) are computed for "
+                             "dimensionless paths only", parameters=("stability",))
         return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
                               dimensionless, tol, n, progress)
     from .studies.boundaries import SPELLINGS, follow
@@ -312,8 +319,13 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if len(closures) != 1:
         raise InputError("give exactly one of lam and sigma, or follow one of them",
                          parameters=("lam", "sigma"))
-    return follow(fixed, name, _number("start", start), _number("stop", stop),
+    path = follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
+    if not stability:
+        return path
+    from .studies.event_kinds import classify
+
+    return classify(path)
 
 
 def _number(name, value) -> float:

@@ -32,10 +32,13 @@ __all__ = ["boundary_cmd"]
                    "each event's error estimate compares with n/2.")
 @click.option("--method", type=click.Choice(sorted(METHODS)), default=None,
               help=f"Discretisation method (dimensionless paths) [default: {DEFAULT_METHOD}].")
+@click.option("--stability", is_flag=True,
+              help="Also each event's kind: fold, hopf or grazing, from the eigenvalues of "
+                   "the steady contact there (dimensionless paths; about a minute per event).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
-                 friction, dundurs, tol, n, method, as_json):
+                 friction, dundurs, tol, n, method, stability, as_json):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -51,7 +54,7 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                     speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
                     cylinder=cylinder, half_plane=half_plane, radius=radius, load=load,
                     speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
-                    method=method, tol=tol, n=n, progress=bar)
+                    method=method, tol=tol, n=n, progress=bar, stability=stability)
     method = path.method
     bar.close()
     if as_json:
@@ -75,4 +78,4 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         change = (f"valid {e.valid_before} -> {e.valid_after}" if e.changes_validity else
                   f"validity unchanged ({e.valid_before})")
         click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
-                   f"{what}; {change}")
+                   f"{what}; {change}" + (f"; {e.kind}" if e.kind else ""))
