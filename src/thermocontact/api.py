@@ -620,11 +620,10 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16,
-              rate_unit=None):
+def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16):
     """Eigenvalues of largest real part of a steady single patch: is it stable?
 
-    The contact linearised about ``solution`` at fixed load, its edges free, for a
+    The contact linearised about a steady solution at fixed load, its edges free, for a
     perturbation growing as ``exp(b t)`` (docs/derivation.md, section 17): ``M(b) c = 0``
     solved by Beyn's contour-integral method in an ellipse of the right half-plane
     and each eigenvalue checked by Newton's method; the error estimate is the change
@@ -633,8 +632,10 @@ def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16
 
     Parameters
     ----------
-    solution : ContactSolution
-        From :func:`solve` (or a :class:`Model`); edge-graded methods only.
+    solution : ContactSolution or PhysicalContact
+        From :func:`solve` (edge-graded methods; eigenvalues in units of
+        ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
+        1/s, ``contact(..., dundurs=False)``).
     n : int, optional
         Unknowns per function of the analysis (default 8, from 8 to 64; the steady
         solution is solved again at ``n`` and ``n/2``).
@@ -644,30 +645,46 @@ def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16
         point of the stationary half-plane's kernels, which the contour avoids).
     points : int, optional
         Points of the contour (even; half of them are computed).
-    rate_unit : float, optional
-        ``k2/Delta^2`` in 1/s: report the eigenvalues in 1/s.
 
     Returns
     -------
     StabilityResult
-        ``to_dict()`` is the ``"stability"`` record of ``solve --stability``.
+        ``to_dict()`` is the ``"stability"`` record of ``solve --stability`` and
+        ``contact --stability``.
 
     Raises
     ------
     InputError
         A moving half-plane, a Dundurs term, an interface conductance, a Chebyshev
-        method or a region out of range.
+        method, a physical contact without a branch, or a region out of range.
     """
     from .solvers.stability import stability_of
 
-    model = Model(solution.parameters.pe, solution.parameters.K2_over_K1,
-                  k2_over_k1=solution.parameters.k2_over_k1,
-                  delta1_over_delta2=solution.parameters.delta1_over_delta2,
-                  speed_ratio=solution.parameters.speed_ratio,
-                  beta_f=solution.parameters.beta_f, method=solution.method)
+    rate_unit = None
+    if hasattr(solution, "branches"):
+        # A physical contact: its primary branch, rates in 1/s (k2/Delta^2).
+        branch = solution.primary
+        if branch is None:
+            raise InputError("stability: the contact has no branch to analyse",
+                             parameters=("solution",))
+        kw = solution.problem.to_dimensionless(branch.half_width)
+        rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
+        method = DEFAULT_METHOD
+    else:
+        p = solution.parameters
+        kw = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
+                  delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
+                  beta_f=p.beta_f, lam=solution.lam)
+        method = solution.method
+        if solution.conductance is not None:
+            raise InputError("stability: an interface conductance is not supported; solve "
+                             "with perfect thermal contact", parameters=("conductance",))
+    model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
+                  delta1_over_delta2=kw["delta1_over_delta2"],
+                  speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
+                  method=method)
 
     def solve_at(m):
-        return model.solve_at(m, solution.parameters.fhpe, lam=solution.lam,
-                              check_validity=False)
+        return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
     return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
                         points=points, rate_unit=rate_unit)

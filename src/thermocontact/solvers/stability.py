@@ -19,7 +19,7 @@ from ..discretisation.linearised import LinearisedContact
 from ..io.results import Result
 from ..problem.validation import InputError, check_integer, check_positive
 
-__all__ = ["StabilityResult", "beyn", "linearised", "newton", "stability_of"]
+__all__ = ["StabilityResult", "beyn", "inside", "linearised", "newton", "stability_of"]
 
 #: Unknowns per function of the stability analysis (its own discretisation: the cost
 #: of ``M(b)`` grows with ``n`` and with the number of contour points).
@@ -95,14 +95,14 @@ def ellipse(re_min, re_max, im_max, points):
         -a * np.sin(theta) + 1j * im_max * np.cos(theta)
 
 
-def beyn(matrix, region, *, points=16, probes=8, tol=1e-9, seed=0):
+def beyn(matrix, region, *, points=16, probes=8, tol=1e-6, seed=0):
     """Eigenvalues of ``M(b) c = 0`` inside an ellipse by Beyn's method (Beyn 2012,
     algorithm 1).
 
     ``A_k = (1/2 pi i) oint b^k M(b)^{-1} V db`` by the trapezoidal rule on the ellipse
     (exponentially convergent for ``M`` analytic in a neighbourhood of it), with a
     real probe ``V`` so that the lower half of the contour is the conjugate of the
-    upper; ``A_0 = V0 S W0^H`` truncated at ``tol`` of its largest singular value;
+    upper; ``A_0 = V0 S W0^H`` truncated at ``tol`` times the integrand's largest norm;
     the eigenvalues are those of ``V0^H A_1 W0 S^{-1}`` that lie inside.
 
     Parameters
@@ -126,6 +126,7 @@ def beyn(matrix, region, *, points=16, probes=8, tol=1e-9, seed=0):
     rng = np.random.default_rng(seed)
     V = None
     A0 = A1 = 0.0
+    size = 0.0
     for zj, dzj in zip(z, dz):
         M = matrix(zj)
         if V is None:
@@ -133,20 +134,27 @@ def beyn(matrix, region, *, points=16, probes=8, tol=1e-9, seed=0):
         X = np.linalg.solve(M, V) * dzj
         A0 = A0 + X
         A1 = A1 + zj * X
+        size = max(size, np.linalg.norm(X, 2))
     # The lower half: conjugates (M(conj b) = conj M(b), V real).
     scale = (2.0 * np.pi / points) / (2j * np.pi)
     A0 = scale * (A0 - np.conj(A0))
     A1 = scale * (A1 - np.conj(A1))
     U, sv, Wh = np.linalg.svd(A0, full_matrices=False)
-    k = int(np.sum(sv > tol * max(sv[0], 1e-300)))
+    # Against the integrand's own size: with no eigenvalue inside, A_0 is quadrature
+    # error only (a branch point near the contour makes it converge slowly).
+    k = int(np.sum(sv > tol * max(size, 1e-300)))
     if k == 0:
         return np.array([], dtype=complex), 0
     U, sv, W = U[:, :k], sv[:k], Wh[:k].conj().T
     B = U.conj().T @ A1 @ W / sv[None, :]
     lam = np.linalg.eigvals(B)
+    return lam[inside(lam, region)], k
+
+
+def inside(b, region):
+    """Whether ``b`` lies inside the ellipse ``region = (re_min, re_max, im_max)``."""
     centre, a = 0.5 * (region[0] + region[1]), 0.5 * (region[1] - region[0])
-    inside = ((lam.real - centre) / a) ** 2 + (lam.imag / region[2]) ** 2 < 1.0
-    return lam[inside], k
+    return ((np.real(b) - centre) / a) ** 2 + (np.imag(b) / region[2]) ** 2 < 1.0
 
 
 def newton(matrix, b0, *, steps=8, tol=1e-10, h=1e-6):
@@ -207,9 +215,16 @@ def stability_of(solve_at, *, n=STABILITY_N, re_min=0.02, re_max=10.0, im_max=10
     found = found[found.imag >= -1e-12 * np.maximum(1.0, np.abs(found))]
     change = None
     if polish and found.size:
-        polished = [newton(lin.matrix, b)[0] for b in found]
-        change = max(abs(p - b) / max(1.0, abs(p)) for p, b in zip(polished, found))
-        found = np.array(polished)
+        # The second method: Newton's from each estimate; an estimate it does not
+        # confirm (no convergence, or a root outside the region) is dropped.
+        kept, changes = [], []
+        for b in found:
+            p, step = newton(lin.matrix, b)
+            if step <= 1e-8 * max(1.0, abs(p)) and inside(p, region):
+                kept.append(p)
+                changes.append(abs(p - b) / max(1.0, abs(p)))
+        change = max(changes) if changes else None
+        found = np.array(kept, dtype=complex)
     estimate = None
     if found.size:
         coarse = linearised(solve_at(n // 2))
