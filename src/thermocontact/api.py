@@ -620,7 +620,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=8, re_min=0.02, re_max=10.0, im_max=10.0, points=16):
+def stability(solution, *, n=8, re_min=0.5, re_max=10.0, im_max=10.0, points=32):
     """Eigenvalues of largest real part of a steady single patch: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
