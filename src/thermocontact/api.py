@@ -620,7 +620,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=8, re_min=0.5, re_max=10.0, im_max=10.0, points=32):
+def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32):
     """Eigenvalues of largest real part of a steady single patch: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
@@ -637,7 +637,7 @@ def stability(solution, *, n=8, re_min=0.5, re_max=10.0, im_max=10.0, points=32)
         ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
         1/s, ``contact(..., dundurs=False)``).
     n : int, optional
-        Unknowns per function of the analysis (default 8, from 8 to 64; the steady
+        Unknowns per function of the analysis (default 12, from 8 to 64; the steady
         solution is solved again at ``n`` and ``n/2``).
     re_min, re_max, im_max : float, optional
         The ellipse searched, in units of ``k2/Delta^2``: real parts from ``re_min > 0``

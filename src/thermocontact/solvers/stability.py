@@ -23,7 +23,7 @@ __all__ = ["StabilityResult", "beyn", "inside", "linearised", "newton", "stabili
 
 #: Unknowns per function of the stability analysis (its own discretisation: the cost
 #: of ``M(b)`` grows with ``n`` and with the number of contour points).
-STABILITY_N = 8
+STABILITY_N = 12
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -38,7 +38,7 @@ class StabilityResult(Result):
         ``rate_unit`` (``k2/Delta^2`` in 1/s) was given.
     stable : bool
         No eigenvalue in the region (``Re b > re_min``, ``|b|`` within the
-        ellipse of :attr:`region`).
+        ellipse ``region``).
     error_estimate : float or None
         The largest change of an eigenvalue between ``n`` and ``n/2`` (relative to
         ``max(|b|, 1)``), None where there is none to compare.
