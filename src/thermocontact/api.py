@@ -668,6 +668,9 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
             raise InputError("stability: the contact has no branch to analyse",
                              parameters=("solution",))
         kw = solution.problem.to_dimensionless(branch.half_width)
+        if kw.get("beta_f"):
+            raise InputError("stability: the Dundurs term is not modelled; solve with "
+                             "dundurs=False", parameters=("dundurs",))
         rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
         method = DEFAULT_METHOD
     else:

@@ -5,16 +5,19 @@ A perturbation growing as ``exp(b t)`` of a steady single patch at fixed load
 carried in the contact's moving coordinate ``r = (xi - sigma(t))/Delta(t)`` by the
 steady representation (``phi``, ``psi``); the edges move with the centre's and the
 half-width's perturbations, whose effect on the fields at a fixed point is the
-derivative of each Green's function against the steady densities (the
-inverse-square-root edge terms of a moving edge, written without them).  The equations
-are the undifferentiated ones, displacement (S3) and temperature (S4) continuity:
+derivative of each Green's function acting on the steady densities: the
+inverse-square-root terms of a moving edge enter through it, integrably.  The equations
+are the undifferentiated ones, displacement (S3) and temperature (S4) continuity, at
+points moving with the contact (whose steady terms remove the Cauchy kernel from the
+edges' terms), ``u = s - r``:
 
 * displacement, projected on ``cos(j tau)``, ``j <= n + 1``:
-  ``(1/pi) int ln|u| p~ + 2F sum_i d_i int W_i q~_i + D~
-  - (sig~ + del~ s) H0(s) + del~/pi + 2F sum_i d_i int S_i (sig~ + del~ r) q0_i = 0``;
+  ``(1/pi) int ln|u| p~ + 2F sum_i d_i int W_i q~_i + D~ + del~/pi
+  - (2L/pi)(sig~ + del~ s)(sigma/Delta + s)
+  + 2F sum_i d_i int {(S_i - S_i0)(sig~ + del~ r) - del~ u S_i0} q0_i = 0`` (S3, S5, S6);
 * temperature, projected on ``cos(j tau)``, ``j < n``:
-  ``rho [int T_1 q~_1 + int G_1 (sig~ + del~ r) q0_1]
-  - [int T_2 q~_2 + int G_2 (sig~ + del~ r) q0_2] = 0``;
+  ``sum_i +-[int T_i q~_i + int {(G_i - G_i0)(sig~ + del~ r) - del~ u G_i0} q0_i] = 0``
+  (``rho`` for the cylinder, ``-1`` for the half-plane; S4, S6);
 * the load: ``w_p . phi~ = 0``.
 
 ``W``, ``S``, ``T``, ``G`` are each body's transient displacement, slope, temperature
