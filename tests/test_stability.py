@@ -25,7 +25,7 @@ from thermocontact import Model, StabilityResult
 from thermocontact.discretisation.linearised import LinearisedContact, projections
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
 from thermocontact.problem.validation import InputError
-from thermocontact.solvers.stability import beyn, linearised, newton
+from thermocontact.solvers.stability import beyn, inside, linearised, newton
 
 
 def _steady(pe, K, fhpe, lam, n):
@@ -263,3 +263,16 @@ def test_kinds_of_events(monkeypatch):
     assert all(s.lam == pytest.approx(0.5, abs=1e-12) for s in seen)
     assert "kind" not in path.to_dict()["events"][0]
     assert out.to_dict()["events"][1]["kind"] == "fold"
+
+
+def test_a_growing_pair_past_a_fold():
+    """Past the fold of the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.5, n = 8) the pair
+    found by Beyn's method and Newton's (docs/stability.md) makes M singular, and its
+    conjugate too: M(conj b) = conj M(b)."""
+    lin = linearised(_steady(1.5, 1.0, 1.5, 1.0, 8))
+    b = 0.7610748136758606 + 1.334553895858362j
+    M = lin.matrix(b)
+    sv = np.linalg.svd(M, compute_uv=False)
+    assert sv[-1] < 1e-13 * sv[0] and sv[-2] > 1e-8 * sv[0]
+    np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
+    assert inside(b, (0.5, 10.0, 10.0))
