@@ -276,3 +276,30 @@ def test_a_growing_pair_past_a_fold():
     assert sv[-1] < 1e-13 * sv[0] and sv[-2] > 1e-8 * sv[0]
     np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
     assert inside(b, (0.5, 10.0, 10.0))
+
+
+def test_physical_contact_rates_in_per_second(monkeypatch):
+    """``stability(contact(...))`` analyses the primary branch at its own Pe and fHPe and
+    reports in 1/s: the unit k2/Delta^2 of the half-plane's diffusivity and the branch's
+    half-width; the Dundurs term is refused by name."""
+    import thermocontact as tc
+    import thermocontact.solvers.stability as st
+
+    kwargs = dict(cylinder="copper", half_plane="steel", radius="10mm", load="50kN/m",
+                  speed="2m/s", friction=0.2, lam=-1)
+    with pytest.raises(InputError, match="dundurs"):
+        tc.stability(tc.contact(**kwargs))
+    res = tc.contact(dundurs=False, **kwargs)
+    branch = res.primary
+    seen = {}
+
+    def stand_in(solve_at, rate_unit=None, **region):
+        seen["solution"], seen["unit"] = solve_at(32), rate_unit
+        return _result([])
+    monkeypatch.setattr(st, "stability_of", stand_in)
+    tc.stability(res)
+    assert seen["unit"] == pytest.approx(res.problem.half_plane.k / branch.half_width ** 2,
+                                         rel=1e-14)
+    assert seen["solution"].parameters.pe == pytest.approx(branch.pe, rel=1e-14)
+    assert seen["solution"].parameters.fhpe == pytest.approx(branch.fhpe, rel=1e-14)
+    assert seen["solution"].load_ratio == pytest.approx(branch.load_ratio, rel=1e-8)
