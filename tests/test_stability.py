@@ -276,6 +276,11 @@ def test_a_growing_pair_past_a_fold():
     assert sv[-1] < 1e-13 * sv[0] and sv[-2] > 1e-8 * sv[0]
     np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
     assert inside(b, (0.5, 10.0, 10.0))
+    # At n = 12 the pair has moved by 5e-2 (9e-4 from n = 12 to 32, docs/stability.md).
+    fine = 0.7857534445394697 + 1.3817812587822782j
+    sv = np.linalg.svd(linearised(_steady(1.5, 1.0, 1.5, 1.0, 12)).matrix(fine),
+                       compute_uv=False)
+    assert sv[-1] < 1e-13 * sv[0]
 
 
 def test_physical_contact_rates_in_per_second(monkeypatch):
