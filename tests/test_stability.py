@@ -308,3 +308,28 @@ def test_physical_contact_rates_in_per_second(monkeypatch):
     assert seen["solution"].parameters.pe == pytest.approx(branch.pe, rel=1e-14)
     assert seen["solution"].parameters.fhpe == pytest.approx(branch.fhpe, rel=1e-14)
     assert seen["solution"].load_ratio == pytest.approx(branch.load_ratio, rel=1e-8)
+
+
+def test_stability_of_orders_pairs_and_estimates(monkeypatch):
+    """The driver on known problems standing in for ``M(b)`` at ``n`` and ``n/2``: both
+    members of each pair, largest real part first, only what lies in the region, the
+    change to ``n/2`` as the error estimate, and rates in 1/s with ``rate_unit``."""
+    import thermocontact.solvers.stability as st
+
+    fine = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j]
+    coarse = [r + 1e-3 for r in fine]
+
+    class Stand:
+        def __init__(self, roots):
+            self.matrix = _known_problem(roots)
+    monkeypatch.setattr(st, "linearised", lambda n: Stand(fine if n == 12 else coarse))
+    res = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0, points=64)
+    np.testing.assert_allclose(res.eigenvalues, [4.0 + 0.5j, 4.0 - 0.5j, 1.5 + 2.0j,
+                                                 1.5 - 2.0j, 0.7], atol=1e-9)
+    assert not res.stable
+    # The root 0.7 moves by 1e-3, relative to max(|b|, 1) = 1.
+    assert res.error_estimate == pytest.approx(1e-3, rel=1e-6)
+    per_second = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0,
+                                 points=64, rate_unit=2.0)
+    np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
+    assert per_second.units == "1/s" and per_second.region == (0.2, 12.0, 8.0)
