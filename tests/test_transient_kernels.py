@@ -327,3 +327,12 @@ def test_regular_gradient_series_against_mpmath():
             ref = complex(mpmath.exp(-c * x) * (c * k0 + m * mpmath.sign(x) * k1) - 1 / x)
             # 5e-13: the cancellation of 1/u against mu K1 just beyond the series
             assert abs(g - ref) < 5e-13 * abs(ref), (c, ui, g, ref)
+
+
+@pytest.mark.parametrize("c, b", [(0.0, 1.0 + 1.0j), (5.0, 0.3 - 2.0j), (3.0, 0.0), (-2.0, 0.5)])
+def test_displacement_and_slope_in_one_pass(c, b):
+    """The one quadrature pass of both kernels gives each exactly as its own does."""
+    u = np.concatenate([U, [0.0]])
+    w, s = tk.transient_displacement_and_slope(u, c, b)
+    np.testing.assert_array_equal(w, tk.transient_displacement(u, c, b))
+    np.testing.assert_array_equal(s, tk.transient_slope(u, c, b))

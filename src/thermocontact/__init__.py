@@ -51,6 +51,8 @@ _EXPORTS = {
     "ContactSolution": ".solvers.result",
     "Model": ".solvers.single_patch",
     "solve": ".solvers.single_patch",
+    "stability": ".api",
+    "StabilityResult": ".solvers.stability",
     "tei": ".api",
 }
 

@@ -29,7 +29,7 @@ from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
 __all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec",
-           "operating_map", "parameter_map", "solve", "tei"]
+           "operating_map", "parameter_map", "solve", "stability", "tei"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
 PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": "",
@@ -259,7 +259,8 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
              cylinder=None, half_plane=None, radius=None, load=None, speed=None,
              friction=None, dundurs=None, materials=None, method=None,
              tol=DEFAULT_TOL, n=None, progress=None, bulk_temperatures=None,
-             sink_distance=None, layer_thickness=None, theta=None):
+             sink_distance=None, layer_thickness=None, theta=None,
+             stability=False):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -307,6 +308,10 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         Unknowns per function of the whole path instead of the choice by ``tol``.
     progress : callable, optional
         ``progress(stage, done, total)``.
+    stability : bool, optional
+        Also each event's ``kind``, ``"fold"``, ``"hopf"`` or ``"grazing"``, from the
+        eigenvalues of the steady contact there (:func:`stability`; dimensionless paths;
+        about a minute per event).
 
     Returns
     -------
@@ -332,6 +337,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
                          "beta_f": beta_f or None, "sigma": sigma, "method": method,
                          "theta": theta}
+        if stability:
+            raise InputError("the kinds of events (stability) are computed for "
+                             "dimensionless paths only", parameters=("stability",))
         return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
                               dimensionless, tol, n, progress)
     from .studies.boundaries import SPELLINGS, follow
@@ -368,8 +376,13 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if len(closures) != 1:
         raise InputError("give exactly one of lam and sigma (or theta), or follow one of them",
                          parameters=("lam", "sigma", "theta"))
-    return follow(fixed, name, _number("start", start), _number("stop", stop),
+    path = follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
+    if not stability:
+        return path
+    from .studies.event_kinds import classify
+
+    return classify(path)
 
 
 def _number(name, value) -> float:
@@ -693,3 +706,76 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     s, c = _materials(slider, counterface, materials)
     return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
+
+
+def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32):
+    """Eigenvalues of largest real part of a steady single patch: is it stable?
+
+    The contact linearised about a steady solution at fixed load, its edges free, for a
+    perturbation growing as ``exp(b t)`` (docs/derivation.md, section 18): ``M(b) c = 0``
+    solved by Beyn's contour-integral method in an ellipse of the right half-plane
+    and each eigenvalue checked by Newton's method; the error estimate is the change
+    of the eigenvalues from ``n`` to ``n/2``.  A stationary half-plane (``speed_ratio
+    = 0``), no Dundurs term and perfect thermal contact only.
+
+    Parameters
+    ----------
+    solution : ContactSolution or PhysicalContact
+        From :func:`solve` (edge-graded methods; eigenvalues in units of
+        ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
+        1/s, ``contact(..., dundurs=False)``).
+    n : int, optional
+        Unknowns per function of the analysis (default 12, from 8 to 64; the steady
+        solution is solved again at ``n`` and ``n/2``).
+    re_min, re_max, im_max : float, optional
+        The ellipse searched, in units of ``k2/Delta^2``: real parts from ``re_min > 0``
+        to ``re_max``, imaginary parts within ``+-im_max`` (``b = 0`` is a branch
+        point of the stationary half-plane's kernels, which the contour avoids).
+    points : int, optional
+        Points of the contour (even; half of them are computed).
+
+    Returns
+    -------
+    StabilityResult
+        ``to_dict()`` is the ``"stability"`` record of ``solve --stability`` and
+        ``contact --stability``.
+
+    Raises
+    ------
+    InputError
+        A moving half-plane, a Dundurs term, an interface conductance, a Chebyshev
+        method, a physical contact without a branch, or a region out of range.
+    """
+    from .solvers.stability import stability_of
+
+    rate_unit = None
+    if hasattr(solution, "branches"):
+        # A physical contact: its primary branch, rates in 1/s (k2/Delta^2).
+        branch = solution.primary
+        if branch is None:
+            raise InputError("stability: the contact has no branch to analyse",
+                             parameters=("solution",))
+        kw = solution.problem.to_dimensionless(branch.half_width)
+        if kw.get("beta_f"):
+            raise InputError("stability: the Dundurs term is not modelled; solve with "
+                             "dundurs=False", parameters=("dundurs",))
+        rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
+        method = DEFAULT_METHOD
+    else:
+        p = solution.parameters
+        kw = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
+                  delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
+                  beta_f=p.beta_f, lam=solution.lam)
+        method = solution.method
+        if solution.conductance is not None:
+            raise InputError("stability: an interface conductance is not supported; solve "
+                             "with perfect thermal contact", parameters=("conductance",))
+    model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
+                  delta1_over_delta2=kw["delta1_over_delta2"],
+                  speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
+                  method=method)
+
+    def solve_at(m):
+        return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
+    return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
+                        points=points, rate_unit=rate_unit)

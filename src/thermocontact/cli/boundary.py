@@ -43,11 +43,14 @@ __all__ = ["boundary_cmd"]
                    "(m, or 30mm); with --theta: L/Delta > 1.")
 @click.option("--layer-thickness", "layer_thickness", default=None,
               help="Or the thickness of a half-plane layer on its sink.")
+@click.option("--stability", is_flag=True,
+              help="Also each event's kind: fold, hopf or grazing, from the eigenvalues of "
+                   "the steady contact there (dimensionless paths; about a minute per event).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,
                  friction, dundurs, tol, n, method, theta, bulk_temperatures, sink_distance,
-                 layer_thickness, as_json):
+                 layer_thickness, stability, as_json):
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -65,7 +68,8 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
                     speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
                     method=method, tol=tol, n=n, progress=bar,
                     bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
-                    layer_thickness=layer_thickness, theta=theta)
+                    layer_thickness=layer_thickness, theta=theta,
+                    stability=stability)
     method = path.method
     bar.close()
     if as_json:
@@ -89,4 +93,4 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         change = (f"valid {e.valid_before} -> {e.valid_after}" if e.changes_validity else
                   f"validity unchanged ({e.valid_before})")
         click.echo(f"  {along} = {e.at:.10g}{' ' + unit if unit else ''}{err}: "
-                   f"{what}; {change}")
+                   f"{what}; {change}" + (f"; {e.kind}" if e.kind else ""))

@@ -149,6 +149,9 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
                    "are solved with 32 unknowns per function per zone, doubled where the "
                    "path stalls).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+@click.option("--stability", is_flag=True,
+              help="Also the eigenvalues of the primary branch linearised at fixed load, "
+                   "in 1/s (derivation section 18; with --no-dundurs; about a minute).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
@@ -157,7 +160,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
                       "omitted: the mean Hertz pressure")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
                 lam, bulk_temperatures, sink_distance, layer_thickness, speed2, tol, as_json,
-                csv_file, plot_file, zones, conductance):
+                csv_file, plot_file, zones, conductance,
+                stability=False):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from ..api import contact
     from ..io.files import check_output_file
@@ -172,6 +176,10 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
+    if stability and (zones or conductance is not None):
+        raise InputError("--stability analyses the single patch with perfect thermal "
+                         "contact: give neither --zones nor --conductance",
+                         parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   speed2=speed2, dundurs=dundurs is not False, materials=materials_file,
                   tol=tol)
@@ -220,10 +228,17 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     finally:
         if side is not None:
             side.shutdown(wait=False, cancel_futures=True)
+    record = res.to_dict()
+    if stability:
+        from ..api import stability as eigenvalues
+        from .solve import stability_summary
+
+        record["stability"] = eigenvalues(res).to_dict()
     if as_json:
-        click.echo(json.dumps(res.to_dict(), allow_nan=False))
+        click.echo(json.dumps(record, allow_nan=False))
     else:
-        click.echo(contact_summary(res))
+        click.echo(contact_summary(res)
+                   + ("\n" + stability_summary(record["stability"]) if stability else ""))
 
 
 def write_contact_csv(res, path):

@@ -85,10 +85,13 @@ def solve_summary(sol) -> str:
               help="With --theta and a stationary half-plane: L/Delta > 1, the distance "
                    "from the contact at which the half-plane is at T2 (a layer of thickness "
                    "h on a sink at T2: L = 4h/pi).")
+@click.option("--stability", is_flag=True,
+              help="Also the eigenvalues of the contact linearised at fixed load, in units of "
+                   "k2/Delta^2 (derivation section 18; about a minute): is it stable?")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
               sigma, n, tol, method, check, delta_over_r, conductance, theta, sink_distance,
-              as_json):
+              stability, as_json):
     """Solve one case in dimensionless form."""
     from ..api import solve
 
@@ -103,11 +106,29 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
                 progress=RefinementProgress(), delta_over_r=delta_over_r,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))
     app = sol.applicability
+    record = sol.to_dict()
+    if stability:
+        from ..api import stability as eigenvalues
+
+        record["stability"] = eigenvalues(sol).to_dict()
     if as_json:
-        click.echo(json.dumps(sol.to_dict(), allow_nan=False))
+        click.echo(json.dumps(record, allow_nan=False))
     else:
         text = solve_summary(sol)
         if app is not None:
             text += ("\n  theory applicable: yes" if app.applicable else
                      "\n  theory NOT applicable: " + "; ".join(app.reasons))
+        if stability:
+            text += "\n" + stability_summary(record["stability"])
         click.echo(text)
+
+
+def stability_summary(record) -> str:
+    """The lines of a ``"stability"`` record."""
+    r = record["region"]
+    found = ", ".join(f"{re:.6g}{im:+.6g}i" for re, im in record["eigenvalues"]) or "none"
+    est = record["error_estimate"]
+    return (f"  stable        = {record['stable']}  (eigenvalues with Re b in "
+            f"[{r['re_min']:g}, {r['re_max']:g}], |Im b| <= {r['im_max']:g}, "
+            f"{record['units']})\n  eigenvalues   = {found}"
+            + ("" if est is None else f"  (change from n/2: {est:.2g})"))

@@ -39,6 +39,7 @@ from thermocontact.problem.validation import InputError
 
 __all__ = [
     "transient_displacement",
+    "transient_displacement_and_slope",
     "transient_slope",
     "transient_temperature",
     "transient_temperature_gradient",
@@ -211,10 +212,14 @@ def _phi_quadrature(u, c, b, integrand):
     shape = u.shape
     u = u.ravel()
     dtype = np.result_type(np.asarray(b), float)
-    out = np.empty(u.shape, dtype=dtype)
+    # An integrand may return several at once (one pass over the panels for all).
+    count = getattr(integrand, "count", None)
+    out = np.empty((count or 1,) + u.shape, dtype=dtype)
     for i in range(0, u.size, _BLOCK):
-        out[i:i + _BLOCK] = _phi_block(u[i:i + _BLOCK], c, b, integrand)
-    return out.reshape(shape)
+        out[:, i:i + _BLOCK] = _phi_block(u[i:i + _BLOCK], c, b, integrand)
+    if count is None:
+        return out[0].reshape(shape)
+    return tuple(o.reshape(shape) for o in out)
 
 
 def _phi_block(u, c, b, integrand):
@@ -267,7 +272,8 @@ def _phi_block(u, c, b, integrand):
     edges = np.concatenate([np.zeros((u.size, 1)), edges], axis=1)
     e = exponent(edges)[3]
     change = np.max(np.abs(np.diff(e, axis=1)), axis=0)
-    total = np.zeros(u.size, dtype=np.result_type(np.asarray(b), float))
+    total = np.zeros((getattr(integrand, "count", None) or 1, u.size),
+                     dtype=np.result_type(np.asarray(b), float))
     for j in range(edges.shape[1] - 1):
         parts = max(1, int(np.ceil(change[j] / _PANEL_VARIATION)))
         frac = np.arange(parts + 1) / parts
@@ -276,7 +282,8 @@ def _phi_block(u, c, b, integrand):
         phi = ((sub[:, :-1] + half)[:, :, None] + half[:, :, None] * _GL_X).reshape(u.size, -1)
         w = (half[:, :, None] * _GL_W).reshape(u.size, -1)
         s, rho, d, ex = exponent(phi)
-        total += np.sum(w * integrand(s, rho, d, sg) * np.exp(-ex), axis=1)
+        f = integrand(s, rho, d, sg)
+        total += np.sum((w * np.exp(-ex))[None] * (f if isinstance(f, tuple) else (f,)), axis=2)
     return (2.0 / np.pi) * total
 
 
@@ -301,6 +308,17 @@ def transient_displacement(u, c, b):
     """
     c, b = _parameters(c, b)
     return _phi_quadrature(u, c, b, lambda s, rho, d, sg: s / rho)
+
+
+def transient_displacement_and_slope(u, c, b):
+    """``(W(u), S(u))`` of :func:`transient_displacement` and :func:`transient_slope`
+    in one pass of their common quadrature (eqs. T9, T10)."""
+    c, b = _parameters(c, b)
+
+    def integrand(s, rho, d, sg):
+        return s / rho, s * s * np.where(sg == 0.0, c * s / rho, sg * d / rho)
+    integrand.count = 2
+    return _phi_quadrature(u, c, b, integrand)
 
 
 def transient_slope(u, c, b):

@@ -83,6 +83,10 @@ class Event(Result):
         The event's distance from where the same margin changes sign with half the
         unknowns: the discretisation's share of its error (``at`` itself is located
         to ``rtol``).  None where it could not be bracketed at ``n/2``.
+    kind : {"fold", "hopf", "grazing"} or None
+        From the eigenvalues of the steady contact at the event
+        (:func:`thermocontact.studies.event_kinds.classify`); None where not asked for
+        (and then left out of the record).
     """
 
     at: float
@@ -92,6 +96,7 @@ class Event(Result):
     valid_after: bool
     position: float | None = None
     error_estimate: float | None = None
+    kind: str | None = None
 
     @property
     def changes_validity(self) -> bool:
@@ -100,7 +105,10 @@ class Event(Result):
         return self.valid_before != self.valid_after
 
     def _record(self) -> dict:
-        return {**super()._record(), "changes_validity": self.changes_validity}
+        record = {**super()._record(), "changes_validity": self.changes_validity}
+        if self.kind is None:
+            del record["kind"]
+        return record
 
 
 @dataclass(frozen=True, eq=False, repr=False)

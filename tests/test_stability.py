@@ -1,0 +1,335 @@
+"""The stability of a steady single patch (docs/derivation.md, section 18, S1-S9).
+
+* ``M(0)`` against the Jacobian, by central differences in the centre and half-width, of
+  the steady problem's residual at fixed load and heat partition (displacement and
+  temperature continuity at points moving with the contact, kernels of the dilated
+  contact assembled anew): the edges' columns, derived from the Green's functions'
+  derivatives, against a second computation.
+* ``M(b) -> M(0)`` as ``b -> 0``, like ``sqrt(b)`` (T11), with the stationary half-plane's
+  diverging temperature constant ``l(b)`` (T6) apart; ``M(conj b) = conj M(b)``.
+* ``det M(0)`` vanishes where the load along a ray of growing load has a fold, located
+  by Brent's method on the steady solver's load.
+* Beyn's method and Newton's method on a nonlinear eigenproblem with known eigenvalues.
+"""
+
+from __future__ import annotations
+
+import json
+import pickle
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from thermocontact import Model, StabilityResult
+from thermocontact.discretisation.linearised import LinearisedContact, projections
+from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
+from thermocontact.problem.validation import InputError
+from thermocontact.solvers.stability import beyn, inside, linearised, newton
+
+
+def _steady(pe, K, fhpe, lam, n):
+    return Model(pe, K, n=n).solve_at(n, fhpe, lam=lam)
+
+
+def _residual(sol, z):
+    """The steady residual at fixed load and heat partition in the undifferentiated
+    form, at points moving with the contact: ``z = (phi, psi, D, sigma/Delta0,
+    Delta/Delta0)``, lengths in units of the solution's half-width ``Delta0``.  A
+    dilation by ``Delta/Delta0`` is the contact at ``Pe Delta/Delta0`` (section 16)."""
+    par, rep, n = sol.parameters, sol.representation, sol.n
+    x, pd, pt = projections(n)
+    s, aux = rep.projection_points(x)
+    eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
+    wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
+    phi, psi, D, sg, dl = z[:n], z[n:2 * n], z[2 * n], z[2 * n + 1], z[2 * n + 2]
+    ce = par.cylinder_scale * dl
+
+    def moments(kernel, scale, log=False):
+        return rep.integrate(kernel, s, scale=scale, logarithmic=log, aux=aux)
+
+    def q1(m):
+        return 0.5 * (1 + eta) * m[0] @ phi + 0.5 * m[1] @ psi
+
+    def q2(m):
+        return 0.5 * (1 - eta) * m[0] @ phi - 0.5 * m[1] @ psi
+    lb, _ = moments(lambda u: np.log(np.abs(u)), 1.0, True)
+    w1 = moments(lambda u: cylinder_displacement(ce * u) / ce, ce)
+    w2 = moments(lambda u: -0.5 * np.abs(u), 1.0)
+    # Flamant's ln|Delta (s - r)| = ln|s - r| + ln(Delta/Delta0) in units of Delta0.
+    disp = (lb @ phi / np.pi + np.log(dl) / np.pi * (wp @ phi)
+            + 2 * F * dl * (d * q1(w1) + q2(w2)) + D
+            - (sol.load_ratio / np.pi) * (sg + dl * s) ** 2)
+    t1 = moments(lambda u: cylinder_temperature(ce * u), ce, True)
+    t2 = moments(lambda u: -np.log(np.abs(u)), 1.0, True)
+    out = np.concatenate([pd @ disp, [wp @ phi - 1.0], pt @ (rho * q1(t1) - q2(t2))])
+    # The stationary half-plane's temperature has a free constant: its first
+    # projection is replaced by the heat partition (heat into the half-plane).
+    out[n + 3] = -np.sum(pt[0]) * (0.5 * (1 - eta) * wp @ phi - 0.5 * wq @ psi)
+    return out
+
+
+@pytest.mark.parametrize("pe, K, fhpe, lam, d", [(5.0, 10.0, 0.2, -1.0, 1.0),
+                                                 (2.0, 1.0, 0.5, 0.5, 0.0),
+                                                 (1.0, 3.0, 0.4, 0.0, 2.0)])
+def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d):
+    n = 10
+    sol = Model(pe, K, delta1_over_delta2=d, n=n).solve_at(n, fhpe, lam=lam)
+    M0 = linearised(sol).matrix(0)
+    z0 = np.concatenate([sol.phi, sol.psi, [0.0, sol.sigma_over_delta, 1.0]])
+    J = np.empty_like(M0)
+    for k in range(z0.size):
+        h = 1e-5 if k > 2 * n else 1.0     # the residual is linear in phi, psi, D
+        e = np.zeros_like(z0)
+        e[k] = h
+        J[:, k] = (_residual(sol, z0 + e) - _residual(sol, z0 - e)) / (2 * h)
+    scale = np.abs(J).max()
+    # The edges' columns differ from the differences by the steady residual's
+    # derivative (the discretisation error) and the differences' error.
+    assert np.abs(M0[:, :2 * n + 1] - J[:, :2 * n + 1]).max() < 1e-13 * scale
+    assert np.abs(M0[:, 2 * n + 1:] - J[:, 2 * n + 1:]).max() < 1e-8 * scale
+
+
+def test_M_tends_to_M0_like_sqrt_b():
+    sol = _steady(1.0, 1.0, 0.3, -1.0, 6)
+    lin = linearised(sol)
+    reg0, _, row0 = lin.matrix(0, split=True)
+    errors = []
+    for b in (1e-6, 1e-8):
+        reg, ell, row = lin.matrix(b, split=True)
+        assert ell == pytest.approx(-np.log(np.sqrt(b) / 2) - np.euler_gamma, rel=1e-14)
+        np.testing.assert_array_equal(row, row0)
+        errors.append(np.abs(reg - reg0).max() / np.abs(reg0).max())
+    # The stationary half-plane's displacement converges like sqrt(b) (T11).
+    assert errors[0] < 1e-3
+    assert errors[0] / errors[1] == pytest.approx(10.0, rel=0.05)
+    # And the whole: the diverging constant on the temperature's first projection.
+    M = lin.matrix(1e-8)
+    np.testing.assert_allclose(M, reg + ell * np.outer(np.eye(M.shape[0])[sol.n + 3], row),
+                               rtol=0, atol=1e-15 * np.abs(M).max())
+
+
+def _fold_function(K, lam, fH, n):
+    # Along a ray of growing load at fixed f H: Pe_l = Pe/sqrt(P_H/P) (units of the
+    # load's Hertz half-width, docs/zones.md); its derivative in Pe vanishes at a fold.
+    def pe_l(pe):
+        return pe / np.sqrt(_steady(pe, K, fH * pe, lam, n).load_ratio)
+
+    def slope(pe):
+        h = 1e-5 * pe
+        return (pe_l(pe + h) - pe_l(pe - h)) / (2 * h)
+    return slope
+
+
+def test_det_M0_vanishes_at_the_fold_of_the_load():
+    K, lam, fH, n = 1.0, 1.0, 1.0, 24
+    fold = brentq(_fold_function(K, lam, fH, n), 1.2, 1.27, xtol=1e-11)
+
+    def det(pe):
+        sign, logdet = np.linalg.slogdet(linearised(_steady(pe, K, fH * pe, lam, n)).matrix(0))
+        return sign * np.exp(logdet - 30.0)
+    singular = brentq(det, 1.2, 1.27, xtol=1e-11)
+    # The two discretisations (slope and heat-flux form, displacement and temperature
+    # form) agree there to 2e-3, 1e-4, 6e-6, 2e-9, 9e-11 at n = 8, 12, 16, 24, 32.
+    assert singular == pytest.approx(fold, rel=1e-8)
+
+
+def _known_problem(roots):
+    """``M(b) = (b - A)(1 + 0.2 sin(b/8) C)`` with real ``A`` whose eigenvalues are
+    ``roots`` (closed under conjugation) and real ``C`` of unit norm:
+    ``M(conj b) = conj M(b)``, and the second factor is regular for ``|Im b| < 4``."""
+    rng = np.random.default_rng(3)
+    blocks = []
+    for r in roots:
+        if r.imag > 0:
+            blocks.append(np.array([[r.real, r.imag], [-r.imag, r.real]]))
+        elif r.imag == 0:
+            blocks.append(np.array([[r.real]]))
+    size = sum(len(b) for b in blocks)
+    J = np.zeros((size, size))
+    k = 0
+    for b in blocks:
+        J[k:k + len(b), k:k + len(b)] = b
+        k += len(b)
+    Q = rng.standard_normal((size, size))
+    A = Q @ J @ np.linalg.inv(Q)
+    C = rng.standard_normal((size, size))
+    C /= np.linalg.norm(C, 2)
+    return lambda b: (b * np.eye(size) - A) @ (np.eye(size) + 0.2 * np.sin(b / 8) * C)
+
+
+def test_beyn_and_newton_find_known_eigenvalues():
+    roots = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j]
+    M = _known_problem(roots)
+    found, rank = beyn(M, (0.1, 6.0, 4.0), points=64)
+    assert rank == 5
+    def order(r):
+        return (round(r.real, 6), round(r.imag, 6))
+    inside = sorted(roots[:3] + roots[4:6], key=order)
+    np.testing.assert_allclose(sorted(found, key=order), inside, atol=1e-9)
+    for r in inside:
+        b, step = newton(M, r + 0.05 - 0.03j)
+        assert abs(b - r) < 1e-12
+
+
+def test_stability_refuses_what_it_does_not_model():
+    sol = Model(5.0, 10.0, speed_ratio=0.3, n=8).solve_at(8, 0.2, lam=0.0)
+    with pytest.raises(InputError, match="speed_ratio"):
+        linearised(sol)
+    sol = Model(5.0, 10.0, beta_f=0.3, n=8).solve_at(8, 0.2, lam=0.0)
+    with pytest.raises(InputError, match="beta_f"):
+        linearised(sol)
+    sol = Model(5.0, 10.0, method="product", n=8).solve_at(8, 0.2, lam=0.0)
+    with pytest.raises(InputError, match="method"):
+        linearised(sol)
+
+
+def test_stability_result_record():
+    res = StabilityResult(eigenvalues=np.array([1.0 + 2.0j, 1.0 - 2.0j]), stable=False,
+                          error_estimate=1e-3, newton_change=1e-6,
+                          region=(0.02, 10.0, 10.0), n=8)
+    record = json.loads(json.dumps(res.to_dict(), allow_nan=False))
+    assert record["stable"] is False
+    assert record["eigenvalues"] == [[1.0, 2.0], [1.0, -2.0]]
+    assert pickle.loads(pickle.dumps(res)) == res
+    assert "stable=False" in repr(res)
+
+
+def test_LinearisedContact_size():
+    sol = _steady(5.0, 10.0, 0.2, -1.0, 6)
+    lin = LinearisedContact(sol.parameters, sol.representation, sol.phi, sol.psi,
+                            sol.load_ratio, sol.sigma_over_delta)
+    assert lin.matrix(0).shape == (lin.size, lin.size) == (15, 15)
+
+
+def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
+    """``solve --stability``: the record of :func:`thermocontact.stability` of the very
+    solution printed, under ``"stability"`` (the eigenvalues themselves are tested
+    above; here a stand-in keeps the command fast)."""
+    import thermocontact.api as api
+    from thermocontact.cli import main
+
+    seen = []
+
+    def stand_in(sol):
+        seen.append(sol)
+        return StabilityResult(eigenvalues=np.array([0.5 + 1.0j, 0.5 - 1.0j]), stable=False,
+                               error_estimate=2e-3, newton_change=1e-9,
+                               region=(0.02, 10.0, 10.0), n=8)
+    monkeypatch.setattr(api, "stability", stand_in)
+    args = ["solve", "--pe", "1", "--fhpe", "0.3", "--K2-over-K1", "1", "--lam", "-1",
+            "-n", "16", "--stability"]
+    assert main(args + ["--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["stability"]["stable"] is False
+    assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
+    assert seen[0].load_ratio == rec["load_ratio"]
+    assert main(args) == 0
+    assert "stable        = False" in capsys.readouterr().out
+
+
+def _result(eigenvalues):
+    eigenvalues = np.array(eigenvalues, dtype=complex)
+    return StabilityResult(eigenvalues=eigenvalues, stable=not np.any(eigenvalues.real > 0),
+                           error_estimate=None, newton_change=None,
+                           region=(0.02, 10.0, 10.0), n=8)
+
+
+def test_kinds_of_events(monkeypatch):
+    """Each event's kind from the eigenvalues of the steady contact at the event itself
+    (a stand-in for the eigenvalues; the solution it is given is checked), and the
+    record carries ``kind`` only where it was computed."""
+    from thermocontact.studies import event_kinds
+    from thermocontact.studies.boundaries import Event, Path
+
+    assert event_kinds.kind_of(_result([])) == "grazing"
+    assert event_kinds.kind_of(_result([0.3, 0.1 + 2j, 0.1 - 2j])) == "fold"
+    assert event_kinds.kind_of(_result([0.3 + 1j, 0.3 - 1j, 0.2])) == "hopf"
+    events = tuple(Event(at=a, inequality="gap", edge="leading", valid_before=True,
+                         valid_after=False) for a in (0.2, 0.3, 0.4))
+    path = Path(along="fhpe", fixed={"pe": 1.0, "K2_over_K1": 1.0, "lam": 0.5},
+                x=np.array([0.0, 1.0]), valid=np.array([True, False]), events=events, n=8,
+                method="graded", error_estimate=float("nan"))
+    answers = iter([_result([]), _result([0.5]), _result([0.1 + 1j, 0.1 - 1j])])
+    seen = []
+
+    def stand_in(solve_at, n, **region):
+        seen.append(solve_at(n))
+        return next(answers)
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    out = event_kinds.classify(path)
+    assert [e.kind for e in out.events] == ["grazing", "fold", "hopf"]
+    assert [s.parameters.fhpe for s in seen] == [0.2, 0.3, 0.4]
+    assert all(s.lam == pytest.approx(0.5, abs=1e-12) for s in seen)
+    assert "kind" not in path.to_dict()["events"][0]
+    assert out.to_dict()["events"][1]["kind"] == "fold"
+
+
+def test_a_growing_pair_past_a_fold():
+    """Past the fold of the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.5, n = 8) the pair
+    found by Beyn's method and Newton's (docs/stability.md) makes M singular, and its
+    conjugate too: M(conj b) = conj M(b)."""
+    lin = linearised(_steady(1.5, 1.0, 1.5, 1.0, 8))
+    b = 0.7610748136758606 + 1.334553895858362j
+    M = lin.matrix(b)
+    sv = np.linalg.svd(M, compute_uv=False)
+    assert sv[-1] < 1e-13 * sv[0] and sv[-2] > 1e-8 * sv[0]
+    np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
+    assert inside(b, (0.5, 10.0, 10.0))
+    # At n = 12 the pair has moved by 5e-2 (9e-4 from n = 12 to 32, docs/stability.md).
+    fine = 0.7857534445394697 + 1.3817812587822782j
+    sv = np.linalg.svd(linearised(_steady(1.5, 1.0, 1.5, 1.0, 12)).matrix(fine),
+                       compute_uv=False)
+    assert sv[-1] < 1e-13 * sv[0]
+
+
+def test_physical_contact_rates_in_per_second(monkeypatch):
+    """``stability(contact(...))`` analyses the primary branch at its own Pe and fHPe and
+    reports in 1/s: the unit k2/Delta^2 of the half-plane's diffusivity and the branch's
+    half-width; the Dundurs term is refused by name."""
+    import thermocontact as tc
+    import thermocontact.solvers.stability as st
+
+    kwargs = dict(cylinder="copper", half_plane="steel", radius="10mm", load="50kN/m",
+                  speed="2m/s", friction=0.2, lam=-1)
+    with pytest.raises(InputError, match="dundurs"):
+        tc.stability(tc.contact(**kwargs))
+    res = tc.contact(dundurs=False, **kwargs)
+    branch = res.primary
+    seen = {}
+
+    def stand_in(solve_at, rate_unit=None, **region):
+        seen["solution"], seen["unit"] = solve_at(32), rate_unit
+        return _result([])
+    monkeypatch.setattr(st, "stability_of", stand_in)
+    tc.stability(res)
+    assert seen["unit"] == pytest.approx(res.problem.half_plane.k / branch.half_width ** 2,
+                                         rel=1e-14)
+    assert seen["solution"].parameters.pe == pytest.approx(branch.pe, rel=1e-14)
+    assert seen["solution"].parameters.fhpe == pytest.approx(branch.fhpe, rel=1e-14)
+    assert seen["solution"].load_ratio == pytest.approx(branch.load_ratio, rel=1e-8)
+
+
+def test_stability_of_orders_pairs_and_estimates(monkeypatch):
+    """The driver on known problems standing in for ``M(b)`` at ``n`` and ``n/2``: both
+    members of each pair, largest real part first, only what lies in the region, the
+    change to ``n/2`` as the error estimate, and rates in 1/s with ``rate_unit``."""
+    import thermocontact.solvers.stability as st
+
+    fine = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j]
+    coarse = [r + 1e-3 for r in fine]
+
+    class Stand:
+        def __init__(self, roots):
+            self.matrix = _known_problem(roots)
+    monkeypatch.setattr(st, "linearised", lambda n: Stand(fine if n == 12 else coarse))
+    res = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0, points=64)
+    np.testing.assert_allclose(res.eigenvalues, [4.0 + 0.5j, 4.0 - 0.5j, 1.5 + 2.0j,
+                                                 1.5 - 2.0j, 0.7], atol=1e-9)
+    assert not res.stable
+    # The root 0.7 moves by 1e-3, relative to max(|b|, 1) = 1.
+    assert res.error_estimate == pytest.approx(1e-3, rel=1e-6)
+    per_second = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0,
+                                 points=64, rate_unit=2.0)
+    np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
+    assert per_second.units == "1/s" and per_second.region == (0.2, 12.0, 8.0)
