@@ -283,15 +283,18 @@ def test_a_growing_pair_past_a_fold():
     assert sv[-1] < 1e-13 * sv[0]
 
 
-def test_physical_contact_rates_in_per_second(monkeypatch):
-    """``stability(contact(...))`` analyses the primary branch at its own Pe and fHPe and
+@pytest.mark.parametrize("closure", [dict(lam=-1),
+                                     dict(bulk_temperatures="60C,20C", sink_distance="30mm")])
+def test_physical_contact_rates_in_per_second(monkeypatch, closure):
+    """``stability(contact(...))`` analyses the primary branch at its own Pe, fHPe and
+    lam (the one the bulk temperatures imply, where they close the problem) and
     reports in 1/s: the unit k2/Delta^2 of the half-plane's diffusivity and the branch's
     half-width; the Dundurs term is refused by name."""
     import thermocontact as tc
     import thermocontact.solvers.stability as st
 
     kwargs = dict(cylinder="copper", half_plane="steel", radius="10mm", load="50kN/m",
-                  speed="2m/s", friction=0.2, lam=-1)
+                  speed="2m/s", friction=0.2, **closure)
     with pytest.raises(InputError, match="dundurs"):
         tc.stability(tc.contact(**kwargs))
     res = tc.contact(dundurs=False, **kwargs)
@@ -308,6 +311,7 @@ def test_physical_contact_rates_in_per_second(monkeypatch):
     assert seen["solution"].parameters.pe == pytest.approx(branch.pe, rel=1e-14)
     assert seen["solution"].parameters.fhpe == pytest.approx(branch.fhpe, rel=1e-14)
     assert seen["solution"].load_ratio == pytest.approx(branch.load_ratio, rel=1e-8)
+    assert seen["solution"].lam == pytest.approx(branch.lam, rel=1e-12)
 
 
 def test_stability_of_orders_pairs_and_estimates(monkeypatch):

@@ -756,6 +756,9 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
             raise InputError("stability: the contact has no branch to analyse",
                              parameters=("solution",))
         kw = solution.problem.to_dimensionless(branch.half_width)
+        # With the bulk temperatures the branch's partition is the one they imply; the
+        # perturbation leaves the far field unchanged, so the steady state is the same.
+        kw["lam"] = branch.lam
         if kw.get("beta_f"):
             raise InputError("stability: the Dundurs term is not modelled; solve with "
                              "dundurs=False", parameters=("dundurs",))
