@@ -265,6 +265,13 @@ def columns(f, *arrays):
     return np.stack([np.asarray(f(*row), dtype=float) for row in zip(*arrays)], axis=-1)
 
 
+def products(M, x):
+    """``M @ x[j]`` for each row ``x[j]`` of ``x`` (m, n), as columns (k, m): a stack of
+    matrix-vector products, each rounded as ``M @ x[j]`` alone is (not one matrix
+    product, whose sums run in another order)."""
+    return np.matmul(M, np.asarray(x, dtype=float)[:, :, None])[:, :, 0].T
+
+
 def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
     """:func:`gap` of ``m`` solutions that differ only in ``fHPe`` and the closure,
     at the same points ``s`` (a grid line: every row operator applied once to all).
@@ -314,8 +321,7 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         points = np.asarray(points, dtype=float)
         ib, iq = rep.rows((key, scale, points.tobytes()),
                           lambda: rep.integrate(kernel, points, scale=abs(scale)))
-        return ((1.0 + sign * eta) * columns(lambda f: ib @ f, phi)
-                + sign * columns(lambda f: iq @ f, psi))
+        return (1.0 + sign * eta) * products(ib, phi) + sign * products(iq, psi)
 
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).  A moving
     # body's kernel vanishes at the edge its material reaches last (c > 0: s = -1).
@@ -478,7 +484,7 @@ def edge_terms_many(par: Parameters, rep, phi, psi, fhpe):
     exponents = np.array([1.0 - rep.alpha, rep.alpha])
     e = _EDGE_DEPTH
     near = np.array([-1.0 + e, 1.0 - e])
-    p_near = columns(lambda f, M=rep.pressure_matrix(near): M @ f, phi).T
+    p_near = products(rep.pressure_matrix(near), phi).T
     count = p_near.shape[0]
     margins, log_widths = np.zeros((count, 2)), np.full((count, 2), -np.inf)
     layer = np.zeros((count, 2), dtype=bool)
