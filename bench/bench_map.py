@@ -1,4 +1,5 @@
-"""Solves per second of a map in this process, on a process pool and on a Dask cluster.
+"""Solves per second of a map in this process, on a process pool and on a Dask cluster;
+a map against the linear algebra it needs.
 
 Run: ``python bench/bench_map.py [COUNT]`` (default 100: a COUNT x COUNT map over
 fHPe 0-0.8 and Pe 0.5-100, K2/K1 = 10, lambda = 1, tolerance 1e-6).  A benchmark,
@@ -7,6 +8,13 @@ from a cold start of its workers (imports and assemblies included); the
 LocalCluster's start is timed separately.  The last column compares the cost of a
 grid point with that of one plain ``solve`` (fresh assembly, closed-form polish)
 at a point of the grid.
+
+``python bench/bench_map.py --against-lu [COUNT]`` (default 200) times the same
+COUNT x COUNT map on a process pool of 2 workers and, in the same run, COUNT^2 LU
+solves (``scipy.linalg.lu_factor`` and ``lu_solve``, one system at a time) of the
+size of the map's systems at its most frequent ``n`` (``2n + 2`` unknowns), in this
+process; it prints both times and their ratio, in wall time and in CPU time (the
+workers' and this process's: on a shared machine the less disturbed measure).
 """
 
 from __future__ import annotations
@@ -80,5 +88,57 @@ def main(count=100):
     print(f"(the cluster took {start:.1f} s to start, not counted)")
 
 
+def lu_time(size, count):
+    """Seconds of ``count`` LU solves of one well-conditioned ``size`` x ``size``
+    system, one at a time, in this process."""
+    from scipy.linalg import lu_factor, lu_solve
+
+    rng = np.random.default_rng(0)
+    A = rng.standard_normal((size, size)) + size * np.eye(size)
+    b = rng.standard_normal(size)
+    t0 = time.perf_counter()
+    for _ in range(count):
+        lu_solve(lu_factor(A), b)
+    return time.perf_counter() - t0
+
+
+def against_lu(count=200):
+    """The map on 2 workers against ``count**2`` LU solves of its systems' size."""
+    import os
+    import resource
+
+    from thermocontact.studies.maps import MapSpec, compute_map, parse_axis
+
+    spec = MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
+                   parse_axis("--y", f"pe:0.5:100:{count}:log"),
+                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    load = os.getloadavg()[0]
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    c0, t0 = time.process_time(), time.perf_counter()
+    ds = compute_map(spec, workers=2)
+    t_map = time.perf_counter() - t0
+    # CPU seconds of the map: the workers' (ended and waited for) and this process's.
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu_map = (time.process_time() - c0 + after.ru_utime + after.ru_stime
+               - children.ru_utime - children.ru_stime)
+    ns = ds.n.values[ds.n.values > 0]
+    n = int(np.bincount(ns).argmax())
+    c0 = time.process_time()
+    t_lu = lu_time(2 * n + 2, count * count)
+    cpu_lu = time.process_time() - c0
+    print(f"{count} x {count} map on 2 workers: {t_map:.1f} s; {count * count} LU solves of "
+          f"{2 * n + 2} unknowns (n = {n}, {100 * np.mean(ns == n):.0f} % of the points) in "
+          f"one process: {t_lu:.2f} s; ratio {t_map / t_lu:.1f}")
+    # On a machine shared with other work the wall times depend on the load; the CPU
+    # times much less (a ratio of at most 6 in wall time on 2 workers is one of at
+    # most 12 in CPU time, with both workers busy throughout).
+    print(f"CPU time: map {cpu_map:.1f} s, LU solves {cpu_lu:.2f} s; ratio "
+          f"{cpu_map / cpu_lu:.1f}")
+    print(f"load average before {load:.2f}, after {os.getloadavg()[0]:.2f} (2 cores)")
+
+
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 100)
+    if len(sys.argv) > 1 and sys.argv[1] == "--against-lu":
+        against_lu(int(sys.argv[2]) if len(sys.argv) > 2 else 200)
+    else:
+        main(int(sys.argv[1]) if len(sys.argv) > 1 else 100)

@@ -350,3 +350,50 @@ def test_bad_operating_maps_are_refused_in_one_line(extra, words, capsys):
     err = capsys.readouterr().err
     assert rc == 2 and words in err and err.count("\n") == 1, err
     assert not os.path.exists("never.nc")
+
+
+@pytest.mark.parametrize("model, fhpe, closure", [
+    # Along fHPe, with edge terms (delta1 != delta2: the gap sampled from 1e-6) and a
+    # line that crosses the boundary.
+    ({"pe": 0.7, "K2_over_K1": 1.0, "delta1_over_delta2": 0.3}, [0.0, 0.3, 0.9, 1.5],
+     {"lam": 1.0}),
+    # Along lam and along sigma; sigma with fHPe = 0 is refused at that point only.
+    ({"pe": 5.0, "K2_over_K1": 10.0}, 0.4, {"lam": [-1.0, 0.0, 1.0]}),
+    ({"pe": 5.0, "K2_over_K1": 10.0}, [0.0, 0.3], {"sigma_over_delta": 0.1}),
+])
+@pytest.mark.parametrize("polish", [False, True])
+def test_a_line_solved_together_equals_its_points_solved_one_by_one(model, fhpe, closure,
+                                                                    polish):
+    """Model.solve_many (a map's grid line: systems shared, the validity of all points
+    at one n evaluated together) gives at every point what Model.solve gives there, to
+    the last bit (every field, the margins and their positions included), or the same
+    error."""
+    import warnings
+
+    from thermocontact import Model
+    from thermocontact.problem.parameters import ConvergenceWarning
+
+    m = Model(model["pe"], model["K2_over_K1"],
+              delta1_over_delta2=model.get("delta1_over_delta2", 1.0), tol=1e-6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        together = m.solve_many(fhpe, polish=polish, **closure)
+        count = len(together)
+        points = [(np.broadcast_to(fhpe, count)[i],
+                   {k: np.broadcast_to(v, count)[i] for k, v in closure.items()})
+                  for i in range(count)]
+        for sol, (f, kw) in zip(together, points):
+            try:
+                alone = m.solve(float(f), polish=polish, **{k: float(v) for k, v in kw.items()})
+            except InputError as exc:
+                assert isinstance(sol, InputError) and str(sol) == str(exc)
+                continue
+            assert sol == alone
+            assert sol.validity == alone.validity
+            assert sol.validity.to_dict() == alone.validity.to_dict()
+    assert any(isinstance(s, InputError) for s in together) == ("sigma_over_delta" in closure)
+    if "delta1_over_delta2" in model:
+        valid = [s.valid for s in together]
+        assert True in valid and False in valid  # the line crosses the boundary
+        assert any(np.isfinite(s.validity.edge_layer_log_widths).any()
+                   or s.validity.edge_log_coefficients != (0.0, 0.0) for s in together)

@@ -158,6 +158,13 @@ def test_one_point_one_answer_from_every_command(zones_map, capsys):
     zones = json.loads(capsys.readouterr().out)
     here = ds.sel(load=2e5, speed=2.0)
     assert len(zones["zones"]) == 1 and zones["status"] == "solved"
+    # The map's contact set comes from the valid single patch's edges by Newton's
+    # method, `contact --zones` follows it from Hertz's zone: the same zone.
+    assert "single patch" in str(here.zones_message.values)
+    assert "Hertz" in zones["message"]
+    d = float(here.half_width)
+    assert float(here.zones_start) == pytest.approx(zones["zones"][0]["a"], rel=0, abs=1e-8 * d)
+    assert float(here.zones_end) == pytest.approx(zones["zones"][0]["b"], rel=0, abs=1e-8 * d)
     reasons = patch["applicability_reasons"]
     assert reasons and "half-plane strain" in reasons[0]  # not vacuous
     for applicable, why in (
@@ -178,6 +185,38 @@ def test_one_point_one_answer_from_every_command(zones_map, capsys):
                                                       rel=1e-5)
         assert zones["max_strain"][i] == pytest.approx(float(here[f"max_strain_{body}"]),
                                                        rel=1e-5)
+
+
+def test_contact_set_with_a_conductance_starts_from_the_single_patch(zones_map):
+    """With a conductance, Newton's method from a valid single patch's edges (the map's,
+    interpolated along its ray) finds the conductance's own zone: its defects vanish with
+    the conductance (to 1e-12) and not without it, and it is the zone that `contact
+    --zones --conductance 5e6:0.95:2GPa` follows from Hertz's at this point (steel on
+    copper, 200 kN/m at 2 m/s; that command's edges, to 1e-8 of the half-width)."""
+    from thermocontact.solvers.zones import ZoneModel
+    from thermocontact.studies.contact_sets import physical_contact_set
+
+    _, ds, _ = zones_map
+    here = ds.sel(load=2e5, speed=2.0)
+    p = PhysicalProblem(ST, CU, 0.01, 2e5, 2.0, 0.3, 1.0)
+    cond = PhysicalConductance(5e6, 0.95, 2e9)
+    start = (float(here.offset - here.half_width), float(here.offset + here.half_width))
+    found = physical_contact_set(p, conductance=cond, start=start)
+    assert found.status == "solved" and "single patch" in found.message
+    (zone,) = found.zones
+    d = float(here.half_width)
+    # `contact --zones` with this conductance, followed from Hertz's zone (n = 32).
+    assert zone["a"] == pytest.approx(-0.0001846707351433056, rel=0, abs=1e-8 * d)
+    assert zone["b"] == pytest.approx(0.00015998892555344637, rel=0, abs=1e-8 * d)
+    assert abs(zone["a"] - start[0]) > 1e-3 * d  # the conductance moved it
+    ell, g = p.hertz_half_width, p.ray_parameters()
+    edges = np.array([[zone["a"], zone["b"]]]) / ell
+    for biot, small in ((cond.biot(p), True), (None, False)):
+        model = ZoneModel(g["K2_over_K1"], k2_over_k1=g["k2_over_k1"],
+                          delta1_over_delta2=g["delta1_over_delta2"], beta_f=g["beta_f"],
+                          n=32, conductance=biot)
+        defects = model.defects(edges, p.pe_hertz, p.fhpe(ell), 1.0)[0]
+        assert bool(np.max(np.abs(defects)) < 1e-12) is small
 
 
 def test_contact_set_options_of_a_map_are_checked():

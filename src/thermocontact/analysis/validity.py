@@ -20,11 +20,11 @@ import numpy as np
 
 from ..io.results import Result
 from ..numerics.moment_engine import MIN_BLOCK
-from ..numerics.extrema import interpolated_minimum, polish_minimum
+from ..numerics.extrema import interpolated_minima, polish_minimum
 from ..physics.green_functions import cylinder_displacement_drop, moving_slope
 from ..problem.parameters import Parameters
 
-__all__ = ["Validity", "assess", "gap"]
+__all__ = ["Validity", "assess", "assess_many", "gap", "gaps"]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -247,15 +247,61 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
         ``(G(-1), G(1))``.
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
+    g, residual = gaps(par, rep, np.asarray(phi, dtype=float)[None, :],
+                       np.asarray(psi, dtype=float)[None, :],
+                       *(np.array([v], dtype=float)
+                         for v in (par.fhpe, load_ratio, sigma, lam)), s)
+    return g[0], (float(residual[0, 0]), float(residual[0, 1]))
+
+
+def columns(f, *arrays):
+    """``f`` of each row of ``arrays`` (each (m, n)), stacked as columns: (..., m).
+
+    The batched evaluations below apply each solution's row operators one solution at
+    a time, as the single evaluation does, so that a batch gives the same numbers to
+    the last bit (a matrix product over all solutions would round differently);
+    everything else is formed on all solutions at once.
+    """
+    return np.stack([np.asarray(f(*row), dtype=float) for row in zip(*arrays)], axis=-1)
+
+
+def products(M, x):
+    """``M @ x[j]`` for each row ``x[j]`` of ``x`` (m, n), as columns (k, m): a stack of
+    matrix-vector products, each rounded as ``M @ x[j]`` alone is (not one matrix
+    product, whose sums run in another order)."""
+    return np.matmul(M, np.asarray(x, dtype=float)[:, :, None])[:, :, 0].T
+
+
+def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
+    """:func:`gap` of ``m`` solutions that differ only in ``fHPe`` and the closure,
+    at the same points ``s`` (a grid line: every row operator applied once to all).
+
+    Parameters
+    ----------
+    par : Parameters
+        Everything but ``fhpe`` (which is ``fhpe``'s, per solution).
+    rep : Representation
+    phi, psi : ndarray, shape (m, n)
+    fhpe, load_ratio, sigma, lam : ndarray, shape (m,)
+    s : ndarray
+        Points with ``|s| >= 1``.
+
+    Returns
+    -------
+    g : ndarray, shape (m, s.size)
+        Gap in units of ``Delta^2 / R`` (D20-D21).
+    residual : ndarray, shape (m, 2)
+        ``(G(-1), G(1))`` of each solution.
+    """
+    s = np.atleast_1d(np.asarray(s, dtype=float))
     if s.size > GAP_BLOCK:
         # The kernels below carry each point's own distance past the edge: blocks of
         # points small enough for the moments to take whole.
-        parts = [gap(par, rep, phi, psi, load_ratio, sigma, lam, s[i:i + GAP_BLOCK])
+        parts = [gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam, s[i:i + GAP_BLOCK])
                  for i in range(0, s.size, GAP_BLOCK)]
-        return np.concatenate([g for g, _ in parts]), parts[0][1]
-    F = par.fhpe
-    cauchy_left, cauchy_right = rep.cauchy_edges(phi)
-    L = load_ratio
+        return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
+    F, L = fhpe, load_ratio
+    cauchy_left, cauchy_right = columns(rep.cauchy_edges, phi)
     eta = par.eta
     # The moving bodies' slope kernels sgn(c) N(c u) H(c u), each with its weight on
     # the heat it receives: the cylinder d (p + q) with c > 0, a moving half-plane
@@ -275,43 +321,47 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
         points = np.asarray(points, dtype=float)
         ib, iq = rep.rows((key, scale, points.tobytes()),
                           lambda: rep.integrate(kernel, points, scale=abs(scale)))
-        return (1.0 + sign * eta) * (ib @ phi) + sign * (iq @ psi)
+        return (1.0 + sign * eta) * products(ib, phi) + sign * products(iq, psi)
 
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).  A moving
     # body's kernel vanishes at the edge its material reaches last (c > 0: s = -1).
-    thermal_edges = [0.0, 0.0] if c2 else [-0.5 * (1.0 - lam), 0.5 * (1.0 - lam)]
+    zero = np.zeros_like(F)
+    thermal_edges = [zero, zero] if c2 else [-0.5 * (1.0 - lam), 0.5 * (1.0 - lam)]
     for name, c, weight, sign in moving:
         edge = 1.0 if c > 0.0 else -1.0
         slope = against("slope " + name, lambda u, c=c: moving_slope(u, c), [edge], c, sign)
-        thermal_edges[c > 0.0] += weight * float(slope[0])
+        thermal_edges[c > 0.0] = thermal_edges[c > 0.0] + weight * slope[0]
     g_left_edge = cauchy_left - F * thermal_edges[0] - (2 / np.pi) * L * (sigma - 1.0)
     g_right_edge = cauchy_right - F * thermal_edges[1] - (2 / np.pi) * L * (sigma + 1.0)
 
-    out = np.zeros_like(s)
+    out = np.zeros((F.size, s.size))
     # Work with the distance tt = |s| - 1 past the edge (exact in floating point
     # near the edge) so that no O(1) quantity is formed and cancelled there.  Each
     # part of j is an integral over the interval between the edge and s, in
-    # increasing t (from s to -1 on the left).
+    # increasing t (from s to -1 on the left).  Arrays are (point, solution).
     for side, edge_residual in ((1.0, g_right_edge), (-1.0, g_left_edge)):
         on = side * s > 1.0
         if not np.any(on):
             continue
         tt = side * s[on] - 1.0
-        jc = rep.cauchy_outside(phi, tt, right=side > 0.0)
-        jt = 0.0 if c2 else side * 0.5 * (1.0 - lam) * tt
+        right = side > 0.0
+        jc = columns(lambda f, tt=tt, right=right: rep.cauchy_outside(f, tt, right=right), phi)
+        col = tt[:, None]
+        jt = 0.0 if c2 else side * 0.5 * (1.0 - lam)[None, :] * col
         for name, c, weight, sign in moving:
             if c * side < 0.0:
                 continue  # the body's material has not yet reached this side
             # The kernel's antiderivative is -E(c u)/|c|: the integral is
             # side [E(|c|(1 -+ r)) - E(|c|(1 -+ r) + |c| tt)] / |c|, a kernel of
             # u = s - r in which |c| (1 -+ r) = c u - |c| tt on either side.
-            h = abs(c) * tt[:, None]
+            h = abs(c) * col
             drop = lambda u, c=c, h=h: cylinder_displacement_drop(c * u - h, h)
             jt = jt + side * (weight / abs(c)) * against("drop " + name, drop,
                                                          side * (1.0 + tt), c, sign)
-        j = jc - F * jt - edge_residual * tt
-        out[on] = side * sigma * tt + tt * (1.0 + 0.5 * tt) - side * np.pi / (2 * L) * j
-    return out, (float(g_left_edge), float(g_right_edge))
+        j = jc - F[None, :] * jt - edge_residual[None, :] * col
+        out[:, on] = (side * sigma[None, :] * col + col * (1.0 + 0.5 * col)
+                      - side * np.pi / (2 * L)[None, :] * j).T
+    return out, np.column_stack([g_left_edge, g_right_edge])
 
 
 #: Distances ``|s| - 1`` where the gap is checked: 160 points from 1e-8 to 1e3,
@@ -319,15 +369,37 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
 _GAP_T = np.geomspace(1e-8, 1e3, 160)
 
 
-def _outside_grid(par: Parameters, sigma, lam, load_ratio):
-    """Points outside the contact, out to where ``s^2/2`` dominates every other term."""
+def _outside_end(par: Parameters, fhpe, sigma, lam, load_ratio):
+    """How far past the edges the gap is checked, out to where ``s^2/2`` dominates
+    every other term: None for :data:`_GAP_T`'s own end, else the extended end."""
     d = par.delta1_over_delta2
     reach = 2.0 + 2.0 * abs(sigma)
-    reach += np.pi / abs(load_ratio) * par.fhpe * (2.0 + 2.0 * abs(lam)) * (1.0 + d)
+    reach += np.pi / abs(load_ratio) * fhpe * (2.0 + 2.0 * abs(lam)) * (1.0 + d)
+    return float(min(4.0 * reach, 1e8)) if 4.0 * reach > _GAP_T[-1] else None
+
+
+def _outside_grid(end, band):
+    """Points outside the contact out to ``end`` (:func:`_outside_end`).
+
+    Where an edge coefficient is positive (``band``, per edge) the bodies also
+    overlap in a layer just outside that edge (the gap's face of the same logarithm,
+    section 8): the gap margin is taken outside the tolerated width there, as the
+    pressure margin is inside.  The side's points are the same geometric sequence
+    moved out to start at the tolerated width: sampled margins (polish=False) are
+    interpolated in the index, which wants the spacing even in ln(|s| - 1).
+    """
     t = _GAP_T
-    if 4.0 * reach > t[-1]:
-        t = np.concatenate([t, np.geomspace(t[-1], min(4.0 * reach, 1e8), 41)[1:]])
-    return np.concatenate([-1.0 - t[::-1], 1.0 + t])
+    if end is not None:
+        t = np.concatenate([t, np.geomspace(t[-1], end, 41)[1:]])
+    so = np.concatenate([-1.0 - t[::-1], 1.0 + t])
+    for side, opens in ((-1.0, band[0]), (1.0, band[1])):
+        if opens:
+            on_side = np.sign(so) == side
+            t = np.sort(np.abs(so[on_side]) - 1.0)
+            t = t * (EDGE_LAYER_TOLERANCE / t[0])
+            t = t[t <= 1.0001 * (np.abs(so[on_side]).max() - 1.0)]
+            so = np.sort(np.concatenate([so[~on_side], side * (1.0 + t)]))
+    return so
 
 
 #: With ``polish=False``, margins whose interpolated minimum is nearer zero than
@@ -344,12 +416,28 @@ def least_of(f, x, values, i, polish):
     evenly in the variable in which the margins are smooth: ``tau`` or
     ``ln(|s| - 1)``), the position mapped back linearly.
     """
+    at, value = least_of_many(lambda _: f, x, np.asarray(values, dtype=float)[None, :], [i],
+                              polish)
+    return float(at[0]), float(value[0])
+
+
+def least_of_many(f_of, x, values, i, polish):
+    """:func:`least_of` of several margins sampled at the same ``x``: ``values`` of
+    shape (m, N), ``i`` each row's least sample, ``f_of(r)`` row ``r``'s closed form.
+    The samples' interpolants are minimised together; only the rows polished (all with
+    ``polish``, else those within :data:`POLISH_BAND` of zero) evaluate ``f``."""
+    values = np.asarray(values, dtype=float)
+    i = np.asarray(i, dtype=int)
+    at, value = np.empty(len(i)), np.empty(len(i))
+    todo = range(len(i))
     if not polish:
         k = np.arange(len(x), dtype=float)
-        at, value = interpolated_minimum(k, values, i)
-        if abs(value) > POLISH_BAND:
-            return float(np.interp(at, k, x)), value
-    return polish_minimum(f, x, values, i)
+        at_k, value = interpolated_minima(k, values, i)
+        at = np.interp(at_k, k, x)
+        todo = np.flatnonzero(~(np.abs(value) > POLISH_BAND))
+    for r in todo:
+        at[r], value[r] = polish_minimum(f_of(r), x, values[r], int(i[r]))
+    return at, value
 
 
 def _expm1_over(r, x):
@@ -378,35 +466,51 @@ def edge_terms(par: Parameters, rep, phi, psi):
         pressure and gap margins are taken outside the tolerated width, layer or not,
         so that they stay continuous where a layer appears.
     """
+    k_log, exponents, margins, log_widths, layer = edge_terms_many(
+        par, rep, np.asarray(phi, dtype=float)[None, :], np.asarray(psi, dtype=float)[None, :],
+        np.array([par.fhpe]))
+    return k_log[0], exponents, margins[0], log_widths[0], layer[0]
+
+
+def edge_terms_many(par: Parameters, rep, phi, psi, fhpe):
+    """:func:`edge_terms` of ``m`` solutions that differ only in ``fHPe`` and the
+    closure: ``phi``, ``psi`` of shape (m, n), ``fhpe`` of shape (m,); every result
+    but ``exponents`` gains a first axis of length m."""
     b = par.free_term
-    k_log = np.sqrt(2.0) * par.fhpe * (1.0 - par.delta1_over_delta2) * rep.psi_edges(psi) / np.pi
+    psi_edges = columns(rep.psi_edges, psi).T
+    k_log = (np.sqrt(2.0) * np.asarray(fhpe, dtype=float)[:, None]
+             * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi)
     t = float(np.arctan(b) / b) if b else 1.0
     exponents = np.array([1.0 - rep.alpha, rep.alpha])
     e = _EDGE_DEPTH
     near = np.array([-1.0 + e, 1.0 - e])
-    p_near = rep.pressure_matrix(near) @ phi
-    margins, log_widths, layer = np.zeros(2), np.full(2, -np.inf), np.zeros(2, dtype=bool)
-    for i in range(2):
-        r, kt = 0.5 - exponents[i], k_log[i] * t
-        a = p_near[i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
-        # The bracket at the edge itself: -inf * sign(k) unless r > 0, where E -> -1/r.
-        at_edge = a - kt / r if r > 0.0 else (-np.inf * np.sign(kt) if kt else a)
-        if kt and at_edge < 0.0:  # without an edge term a tensile edge is no layer
-            layer[i] = True
-            margins[i] = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
-            # Depth where a + kt E(r, y) = 0: y = -a/kt, or log1p(-a r/kt)/r.
-            if a <= 0.0:
-                log_widths[i] = 0.0  # tensile from the whole edge region inward
+    p_near = products(rep.pressure_matrix(near), phi).T
+    count = p_near.shape[0]
+    margins, log_widths = np.zeros((count, 2)), np.full((count, 2), -np.inf)
+    layer = np.zeros((count, 2), dtype=bool)
+    for j in range(count):
+        for i in range(2):
+            r, kt = 0.5 - exponents[i], k_log[j, i] * t
+            a = p_near[j, i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
+            # The bracket at the edge itself: -inf * sign(k) unless r > 0, where E -> -1/r.
+            at_edge = a - kt / r if r > 0.0 else (-np.inf * np.sign(kt) if kt else a)
+            if kt and at_edge < 0.0:  # without an edge term a tensile edge is no layer
+                layer[j, i] = True
+                margins[j, i] = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
+                # Depth where a + kt E(r, y) = 0: y = -a/kt, or log1p(-a r/kt)/r.
+                if a <= 0.0:
+                    log_widths[j, i] = 0.0  # tensile from the whole edge region inward
+                else:
+                    log_widths[j, i] = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
+            elif kt:
+                # No layer yet: the bracket at the tolerated depth where positive, the
+                # value it takes there when a layer opens (so the margin is continuous).
+                margins[j, i] = max(a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE)),
+                                    0.0)
             else:
-                log_widths[i] = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
-        elif kt:
-            # No layer yet: the bracket at the tolerated depth where positive, the value
-            # it takes there when a layer opens (so the margin is continuous).
-            margins[i] = max(a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE)), 0.0)
-        else:
-            # No edge term: the bracket where positive, else 0 (a tensile edge without a
-            # layer is the pressure margin's to judge).
-            margins[i] = max(a, 0.0)
+                # No edge term: the bracket where positive, else 0 (a tensile edge without
+                # a layer is the pressure margin's to judge).
+                margins[j, i] = max(a, 0.0)
     return k_log, exponents, margins, log_widths, layer
 
 
@@ -431,85 +535,129 @@ def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=Tru
     -------
     Validity
     """
-    k_log, exponents, edge_margins, log_widths, layer = edge_terms(par, rep, phi, psi)
+    return assess_many([par], rep, np.asarray(phi, dtype=float)[None, :],
+                       np.asarray(psi, dtype=float)[None, :], [load_ratio], [sigma], [lam],
+                       polish=polish)[0]
+
+
+def assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> list:
+    """:func:`assess` of ``m`` solutions that differ only in ``fHPe`` and the closure
+    (a grid line): the samples of all are formed by the same row operators at once,
+    and the least samples interpolated together.
+
+    Parameters
+    ----------
+    pars : sequence of Parameters
+        Each solution's; equal but for ``fhpe``.
+    rep : Representation
+    phi, psi : ndarray, shape (m, n)
+    load_ratio, sigma, lam : array_like, shape (m,)
+    polish : bool
+
+    Returns
+    -------
+    list of Validity
+        Each as :func:`assess` gives it.
+    """
+    par = pars[0]
+    phi, psi = np.asarray(phi, dtype=float), np.asarray(psi, dtype=float)
+    F = np.array([p.fhpe for p in pars], dtype=float)
+    L, sigma, lam = (np.asarray(v, dtype=float) for v in (load_ratio, sigma, lam))
+    m = F.size
+    k_log, exponents, edge_margins, log_widths, layer = edge_terms_many(par, rep, phi, psi, F)
     # The edges whose term can open a layer: their tolerated width is the edge
     # margin's to judge, not the pressure's or the gap's.
     band = k_log != 0.0  # (a layer needs an edge term)
 
-    sp, phis = rep.phi_samples(phi, 2049)
-    p = rep.pressure_weight(sp) * phis
-    ip = int(np.argmin(p))
+    sp, _ = rep.phi_samples(phi[0], 2049)
+    phis = columns(lambda f: rep.phi_samples(f, 2049)[1], phi).T
+    p = rep.pressure_weight(sp)[None, :] * phis
+    ip = np.argmin(p, axis=1)
+    phi_min, phi_min_at = np.empty(m), np.empty(m)
     # Where a layer opens, phi -> -infinity at that edge (D22): the pressure margin
     # is taken outside the tolerated layer, which the edge margin covers.
-    keep = np.ones(sp.size, dtype=bool)
-    if band[0]:
-        keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
-    if band[1]:
-        keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
-    sp_in, phis_in = sp[keep], phis[keep]
-    iphi = int(np.argmin(phis_in))
-    phi_min_at, phi_min = least_of(lambda x: rep.phi_at(phi, x), sp_in, phis_in, iphi, polish)
+    for key in {tuple(row) for row in band}:
+        rows = np.flatnonzero(np.all(band == key, axis=1))
+        keep = np.ones(sp.size, dtype=bool)
+        if key[0]:
+            keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
+        if key[1]:
+            keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
+        sp_in, phis_in = sp[keep], phis[np.ix_(rows, keep)]
+        phi_min_at[rows], phi_min[rows] = least_of_many(
+            lambda r: (lambda x, ph=phi[rows[r]]: rep.phi_at(ph, x)), sp_in, phis_in,
+            np.argmin(phis_in, axis=1), polish)
 
-    so = _outside_grid(par, sigma, lam, load_ratio)
-    # Where an edge coefficient is positive the bodies also overlap in a layer just
-    # outside that edge (the gap's face of the same logarithm, section 8): the gap
-    # margin is taken outside the tolerated width there, as the pressure margin is
-    # inside.
-    # The side's points are the same geometric sequence moved out to start at the
-    # tolerated width: sampled margins (polish=False) are interpolated in the index,
-    # which wants the spacing even in ln(|s| - 1).
-    for side, opens in ((-1.0, band[0]), (1.0, band[1])):
-        if opens:
-            on_side = np.sign(so) == side
-            t = np.sort(np.abs(so[on_side]) - 1.0)
-            t = t * (EDGE_LAYER_TOLERANCE / t[0])
-            t = t[t <= 1.0001 * (np.abs(so[on_side]).max() - 1.0)]
-            so = np.sort(np.concatenate([so[~on_side], side * (1.0 + t)]))
-    g, residual = gap(par, rep, phi, psi, load_ratio, sigma, lam, so)
-    ig = int(np.argmin(g))
-    # g ~ (|s| - 1)^(1 + exponent) outside each edge (3/2 without the Dundurs term).
-    power = np.where(so > 0.0, 1.0 + exponents[1], 1.0 + exponents[0])
-    margin = g / (np.abs(so) - 1.0) ** power
-    im = int(np.argmin(margin))
-    # The gap vanishes at both edges by construction: include them in the minimum.
-    if g[ig] > 0.0:
-        min_gap, min_gap_at = 0.0, float(np.sign(so[im]))
-    else:
-        min_gap, min_gap_at = float(g[ig]), float(so[ig])
-    # Polish the gap margin in y = ln(|s| - 1) on the side of its least sample.
-    side = np.sign(so[im])
-    on_side = np.flatnonzero(np.sign(so) == side)
-    y = np.log(np.abs(so[on_side]) - 1.0)
-    order = np.argsort(y)
-    y, ms = y[order], margin[on_side][order]
+    # The gap's points: the same for every solution that reaches as far and has the
+    # same edge terms.
+    grids = {}
+    for r in range(m):
+        key = (_outside_end(par, F[r], sigma[r], lam[r], L[r]), bool(band[r, 0]),
+               bool(band[r, 1]))
+        grids.setdefault(key, []).append(r)
+    min_gap, min_gap_at = np.empty(m), np.empty(m)
+    gap_min, gap_min_at = np.empty(m), np.empty(m)
+    residual = np.empty((m, 2))
+    for (end, *key), rows in grids.items():
+        rows = np.array(rows)
+        so = _outside_grid(end, key)
+        g, residual[rows] = gaps(par, rep, phi[rows], psi[rows], F[rows], L[rows], sigma[rows],
+                                 lam[rows], so)
+        ig = np.argmin(g, axis=1)
+        # g ~ (|s| - 1)^(1 + exponent) outside each edge (3/2 without the Dundurs term).
+        power = np.where(so > 0.0, 1.0 + exponents[1], 1.0 + exponents[0])
+        margin = g / (np.abs(so) - 1.0) ** power
+        im = np.argmin(margin, axis=1)
+        # The gap vanishes at both edges by construction: include them in the minimum.
+        g_least = g[np.arange(rows.size), ig]
+        open_ = g_least > 0.0
+        min_gap[rows] = np.where(open_, 0.0, g_least)
+        min_gap_at[rows] = np.where(open_, np.sign(so[im]), so[ig])
+        # Polish the gap margin in y = ln(|s| - 1) on the side of its least sample.
+        sides = np.sign(so[im])
+        for side in (-1.0, 1.0):
+            on = np.flatnonzero(sides == side)
+            if on.size == 0:
+                continue
+            on_side = np.flatnonzero(np.sign(so) == side)
+            y = np.log(np.abs(so[on_side]) - 1.0)
+            order = np.argsort(y)
+            y, ms = y[order], margin[np.ix_(on, on_side[order])]
+            side_power = 1.0 + exponents[int(side > 0.0)]
 
-    side_power = 1.0 + exponents[int(side > 0.0)]
+            def gap_margin_of(k, side=side, side_power=side_power):
+                r = rows[on[k]]
 
-    def gap_margin(yy):
-        tt = np.exp(yy)
-        gg, _ = gap(par, rep, phi, psi, load_ratio, sigma, lam, side * (1.0 + tt))
-        return gg / tt**side_power
+                def gap_margin(yy):
+                    tt = np.exp(yy)
+                    gg, _ = gap(pars[r], rep, phi[r], psi[r], L[r], sigma[r], lam[r],
+                                side * (1.0 + tt))
+                    return gg / tt**side_power
+                return gap_margin
+            y_min, gap_min[rows[on]] = least_of_many(gap_margin_of, y, ms,
+                                                     np.argmin(ms, axis=1), polish)
+            gap_min_at[rows[on]] = side * (1.0 + np.exp(y_min))
 
-    y_min, gap_min = least_of(gap_margin, y, ms, int(np.argmin(ms)), polish)
-    gap_min_at = float(side * (1.0 + np.exp(y_min)))
-
-    positive = bool(load_ratio > 0.0)
-    sound = positive and phi_min >= 0.0 and gap_min >= 0.0
-    valid = sound and np.all(edge_margins >= 0.0)
-    return Validity(
-        valid=bool(valid),
-        positive_load=positive,
-        min_pressure=float(p[ip]),
-        min_pressure_at=float(sp[ip]),
-        pressure_margin=phi_min,
-        pressure_margin_at=phi_min_at,
-        min_gap=min_gap,
-        min_gap_at=min_gap_at,
-        gap_margin=gap_min,
-        gap_margin_at=gap_min_at,
-        edge_log_coefficients=(float(k_log[0]), float(k_log[1])),
-        edge_slope_residual=residual,
-        edge_layer_log_widths=(float(log_widths[0]), float(log_widths[1])),
-        edge_margins=(float(edge_margins[0]), float(edge_margins[1])),
-        strictly_valid=bool(sound and not np.any(layer)),
-    )
+    out = []
+    for r in range(m):
+        positive = bool(L[r] > 0.0)
+        sound = positive and phi_min[r] >= 0.0 and gap_min[r] >= 0.0
+        valid = sound and np.all(edge_margins[r] >= 0.0)
+        out.append(Validity(
+            valid=bool(valid),
+            positive_load=positive,
+            min_pressure=float(p[r, ip[r]]),
+            min_pressure_at=float(sp[ip[r]]),
+            pressure_margin=float(phi_min[r]),
+            pressure_margin_at=float(phi_min_at[r]),
+            min_gap=float(min_gap[r]),
+            min_gap_at=float(min_gap_at[r]),
+            gap_margin=float(gap_min[r]),
+            gap_margin_at=float(gap_min_at[r]),
+            edge_log_coefficients=(float(k_log[r, 0]), float(k_log[r, 1])),
+            edge_slope_residual=(float(residual[r, 0]), float(residual[r, 1])),
+            edge_layer_log_widths=(float(log_widths[r, 0]), float(log_widths[r, 1])),
+            edge_margins=(float(edge_margins[r, 0]), float(edge_margins[r, 1])),
+            strictly_valid=bool(sound and not np.any(layer[r])),
+        ))
+    return out

@@ -26,10 +26,9 @@ import warnings
 from dataclasses import replace
 
 import numpy as np
-from scipy.linalg import LinAlgError, lu_factor, lu_solve
-from scipy.linalg.lapack import dgecon
+from scipy.linalg.lapack import dgecon, dgetrf, dgetrs
 
-from ..analysis.validity import assess
+from ..analysis.validity import assess, assess_many
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..discretisation.system import (Blocks, Conductance, ContactSetSystem, check_temperatures,
                                      contact_set_system)
@@ -75,24 +74,34 @@ def solve_equilibrated(A, b, what="the linear system"):
     A *= scale[:, None]
     b *= scale
     lu, rcond = factorise(A, what)
-    return lu_solve(lu, b), rcond
+    x, _ = dgetrs(*lu, b)
+    return x, rcond
 
 
 def factorise(A, what="the linear system"):
-    """LU factors of ``A`` and its reciprocal condition number (1-norm); a singular or
-    ill-conditioned ``A`` (below :data:`RCOND_MIN`) raises :class:`SolveError`."""
-    try:
-        lu = lu_factor(A, check_finite=True)
-    except (LinAlgError, ValueError) as exc:
-        raise SolveError(f"{what} could not be factorised ({exc})") from None
-    rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
+    """LU factors of ``A`` (as :func:`scipy.linalg.lu_factor` returns them) and its
+    reciprocal condition number (1-norm); a singular or ill-conditioned ``A`` (below
+    :data:`RCOND_MIN`) raises :class:`SolveError`.
+
+    LAPACK's ``getrf`` and ``gecon`` are called directly: the same factors as
+    ``lu_factor``'s, without its checks' cost, which a grid line pays per point.
+    """
+    A = np.asarray(A, dtype=float)
+    if not np.all(np.isfinite(A)):
+        raise SolveError(f"{what} could not be factorised (array must not contain infs "
+                         f"or NaNs)")
+    lu, piv, info = dgetrf(A)
+    if info < 0:
+        raise SolveError(f"{what} could not be factorised (illegal value in argument "
+                         f"{-info} of the LU factorisation)")
+    rcond, info = dgecon(lu, np.linalg.norm(A, 1), norm="1")
     if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
         raise SolveError(
             f"{what} is singular or ill-conditioned (reciprocal condition "
             f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
             f"well-determined solution"
         )
-    return lu, float(rcond)
+    return (lu, piv), float(rcond)
 
 
 #: Newton steps of the interface conductance's dependence on the pressure.
@@ -226,6 +235,20 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
         A singular or ill-conditioned system, or a ``lam`` (given or implied by the
         temperatures) that no finite ``sigma`` reaches.
     """
+    sol = _solve_patch(par, blocks, method, lam, sigma_over_delta, conductance, {},
+                       temperatures)
+    if not check_validity:
+        return sol
+    return sol.replace(validity=assess(par, sol.representation, sol.phi, sol.psi,
+                                       sol.load_ratio, sol.sigma_over_delta, sol.lam,
+                                       polish=polish))
+
+
+def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_delta,
+                 conductance, systems: dict, temperatures=None) -> ContactSolution:
+    """:func:`solve_system` without validity; ``systems`` keeps the assembled systems
+    by closure for the next solve with the same blocks (they do not depend on
+    ``fhpe``: a grid line assembles its system once per ``n``)."""
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     n = blocks.n
     F = par.fhpe
@@ -246,10 +269,14 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
                 "sigma_over_delta = 0 and then lam is undetermined; give lam instead"
             )
     # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
-    system = contact_set_system(par, _PATCH, rep, METHODS[method].scheme, lam=lam,
-                                sigma_over_delta=sigma_over_delta, temperatures=temperatures,
-                                blocks=blocks, conductance=conductance is not None)
-    x, rcond = solve_contact_system(system, F, rep, [1.0], conductance, "the linear system")
+    key = (lam, sigma_over_delta, temperatures)
+    if key not in systems:
+        systems[key] = contact_set_system(par, _PATCH, rep, METHODS[method].scheme, lam=lam,
+                                          sigma_over_delta=sigma_over_delta,
+                                          temperatures=temperatures, blocks=blocks,
+                                          conductance=conductance is not None)
+    x, rcond = solve_contact_system(systems[key], F, rep, [1.0], conductance,
+                                    "the linear system")
     phi, psi = x[:n], x[n:2 * n]
     if sigma_over_delta is None:
         L_sigma, L = x[2 * n], x[2 * n + 1]
@@ -266,13 +293,10 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
         lam = float(fr.weights @ psi + eta * (pr.weights @ phi))
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
-
-    validity = (assess(par, rep, phi, psi, L, sigma, lam, polish=polish) if check_validity
-                else None)
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
-        validity=validity, rcond=rcond, conductance=conductance,
+        validity=None, rcond=rcond, conductance=conductance,
         temperatures=temperatures)
 
 
@@ -432,64 +456,153 @@ class Model:
             estimate misses ``tol`` with ``n`` chosen automatically also issues a
             :class:`ConvergenceWarning`.
         """
-        par = self.parameters_at(fhpe)
-        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
-        if temperatures is not None and not isinstance(temperatures, Temperatures):
-            temperatures = Temperatures(*temperatures)
-        # lam is an output of the offset and of the temperatures, but its error is
-        # estimated only where the temperatures make it (the offset's estimates stay).
-        quantities = QUANTITIES if temperatures is None else QUANTITIES_WITH_LAM
-
-        def at(m):
-            # Validity only for the solution returned: the coarser levels feed the
-            # error estimate alone.
-            return (solve_system(par, self.blocks(m), self.method, lam=lam,
-                                 sigma_over_delta=sigma_over_delta, check_validity=False,
-                                 conductance=self.conductance, temperatures=temperatures),)
-
-        def validity_of(sol):
-            return assess(par, sol.representation, sol.phi, sol.psi, sol.load_ratio,
-                          sol.sigma_over_delta, sol.lam, polish=polish)
-
-        sizes, n_max = self.sizes()
-        method = METHODS[self.method]
-        levels, est = refine(at, sizes, tol=self.tol if self.n is None else None, n_max=n_max,
-                             p_max=method.order_cap, progress=progress, quantities=quantities)
-        fin = levels[-1][0]
-        validity = validity_of(fin)
-        if len(levels) > 1:
-            # The margins' error: their change since n/2.  With n chosen, refine on
-            # until every margin's sign is beyond it (or n reaches its largest).
-            while True:
-                coarse = validity_of(levels[-2][0]).margins()
-                change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
-                validity = replace(validity, margin_change=float(change))
-                if self.n is not None or validity.certain() or 2 * fin.n > n_max:
-                    break
-                if progress is not None:
-                    progress(2 * fin.n, est)
-                levels.append(at(2 * fin.n))
-                fin = levels[-1][0]
-                est = error_estimate([lv[0] for lv in levels], quantities,
-                                     p_max=method.order_cap)
-                validity = validity_of(fin)
-        lam_error = None
-        if temperatures is not None and len(levels) > 1:
-            # Absolute: error_estimate is relative to max(|lam|, 0.01).
-            lam_error = float(error_estimate([lv[0] for lv in levels], ("lam",),
-                                             p_max=method.order_cap)
-                              * max(abs(fin.lam), 0.01))
-        sol = fin.replace(validity=validity, error_estimate=None if est is None else float(est),
-                          auto_n=self.n is None, tol=self.tol,
-                          estimate_is_bound=method.estimate_is_bound, lam_error=lam_error)
-        if sol.converged is False and self.n is None:
-            warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
-                          stacklevel=_stacklevel)
+        sol = self.solve_many([fhpe], lam=None if lam is None else [lam],
+                              sigma_over_delta=(None if sigma_over_delta is None
+                                                else [sigma_over_delta]),
+                              temperatures=temperatures, progress=progress, polish=polish,
+                              _stacklevel=_stacklevel + 1)[0]
+        if isinstance(sol, Exception):
+            raise sol
         if check_convergence:
-            other = at(2 * sol.n if 2 * sol.n <= N_RANGE[1] else sol.n // 2)[0]
+            other = self.solve_at(2 * sol.n if 2 * sol.n <= N_RANGE[1] else sol.n // 2,
+                                  fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
+                                  temperatures=temperatures, check_validity=False)
             sol = sol.replace(load_ratio_change=abs(other.load_ratio - sol.load_ratio))
         log.debug("solved: %r", sol)
         return sol
+
+    def solve_many(self, fhpe, *, lam=None, sigma_over_delta=None, temperatures=None,
+                   polish=True, progress=None, _stacklevel=2) -> list:
+        """:meth:`solve` at several points of this model: a grid line along ``fhpe``,
+        ``lam`` or ``sigma_over_delta``.
+
+        Each point is refined on its own, as :meth:`solve` refines it; the systems
+        are assembled once per ``n`` and closure, and the contact inequalities of all
+        the points' solutions at one ``n`` are evaluated together
+        (:func:`~thermocontact.analysis.validity.assess_many`), to the same numbers.
+
+        Parameters
+        ----------
+        fhpe : float or sequence of float
+            ``f H Pe >= 0``, one value or one per point.
+        lam, sigma_over_delta : float or sequence of float
+            One value or one per point.
+        temperatures : Temperatures or tuple, or a list of them
+            Or the far temperatures (:meth:`solve`), one or one per point.  Exactly
+            one of the three closures.
+        polish : bool, optional
+            As :meth:`solve`.
+        progress : callable, optional
+            As :meth:`solve`, for every point.
+
+        Returns
+        -------
+        list
+            Per point, the :class:`ContactSolution` that :meth:`solve` returns there, or
+            the :class:`InputError` or :class:`SolveError` it would raise.
+        """
+        closure = check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
+                                    temperatures=temperatures)
+        closures = None
+        if closure == "temperatures":
+            # One closure (a Temperatures or a tuple (Theta, L/Delta)) or a list of them.
+            closures = [t if isinstance(t, Temperatures) else Temperatures(*t)
+                        for t in (temperatures if isinstance(temperatures, list)
+                                  else [temperatures])]
+            given = {"fhpe": fhpe}
+        else:
+            given = {"fhpe": fhpe, closure: lam if closure == "lam" else sigma_over_delta}
+        count = max([np.size(v) for v in given.values()]
+                    + ([len(closures)] if closures else []))
+        given = {k: [float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (count,))]
+                 for k, v in given.items()}
+        if closures is not None:
+            given["temperatures"] = closures * count if len(closures) == 1 else closures
+        # lam is an output of the offset and of the temperatures, but its error is
+        # estimated only where the temperatures make it (the offset's estimates stay).
+        quantities = QUANTITIES if closures is None else QUANTITIES_WITH_LAM
+        sizes, n_max = self.sizes()
+        method = METHODS[self.method]
+        systems = {}  # by n, the systems by closure
+        out = [None] * count
+        refined = {}
+        for i in range(count):
+            kw = {closure: given[closure][i]}
+            try:
+                par = self.parameters_at(given["fhpe"][i])
+
+                def at(m, par=par, kw=kw):
+                    # Validity only for the solution returned: the coarser levels feed
+                    # the error estimate alone.
+                    return (_solve_patch(par, self.blocks(m), self.method,
+                                         kw.get("lam"), kw.get("sigma_over_delta"),
+                                         self.conductance, systems.setdefault(m, {}),
+                                         kw.get("temperatures")),)
+                refined[i] = (at, *refine(at, sizes, tol=self.tol if self.n is None else None,
+                                          n_max=n_max, p_max=method.order_cap,
+                                          progress=progress, quantities=quantities))
+            except (InputError, SolveError) as exc:
+                out[i] = exc
+        # The validity of every point's finest level and of the one before (whose
+        # margins' change is their error), all points at one n together.
+        wanted = {}
+        for i, (_, levels, _) in refined.items():
+            for sol in [lv[0] for lv in levels[-2:]]:
+                wanted.setdefault(sol.n, []).append((i, sol))
+        validities = {}
+        for group in wanted.values():
+            found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
+                                np.array([sol.phi for _, sol in group]),
+                                np.array([sol.psi for _, sol in group]),
+                                [sol.load_ratio for _, sol in group],
+                                [sol.sigma_over_delta for _, sol in group],
+                                [sol.lam for _, sol in group], polish=polish)
+            validities.update({(i, sol.n): v for (i, sol), v in zip(group, found)})
+
+        for i, (at, levels, est) in refined.items():
+            def validity_of(sol, i=i):
+                known = validities.get((i, sol.n))
+                if known is not None:
+                    return known
+                return assess(sol.parameters, sol.representation, sol.phi, sol.psi,
+                              sol.load_ratio, sol.sigma_over_delta, sol.lam, polish=polish)
+            try:
+                fin = levels[-1][0]
+                validity = validity_of(fin)
+                if len(levels) > 1:
+                    # The margins' error: their change since n/2.  With n chosen, refine
+                    # on until every margin's sign is beyond it (or n reaches its largest).
+                    while True:
+                        coarse = validity_of(levels[-2][0]).margins()
+                        change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
+                        validity = replace(validity, margin_change=float(change))
+                        if self.n is not None or validity.certain() or 2 * fin.n > n_max:
+                            break
+                        if progress is not None:
+                            progress(2 * fin.n, est)
+                        levels.append(at(2 * fin.n))
+                        fin = levels[-1][0]
+                        est = error_estimate([lv[0] for lv in levels], quantities,
+                                             p_max=method.order_cap)
+                        validity = validity_of(fin)
+                lam_error = None
+                if closures is not None and len(levels) > 1:
+                    # Absolute: error_estimate is relative to max(|lam|, 0.01).
+                    lam_error = float(error_estimate([lv[0] for lv in levels], ("lam",),
+                                                     p_max=method.order_cap)
+                                      * max(abs(fin.lam), 0.01))
+            except (InputError, SolveError) as exc:
+                out[i] = exc
+                continue
+            sol = fin.replace(validity=validity,
+                              error_estimate=None if est is None else float(est),
+                              auto_n=self.n is None, tol=self.tol,
+                              estimate_is_bound=method.estimate_is_bound, lam_error=lam_error)
+            if sol.converged is False and self.n is None:
+                warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
+                              stacklevel=_stacklevel)
+            out[i] = sol
+        return out
 
 
 def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,

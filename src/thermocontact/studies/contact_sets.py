@@ -111,7 +111,7 @@ def _first_failure(sol: ZoneSolution) -> str:
 
 def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                      delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
-                     progress=None) -> ContactSetResult:
+                     progress=None, start=None) -> ContactSetResult:
     """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``),
     followed from Hertz's zone along ``fHPe_l`` at fixed ``Pe_l``.
 
@@ -132,6 +132,10 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         followed again with twice as many (once; the message says so).
     progress : callable, optional
         ``progress(fraction)`` as the continuation advances.
+    start : (float, float), optional
+        The edges of one zone (units of ``l``), a valid single patch's: where
+        Newton's method from them finds a valid contact set of one zone, that is
+        the answer, and nothing is followed (:func:`follow_contact_set`).
     """
     pe = check_positive("pe_hertz", pe_hertz)
     target = check_nonnegative("fhpe_hertz", fhpe_hertz)
@@ -143,12 +147,12 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
-    def attempt(n_):
+    def attempt(n_, start=None):
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
                                   k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
                                   beta_f=beta_f, conductance=conductance, n=n_,
-                                  progress=progress)
-    res = attempt(n)
+                                  progress=progress, start=start)
+    res = attempt(n, start)
     if res.status == "not converged" and 2 * int(n) <= 256:
         # An under-resolved zone (narrow, or at a high Peclet number) can stall the
         # continuation where a finer one passes.
@@ -173,7 +177,7 @@ DISTORTIVITY_RATIO_MAX = 1e3
 
 
 def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
-                       beta_f=0.0, conductance=None, n=32, progress=None
+                       beta_f=0.0, conductance=None, n=32, progress=None, start=None
                        ) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
@@ -189,6 +193,13 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     fails, the event is located on the least margin to :data:`EVENT_TOL` by Brent's
     method (:func:`~thermocontact.numerics.continuation.locate`).  Events carry ``t``,
     ``pe_hertz`` and ``fhpe_hertz``.
+
+    Given ``start``, the edges ``(a, b)`` of one zone at ``t = 1`` (a valid single
+    patch's), Newton's method from them comes first: where it converges to a valid
+    contact set of one zone, that is the answer ("solved") and nothing is followed
+    (a valid one-zone set at the point is the single patch, section 16; with an
+    interface conductance the single patch's edges are a start only, the set being
+    that of the conductance).  Otherwise the path is followed as without.
     """
     lam = check_range("lam", lam, *PARTITION)
     check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
@@ -285,6 +296,15 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                              until=until, ds=0.02 * float(np.min(sol.half_widths)))
         except (SolveError, InputError, np.linalg.LinAlgError):
             return "failed", None
+
+    if start is not None:
+        try:
+            found = at(np.asarray(start, dtype=float).reshape(1, 2), 1.0, polish=True)
+        except (SolveError, InputError):
+            found = None
+        if found is not None and found.zones == 1 and found.valid:
+            return ContactSetResult("solved", "one zone, by Newton's method from the valid "
+                                    "single patch's edges", found)
 
     history, folds, budget = [], [], []
     sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
@@ -594,7 +614,7 @@ class PhysicalContactSet:
 
 
 def physical_contact_set(problem, *, conductance=None, n=32,
-                         progress=None) -> PhysicalContactSet:
+                         progress=None, start=None) -> PhysicalContactSet:
     """:func:`find_contact_set` for a problem in SI units, the answer in SI units.
 
     Parameters
@@ -604,6 +624,9 @@ def physical_contact_set(problem, *, conductance=None, n=32,
     conductance : PhysicalConductance or tuple, optional
         ``(h0, m[, p_ref])``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0``
         in W/(m^2 K), ``p_ref`` in Pa (default: the mean Hertz pressure ``P/(2 l)``).
+    start : (float, float), optional
+        The edges (m, as :attr:`PhysicalContactSet.zones`) of a valid single patch
+        at this point, tried first (:func:`find_contact_set`).
 
     Returns
     -------
@@ -622,7 +645,8 @@ def physical_contact_set(problem, *, conductance=None, n=32,
                            delta1_over_delta2=groups["delta1_over_delta2"],
                            beta_f=groups["beta_f"], n=n, progress=progress,
                            conductance=None if conductance is None else
-                           conductance.biot(problem))
+                           conductance.biot(problem),
+                           start=None if start is None else np.asarray(start) / ell)
     fields = app = None
     if res.answer is not None:
         fields = contact_fields(res.answer, length=ell, load=problem.load,

@@ -216,20 +216,34 @@ def evaluate_chunk(task: dict) -> dict:
     """
     fixed, name, values = task["fixed"], task["name"], task["values"]
     method, tol = task["method"], task["tol"]
-    shared = model_for(fixed, method, tol) if name in CHEAP else None
     out = {k: [] for k in FIELDS}
+    with warnings.catch_warnings():
+        # The status records it.
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        if name in CHEAP:
+            # One model along the line: its points solved together (Model.solve_many).
+            try:
+                found = model_for(fixed, method, tol).solve_many(
+                    list(values) if name == "fhpe" else fixed["fhpe"], polish=False,
+                    **({name: list(values)} if name in ("lam", "sigma_over_delta")
+                       else closure(fixed)))
+            except (SolveError, InputError) as exc:
+                found = [exc] * len(values)
+        else:
+            found = []
+            for value in values:
+                kw = {**fixed, name: float(value)}
+                try:
+                    found.append(model_for(kw, method, tol).solve(kw["fhpe"], polish=False,
+                                                                  **closure(kw)))
+                except (SolveError, InputError) as exc:
+                    found.append(exc)
     sols = []
-    for value in values:
-        kw = {**fixed, name: float(value)}
-        try:
-            with warnings.catch_warnings():
-                # The status records it.
-                warnings.simplefilter("ignore", ConvergenceWarning)
-                model = shared if shared is not None else model_for(kw, method, tol)
-                sol = model.solve(kw["fhpe"], polish=False, **closure(kw))
+    for sol in found:
+        if isinstance(sol, Exception):
+            sol, rec = None, _failed(sol)
+        else:
             rec = _record(sol, task["delta_over_r"])
-        except (SolveError, InputError) as exc:
-            sol, rec = None, _failed(exc)
         sols.append(sol)
         for k in FIELDS:
             out[k].append(rec[k])

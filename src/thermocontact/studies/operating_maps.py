@@ -314,14 +314,20 @@ def evaluate_contact_sets(task) -> dict:
     zone's trailing and the last zone's leading edge (m), the load carried (N/m, the
     sum over zones: the imposed load where solved), the peak pressure (Pa), the
     message, the flash temperature (K) and why the theory does not apply (the
-    reasons joined by "; ", as the single patch's ``applicability_reasons``)."""
+    reasons joined by "; ", as the single patch's ``applicability_reasons``).
+
+    Where the single patch is valid (the task's ``starts``, its edges in m, else None)
+    the contact set is first sought by Newton's method from its edges, and followed
+    from Hertz's zone only if that finds no valid one zone (:func:`physical_contact_set`).
+    """
     spec = task["spec"]
     out = {k: [] for k in ZONE_FIELDS}
-    for load, speed, radius in task["points"]:
+    starts = task.get("starts") or [None] * len(task["points"])
+    for (load, speed, radius), start in zip(task["points"], starts):
         nan = math.nan
         try:
             found = physical_contact_set(spec.problem(load=load, speed=speed, radius=radius),
-                                         conductance=spec.conductance)
+                                         conductance=spec.conductance, start=start)
             z = found.zones
             row = (found.status, len(z), int(bool(found.valid)), int(found.applicable),
                    z[0]["a"] if z else nan, z[-1]["b"] if z else nan,
@@ -339,26 +345,39 @@ def evaluate_contact_sets(task) -> dict:
 
 #: Seconds one contact set takes on one core, measured (steel on copper, R = 10 mm,
 #: 2-5 m/s, 100-200 kN/m, with and without a conductance: 4-5 s): the scale of
-#: :func:`contact_set_cost`, not a bound.
+#: :func:`contact_set_cost`, not a bound.  Where the single patch is valid the set is
+#: sought from its edges first (:func:`evaluate_contact_sets`), which costs less.
 CONTACT_SET_SECONDS = 5.0
 
 
-def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path=None):
+def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path=None,
+                       starts=None):
     """``zones_*`` fields over the map (:func:`evaluate_contact_sets`), one task per
-    line of constant y, kept in ``store_path`` as they finish."""
+    line of constant y, kept in ``store_path`` as they finish; ``starts[i][j]``, the
+    edges (m) of a valid single patch at point ``(i, j)`` or None, are tried first."""
+    per_line = None
+    if starts is not None:
+        per_line = [{"starts": [None if e is None else tuple(float(v) for v in e)
+                                for e in row]} for row in starts]
     return line_fields(spec, evaluate_contact_sets, "contact sets", ZONE_FIELDS, workers,
-                       progress, store_path)
+                       progress, store_path, per_line=per_line,
+                       manifest={"start": "valid single patch" if starts is not None
+                                 else None})
 
 
 def line_fields(spec: OperatingSpec, func, part, names, workers=1, progress=None,
-                store_path=None):
-    """``func`` over the map's points, one task (``{"spec", "points"}``) per line of
-    constant y, kept in ``store_path`` as they finish: ``{name: array (y, x)}``."""
+                store_path=None, per_line=None, manifest=None):
+    """``func`` over the map's points, one task (``{"spec", "points"}``, updated by
+    ``per_line[i]`` where given) per line of constant y, kept in ``store_path`` as
+    they finish: ``{name: array (y, x)}``; ``manifest`` adds to the store's
+    manifest."""
     load, speed, radius = spec.grid()
     tasks = [{"spec": spec, "points": [(float(load[i, j]), float(speed[i, j]),
                                         float(radius[i, j])) for j in range(load.shape[1])]}
              for i in range(load.shape[0])]
-    manifest = {**spec.manifest(), "part": part}
+    for task, extra in zip(tasks, per_line or ()):
+        task.update(extra)
+    manifest = {**spec.manifest(), "part": part, **(manifest or {})}
     parts = run_chunks(func, tasks, manifest, store_path, workers=workers, progress=progress)
     return {k: np.array([parts[i][k] for i in range(len(tasks))]) for k in names}
 
@@ -465,6 +484,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     status = np.full(shape, "solved", dtype=object)
     reason = np.full(shape, "", dtype=object)
     reasons_of = np.full(shape, "", dtype=object)
+    # The edges (m) of the single patch where it is valid on the one branch there: the
+    # contact sets start from them.
+    starts = np.full(shape, None, dtype=object)
     k2, K1 = spec.half_plane.k, spec.cylinder.K
     fractions = spec.fractions()
     limits = (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
@@ -496,6 +518,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         fields["pe"][idx] = pe
         fields["fhpe"][idx] = spec.fh * pe
         valid[idx] = int(valid_at(pe))
+        if valid[idx] and len(roots) == 1:
+            starts[idx] = (fields["offset"][idx] - d, fields["offset"][idx] + d)
         # Slopes and strains as contact measures them (thermocontact.analysis.fields),
         # from the ray's per-sample factors.
         sigma = fields["offset"][idx] / d
@@ -529,7 +553,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     if spec.zones:
         found = contact_set_fields(spec, workers=workers, progress=zone_progress,
                                    store_path=None if store_path is None else
-                                   os.path.join(store_path, "contact_sets"))
+                                   os.path.join(store_path, "contact_sets"),
+                                   starts=starts.tolist())
         zones = {f"zones_{k}": (dims, v.astype(str) if v.dtype.kind in "UO" else v)
                  for k, v in found.items()}
     ds = xr.Dataset(
