@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from thermocontact import solve
 from thermocontact.cli import main
 from thermocontact.execution.executors import ExecutionError, check_scheduler, connect, run
 from thermocontact.io.chunks import ChunkStore
@@ -397,3 +398,19 @@ def test_a_line_solved_together_equals_its_points_solved_one_by_one(model, fhpe,
         assert True in valid and False in valid  # the line crosses the boundary
         assert any(np.isfinite(s.validity.edge_layer_log_widths).any()
                    or s.validity.edge_log_coefficients != (0.0, 0.0) for s in together)
+
+
+@pytest.mark.parametrize("axis, fixed", [("lam:-1:1:3", {"fhpe": 0.2}),
+                                         ("sigma_over_delta:0.1:0.3:2", {"fhpe": 0.2})])
+def test_a_closure_on_an_axis_is_the_coordinate(axis, fixed):
+    """A map along lam or sigma builds its dataset (a field of the axis's name once
+    clashed with the coordinate), and each point is the plain solve at the
+    coordinate's value."""
+    spec = MapSpec(parse_axis("--x", axis), parse_axis("--y", "pe:1:5:2"),
+                   {"K2_over_K1": 10.0, **fixed})
+    ds = compute_map(spec)
+    name = spec.x.name
+    assert list(ds[name].values) == list(spec.x.values)
+    sol = solve(5.0, 0.2, 10.0, **{name: float(spec.x.values[-1])}, tol=1e-6)
+    assert float(ds.load_ratio.isel(pe=1, **{name: -1})) == pytest.approx(sol.load_ratio,
+                                                                        rel=1e-6)

@@ -376,7 +376,10 @@ def _dataset(spec: MapSpec, chunks: dict, command: str | None):
     dtypes = {"valid": np.int8, "applicable": np.int8, "n": np.int32, "status": str,
               "reason": str}
     dims = (spec.y.name, spec.x.name)
-    variables = {k: (dims, data[k].astype(dtypes.get(k, float))) for k in FIELDS}
+    # A closure on an axis (lam, sigma_over_delta) is that axis's coordinate: the field
+    # of the same name would repeat it, and xarray refuses a name in both.
+    variables = {k: (dims, data[k].astype(dtypes.get(k, float))) for k in FIELDS
+                 if k not in dims}
     variables["boundary_x"] = ("event", np.array([b[0] for b in boundary], dtype=float))
     variables["boundary_y"] = ("event", np.array([b[1] for b in boundary], dtype=float))
     variables["boundary_inequality"] = ("event", np.array([b[2] for b in boundary], dtype=str))
