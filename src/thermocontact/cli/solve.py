@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 import click
 
 from .._version import __version__
@@ -86,6 +84,8 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))
     app = sol.applicability
     if as_json:
+        import json
+
         click.echo(json.dumps(sol.to_dict(), allow_nan=False))
     else:
         text = solve_summary(sol)
