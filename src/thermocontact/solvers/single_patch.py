@@ -65,22 +65,29 @@ def solve_equilibrated(A, b, what="the linear system"):
     """``x`` with ``A x = b`` and the reciprocal condition number, rows equilibrated
     first (the heat equation's rows next to an edge grow like n^3 in the graded
     representation, which would mask the condition number); ``A`` and ``b`` are
-    overwritten."""
-    scale = 1.0 / np.maximum(np.abs(A).max(axis=1), np.finfo(float).tiny)
+    overwritten (``A`` by its factors, in place when it is Fortran-ordered)."""
+    # max |a| of each row as max(max a, -min a): no copy of A.
+    scale = 1.0 / np.maximum(np.maximum(A.max(axis=1), -A.min(axis=1)),
+                             np.finfo(float).tiny)
     A *= scale[:, None]
     b *= scale
-    lu, rcond = factorise(A, what)
+    lu, rcond = factorise(A, what, overwrite=True)
     return lu_solve(lu, b), rcond
 
 
-def factorise(A, what="the linear system"):
+def factorise(A, what="the linear system", overwrite=False):
     """LU factors of ``A`` and its reciprocal condition number (1-norm); a singular or
-    ill-conditioned ``A`` (below :data:`RCOND_MIN`) raises :class:`SolveError`."""
+    ill-conditioned ``A`` (below :data:`RCOND_MIN`) raises :class:`SolveError`.
+    ``overwrite``: ``A`` may be overwritten by the factors."""
+    # The 1-norm a block of columns at a time: no copy of A (34 MB at n = 1024).
+    step = max(1, 2**18 // max(1, A.shape[0]))
+    norm = max((np.abs(A[:, i:i + step]).sum(axis=0).max()
+                for i in range(0, A.shape[1], step)), default=0.0)
     try:
-        lu = lu_factor(A, check_finite=True)
+        lu = lu_factor(A, check_finite=True, overwrite_a=overwrite)
     except (LinAlgError, ValueError) as exc:
         raise SolveError(f"{what} could not be factorised ({exc})") from None
-    rcond, info = dgecon(lu[0], np.linalg.norm(A, 1), norm="1")
+    rcond, info = dgecon(lu[0], norm, norm="1")
     if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
         raise SolveError(
             f"{what} is singular or ill-conditioned (reciprocal condition "
@@ -96,7 +103,7 @@ MAX_PICARD = 50
 
 def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=None,
                   b=None, what="the contact set's linear system"):
-    A = system.matrix(F, biot, scale) if A is None else A.copy()
+    A = system.matrix(F, biot, scale) if A is None else A.copy(order="F")
     b = system.b.copy() if b is None else b.copy()
     x, rcond = solve_equilibrated(A, b, what)
     if not np.all(np.isfinite(x)):
