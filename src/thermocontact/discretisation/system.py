@@ -167,12 +167,15 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
         with GEOMETRY.transient() if step < x.size else nullcontext():
             C, Tp, Tq = contact_operators(par, rep, s[rows], a)
             Hp, Hq = heat_operators(par, rep, s[rows], a)
-        part = (p1 @ C, p1 @ Tp, p1 @ Tq, p2 @ Hp, p2 @ Hq, p1.sum(axis=1), p1 @ s[rows])
+        pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
         if total is None:
-            total = part
+            total = [P @ M for P, M in pairs] + [p1.sum(axis=1), p1 @ s[rows]]
         else:
-            for t, p in zip(total, part):
-                t += p
+            # Each product added as it is formed: one block (8 MB at n = 1024) at a time.
+            for t, (P, M) in zip(total, pairs):
+                t += P @ M
+            total[5] += p1.sum(axis=1)
+            total[6] += p1 @ s[rows]
     return Blocks(rep, *total)
 
 
