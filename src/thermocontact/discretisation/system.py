@@ -180,9 +180,10 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
 
 
 #: Points of a block times n^2: a block's operators before their projection (points
-#: x n) and the moment engine's arrays for it (points x about 4n) stay near 1 MB (32
-#: points at n = 1024); up to n = 256 the 2n points are one block.
-ASSEMBLY_ENTRIES = 2**25
+#: x n, 1 MB) and the moment engine's arrays for it (points x about 4n, 4 MB) stay small
+#: (128 points at n = 1024; fewer points cost time in the moment engine's products); up
+#: to n = 256 the 2n points are one block.
+ASSEMBLY_ENTRIES = 2**27
 
 
 def equation_points(rep: Representation, scheme: str):
