@@ -155,7 +155,7 @@ def test_projection_assembled_in_blocks_of_points_is_the_whole(method, monkeypat
     par = Parameters(5.0, 0.0, 10.0, 4.0, 0.7, 0.2)
     whole = METHODS[method].assemble(par, 24)
     held = GEOMETRY.bytes
-    monkeypatch.setattr(system, "ASSEMBLY_ENTRIES", 7 * 24 * 24)  # blocks of 7 points
+    monkeypatch.setattr(system, "ASSEMBLY_ENTRIES", 7 * 24)  # blocks of 7 points
     parts = METHODS[method].assemble(par, 24)
     for name in ("C", "Tp", "Tq", "Hp", "Hq", "const_column", "linear_column"):
         a, b = getattr(whole, name), getattr(parts, name)

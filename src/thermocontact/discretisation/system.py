@@ -156,7 +156,7 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     # the five 2n x n operators are never held whole (80 MB at n = 1024).
     x = projection_nodes(n)
     s, aux = rep.projection_points(x)
-    step = max(1, ASSEMBLY_ENTRIES // (n * n))
+    step = max(1, ASSEMBLY_ENTRIES // n)
     total = None
     for i in range(0, x.size, step):
         rows = slice(i, i + step)
@@ -179,11 +179,11 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     return Blocks(rep, *total)
 
 
-#: Points of a block times n^2: a block's operators before their projection (points
-#: x n, 1 MB) and the moment engine's arrays for it (points x about 4n, 4 MB) stay small
-#: (128 points at n = 1024; fewer points cost time in the moment engine's products); up
-#: to n = 256 the 2n points are one block.
-ASSEMBLY_ENTRIES = 2**27
+#: Points of a block times n: a block is one block of the moment engine (128 points at
+#: n = 1024, 256 at 512: arrays of about 4 MB, and one point geometry, which the
+#: geometry cache keeps for all the block's kernels); up to n = 256 the 2n points are
+#: one block.
+ASSEMBLY_ENTRIES = 2**17
 
 
 def equation_points(rep: Representation, scheme: str):

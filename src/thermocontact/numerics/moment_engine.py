@@ -350,7 +350,7 @@ class _Geometry:
 
 
 #: The point geometry of the moments, shared by the kernels of one assembly.
-GEOMETRY = BoundedCache("graded geometry", 64 * 2**20)
+GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
 #: Rows times common-rule nodes per block of points: the moments of more points are
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
