@@ -79,7 +79,7 @@ ALLOWED = {
     "api": {"problem", "discretisation", "solvers", "studies"},
     "cli": {"_version", "problem", "io", "execution", "discretisation", "plotting",
             "figures", "api"},
-    "__main__": {"cli"},
+    "__main__": {"_version", "cli"},
 }
 
 

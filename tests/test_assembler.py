@@ -142,3 +142,51 @@ def test_zone_error_estimate_is_measured_and_shrinks_with_n():
     fine = ZoneModel(10.0, n=32).solve(sols[1].edges, 5.0, 0.3, 0.5)
     change = np.subtract(fine.single_patch(), sols[1].single_patch())
     assert np.max(np.abs(change)) < est[1]
+
+
+@pytest.mark.parametrize("method", ["graded", "galerkin"])
+def test_projection_assembled_in_blocks_of_points_is_the_whole(method, monkeypatch):
+    """The projected blocks formed a few points at a time (as at large n) equal those
+    formed from all 2n points at once, to rounding."""
+    from thermocontact.discretisation import system
+    from thermocontact.discretisation.methods import METHODS
+    from thermocontact.numerics.moment_engine import GEOMETRY
+
+    par = Parameters(5.0, 0.0, 10.0, 4.0, 0.7, 0.2)
+    whole = METHODS[method].assemble(par, 24)
+    held = GEOMETRY.bytes
+    monkeypatch.setattr(system, "ASSEMBLY_ENTRIES", 7 * 24)  # blocks of 7 points
+    parts = METHODS[method].assemble(par, 24)
+    for name in ("C", "Tp", "Tq", "Hp", "Hq", "const_column", "linear_column"):
+        a, b = getattr(whole, name), getattr(parts, name)
+        assert a.shape == b.shape
+        assert np.max(np.abs(a - b)) <= 1e-14 * np.max(np.abs(a)), name
+    assert GEOMETRY.bytes <= held  # the blocks' point geometry is not kept
+
+
+def test_one_matrix_at_F_and_its_factors_in_place():
+    """The system's matrix at F is A0 + F A1 (bitwise), in LAPACK's order; the solve that
+    overwrites it by its factors gives the solution of an untouched copy."""
+    from scipy.linalg import lu_factor, lu_solve
+
+    from thermocontact.discretisation.system import contact_set_system
+    from thermocontact.solvers.single_patch import factorise, solve_equilibrated
+
+    rep = EdgeGraded(16)
+    par = Parameters(5.0, 0.2, 10.0)
+    system = contact_set_system(par, np.array([[-1.0, 1.0]]), rep, "projection", lam=-1.0)
+    A = system.matrix(0.2)
+    assert np.array_equal(A, system.A0 + 0.2 * system.A1) and A.flags.f_contiguous
+    # Rows equilibrated, then factorised in a copy: the same factors, the same solution.
+    scale = 1.0 / np.abs(A).max(axis=1)
+    expected = lu_solve(lu_factor(A * scale[:, None]), system.b * scale)
+    x, rcond = solve_equilibrated(A.copy(order="F"), system.b.copy())
+    assert np.array_equal(x, expected) and 0 < rcond < 1
+    # The 1-norm of factorise, formed a block of columns at a time, is numpy's.
+    rng = np.random.default_rng(3)
+    M = rng.standard_normal((600, 600))
+    _, r1 = factorise(M.copy())
+    from scipy.linalg.lapack import dgecon
+
+    r2, _ = dgecon(lu_factor(M)[0], np.linalg.norm(M, 1), norm="1")
+    assert r1 == pytest.approx(r2, rel=1e-12)

@@ -199,3 +199,36 @@ def test_solutions_narrower_than_the_samples_spacing_are_found():
     assert abs(far_load.at - near_load.at) < 1e-9 * near_load.at
     assert not far_load.valid_after
     assert [e.inequality for e in near.events].count("solution_begins") == 1
+
+
+def test_an_event_is_estimated_within_its_own_stretch_of_the_path():
+    """The estimate re-locates an event at n/2 only between the samples that bound it
+    and the next events of its margin: another event's sign change on a long path is
+    not taken for it."""
+    from types import SimpleNamespace
+
+    from thermocontact.studies.boundaries import Event, estimate_events
+
+    def at(n, x):
+        # At n the gap margin changes sign at 1 and at 60; at n/2 only at 60.2.
+        gap = (x - 1.0) * (60.0 - x) if n == 32 else 60.2 - x
+        margins = {"pressure": 1.0, "gap": gap, "edge": 1.0}
+        return SimpleNamespace(load_ratio=1.0, valid=gap >= 0,
+                               validity=SimpleNamespace(margins=lambda: margins))
+
+    events = [Event(1.0, "gap", "leading", False, True, 1.0),
+              Event(60.0, "gap", "leading", True, False, 1.0)]
+    samples = np.linspace(0.0, 1000.0, 21)  # brackets (0, 50) and (50, 100)
+
+    def xtol(a, b):
+        return 1e-12 * max(1.0, abs(a), abs(b))
+
+    def estimates(**kw):
+        out, n = estimate_events(at, events, 32, 0.0, 1000.0, xtol, event_rtol=None, **kw)
+        assert n == 32
+        return [e.error_estimate for e in out]
+
+    first, second = estimates(samples=samples)
+    assert first is None and second == pytest.approx(0.2, rel=1e-9)
+    # Without the samples the first took the second's sign change: 59.2.
+    assert estimates()[0] == pytest.approx(59.2, rel=1e-9)

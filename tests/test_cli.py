@@ -242,3 +242,66 @@ def test_a_zero_written_with_an_exponent_is_zero(capsys):
             "--lam", "1", "-n", "16"]
     zero = run_json(capsys, args + ["--from", "0"])
     assert run_json(capsys, args + ["--from", "0e-400"]) == zero
+
+
+#: Run in a fresh interpreter: the entry point with the arguments given, then the names
+#: of the modules it loaded, as JSON on the last line.
+_LOADED = """
+import contextlib, io, json, sys
+from thermocontact.__main__ import main
+with contextlib.redirect_stdout(io.StringIO()) as out:
+    rc = main(sys.argv[1:])
+print(json.dumps({"rc": rc, "out": out.getvalue(), "modules": sorted(sys.modules)}))
+"""
+
+#: Modules that only a computation needs.
+_HEAVY = ("numpy", "scipy", "threadpoolctl", "pint", "xarray", "matplotlib",
+          "importlib.metadata", "thermocontact.api", "thermocontact.solvers",
+          "thermocontact.numerics")
+
+
+def _loaded_by(*args):
+    out = subprocess.run([sys.executable, "-c", _LOADED, *args], capture_output=True,
+                         text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _under(modules, prefixes):
+    return sorted(m for m in modules if any(m == p or m.startswith(p + ".") for p in prefixes))
+
+
+def test_version_is_answered_before_click_and_as_click_words_it(capsys):
+    """``--version`` loads neither click nor anything heavy, and prints what the command
+    group's own --version prints."""
+    rec = _loaded_by("--version")
+    assert rec["rc"] == 0
+    assert _under(rec["modules"], ("click",) + _HEAVY) == []
+    assert main(["--version"]) == 0
+    from thermocontact import __version__
+
+    assert rec["out"] == capsys.readouterr().out == f"thermocontact, version {__version__}\n"
+
+
+def test_a_command_help_loads_only_its_own_command():
+    """``solve --help`` imports click and the solve command, not the other commands'
+    modules nor NumPy, SciPy or the computations."""
+    rec = _loaded_by("solve", "--help")
+    assert rec["rc"] == 0 and "--K2-over-K1" in rec["out"]
+    assert "thermocontact.cli.solve" in rec["modules"]
+    others = [f"thermocontact.cli.{m}" for m in ("boundary", "contact", "maps", "reproduce",
+                                                  "tei")]
+    assert _under(rec["modules"], _HEAVY + tuple(others)) == []
+
+
+def test_group_help_lists_every_command_without_computing():
+    """``--help`` lists every command with its short help, still without NumPy."""
+    from thermocontact.cli.main import COMMANDS, cli
+
+    rec = _loaded_by("--help")
+    assert rec["rc"] == 0 and _under(rec["modules"], _HEAVY) == []
+    listed = {line.split()[0]: line.split(None, 1)[1]
+              for line in rec["out"].split("Commands:\n", 1)[1].splitlines()}
+    assert set(listed) == set(COMMANDS) == set(cli.list_commands(None))
+    for name, short in listed.items():
+        whole = cli.get_command(None, name).get_short_help_str(limit=1000)
+        assert short and whole.startswith(short.removesuffix("...")), (name, short)

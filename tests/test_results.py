@@ -265,3 +265,27 @@ def test_zones_json_is_the_record(results):
     rec = _cli_json(["zones", "--pe-hertz", "5.43", "--fhpe-hertz", "0.5", "--K2-over-K1",
                      "10", "--lam", "-1", "-n", "16"])
     assert rec == res.to_dict() and rec["status"] == "solved"
+
+
+def test_the_geometry_cache_counts_everything_it_holds():
+    """The moment engine's point geometry and the innermost intervals it adds per kernel
+    are counted by the cache that holds them: its bytes are those of its entries."""
+    from thermocontact.numerics.cache import nbytes
+    from thermocontact.numerics.moment_engine import GEOMETRY
+
+    clear_caches()
+    solve(5, 0.2, 10, lam=-1, n=32)
+    assert len(GEOMETRY) > 0
+    assert GEOMETRY.bytes == sum(nbytes(v) for v in GEOMETRY._data.values())
+    assert GEOMETRY.bytes <= GEOMETRY.max_bytes
+
+
+def test_transient_entries_are_dropped_and_the_others_kept():
+    cache = BoundedCache("transient test cache", 10_000)
+    cache.get("kept", lambda: np.zeros(100))
+    with cache.transient():
+        inside = cache.get("inside", lambda: np.zeros(100))
+        assert cache.get("inside", lambda: None) is inside  # reused within the block
+        assert cache.get("kept", lambda: None) is not None
+    assert "inside" not in cache._data and "kept" in cache._data
+    assert len(cache) == 1 and cache.bytes == 800

@@ -9,31 +9,53 @@ that ``--version`` and ``--help`` answer at once.
 from __future__ import annotations
 
 import sys
+from importlib import import_module
 
 import click
 
 from .._version import __version__
 from ..problem.errors import SolveError
 from ..problem.validation import InputError
-from .boundary import boundary_cmd
-from .contact import contact_cmd, zones_cmd
-from .maps import map_cmd
-from .reproduce import reproduce_cmd
-from .solve import solve_cmd
-from .tei import tei_cmd
 
 __all__ = ["cli", "main"]
 
+#: Command name -> (module of this package, the command in it).  A command's module is
+#: imported only when that command runs or its help is shown, so that ``solve --help``
+#: does not load the other commands' modules.
+COMMANDS = {
+    "boundary": (".boundary", "boundary_cmd"),
+    "contact": (".contact", "contact_cmd"),
+    "map": (".maps", "map_cmd"),
+    "reproduce": (".reproduce", "reproduce_cmd"),
+    "solve": (".solve", "solve_cmd"),
+    "tei": (".tei", "tei_cmd"),
+    "zones": (".contact", "zones_cmd"),
+}
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+
+class LazyGroup(click.Group):
+    """A click group whose commands (:data:`COMMANDS`) are imported on first use; the
+    group's help still lists every command with its short help."""
+
+    def list_commands(self, ctx):
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx, name):
+        if name not in COMMANDS:
+            return None
+        module, attr = COMMANDS[name]
+        return getattr(import_module(module, __package__), attr)
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="thermocontact")
 def cli():
     """Thermoelastic sliding contact of a conducting cylinder on a conducting half-plane."""
 
 
-for _command in (solve_cmd, boundary_cmd, map_cmd, reproduce_cmd, zones_cmd, contact_cmd,
-                 tei_cmd):
-    cli.add_command(_command)
+def _command(args):
+    """The command named by the first argument, or None."""
+    return cli.get_command(None, args[0]) if args else None
 
 
 def _refuse_repeated_options(args):
@@ -41,9 +63,9 @@ def _refuse_repeated_options(args):
 
     Options declared ``multiple`` (``--only``) may repeat.
     """
-    if len(args) < 1 or args[0] not in cli.commands:
+    command = _command(args)
+    if command is None:
         return
-    command = cli.commands[args[0]]
     names = {}
     for param in command.params:
         if isinstance(param, click.Option) and not param.multiple:
@@ -72,7 +94,7 @@ def _flagged(exc, args) -> str:
     import re
 
     message = str(exc)
-    command = cli.commands.get(args[0]) if args else None
+    command = _command(args)
     if command is None:
         return message
     flags = {p.name: next((o for o in p.opts if o.startswith("--")), p.opts[0])
@@ -87,7 +109,7 @@ def _flagged(exc, args) -> str:
 
 def _computes(args) -> bool:
     """Whether the command line asks for work rather than a help text or the version."""
-    return bool(args) and args[0] in cli.commands and not (
+    return bool(args) and args[0] in COMMANDS and not (
         {"-h", "--help", "--version"} & set(args[: args.index("--") if "--" in args else None]))
 
 

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 import click
 
 from .._version import __version__
@@ -112,6 +110,8 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
 
         record["stability"] = eigenvalues(sol).to_dict()
     if as_json:
+        import json
+
         click.echo(json.dumps(record, allow_nan=False))
     else:
         text = solve_summary(sol)

@@ -47,7 +47,7 @@ from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_ma
                                    u_series_coefficients, u_series_value)
 
 __all__ = ["Chebyshev", "ChebyshevSampled", "EdgeGraded", "NodeRule", "Representation",
-           "range_projections"]
+           "projection_columns", "projection_nodes", "range_projections"]
 
 #: Row operators that depend only on a representation and a set of points (the
 #: validity checks and the temperatures evaluate the same points again and again).
@@ -96,14 +96,28 @@ def range_projections(n: int):
     p1 : ndarray, shape (n + 1, m)
     p2 : ndarray, shape (n - 1, m)
     """
-    m = OVERSAMPLING * n
-    x = np.pi * (np.arange(m, 0, -1) - 0.5) / m
-    w = np.pi / m
-    p1 = w * np.cos(np.arange(n + 1)[:, None] * x[None, :])
-    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * x[None, :]) * np.sin(x)[None, :]
+    x = projection_nodes(n)
+    p1, p2 = projection_columns(n, x)
     for a in (x, p1, p2):
         a.flags.writeable = False
     return x, p1, p2
+
+
+def projection_nodes(n: int):
+    """The ``2n`` midpoints ``x_k = pi (k - 1/2)/(2n)``, descending, of
+    :func:`range_projections`."""
+    m = OVERSAMPLING * n
+    return np.pi * (np.arange(m, 0, -1) - 0.5) / m
+
+
+def projection_columns(n: int, x):
+    """The columns of :func:`range_projections`' ``p1`` and ``p2`` at some of its
+    nodes ``x`` (element by element the same numbers), so that a large projection can
+    be formed a block of points at a time."""
+    w = np.pi / (OVERSAMPLING * n)
+    p1 = w * np.cos(np.arange(n + 1)[:, None] * x[None, :])
+    p2 = w * np.sin((np.arange(n - 1)[:, None] + 1) * x[None, :]) * np.sin(x)[None, :]
+    return p1, p2
 
 
 def _cauchy_outside_integral(m, tt):

@@ -30,17 +30,20 @@ sections 14-16).  The single patch is its one zone in its own scaling: the zone
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
 
 from dataclasses import replace
 
+from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError, check_range
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
-from .representations import Representation, range_projections
+from .representations import (Representation, projection_columns, projection_nodes,
+                              range_projections)
 
 __all__ = ["BIOT_RANGE", "Blocks", "Conductance", "ContactSetSystem", "assemble",
            "contact_set_system", "equation_points", "temperature_points", "zone_parameters"]
@@ -145,12 +148,43 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     Blocks
     """
     n = rep.n
-    (sc, ac, p1), (sh, ah, p2) = equation_points(rep, scheme)
-    C, Tp, Tq = contact_operators(par, rep, sc, ac)
-    Hp, Hq = heat_operators(par, rep, sh, ah)
-    if p1 is None:
+    if scheme != "projection":
+        (sc, ac, _), (sh, ah, _) = equation_points(rep, scheme)
+        C, Tp, Tq = contact_operators(par, rep, sc, ac)
+        Hp, Hq = heat_operators(par, rep, sh, ah)
         return Blocks(rep, C, Tp, Tq, Hp, Hq, np.ones(n + 1), sc)
-    return Blocks(rep, p1 @ C, p1 @ Tp, p1 @ Tq, p2 @ Hp, p2 @ Hq, p1.sum(axis=1), p1 @ sc)
+    # The operators at the 2n points, each block of points projected as it is formed:
+    # the five 2n x n operators are never held whole (80 MB at n = 1024).
+    x = projection_nodes(n)
+    s, aux = rep.projection_points(x)
+    step = max(1, ASSEMBLY_ENTRIES // n)
+    total = None
+    for i in range(0, x.size, step):
+        rows = slice(i, i + step)
+        p1, p2 = projection_columns(n, x[rows])
+        a = None if aux is None else aux[rows]
+        # A block's point geometry serves its kernels only; the 2n points' whole, when
+        # one block, may serve another assembly at these points (a sweep).
+        with GEOMETRY.transient() if step < x.size else nullcontext():
+            C, Tp, Tq = contact_operators(par, rep, s[rows], a)
+            Hp, Hq = heat_operators(par, rep, s[rows], a)
+        pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
+        if total is None:
+            total = [P @ M for P, M in pairs] + [p1.sum(axis=1), p1 @ s[rows]]
+        else:
+            # Each product added as it is formed: one block (8 MB at n = 1024) at a time.
+            for t, (P, M) in zip(total, pairs):
+                t += P @ M
+            total[5] += p1.sum(axis=1)
+            total[6] += p1 @ s[rows]
+    return Blocks(rep, *total)
+
+
+#: Points of a block times n: a block is one block of the moment engine (128 points at
+#: n = 1024, 256 at 512: arrays of about 4 MB, and one point geometry, which the
+#: geometry cache keeps for all the block's kernels); up to n = 256 the 2n points are
+#: one block.
+ASSEMBLY_ENTRIES = 2**17
 
 
 def equation_points(rep: Representation, scheme: str):
@@ -227,7 +261,9 @@ class ContactSetSystem:
         return slice(2 * self.zones * self.n, 2 * self.zones * self.n + k)
 
     def matrix(self, F, biot=None, scale=None):
-        A = self.A0 + F * self.A1
+        # One new array, in LAPACK's order so that it can be factorised in place.
+        A = np.multiply(self.A1, F, order="F")
+        A += self.A0
         if not self.local:
             return A
         # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its

@@ -11,6 +11,7 @@ with empty caches and fills its own.
 from __future__ import annotations
 
 from collections import OrderedDict
+from contextlib import contextmanager
 from functools import lru_cache
 from threading import RLock
 
@@ -73,6 +74,20 @@ class BoundedCache:
                     old, _ = self._data.popitem(last=False)
                     self._bytes -= self._sizes.pop(old)
         return value
+
+    @contextmanager
+    def transient(self):
+        """Drop, at the end of the block, the entries added within it: for work whose
+        entries are not used again (the blocks of points of a large assembly)."""
+        with self._lock:
+            before = set(self._data)
+        try:
+            yield self
+        finally:
+            with self._lock:
+                for key in [k for k in self._data if k not in before]:
+                    del self._data[key]
+                    self._bytes -= self._sizes.pop(key)
 
     def clear(self):
         with self._lock:

@@ -229,7 +229,8 @@ def _common(n: int, cmap=None):
     """Common panel rule in ``x``, the bases and weights at its nodes."""
     cmap = GRADED if cmap is None else cmap
     m, h, tau, wt, panel = panel_rule(n)
-    g = np.cos(np.arange(n)[None, :] * tau[:, None])
+    g = np.multiply.outer(tau, np.arange(n))  # cos(j tau) formed in place
+    np.cos(g, out=g)
     r = np.cos(cmap.T(tau))
     wts = np.stack(cmap.weights(tau)) * wt[None, :]
     return m, h, r, g, panel, wts
@@ -312,17 +313,15 @@ class _Side:
         j = np.arange(n)
         self.fixed_cos = np.cos(np.outer(offsets, j))
         self.fixed_sin = np.sin(np.outer(offsets, j))
-        self._inner = {}
 
     def inner_parts(self, geo, levels):
-        """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix."""
-        if levels not in self._inner:
-            ref_tau, om, _, lagr = inner_reference(levels)
-            d = self.sign * self.inner[:, None] * ref_tau[None, :]
-            wq = self.inner[:, None] * om[None, :]
-            u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq, geo.cmap)
-            self._inner[levels] = (u, wq > 0.0, wts, lagr)
-        return self._inner[levels]
+        """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix (kept
+        in :data:`GEOMETRY` as entries of their own, so that the cache counts them)."""
+        ref_tau, om, _, lagr = inner_reference(levels)
+        d = self.sign * self.inner[:, None] * ref_tau[None, :]
+        wq = self.inner[:, None] * om[None, :]
+        u, wts = _u(geo.s, geo.tau_s, geo.t_s, d, wq, geo.cmap)
+        return u, wq > 0.0, wts, lagr
 
 
 class _Geometry:
@@ -339,7 +338,10 @@ class _Geometry:
             self.t_s = cmap.T(tau)
         self.near, sides = near_field(self.tau_s, m, h, panel)
         self.far_u = s[:, None] - r[None, :]
-        self.far_e = np.clip(s, -1.0, 1.0)[:, None] - r[None, :]
+        clipped = np.clip(s, -1.0, 1.0)
+        # Inside [-1, 1] the distances from the edge are the distances themselves.
+        self.far_e = (self.far_u if np.array_equal(clipped, s)
+                      else clipped[:, None] - r[None, :])
         j = np.arange(n)
         self.cos_s = np.cos(np.outer(self.tau_s, j))
         self.sin_s = np.sin(np.outer(self.tau_s, j))
@@ -348,7 +350,7 @@ class _Geometry:
 
 
 #: The point geometry of the moments, shared by the kernels of one assembly.
-GEOMETRY = BoundedCache("graded geometry", 64 * 2**20)
+GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
 #: Rows times common-rule nodes per block of points: the moments of more points are
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
@@ -363,6 +365,13 @@ def _geometry(key: bytes, n: int, tau_key: bytes | None, cmap) -> _Geometry:
         tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
         return _Geometry(np.frombuffer(key, dtype=float), n, tau, cmap)
     return GEOMETRY.get((key, n, tau_key, cmap.name), build)
+
+
+def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes | None):
+    """The innermost interval of the side ``index`` of ``geo`` (:meth:`_Side.inner_parts`)."""
+    side = geo.sides[index]
+    return GEOMETRY.get((key, geo.n, tau_key, geo.cmap.name, index, levels),
+                        lambda: side.inner_parts(geo, levels))
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
@@ -433,15 +442,16 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
                  for i in range(0, s.size, rows)]
         return (np.concatenate([b for b, _ in parts]), np.concatenate([q for _, q in parts]))
     tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
-    geo = _geometry(s.tobytes(), n, tau_key, cmap)
+    key = s.tobytes()
+    geo = _geometry(key, n, tau_key, cmap)
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
     with np.errstate(divide="ignore", invalid="ignore"):
         kf = kernel(geo.far_e if from_edge else geo.far_u)
     kf[geo.near] = 0.0
     out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
-    for side in geo.sides:
-        u, live, wq, lagr = side.inner_parts(geo, levels)
+    for index, side in enumerate(geo.sides):
+        u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
         with np.errstate(divide="ignore", invalid="ignore"):
             # Rows of a side of zero length (points at or beyond an edge) hold dummies.
             inner = (np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr

@@ -324,10 +324,10 @@ def _existence_events(at, xs, sols, xtol):
     return new, events
 
 
-def _relocated(at, event, lo, hi, xtol):
+def _relocated(at, event, lo, hi, xtol, within=None):
     """The sign change of the event's margin under ``at`` nearest ``event.at``
     (brackets widened by 4 from 1e-4 of ``max(|at|, 1e-3 (hi - lo))`` to a tenth of the
-    path), or None."""
+    path, and never past ``within``, the event's own stretch of the path), or None."""
     def f(x):
         try:
             m = validity_margins(at(x))
@@ -336,7 +336,8 @@ def _relocated(at, event, lo, hi, xtol):
         return np.nan if m is None else m[event.inequality]
 
     width = max(abs(event.at), 1e-3 * (hi - lo), 1e-300) * 1e-4
-    found = widen(f, event.at, width, lo, hi, factor=4.0, tries=12, largest=0.1 * (hi - lo))
+    a, b = (lo, hi) if within is None else within
+    found = widen(f, event.at, width, a, b, factor=4.0, tries=12, largest=0.1 * (hi - lo))
     if found is None:
         return None
     try:
@@ -346,7 +347,7 @@ def _relocated(at, event, lo, hi, xtol):
 
 
 def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, n_max=256,
-                    progress=None):
+                    progress=None, samples=None):
     """Each event with its error estimate, located again with more unknowns where
     that estimate asks for it.
 
@@ -367,6 +368,12 @@ def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, 
         The path's ends (the events stay between them).
     xtol : callable
         The events' tolerance, as in :func:`locate_events`.
+    samples : sequence of float, optional
+        The samples between which the events were located: each event is then located
+        again only within its own stretch of the path, from the sample after the
+        previous event of the same margin to the sample before the next one, so that
+        on a long path another event's sign change is never taken for it (its estimate
+        is None where its margin has none there).
 
     Returns
     -------
@@ -379,9 +386,27 @@ def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, 
     start, stop = float(start), float(stop)
     lo, hi = min(start, stop), max(start, stop)
     span = hi - lo
+    grid = None if samples is None else np.unique(np.asarray(samples, dtype=float))
+
+    def stretch(e, among):
+        """From the sample after the previous event of e's margin to the sample before
+        the next (the path's ends where there is none), or None without samples."""
+        if grid is None:
+            return None
+        same = [o.at for o in among if o.inequality == e.inequality and o.at != e.at]
+        below = max((x for x in same if x < e.at), default=None)
+        above = min((x for x in same if x > e.at), default=None)
+        a = lo if below is None else float(grid[min(np.searchsorted(grid, below, "right"),
+                                                      grid.size - 1)])
+        b = hi if above is None else float(grid[max(np.searchsorted(grid, above) - 1, 0)])
+        # Two events of one margin between the same samples: split their interval.
+        a = a if a <= e.at else 0.5 * (below + e.at)
+        b = b if b >= e.at else 0.5 * (above + e.at)
+        return a, b
+
     out = []
     for i, e in enumerate(events):
-        x = _relocated(lambda y: at(n // 2, y), e, lo, hi, xtol)
+        x = _relocated(lambda y: at(n // 2, y), e, lo, hi, xtol, stretch(e, events))
         out.append(dataclasses.replace(e, error_estimate=None if x is None else abs(x - e.at)))
         report(f"events' estimates (n = {n // 2})", i + 1, len(events))
 
@@ -394,7 +419,7 @@ def estimate_events(at, events, n, start, stop, xtol, *, event_rtol=EVENT_RTOL, 
         moved = []
         for i, e in enumerate(out):
             # All events move to the new n (so that event_n is every event's n).
-            x = _relocated(lambda y: at(n, y), e, lo, hi, xtol)
+            x = _relocated(lambda y: at(n, y), e, lo, hi, xtol, stretch(e, out))
             moved.append(e if x is None else dataclasses.replace(
                 e, at=x, error_estimate=abs(x - e.at)))
             report(f"events located again (n = {n})", i + 1, len(out))
@@ -549,7 +574,7 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     solved = [x for x in xs if sols[x] is not None] or [start, stop]
     events, event_n = estimate_events(at, events, n, solved[0], solved[-1], xtol,
                                       event_rtol=event_rtol if auto else None, n_max=n_max,
-                                      progress=report)
+                                      progress=report, samples=xs)
     # The solution events are located at n alone (no margin to compare at n/2).
     events = sorted([*events, *existence], key=lambda e: e.at, reverse=stop < start)
     xs_arr = np.array(xs)
