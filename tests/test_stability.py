@@ -337,3 +337,47 @@ def test_stability_of_orders_pairs_and_estimates(monkeypatch):
                                  points=64, rate_unit=2.0)
     np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
     assert per_second.units == "1/s" and per_second.region == (0.2, 12.0, 8.0)
+
+
+def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
+    """``map --stability`` (a 2 x 2 map, the smallest): each point analysed at its own
+    inputs and at the map's heat partition there (the
+    solution given to the eigensolver, at the map's n, is the map's own); ``stable``
+    and ``growth_rate`` from the stand-in's eigenvalues (largest real part, NaN where
+    none); an operating map is refused in one line."""
+    from thermocontact.cli import main
+    from thermocontact.io.datasets import read_dataset
+    from thermocontact.studies import event_kinds
+
+    answers = iter([_result([]), _result([0.25 + 1j, 0.25 - 1j, 0.75]), _result([0.5]),
+                    _result([])])
+    seen = []
+
+    def stand_in(solve_at, n, **region):
+        seen.append(solve_at)
+        return next(answers)
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    out = tmp_path / "m.nc"
+    assert main(["map", "--x", "fhpe:0.2:0.3:2", "--y", "pe:1:1.2:2", "--lam", "0.5",
+                 "--K2-over-K1", "10", "--tol", "1e-4", "--out", str(out), "--workers", "1",
+                 "--stability"]) == 0
+    ds = read_dataset(out)
+    # Each point's solve at the map's n: the map's own solution, and its offset.
+    seen = [solve_at(n) for solve_at, n in zip(seen, ds["n"].values.ravel())]
+    assert ds["stable"].values.tolist() == [[1, 0], [0, 1]]
+    rate = ds["growth_rate"].values
+    assert np.isnan(rate[[0, 1], [0, 1]]).all() and rate[0, 1] == 0.75 and rate[1, 0] == 0.5
+    assert ds["growth_rate"].attrs["units"] == "k2/Delta^2"
+    assert [(s.parameters.pe, s.parameters.fhpe) for s in seen] == [
+        (1.0, 0.2), (1.0, 0.3), (1.2, 0.2), (1.2, 0.3)]
+    assert all(s.parameters.K2_over_K1 == 10.0 and s.lam == 0.5 for s in seen)
+    np.testing.assert_allclose([s.load_ratio for s in seen], ds["load_ratio"].values.ravel(),
+                               rtol=1e-10)
+    np.testing.assert_allclose([s.sigma_over_delta for s in seen],
+                               ds["sigma_over_delta"].values.ravel(), rtol=1e-10)
+    capsys.readouterr()
+    assert main(["map", "--x", "load:1e4:1e5:2", "--y", "speed:1:1:1", "--cylinder", "copper",
+                 "--half-plane", "steel", "--radius", "10mm", "--friction", "0.2",
+                 "--lam", "-1", "--out", str(tmp_path / "o.nc"), "--stability"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--stability maps dimensionless parameters only" in err[0]
