@@ -415,3 +415,28 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
                  "--lam", "-1", "--out", str(tmp_path / "o.nc"), "--stability"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--stability maps dimensionless parameters only" in err[0]
+
+
+def test_half_plane_waves_shorter_than_the_contact_decay():
+    """docs/stability.md, modes short against the contact: at the copper-steel contact
+    (50 kN/m, 2 m/s, f = 0.2, lam = -1, no Dundurs term: Delta = 77.6 um and fHPe =
+    0.159 from ``contact``) the sliding half-planes grow at m Delta = 0.01, above the
+    critical wavelength, and not at m Delta >= 0.1 (no discrete mode from 0.3); the
+    critical wavelength in half-widths, L_c/Delta = Gamma/fHPe, has Gamma = C f H/(2 k2)
+    = 92.6 with C = V_c L the pair's constant, the same at two wavelengths."""
+    import math
+
+    from thermocontact.physics.tei import SlidingPair
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.tei import critical_speed, growth_rate
+
+    pair = SlidingPair(get_material("copper"), get_material("steel"), 0.2, dundurs=False)
+    delta, fhpe, speed = 7.763386328106788e-05, 0.15929446878466574, 2.0
+    unit = get_material("steel").k / delta ** 2
+    assert 0 < growth_rate(pair, 0.01 / delta, speed) / unit < 1e-3
+    assert -0.1 < growth_rate(pair, 0.1 / delta, speed) / unit < -0.01
+    for m_delta in (0.3, 1.0, 10.0):
+        assert growth_rate(pair, m_delta / delta, speed) == -math.inf
+    gamma = [critical_speed(pair, 2 * math.pi / L)[0] * L * fhpe / (speed * delta)
+             for L in (0.02, 0.05)]
+    assert gamma == pytest.approx([92.6, 92.6], rel=1e-3)
