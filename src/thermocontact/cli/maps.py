@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 import sys
@@ -218,7 +219,7 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     if out.lower().endswith(".zarr"):
         out = check_output_dir("--out", out)
         try:
-            import zarr  # noqa: F401
+            importlib.import_module("zarr")
         except ImportError:
             raise InputError("--out .zarr needs the zarr package: pip install "
                              "'thermocontact[zarr]', or write .nc") from None
