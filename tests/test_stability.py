@@ -374,13 +374,14 @@ def test_stability_of_orders_pairs_and_estimates(monkeypatch):
 
 
 def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
-    """``map --stability`` (a 2 x 2 map, the smallest): each point analysed at its own
-    inputs and at the map's heat partition there (the
-    solution given to the eigensolver, at the map's n, is the map's own); ``stable``
-    and ``growth_rate`` from the stand-in's eigenvalues (largest real part, NaN where
-    none); an operating map is refused in one line."""
+    """``parameter_map(..., stability=True)`` (a 2 x 2 map, the smallest): each point
+    analysed at its own inputs and at the map's heat partition there (the solution
+    given to the eigensolver, at the map's n, is the map's own); ``stable`` and
+    ``growth_rate`` from the stand-in's eigenvalues (largest real part, NaN where none);
+    ``map --stability`` passes the flag on, and an operating map is refused in one line."""
+    import thermocontact as tc
+    import thermocontact.cli.maps as cli_maps
     from thermocontact.cli import main
-    from thermocontact.io.datasets import read_dataset
     from thermocontact.studies import event_kinds
 
     answers = iter([_result([]), _result([0.25 + 1j, 0.25 - 1j, 0.75]), _result([0.5]),
@@ -391,12 +392,9 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
         seen.append(solve_at)
         return next(answers)
     monkeypatch.setattr(event_kinds, "stability_of", stand_in)
-    out = tmp_path / "m.nc"
-    assert main(["map", "--x", "fhpe:0.2:0.3:2", "--y", "pe:1:1.2:2", "--lam", "0.5",
-                 "--K2-over-K1", "10", "--tol", "1e-4", "--out", str(out), "--workers", "1",
-                 "--stability"]) == 0
-    ds = read_dataset(out)
-    # Each point's solve at the map's n: the map's own solution, and its offset.
+    ds = tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                          K2_over_K1=10, lam=0.5, tol=1e-4, stability=True)
+    # Each point's solve at the map's n: the map's own solution.
     seen = [solve_at(n) for solve_at, n in zip(seen, ds["n"].values.ravel())]
     assert ds["stable"].values.tolist() == [[1, 0], [0, 1]]
     rate = ds["growth_rate"].values
@@ -409,12 +407,21 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
                                rtol=1e-10)
     np.testing.assert_allclose([s.sigma_over_delta for s in seen],
                                ds["sigma_over_delta"].values.ravel(), rtol=1e-10)
+    runs = []
+    monkeypatch.setattr(cli_maps, "run_map", lambda *args: runs.append(args))
+    assert main(["map", "--x", "fhpe:0.2:0.3:2", "--y", "pe:1:1.2:2", "--K2-over-K1", "10",
+                 "--lam", "0.5", "--out", str(tmp_path / "m.nc"), "--stability"]) == 0
+    assert runs[0][-1] is True
     capsys.readouterr()
-    assert main(["map", "--x", "load:1e4:1e5:2", "--y", "speed:1:1:1", "--cylinder", "copper",
+    assert main(["map", "--x", "load:1e4:1e5:2", "--y", "speed:1:2:2", "--cylinder", "copper",
                  "--half-plane", "steel", "--radius", "10mm", "--friction", "0.2",
                  "--lam", "-1", "--out", str(tmp_path / "o.nc"), "--stability"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--stability maps dimensionless parameters only" in err[0]
+    with pytest.raises(InputError, match="dimensionless parameters only"):
+        tc.compute_map(tc.map_spec(tc.Axis("load", 1e4, 1e5, 2), tc.Axis("speed", 1, 2, 2),
+                                   cylinder="copper", half_plane="steel", friction=0.2,
+                                   radius=0.01, lam=-1), stability=True)
 
 
 def test_half_plane_waves_shorter_than_the_contact_decay():
