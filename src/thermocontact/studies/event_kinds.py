@@ -113,13 +113,14 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     dims = (spec.y.name, spec.x.name)
     stable = np.full(ds["valid"].shape, -1, dtype=np.int8)
     rate = np.full(ds["valid"].shape, np.nan)
+    lam = ds["lam"].broadcast_like(ds["valid"]).transpose(*ds["valid"].dims).values
     for (j, i), status in np.ndenumerate(np.asarray(ds["status"].values)):
         if status == "failed":
             continue
         kw = {**spec.fixed, spec.y.name: float(spec.y.values[j]),
               spec.x.name: float(spec.x.values[i])}
         kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
-        kw["lam"] = float(ds["lam"].values[j, i])
+        kw["lam"] = float(lam[j, i])
         res = stability_at(kw, spec.method, n=n, **region)
         stable[j, i] = int(res.stable)
         if len(res.eigenvalues):
