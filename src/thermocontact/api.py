@@ -480,7 +480,7 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     stability : bool, optional
         Also ``stable`` and ``growth_rate`` at every solved point, from the
         eigenvalues of its steady contact (:func:`stability` with its defaults, at the
-        point's heat partition; about half a minute a point, in this process).
+        point's heat partition; half a minute to a minute a point, in this process).
 
     Returns
     -------
@@ -549,8 +549,7 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None
                     dundurs=dundurs, materials=materials, tol=tol, zones=zones,
                     conductance=conductance, bulk_temperatures=bulk_temperatures,
                     sink_distance=sink_distance, layer_thickness=layer_thickness)
-    return compute_map(spec, workers=workers, store=store, progress=progress, command=command,
-                       stability=stability)
+    return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
 def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
