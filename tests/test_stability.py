@@ -418,6 +418,18 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
                  "--lam", "-1", "--out", str(tmp_path / "o.nc"), "--stability"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--stability maps dimensionless parameters only" in err[0]
+    # What the analysis does not model is refused before the map is computed.
+    import thermocontact.studies.maps as maps
+
+    def not_computed(*args, **kw):
+        raise AssertionError("the map was computed")
+    monkeypatch.setattr(maps, "compute_map", not_computed)
+    for kw, words in ((dict(speed_ratio=0.5), "speed_ratio must be 0"),
+                      (dict(beta_f=0.1), "beta_f must be 0"),
+                      (dict(method="galerkin"), "edge-graded method")):
+        with pytest.raises(InputError, match=words):
+            tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                             K2_over_K1=10, lam=0.5, stability=True, **kw)
     with pytest.raises(InputError, match="dimensionless parameters only"):
         tc.compute_map(tc.map_spec(tc.Axis("load", 1e4, 1e5, 2), tc.Axis("speed", 1, 2, 2),
                                    cylinder="copper", half_plane="steel", friction=0.2,

@@ -658,7 +658,7 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
     -------
     xarray.Dataset
     """
-    from .studies.event_kinds import map_stability
+    from .studies.event_kinds import check_map_stability, map_stability
     from .studies.maps import MapSpec
     from .studies.maps import compute_map as dimensionless
     from .studies.operating_maps import OperatingSpec, compute_operating_map
@@ -666,6 +666,8 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
     if stability and not isinstance(spec, MapSpec):
         raise InputError("stability: maps of dimensionless parameters only (for a physical "
                          "contact, contact --stability)", parameters=("stability",))
+    if stability:
+        check_map_stability(spec)
     if isinstance(spec, MapSpec):
         ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
                            command=command)

@@ -17,10 +17,10 @@ from dataclasses import replace
 import numpy as np
 
 from ..problem.validation import InputError
-from ..solvers.stability import STABILITY_N, stability_of
+from ..solvers.stability import STABILITY_N, linearised, stability_of
 from .boundaries import Path, model_for
 
-__all__ = ["classify", "kind_of", "map_stability", "stability_at"]
+__all__ = ["check_map_stability", "classify", "kind_of", "map_stability", "stability_at"]
 
 #: A map's closures: its points are analysed at the heat partition they imply.
 _CLOSURES = ("lam", "sigma_over_delta", "theta", "sink_distance")
@@ -81,6 +81,24 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, **region):
                               sigma_over_delta=kw.get("sigma_over_delta"),
                               check_validity=False)
     return stability_of(solve_at, n=n, **region)
+
+
+def check_map_stability(spec) -> None:
+    """Refuse, before the map is computed, a map whose contacts the stability analysis
+    does not model (a moving half-plane, the Dundurs term, a Chebyshev method): the
+    linearised contact's own refusal at the grid's corners (every parameter's range is
+    an interval), each solved at n = 8 and lam = 0.
+
+    Raises
+    ------
+    InputError
+    """
+    for xv in (spec.x.start, spec.x.stop):
+        for yv in (spec.y.start, spec.y.stop):
+            kw = {**spec.fixed, spec.x.name: xv, spec.y.name: yv}
+            kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
+            linearised(model_for(kw, method=spec.method).solve_at(
+                8, kw["fhpe"], lam=0.0, check_validity=False))
 
 
 def map_stability(ds, spec, *, n=STABILITY_N, **region):
