@@ -15,6 +15,7 @@
 from __future__ import annotations
 
 import json
+import pathlib
 import pickle
 
 import numpy as np
@@ -265,22 +266,55 @@ def test_kinds_of_events(monkeypatch):
     assert out.to_dict()["events"][1]["kind"] == "fold"
 
 
+def _convergence():
+    """The stored eigenvalue of the growing pair at n = 8 ... 32
+    (tests/data/make_stability_convergence.py)."""
+    path = pathlib.Path(__file__).parent / "data" / "stability_convergence.json"
+    data = json.loads(path.read_text())
+    return data["case"], data["levels"]
+
+
 def test_a_growing_pair_past_a_fold():
-    """Past the fold of the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.5, n = 8) the pair
-    found by Beyn's method and Newton's (docs/stability.md) makes M singular, and its
-    conjugate too: M(conj b) = conj M(b)."""
+    """Past the fold of the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.5) the stored pair
+    (docs/stability.md) makes M singular at n = 8, a simple root confirmed by a step of
+    Newton's method on det M (below 1e-10 of |b|), and its conjugate too:
+    M(conj b) = conj M(b); at n = 12 the stored eigenvalue, 5e-2 away, is a root there."""
+    case, levels = _convergence()
+    assert case == {"pe": 1.5, "K2_over_K1": 1.0, "fhpe": 1.5, "lam": 1.0}
+    at = {r["n"]: complex(*r["b"]) for r in levels}
     lin = linearised(_steady(1.5, 1.0, 1.5, 1.0, 8))
-    b = 0.7610748136758606 + 1.334553895858362j
+    b = at[8]
     M = lin.matrix(b)
     sv = np.linalg.svd(M, compute_uv=False)
     assert sv[-1] < 1e-13 * sv[0] and sv[-2] > 1e-8 * sv[0]
+    root, step = newton(lambda z: M if z == b else lin.matrix(z), b, steps=1)
+    assert step < 1e-10 * abs(b) and abs(root - b) < 1e-10 * abs(b)
     np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
     assert inside(b, (0.5, 10.0, 10.0))
-    # At n = 12 the pair has moved by 5e-2 (9e-4 from n = 12 to 32, docs/stability.md).
-    fine = 0.7857534445394697 + 1.3817812587822782j
-    sv = np.linalg.svd(linearised(_steady(1.5, 1.0, 1.5, 1.0, 12)).matrix(fine),
+    assert abs(at[12] - b) > 1e-2
+    sv = np.linalg.svd(linearised(_steady(1.5, 1.0, 1.5, 1.0, 12)).matrix(at[12]),
                        compute_uv=False)
     assert sv[-1] < 1e-13 * sv[0]
+
+
+def test_the_growing_pair_converges_in_n():
+    """The stored eigenvalue at n = 8, 12, 16, 20, 24 against n = 32: the change falls
+    at every step at an observed algebraic order above 10 (10.1, 13.1, 15.0, 11.3:
+    faster than any fixed order, as the steady solution's, derivation section 12), to
+    below 1e-7 at n = 24; at every n the stored root is a simple root (smallest singular
+    value of M below 1e-17 of the largest, the next above 1e-10) where Newton's last
+    step was below 1e-12."""
+    _, levels = _convergence()
+    n = np.array([r["n"] for r in levels], dtype=float)
+    assert n.tolist() == [8, 12, 16, 20, 24, 32]
+    b = np.array([complex(*r["b"]) for r in levels])
+    change = np.abs(b[:-1] - b[-1]) / np.abs(b[-1])
+    order = np.log(change[:-1] / change[1:]) / np.log(n[1:-1] / n[:-2])
+    assert np.all(order > 10.0)
+    assert change[-1] < 1e-7 and change[0] > 1e-2
+    for r in levels:
+        assert r["smallest_singular_value"] < 1e-17 and r["second_singular_value"] > 1e-10
+        assert r["newton_step"] < 1e-12
 
 
 @pytest.mark.parametrize("closure", [dict(lam=-1),
@@ -337,3 +371,91 @@ def test_stability_of_orders_pairs_and_estimates(monkeypatch):
                                  points=64, rate_unit=2.0)
     np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
     assert per_second.units == "1/s" and per_second.region == (0.2, 12.0, 8.0)
+
+
+def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
+    """``parameter_map(..., stability=True)`` (a 2 x 2 map, the smallest): each point
+    analysed at its own inputs and at the map's heat partition there (the solution
+    given to the eigensolver, at the map's n, is the map's own); ``stable`` and
+    ``growth_rate`` from the stand-in's eigenvalues (largest real part, NaN where none);
+    ``map --stability`` passes the flag on, and an operating map is refused in one line."""
+    import thermocontact as tc
+    import thermocontact.cli.maps as cli_maps
+    from thermocontact.cli import main
+    from thermocontact.studies import event_kinds
+
+    answers = iter([_result([]), _result([0.25 + 1j, 0.25 - 1j, 0.75]), _result([0.5]),
+                    _result([])])
+    seen = []
+
+    def stand_in(solve_at, n, **region):
+        seen.append(solve_at)
+        return next(answers)
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    ds = tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                          K2_over_K1=10, lam=0.5, tol=1e-4, stability=True)
+    # Each point's solve at the map's n: the map's own solution.
+    seen = [solve_at(n) for solve_at, n in zip(seen, ds["n"].values.ravel())]
+    assert ds["stable"].values.tolist() == [[1, 0], [0, 1]]
+    rate = ds["growth_rate"].values
+    assert np.isnan(rate[[0, 1], [0, 1]]).all() and rate[0, 1] == 0.75 and rate[1, 0] == 0.5
+    assert ds["growth_rate"].attrs["units"] == "k2/Delta^2"
+    assert [(s.parameters.pe, s.parameters.fhpe) for s in seen] == [
+        (1.0, 0.2), (1.0, 0.3), (1.2, 0.2), (1.2, 0.3)]
+    assert all(s.parameters.K2_over_K1 == 10.0 and s.lam == 0.5 for s in seen)
+    np.testing.assert_allclose([s.load_ratio for s in seen], ds["load_ratio"].values.ravel(),
+                               rtol=1e-10)
+    np.testing.assert_allclose([s.sigma_over_delta for s in seen],
+                               ds["sigma_over_delta"].values.ravel(), rtol=1e-10)
+    runs = []
+    monkeypatch.setattr(cli_maps, "run_map", lambda *args: runs.append(args))
+    assert main(["map", "--x", "fhpe:0.2:0.3:2", "--y", "pe:1:1.2:2", "--K2-over-K1", "10",
+                 "--lam", "0.5", "--out", str(tmp_path / "m.nc"), "--stability"]) == 0
+    assert runs[0][-1] is True
+    capsys.readouterr()
+    assert main(["map", "--x", "load:1e4:1e5:2", "--y", "speed:1:2:2", "--cylinder", "copper",
+                 "--half-plane", "steel", "--radius", "10mm", "--friction", "0.2",
+                 "--lam", "-1", "--out", str(tmp_path / "o.nc"), "--stability"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--stability maps dimensionless parameters only" in err[0]
+    # What the analysis does not model is refused before the map is computed.
+    import thermocontact.studies.maps as maps
+
+    def not_computed(*args, **kw):
+        raise AssertionError("the map was computed")
+    monkeypatch.setattr(maps, "compute_map", not_computed)
+    for kw, words in ((dict(speed_ratio=0.5), "speed_ratio must be 0"),
+                      (dict(beta_f=0.1), "beta_f must be 0"),
+                      (dict(method="galerkin"), "edge-graded method")):
+        with pytest.raises(InputError, match=words):
+            tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                             K2_over_K1=10, lam=0.5, stability=True, **kw)
+    with pytest.raises(InputError, match="dimensionless parameters only"):
+        tc.compute_map(tc.map_spec(tc.Axis("load", 1e4, 1e5, 2), tc.Axis("speed", 1, 2, 2),
+                                   cylinder="copper", half_plane="steel", friction=0.2,
+                                   radius=0.01, lam=-1), stability=True)
+
+
+def test_half_plane_waves_shorter_than_the_contact_decay():
+    """docs/stability.md, modes short against the contact: at the copper-steel contact
+    (50 kN/m, 2 m/s, f = 0.2, lam = -1, no Dundurs term: Delta = 77.6 um and fHPe =
+    0.159 from ``contact``) the sliding half-planes grow at m Delta = 0.01, above the
+    critical wavelength, and not at m Delta >= 0.1 (no discrete mode from 0.3); the
+    critical wavelength in half-widths, L_c/Delta = Gamma/fHPe, has Gamma = C f H/(2 k2)
+    = 92.6 with C = V_c L the pair's constant, the same at two wavelengths."""
+    import math
+
+    from thermocontact.physics.tei import SlidingPair
+    from thermocontact.problem.materials import get_material
+    from thermocontact.studies.tei import critical_speed, growth_rate
+
+    pair = SlidingPair(get_material("copper"), get_material("steel"), 0.2, dundurs=False)
+    delta, fhpe, speed = 7.763386328106788e-05, 0.15929446878466574, 2.0
+    unit = get_material("steel").k / delta ** 2
+    assert 0 < growth_rate(pair, 0.01 / delta, speed) / unit < 1e-3
+    assert -0.1 < growth_rate(pair, 0.1 / delta, speed) / unit < -0.01
+    for m_delta in (0.3, 1.0, 10.0):
+        assert growth_rate(pair, m_delta / delta, speed) == -math.inf
+    gamma = [critical_speed(pair, 2 * math.pi / L)[0] * L * fhpe / (speed * delta)
+             for L in (0.02, 0.05)]
+    assert gamma == pytest.approx([92.6, 92.6], rel=1e-3)

@@ -443,7 +443,8 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
 def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                   delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
                   sigma=None, delta_over_r=None, method=DEFAULT_METHOD, tol=1e-6, workers=1,
-                  store=None, progress=None, command=None, theta=None, sink_distance=None):
+                  store=None, progress=None, command=None, theta=None, sink_distance=None,
+                  stability=False):
     """The single patch over a grid of two dimensionless parameters.
 
     ``thermocontact map`` from Python: every point solved to ``tol``, and where
@@ -476,6 +477,10 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
         ``progress(done, total)`` in grid lines.
     command : str, optional
         Recorded in the dataset's attributes.
+    stability : bool, optional
+        Also ``stable`` and ``growth_rate`` at every solved point, from the
+        eigenvalues of its steady contact (:func:`stability` with its defaults, at the
+        point's heat partition; half a minute to a minute a point, in this process).
 
     Returns
     -------
@@ -494,7 +499,8 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                     delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
                     beta_f=beta_f, lam=lam, sigma=sigma, delta_over_r=delta_over_r,
                     method=method, tol=tol, theta=theta, sink_distance=sink_distance)
-    return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
+    return compute_map(spec, workers=workers, store=store, progress=progress, command=command,
+                       stability=stability)
 
 
 def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None, load=None,
@@ -634,7 +640,8 @@ def _refuse_axis_values(axes, given, names=None):
                                  parameters=(name,))
 
 
-def compute_map(spec, *, workers=1, store=None, progress=None, command=None):
+def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
+                stability=False):
     """The map that a :func:`map_spec` describes, as an :class:`xarray.Dataset`.
 
     :func:`parameter_map` and :func:`operating_map` are this call on their
@@ -644,20 +651,27 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None):
     Parameters
     ----------
     spec : MapSpec or OperatingSpec
-    workers, store, progress, command
-        As for :func:`parameter_map`.
+    workers, store, progress, command, stability
+        As for :func:`parameter_map` (``stability``: dimensionless maps only).
 
     Returns
     -------
     xarray.Dataset
     """
+    from .studies.event_kinds import check_map_stability, map_stability
     from .studies.maps import MapSpec
     from .studies.maps import compute_map as dimensionless
     from .studies.operating_maps import OperatingSpec, compute_operating_map
 
+    if stability and not isinstance(spec, MapSpec):
+        raise InputError("stability: maps of dimensionless parameters only (for a physical "
+                         "contact, contact --stability)", parameters=("stability",))
+    if stability:
+        check_map_stability(spec)
     if isinstance(spec, MapSpec):
-        return dimensionless(spec, workers=workers, store_path=store, progress=progress,
-                             command=command)
+        ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
+                           command=command)
+        return map_stability(ds, spec) if stability else ds
     if isinstance(spec, OperatingSpec):
         return compute_operating_map(spec, workers=workers, progress=progress,
                                      command=command, store_path=store)

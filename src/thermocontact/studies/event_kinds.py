@@ -6,18 +6,24 @@ linearised at fixed load and its eigenvalues found (derivation section 18,
 part in the right half-plane makes the event a ``"fold"`` (a real mode grows, the
 branch's real eigenvalue having passed through zero), a complex pair a ``"hopf"`` (an
 oscillating mode grows), and none, every mode decaying where validity is lost, a
-``"grazing"`` end.
+``"grazing"`` end.  :func:`map_stability` gives each point of a map its verdict and
+largest growth rate.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
 from ..problem.validation import InputError
-from ..solvers.stability import STABILITY_N, stability_of
+from ..solvers.stability import STABILITY_N, linearised, stability_of
 from .boundaries import Path, model_for
 
-__all__ = ["classify", "kind_of"]
+__all__ = ["check_map_stability", "classify", "kind_of", "map_stability", "stability_at"]
+
+#: A map's closures: its points are analysed at the heat partition they imply.
+_CLOSURES = ("lam", "sigma_over_delta", "theta", "sink_distance")
 
 
 def kind_of(result) -> str:
@@ -59,11 +65,91 @@ def classify(path: Path, *, n=STABILITY_N, **region) -> Path:
     for event in path.events:
         # The path's fixed inputs hold one closure, never the parameter followed.
         kw = {**path.fixed, path.along: event.at}
-        model = model_for(kw, method=path.method)
-
-        def solve_at(m, kw=kw, model=model):
-            return model.solve_at(m, kw["fhpe"], lam=kw.get("lam"),
-                                  sigma_over_delta=kw.get("sigma_over_delta"),
-                                  check_validity=False)
-        events.append(replace(event, kind=kind_of(stability_of(solve_at, n=n, **region))))
+        events.append(replace(event, kind=kind_of(stability_at(kw, path.method, n=n,
+                                                               **region))))
     return replace(path, events=tuple(events))
+
+
+def stability_at(kw: dict, method, *, n=STABILITY_N, **region):
+    """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
+    single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
+    ``lam`` or ``sigma_over_delta``), eigenvalues in units of ``k2/Delta^2``."""
+    model = model_for(kw, method=method)
+
+    def solve_at(m):
+        return model.solve_at(m, kw["fhpe"], lam=kw.get("lam"),
+                              sigma_over_delta=kw.get("sigma_over_delta"),
+                              check_validity=False)
+    return stability_of(solve_at, n=n, **region)
+
+
+def check_map_stability(spec) -> None:
+    """Refuse, before the map is computed, a map whose contacts the stability analysis
+    does not model (a moving half-plane, the Dundurs term, a Chebyshev method): the
+    linearised contact's own refusal at the grid's corners (every parameter's range is
+    an interval), each solved at n = 8 and lam = 0.
+
+    Raises
+    ------
+    InputError
+    """
+    for xv in (spec.x.start, spec.x.stop):
+        for yv in (spec.y.start, spec.y.stop):
+            kw = {**spec.fixed, spec.x.name: xv, spec.y.name: yv}
+            kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
+            linearised(model_for(kw, method=spec.method).solve_at(
+                8, kw["fhpe"], lam=0.0, check_validity=False))
+
+
+def map_stability(ds, spec, *, n=STABILITY_N, **region):
+    """A dimensionless map with the stability of its solved points.
+
+    Each point not ``"failed"`` is analysed at its own inputs and heat partition
+    (the dataset's ``lam``, whatever closed the map: the steady state at that ``lam``
+    is the same, and the perturbation leaves the far field unchanged), by
+    :func:`stability_at`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Of :func:`~thermocontact.studies.maps.compute_map`.
+    spec : MapSpec
+        Its specification.
+    n : int
+        Unknowns per function of the stability analysis.
+    **region
+        ``re_min``, ``re_max``, ``im_max``, ``points`` of
+        :func:`~thermocontact.solvers.stability.stability_of`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` with ``stable`` (1: no eigenvalue in the region, 0: one or more, -1: not
+        analysed) and ``growth_rate`` (the largest real part of an eigenvalue found,
+        k2/Delta^2; NaN where none or not analysed).
+    """
+    dims = (spec.y.name, spec.x.name)
+    stable = np.full(ds["valid"].shape, -1, dtype=np.int8)
+    rate = np.full(ds["valid"].shape, np.nan)
+    lam = ds["lam"].broadcast_like(ds["valid"]).transpose(*ds["valid"].dims).values
+    for (j, i), status in np.ndenumerate(np.asarray(ds["status"].values)):
+        if status == "failed":
+            continue
+        kw = {**spec.fixed, spec.y.name: float(spec.y.values[j]),
+              spec.x.name: float(spec.x.values[i])}
+        kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
+        kw["lam"] = float(lam[j, i])
+        res = stability_at(kw, spec.method, n=n, **region)
+        stable[j, i] = int(res.stable)
+        if len(res.eigenvalues):
+            rate[j, i] = float(np.max(res.eigenvalues.real))
+    out = ds.assign(stable=(dims, stable), growth_rate=(dims, rate))
+    out["stable"].attrs.update(
+        long_name="1 where no eigenvalue of the contact linearised at fixed load lies in "
+                  "the region searched, 0 where one does, -1 not analysed",
+        flag_values=np.array([-1, 0, 1], dtype=np.int8),
+        flag_meanings="not_analysed unstable stable")
+    out["growth_rate"].attrs.update(
+        long_name="largest real part of an eigenvalue in the region searched "
+                  "(NaN where none)", units="k2/Delta^2")
+    return out
