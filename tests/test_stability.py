@@ -459,3 +459,29 @@ def test_half_plane_waves_shorter_than_the_contact_decay():
     gamma = [critical_speed(pair, 2 * math.pi / L)[0] * L * fhpe / (speed * delta)
              for L in (0.02, 0.05)]
     assert gamma == pytest.approx([92.6, 92.6], rel=1e-3)
+
+
+def test_kinds_of_events_on_a_path_closed_by_the_far_temperatures(monkeypatch):
+    """A path closed by the far temperatures (theta, L/Delta) is analysed at the steady
+    contact those temperatures make: the solution handed to the eigensolver is the one
+    of ``solve(..., theta=, sink_distance=)`` at the event."""
+    from thermocontact import solve
+    from thermocontact.studies import event_kinds
+    from thermocontact.studies.boundaries import Event, Path
+
+    fixed = {"pe": 5.0, "K2_over_K1": 10.0, "theta": 1.0, "sink_distance": 30.0}
+    event = Event(at=0.2, inequality="gap", edge="leading", valid_before=True,
+                  valid_after=False)
+    path = Path(along="fhpe", fixed=fixed, x=np.array([0.0, 1.0]),
+                valid=np.array([True, False]), events=(event,), n=8, method="graded",
+                error_estimate=float("nan"))
+    seen = []
+
+    def stand_in(solve_at, n, **region):
+        seen.append(solve_at(32))
+        return _result([])
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    assert event_kinds.classify(path).events[0].kind == "grazing"
+    direct = solve(5.0, 0.2, 10.0, theta=1.0, sink_distance=30.0, n=32)
+    assert seen[0].lam == pytest.approx(direct.lam, abs=1e-12)
+    assert seen[0].load_ratio == pytest.approx(direct.load_ratio, rel=1e-12)

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..problem.validation import InputError
 from ..solvers.stability import STABILITY_N, linearised, stability_of
-from .boundaries import Path, model_for
+from .boundaries import Path, closure, model_for
 
 __all__ = ["check_map_stability", "classify", "kind_of", "map_stability", "stability_at"]
 
@@ -73,13 +73,12 @@ def classify(path: Path, *, n=STABILITY_N, **region) -> Path:
 def stability_at(kw: dict, method, *, n=STABILITY_N, **region):
     """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
     single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
-    ``lam`` or ``sigma_over_delta``), eigenvalues in units of ``k2/Delta^2``."""
+    ``lam``, ``sigma_over_delta`` or the far temperatures ``theta``), eigenvalues in
+    units of ``k2/Delta^2``."""
     model = model_for(kw, method=method)
 
     def solve_at(m):
-        return model.solve_at(m, kw["fhpe"], lam=kw.get("lam"),
-                              sigma_over_delta=kw.get("sigma_over_delta"),
-                              check_validity=False)
+        return model.solve_at(m, kw["fhpe"], check_validity=False, **closure(kw))
     return stability_of(solve_at, n=n, **region)
 
 
