@@ -408,8 +408,9 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
         e1 = reduce(p1, sc)
     size = 2 * m * n + closing + int(conductance)
     # The cached blocks of one zone at half = 1 without conductance are shared, not
-    # copied: they alone fill their rows' phi and psi columns, and A1 has nothing else.
-    share = own_cached and not conductance
+    # copied, at large n: they alone fill their rows' phi and psi columns, and A1 has
+    # nothing else.  Below, copies form the matrix at F faster (once per grid point).
+    share = own_cached and not conductance and n >= SHARED_BLOCKS_N
     shared = []
     A0, b = np.zeros((size, size)), np.zeros(size)
     A1 = None if share else np.zeros((size, size))
@@ -510,6 +511,11 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
                else "temperatures")
     return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points),
                             closure, theta_row, tuple(shared))
+
+
+#: From this n the single patch's system shares the cached blocks (10 MB at n = 512)
+#: instead of copying them into A0 and A1.
+SHARED_BLOCKS_N = 512
 
 
 def zone_temperature_rows(par, zpar, rep, centre, half, i, s, aux, size):
