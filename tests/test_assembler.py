@@ -164,6 +164,31 @@ def test_projection_assembled_in_blocks_of_points_is_the_whole(method, monkeypat
     assert GEOMETRY.bytes <= held  # the blocks' point geometry is not kept
 
 
+def test_the_single_patch_system_shares_its_cached_blocks(monkeypatch):
+    """Built from cached blocks at large n, the single patch's system holds them by
+    reference, not a copy in A0 and A1, and its matrix at F is the copied assembly's to
+    the last bit (the threshold lowered to a small n here)."""
+    from thermocontact.discretisation import system as assembler
+    from thermocontact.discretisation.methods import METHODS
+    from thermocontact.discretisation.system import contact_set_system
+
+    monkeypatch.setattr(assembler, "SHARED_BLOCKS_N", 32)
+
+    par = Parameters(5.0, 0.2, 10.0)
+    blocks = METHODS["graded"].assemble(par, 32)
+    rep, edges = blocks.representation, np.array([[-1.0, 1.0]])
+    for closure in ({"lam": -1.0}, {"sigma_over_delta": 0.3}):
+        shared = contact_set_system(par, edges, rep, "projection", blocks=blocks, **closure)
+        copied = contact_set_system(par, edges, rep, "projection", **closure)
+        assert shared.A1 is None and copied.A1 is not None
+        held = [M for _, _, M, _ in shared.shared]
+        assert all(any(M is B for B in (blocks.C, blocks.Tp, blocks.Tq, blocks.Hp, blocks.Hq))
+                   for M in held) and len(held) == 5
+        for F in (0.0, 0.2, 3.7):
+            assert np.array_equal(shared.matrix(F), copied.matrix(F))
+        assert np.array_equal(shared.b, copied.b)
+
+
 def test_one_matrix_at_F_and_its_factors_in_place():
     """The system's matrix at F is A0 + F A1 (bitwise), in LAPACK's order; the solve that
     overwrites it by its factors gives the solution of an untouched copy."""
@@ -176,7 +201,8 @@ def test_one_matrix_at_F_and_its_factors_in_place():
     par = Parameters(5.0, 0.2, 10.0)
     system = contact_set_system(par, np.array([[-1.0, 1.0]]), rep, "projection", lam=-1.0)
     A = system.matrix(0.2)
-    assert np.array_equal(A, system.A0 + 0.2 * system.A1) and A.flags.f_contiguous
+    A0, A1 = system.parts()
+    assert np.array_equal(A, A0 + 0.2 * A1) and A.flags.f_contiguous
     # Rows equilibrated, then factorised in a copy: the same factors, the same solution.
     scale = 1.0 / np.abs(A).max(axis=1)
     expected = lu_solve(lu_factor(A * scale[:, None]), system.b * scale)

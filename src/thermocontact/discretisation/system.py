@@ -242,10 +242,15 @@ class ContactSetSystem:
     and the returns between zones.  With a
     conductance each zone's temperature rows (D33) depend on the Biot numbers at its
     points (``points``): they are formed by :meth:`matrix` from ``local``.
+
+    ``shared``: blocks of the matrix held by reference rather than copied into ``A0``
+    and ``A1`` (the single patch's cached blocks, which would otherwise be held twice):
+    ``(rows, columns, M, c)`` adds ``M`` (``c`` None) or ``c F M`` where ``A0`` and
+    ``A1`` are zero.  ``A1`` is None when it has no other entries.
     """
 
     A0: np.ndarray
-    A1: np.ndarray
+    A1: np.ndarray | None
     b: np.ndarray
     zones: int
     n: int
@@ -253,6 +258,18 @@ class ContactSetSystem:
     points: tuple = ()
     closure: str = "lam"
     temperature_row: int | None = None
+    shared: tuple = ()
+
+    def parts(self):
+        """``A0`` and ``A1`` in full, the shared blocks included (for checks)."""
+        A0 = self.A0.copy()
+        A1 = np.zeros_like(A0) if self.A1 is None else self.A1.copy()
+        for rows, cols, M, c in self.shared:
+            if c is None:
+                A0[rows, cols] += M
+            else:
+                A1[rows, cols] += c * M
+        return A0, A1
 
     @property
     def closure_slice(self) -> slice:
@@ -262,8 +279,14 @@ class ContactSetSystem:
 
     def matrix(self, F, biot=None, scale=None):
         # One new array, in LAPACK's order so that it can be factorised in place.
-        A = np.multiply(self.A1, F, order="F")
-        A += self.A0
+        if self.A1 is None:
+            A = np.array(self.A0, order="F")
+        else:
+            A = np.multiply(self.A1, F, order="F")
+            A += self.A0
+        # Each entry gets one term of A0 and one of F A1 in either order: the same sum.
+        for rows, cols, M, c in self.shared:
+            A[rows, cols] += M if c is None else (c * F) * M
         if not self.local:
             return A
         # The constant's unknown is carried times the largest Bi/(1 + Bi), so that its
@@ -289,7 +312,7 @@ class ContactSetSystem:
         """The derivative of the temperature rows through ``Bi(p)``: ``(D33)`` times
         ``Bi/(1 + Bi)`` changes with ``Bi`` by ``(U x - (pi/2) q)/(1 + Bi)^2`` per
         point, and ``Bi`` with the pressure ``p = pressure_rows @ phi``."""
-        J = np.zeros_like(self.A0)
+        J = np.zeros(self.A0.shape)
         n = self.n
         for i, ((rows, P, U, Lq), bi, dbi, R) in enumerate(zip(self.local, biot, dbiot,
                                                                pressure_rows)):
@@ -384,7 +407,13 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
         e0 = np.ones(n + 1) if p1 is None else p1.sum(axis=1)
         e1 = reduce(p1, sc)
     size = 2 * m * n + closing + int(conductance)
-    A0, A1, b = np.zeros((size, size)), np.zeros((size, size)), np.zeros(size)
+    # The cached blocks of one zone at half = 1 without conductance are shared, not
+    # copied, at large n: they alone fill their rows' phi and psi columns, and A1 has
+    # nothing else.  Below, copies form the matrix at F faster (once per grid point).
+    share = own_cached and not conductance and n >= SHARED_BLOCKS_N
+    shared = []
+    A0, b = np.zeros((size, size)), np.zeros(size)
+    A1 = None if share else np.zeros((size, size))
     phi = [slice(j * n, (j + 1) * n) for j in range(m)]
     psi = [slice((m + j) * n, (m + j + 1) * n) for j in range(m)]
     load = m * (n + 1)
@@ -406,6 +435,12 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
                 s_c = (xc - centre[j]) / half[j]
                 C, Tp, Tq = (reduce(p1, M) for M in contact_operators(zpar[j], rep, s_c,
                                                                       own=False))
+            if share:
+                # -half * T with half = 1: (-F) T is F (-T) to the last bit.
+                shared += [(rc, phi[j], C, None), (rc, phi[j], Tp, -1.0),
+                           (rc, psi[j], Tq, -1.0), (rh, phi[j], own_blocks.Hp, None),
+                           (rh, psi[j], own_blocks.Hq, None)]
+                continue
             # Zone j's thermal terms in units of l carry its half-width (section 14).
             A0[rc, phi[j]] = C
             A1[rc, phi[j]] = -half[j] * Tp
@@ -474,7 +509,13 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
         b[rg] = (2.0 / np.pi) * (profile(hi) - profile(lo))
     closure = ("lam" if lam is not None else "sigma" if sigma_over_delta is not None
                else "temperatures")
-    return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points), closure, theta_row)
+    return ContactSetSystem(A0, A1, b, m, n, tuple(local), tuple(points),
+                            closure, theta_row, tuple(shared))
+
+
+#: From this n the single patch's system shares the cached blocks (10 MB at n = 512)
+#: instead of copying them into A0 and A1.
+SHARED_BLOCKS_N = 512
 
 
 def zone_temperature_rows(par, zpar, rep, centre, half, i, s, aux, size):
