@@ -485,3 +485,20 @@ def test_kinds_of_events_on_a_path_closed_by_the_far_temperatures(monkeypatch):
     direct = solve(5.0, 0.2, 10.0, theta=1.0, sink_distance=30.0, n=32)
     assert seen[0].lam == pytest.approx(direct.lam, abs=1e-12)
     assert seen[0].load_ratio == pytest.approx(direct.load_ratio, rel=1e-12)
+
+
+def test_a_finished_map_without_its_stability_is_not_passed_off_as_analysed(tmp_path,
+                                                                             capsys):
+    """``map --stability`` on the ``--out`` of the same map computed without it: refused
+    in one line (it once said "nothing to compute" and exited 0 without the fields)."""
+    from thermocontact.cli import main
+
+    args = ["map", "--x", "fhpe:0.2:0.3:2", "--y", "pe:1:1.2:2", "--K2-over-K1", "10",
+            "--lam", "0.5", "--tol", "1e-4", "--out", str(tmp_path / "m.nc")]
+    assert main(args) == 0
+    capsys.readouterr()
+    assert main(args + ["--stability"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "without its eigenvalues" in err[0] and "--stability" in err[0]
+    assert main(args) == 0
+    assert "nothing to compute" in capsys.readouterr().out

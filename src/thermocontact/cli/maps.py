@@ -81,6 +81,11 @@ def run_map(spec, out, workers, title, command, stability=False):
         if done is None or done.attrs.get("manifest") != manifest:
             raise InputError(f"--out {out} exists and holds a different map; remove it or "
                              f"choose another --out")
+        if stability and "stable" not in done:
+            # The stability is not part of a map's identity: never claim it is there.
+            raise InputError(f"--out {out} holds this map without its eigenvalues; remove "
+                             f"it or choose another --out for --stability",
+                             parameters=("stability",))
         if not os.path.exists(picture):
             map_figure(done, picture, done.attrs.get("picture_field", "load_ratio"), title)
         click.echo(f"{out} is complete (same arguments): nothing to compute")
