@@ -21,6 +21,7 @@ import warnings
 import numpy as np
 
 from thermocontact import Model
+from thermocontact.io.files import atomic_write
 from thermocontact.solvers.stability import beyn, linearised, newton
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -92,7 +93,9 @@ def main(argv):
         if name in done or (only and name not in only):
             continue
         done[name] = case(pe, K, f, lam)
-        OUT.write_text(json.dumps(done, indent=1))
+        # Whole or not at all: an interrupted study resumes from the cases done.
+        with atomic_write(OUT) as fh:
+            fh.write(json.dumps(done, indent=1))
         print(name, done[name]["modes"], flush=True)
 
 

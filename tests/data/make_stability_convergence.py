@@ -19,6 +19,7 @@ import warnings
 import numpy as np
 
 from thermocontact import Model
+from thermocontact.io.files import atomic_write
 from thermocontact.solvers.stability import linearised, newton
 
 OUT = pathlib.Path(__file__).resolve().parent / "stability_convergence.json"
@@ -41,7 +42,8 @@ def main():
                      "smallest_singular_value": sv[-1] / sv[0],
                      "second_singular_value": sv[-2] / sv[0]})
         print(rows[-1], flush=True)
-    OUT.write_text(json.dumps({"case": CASE, "levels": rows}, indent=1) + "\n")
+    with atomic_write(OUT) as fh:
+        fh.write(json.dumps({"case": CASE, "levels": rows}, indent=1) + "\n")
 
 
 if __name__ == "__main__":

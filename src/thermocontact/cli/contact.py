@@ -228,12 +228,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     finally:
         if side is not None:
             side.shutdown(wait=False, cancel_futures=True)
-    record = res.to_dict()
-    if stability:
-        from ..api import stability as eigenvalues
-        from .solve import stability_summary
+    from .solve import record_of, stability_summary
 
-        record["stability"] = eigenvalues(res).to_dict()
+    record = record_of(res, stability)
     if as_json:
         click.echo(json.dumps(record, allow_nan=False))
     else:

@@ -104,11 +104,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
                 progress=RefinementProgress(), delta_over_r=delta_over_r,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))
     app = sol.applicability
-    record = sol.to_dict()
-    if stability:
-        from ..api import stability as eigenvalues
-
-        record["stability"] = eigenvalues(sol).to_dict()
+    record = record_of(sol, stability)
     if as_json:
         import json
 
@@ -121,6 +117,17 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
         if stability:
             text += "\n" + stability_summary(record["stability"])
         click.echo(text)
+
+
+def record_of(result, stability=False) -> dict:
+    """``result.to_dict()``, with its ``"stability"`` record when asked for
+    (:func:`thermocontact.stability`): the JSON of ``solve`` and ``contact``."""
+    record = result.to_dict()
+    if stability:
+        from ..api import stability as eigenvalues
+
+        record["stability"] = eigenvalues(result).to_dict()
+    return record
 
 
 def stability_summary(record) -> str:
