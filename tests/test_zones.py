@@ -145,7 +145,8 @@ def test_element_antiderivatives():
     from scipy.integrate import quad
 
     from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
-    from thermocontact.solvers.elements import _displacement_integral, _temperature_integral
+    from thermocontact.discretisation.element_operators import (
+        displacement_integral as _displacement_integral, temperature_integral as _temperature_integral)
     for a, b in ((0.1, 2.0), (-1.5, -0.2), (-0.5, 0.7)):
         breaks = [0.0] if a < 0 < b else None
         ref_e = quad(lambda v: cylinder_displacement(np.array(v)), a, b, points=breaks)[0]

@@ -54,6 +54,9 @@ _EXPORTS = {
     "stability": ".api",
     "StabilityResult": ".solvers.stability",
     "tei": ".api",
+    "transient": ".api",
+    "TransientRun": ".solvers.transient",
+    "TransientSpec": ".solvers.transient",
 }
 
 __all__ = sorted(_EXPORTS) + ["__version__"]

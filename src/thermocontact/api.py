@@ -28,7 +28,7 @@ from .problem.validation import InputError, check_positive
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
-__all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec",
+__all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec", "transient",
            "operating_map", "parameter_map", "solve", "stability", "tei"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
@@ -796,3 +796,74 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
         return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
     return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
                         points=points, rate_unit=rate_unit)
+
+
+def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
+              k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
+              start="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
+              resume=None, save=None):
+    """The transient contact from switch-on (or from a steady state), in time.
+
+    ``thermocontact transient`` from Python (docs/derivation.md, section 19).  Lengths
+    in units of the Hertz half-width ``l`` of the load (as :func:`contact_set`), time
+    in ``l^2/kappa2``; pressure in ``P/l``, heat flux in ``f v P/l``, temperature rises
+    in ``f v P/(pi K2)``.  A stationary half-plane without the Dundurs term.
+
+    Parameters
+    ----------
+    pe_hertz, fhpe_hertz, K2_over_K1 : float
+        ``Pe_l = v l/(2 k2) > 0``, ``fHPe_l >= 0``, the conductivity ratio ``> 0``.
+    until : float
+        Duration ``> 0``, units ``l^2/kappa2``.
+    steps : int
+        Time steps, 1 to 100 000 (``dt = until/steps``; the scheme is first order in
+        ``dt``).
+    lam, theta : float, optional
+        The far field: ``lam`` holds the heat partition (in [-1, 1]) and lets the far
+        temperature difference adjust, as the steady model does; ``theta`` holds the
+        far temperatures, ``theta = pi K2 (T2 - T1)/(f v P)`` (section 17), with both
+        bodies infinite.  With ``start="steady"``, ``lam`` names the steady state.
+    k2_over_k1, delta1_over_delta2 : float, optional
+        Diffusivity ratio (default ``K2_over_K1``) and distortivity ratio (default 1).
+    elements : int
+        Equal elements on ``window`` (8 to 4000).
+    window : (float, float)
+        Where contact may occur, units ``l``; must contain ``(-1, 1)``.
+    start : {"hertz", "steady"}
+        Isothermal bodies under Hertz's pressure, or the steady element solution at
+        ``lam`` on the same elements.
+    hold : {"theta", "lam"}
+        From a steady start: hold that state's far temperatures (the closure of
+        :func:`stability`) or its heat partition.
+    perturb : float
+        The load is ``1 + perturb`` during the first step (in [-0.5, 0.5]).
+    conductance : (float, float), optional
+        ``(Bi0, m)``: interface conductance ``Bi = Bi0 (2 p)^m`` (section 15).
+    progress : callable, optional
+        ``progress(done, total)`` after each step.
+    resume : TransientRun, optional
+        A partial run of the same inputs to continue.
+    save : callable, optional
+        ``save(partial_run)`` every 30 s of computing.
+
+    Returns
+    -------
+    TransientRun
+        ``to_dataset()`` is the file of ``thermocontact transient``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> run = tc.transient(2.7, 0.36, 10, lam=1, until=1.0, steps=50, elements=120)
+    >>> run.status, run.zones(-1)[0].size
+    ('complete', 1)
+    """
+    from .solvers.transient import TransientSpec, run_transient
+
+    spec = TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
+                         until=until, steps=steps, k2_over_k1=k2_over_k1,
+                         delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
+                         elements=elements, window=tuple(float(w) for w in window),
+                         start=start, hold=hold, perturb=perturb,
+                         conductance=None if conductance is None else tuple(conductance))
+    return run_transient(spec, resume=resume, progress=progress, save=save)

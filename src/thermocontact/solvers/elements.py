@@ -24,42 +24,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import i0e, i1e, k0e, k1e
 
+from ..discretisation.element_operators import steady_element_operators
 from ..io.results import FieldResult
 from ..problem.parameters import Parameters, SolveError
 
-__all__ = ["ElementSolution", "solve_elements"]
-
-
-def _log_integral(u):
-    """Antiderivative of ``ln|u|``: ``u ln|u| - u`` (0 at ``u = 0``)."""
-    a = np.abs(u)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = u * np.log(np.where(a > 0.0, a, 1.0)) - u
-    return out
-
-
-def _displacement_integral(v):
-    """Antiderivative of ``E(v)`` (``exp(-v) I0(v)``, 1 for ``v <= 0``), 0 at 0."""
-    vp = np.maximum(v, 0.0)
-    return np.where(v > 0.0, vp * (i0e(vp) + i1e(vp)), v)
-
-
-def _temperature_integral(v):
-    """Antiderivative of ``exp(-v) K0(|v|)``: ``-1`` at ``v = 0``, continuous."""
-    a = np.abs(v)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        ahead = a * np.exp(-2.0 * a) * (k0e(a) - k1e(a))
-        behind = -a * (k0e(a) + k1e(a))
-    out = np.where(v > 0.0, ahead, behind)
-    return np.where(a == 0.0, -1.0, out)
-
-
-def _element_matrix(antiderivative, X, Y, h, scale=1.0):
-    """``M[i, k] = integral over element k of K(scale (X_i - Y))`` by the antiderivative."""
-    u = X[:, None] - Y[None, :]
-    return (antiderivative(scale * (u + 0.5 * h)) - antiderivative(scale * (u - 0.5 * h))) / scale
+__all__ = ["ElementSolution", "solve_elements", "solve_on_set"]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -142,43 +112,12 @@ def solve_elements(par: Parameters, lam, *, profile=None, domain=(-2.5, 2.5), el
     h = (hi - lo) / elements
     X = lo + h * (np.arange(elements) + 0.5)
     g0 = 0.5 * X * X if profile is None else np.asarray(profile(X), dtype=float)
-    F, c, d, rho, eta = par.fhpe, par.cylinder_scale, par.delta1_over_delta2, par.K2_over_K1, 0.0
-    del eta
-    flamant = -0.5 * _element_matrix(_log_integral, X, X, h)
-    cyl = -(0.5 * np.pi) * F * (d / c) * _element_matrix(_displacement_integral, X, X, h, c)
-    half = (0.5 * np.pi) * F * _element_matrix(lambda u: 0.25 * u * np.abs(u), X, X, h)
-    # Gap response to (p, q): p acts through all three, q = q1 - q2 through the bulges.
-    Gp = flamant + cyl + half
-    Gq = cyl - half
-    temp_cyl = rho * _element_matrix(_temperature_integral, X, X, h, c)
-    temp_hp = _element_matrix(_log_integral, X, X, h)
-    # rho T(q1) + L(q2) with q1 = (p + q)/2, q2 = (p - q)/2.
-    Tp = 0.5 * (temp_cyl + temp_hp)
-    Tq = 0.5 * (temp_cyl - temp_hp)
+    ops = steady_element_operators(par, X, h)
+    Gp, Gq, Tp, Tq = ops.Gp, ops.Gq, ops.Tp, ops.Tq
 
     def solve_set(active):
-        idx = np.flatnonzero(active)
-        k = idx.size
-        # Unknowns: p (k), q (k), the approach, the temperature difference.
-        A = np.zeros((2 * k + 2, 2 * k + 2))
-        b = np.zeros(2 * k + 2)
-        A[:k, :k] = Gp[np.ix_(idx, idx)]
-        A[:k, k:2 * k] = Gq[np.ix_(idx, idx)]
-        A[:k, 2 * k] = -1.0
-        b[:k] = -g0[idx]
-        A[k:2 * k, :k] = Tp[np.ix_(idx, idx)]
-        A[k:2 * k, k:2 * k] = Tq[np.ix_(idx, idx)]
-        A[k:2 * k, 2 * k + 1] = -1.0
-        A[2 * k, :k] = h
-        b[2 * k] = 1.0
-        A[2 * k + 1, k:2 * k] = h
-        b[2 * k + 1] = lam
-        x = np.linalg.solve(A, b)
-        p = np.zeros(elements)
-        q = np.zeros(elements)
-        p[idx], q[idx] = x[:k], x[k:2 * k]
-        gap = g0 + Gp @ p + Gq @ q - x[2 * k]
-        gap[idx] = 0.0
+        p, q, gap, _, _ = solve_on_set(Gp, Gq, Tp, Tq, g0, np.zeros(elements), h, active,
+                                       lam=lam)
         return p, q, gap
 
     # Start from where the initial gap is within 1/2 of its least value (the Hertz
@@ -219,3 +158,55 @@ def solve_elements(par: Parameters, lam, *, profile=None, domain=(-2.5, 2.5), el
                              f"contact set on {elements} elements")
         active = new
     raise SolveError(f"the active set did not settle in {max_iter} iterations")
+
+
+def solve_on_set(Gp, Gq, Tp, Tq, g_known, t_known, h, active, *, load=1.0, lam=None,
+                 theta=None, resistance=None):
+    """Pressure and heat on a given set of contact elements (section 14b, eq. R9).
+
+    Solves, on the elements in ``active``, ``g_known + Gp p + Gq q - D = 0`` (contact),
+    ``t_known + Tp p + (Tq + diag(resistance)) q = C`` (equal temperatures, or the
+    interface conductance's jump), ``h sum p = load`` and one closure: ``lam`` (then
+    ``h sum q = lam h sum p`` and ``C`` is unknown) or ``theta`` (``C = theta``, the far
+    temperatures').  ``resistance`` is ``pi/(2 Bi)`` per element (None: perfect contact).
+
+    Returns
+    -------
+    p, q, gap : ndarray
+        On every element (zero off contact; the gap zero on it).
+    approach, C : float
+    """
+    if (lam is None) == (theta is None):
+        raise ValueError("solve_on_set: give one of lam and theta")
+    N = Gp.shape[0]
+    idx = np.flatnonzero(active)
+    k = idx.size
+    free = lam is not None
+    size = 2 * k + 1 + free
+    A = np.zeros((size, size))
+    b = np.zeros(size)
+    sub = np.ix_(idx, idx)
+    A[:k, :k] = Gp[sub]
+    A[:k, k:2 * k] = Gq[sub]
+    A[:k, 2 * k] = -1.0
+    b[:k] = -g_known[idx]
+    A[k:2 * k, :k] = Tp[sub]
+    A[k:2 * k, k:2 * k] = Tq[sub]
+    if resistance is not None:
+        A[k + np.arange(k), k + np.arange(k)] += resistance[idx]
+    b[k:2 * k] = -t_known[idx]
+    if free:
+        A[k:2 * k, 2 * k + 1] = -1.0
+        A[2 * k + 1, k:2 * k] = h
+        A[2 * k + 1, :k] = -lam * h
+    else:
+        b[k:2 * k] += theta
+    A[2 * k, :k] = h
+    b[2 * k] = load
+    x = np.linalg.solve(A, b)
+    p = np.zeros(N)
+    q = np.zeros(N)
+    p[idx], q[idx] = x[:k], x[k:2 * k]
+    gap = g_known + Gp @ p + Gq @ q - x[2 * k]
+    gap[idx] = 0.0
+    return p, q, gap, x[2 * k], (x[2 * k + 1] if free else theta)

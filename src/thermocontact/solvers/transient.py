@@ -1,0 +1,514 @@
+"""The transient contact: from switch-on to the steady state, or to what follows it.
+
+Derivation section 19.  The load ``P`` is applied and sliding starts at ``t = 0``; the
+pressure, the heat fluxes into both bodies and the contact set (any number of zones)
+evolve.  The elastic response is quasi-static; the heat conducts.  Elements of width
+``h`` on a fixed window carry, over each step ``dt``, a constant pressure and heat
+flux; every lag of the history acts through the element-and-step integrals of the
+impulse responses (:mod:`thermocontact.discretisation.history`), summed by an online
+FFT convolution in ``O(L log^2 L)`` for ``L`` steps.  Each step is a contact problem
+of the steady elements' form (section 14b) solved by an active set from the last
+step's, with the history on its right side (eq. R9).
+
+Units: lengths in the Hertz half-width ``l`` of the load, time in ``l^2/kappa2``,
+pressure in ``P/l``, heat flux in ``f v P/l``, temperatures in ``f v P/(pi K2)``.
+
+Closures (the far field):
+
+* ``lam``: the heat partition held, the far temperature difference ``C(t)`` free, as
+  the steady model does;
+* ``theta``: the far temperatures held, ``C = theta`` (derivation section 17's
+  ``Theta``), both half-planes infinite, ``lam(t)`` an output.  Started from a steady
+  state, the temperatures are those of that state (the closure of
+  :mod:`thermocontact.solvers.stability`, section 18).
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..discretisation.element_operators import steady_element_operators
+from ..discretisation.history import transient_element_operators
+from ..io.results import Result, dataset_attrs
+from ..numerics.online_convolution import OnlineConvolution
+from ..problem.parameters import Parameters, SolveError
+from ..problem.validation import InputError, check_finite, check_positive
+from .elements import solve_elements, solve_on_set
+
+__all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
+
+#: The active set of one step: changes all at once, then one at a time (the worst
+#: first) if that cycles; at most this many solves.
+_MAX_SET_ITERATIONS = 400
+
+
+@dataclass(frozen=True)
+class TransientSpec:
+    """What a transient run computes (every input; the dataset's attributes).
+
+    Attributes
+    ----------
+    pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2 : float
+        The problem in units of ``l`` (as ``zones``): ``Pe_l = v l/(2 k2)``,
+        ``F_l = f H Pe_l``.
+    lam, theta : float or None
+        The closure: exactly one with ``start = "hertz"``; with ``start = "steady"``
+        ``lam`` picks the steady state and ``hold`` says what is then held.
+    until : float
+        Duration, units ``l^2/kappa2``.
+    steps : int
+        Number of time steps (``dt = until/steps``).
+    elements : int
+        Elements on the window.
+    window : (float, float)
+        Where contact may occur, units ``l``.
+    start : {"hertz", "steady"}
+    hold : {"theta", "lam"}
+        With ``start = "steady"``: the far temperatures (default) or the heat partition.
+    perturb : float
+        The load is ``1 + perturb`` during the first step.
+    conductance : (float, float) or None
+        ``(Bi0, m)``: interface conductance ``Bi = Bi0 (2 p)^m`` (section 15).
+    """
+
+    pe_hertz: float
+    fhpe_hertz: float
+    K2_over_K1: float
+    until: float
+    steps: int
+    k2_over_k1: float | None = None
+    delta1_over_delta2: float = 1.0
+    lam: float | None = None
+    theta: float | None = None
+    elements: int = 240
+    window: tuple = (-3.0, 3.0)
+    start: str = "hertz"
+    hold: str = "theta"
+    perturb: float = 0.0
+    conductance: tuple | None = None
+
+    def __post_init__(self):
+        check_positive("pe_hertz", self.pe_hertz)
+        check_finite("fhpe_hertz", self.fhpe_hertz)
+        if self.fhpe_hertz < 0:
+            raise InputError(f"fhpe_hertz must be >= 0, got {self.fhpe_hertz!r}",
+                             parameters=("fhpe_hertz",))
+        check_positive("until", self.until)
+        if not (isinstance(self.steps, (int, np.integer)) and 1 <= self.steps <= 100_000):
+            raise InputError(f"steps must be an integer in [1, 100000], got {self.steps!r}",
+                             parameters=("steps",))
+        if not (isinstance(self.elements, (int, np.integer)) and 8 <= self.elements <= 4000):
+            raise InputError(f"elements must be an integer in [8, 4000], got {self.elements!r}",
+                             parameters=("elements",))
+        lo, hi = self.window
+        check_finite("window", lo)
+        check_finite("window", hi)
+        if not (lo < -1.0 and hi > 1.0):
+            raise InputError(f"window must contain the Hertz contact -1 < x < 1, got "
+                             f"({lo!r}, {hi!r})", parameters=("window",))
+        if self.start not in ("hertz", "steady"):
+            raise InputError(f"start must be 'hertz' or 'steady', got {self.start!r}",
+                             parameters=("start",))
+        if self.hold not in ("theta", "lam"):
+            raise InputError(f"hold must be 'theta' or 'lam', got {self.hold!r}",
+                             parameters=("hold",))
+        if self.start == "hertz" and (self.lam is None) == (self.theta is None):
+            raise InputError("give one closure: lam (the heat partition held) or theta (the "
+                             "far temperatures held)", parameters=("lam", "theta"))
+        if self.start == "steady" and (self.lam is None or self.theta is not None):
+            raise InputError("start='steady' takes lam (which steady state) and no theta",
+                             parameters=("lam", "theta", "start"))
+        if self.lam is not None:
+            check_finite("lam", self.lam)
+            if not -1.0 <= self.lam <= 1.0:
+                raise InputError(f"lam must lie in [-1, 1], got {self.lam!r}",
+                                 parameters=("lam",))
+        if self.theta is not None:
+            check_finite("theta", self.theta)
+        check_finite("perturb", self.perturb)
+        if not -0.5 <= self.perturb <= 0.5:
+            raise InputError(f"perturb must lie in [-0.5, 0.5], got {self.perturb!r}",
+                             parameters=("perturb",))
+        if self.conductance is not None:
+            Bi0, m = self.conductance
+            check_positive("conductance", Bi0)
+            if not 0.0 <= m <= 2.0:
+                raise InputError(f"conductance exponent m must lie in [0, 2], got {m!r}",
+                                 parameters=("conductance",))
+        self.parameters()
+
+    @property
+    def dt(self) -> float:
+        return self.until / self.steps
+
+    def parameters(self) -> Parameters:
+        return Parameters(self.pe_hertz, self.fhpe_hertz, self.K2_over_K1, self.k2_over_k1,
+                          self.delta1_over_delta2)
+
+    def grid(self):
+        lo, hi = self.window
+        h = (hi - lo) / self.elements
+        return lo + h * (np.arange(self.elements) + 0.5), h
+
+
+def zones_of(active, X, h):
+    """``(start, end)`` of each run of contact elements (edges to half an element)."""
+    on = np.concatenate([[False], active, [False]]).astype(int)
+    starts = np.flatnonzero(np.diff(on) == 1)
+    ends = np.flatnonzero(np.diff(on) == -1) - 1
+    return X[starts] - 0.5 * h, X[ends] + 0.5 * h
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class TransientRun(Result):
+    """A transient run: fields over time and the elements' centres.
+
+    Attributes
+    ----------
+    spec : TransientSpec
+    time : ndarray, shape (T,)
+        ``t_n = n dt``, units ``l^2/kappa2``; ``T - 1`` steps computed.
+    x : ndarray, shape (N,)
+        Element centres, units ``l``.
+    pressure, flux, gap, theta1, theta2 : ndarray, shape (T, N)
+        ``p`` (``P/l``), ``q = q1 - q2`` (``f v P/l``), the gap (``l^2/R``) and each
+        surface's temperature rise (``f v P/(pi K2)``) at the end of each step.
+    lam, approach, temperature_difference : ndarray, shape (T,)
+        The heat partition, the rigid approach and ``C = theta1 - theta2`` on contact.
+    status : str
+        ``"complete"``, ``"partial"`` (a resumable part), or why the run stopped.
+    set_iterations : ndarray of int, shape (T,)
+    """
+
+    spec: TransientSpec
+    time: np.ndarray
+    x: np.ndarray
+    pressure: np.ndarray
+    flux: np.ndarray
+    gap: np.ndarray
+    theta1: np.ndarray
+    theta2: np.ndarray
+    lam: np.ndarray
+    approach: np.ndarray
+    temperature_difference: np.ndarray
+    set_iterations: np.ndarray
+    status: str = "complete"
+    seconds: float = 0.0
+
+    def _summary(self) -> str:
+        a, b = self.zones(-1)
+        z = ", ".join(f"[{s:.4g}, {e:.4g}]" for s, e in zip(a, b))
+        return (f"t={self.time[-1]:.4g}, steps={self.time.size - 1}, zones={z}, "
+                f"lam={self.lam[-1]:.6g}, status={self.status}")
+
+    @property
+    def in_contact(self) -> np.ndarray:
+        return self.pressure > 0.0
+
+    @property
+    def h(self) -> float:
+        return float(self.x[1] - self.x[0])
+
+    def zones(self, n):
+        """Zones ``(starts, ends)`` at step ``n`` (to half an element)."""
+        return zones_of(self.in_contact[n], self.x, self.h)
+
+    def zone_table(self):
+        """``zones_count(time)``, ``zone_start``/``zone_end(time, zone)`` (NaN-padded)."""
+        all_zones = [self.zones(n) for n in range(self.time.size)]
+        count = np.array([z[0].size for z in all_zones])
+        width = max(1, int(count.max()))
+        start = np.full((self.time.size, width), np.nan)
+        end = np.full((self.time.size, width), np.nan)
+        for n, (a, b) in enumerate(all_zones):
+            start[n, :a.size], end[n, :b.size] = a, b
+        return count, start, end
+
+    def _record(self) -> dict:
+        a, b = self.zones(-1)
+        return {"spec": self.spec.__dict__, "time": float(self.time[-1]),
+                "steps": int(self.time.size - 1), "status": self.status,
+                "zones": [[float(s), float(e)] for s, e in zip(a, b)],
+                "lam": float(self.lam[-1]), "approach": float(self.approach[-1]),
+                "temperature_difference": float(self.temperature_difference[-1]),
+                "peak_pressure": float(self.pressure[-1].max()), "seconds": self.seconds}
+
+    def to_dataset(self):
+        """The run as an :class:`xarray.Dataset` (coordinates ``time``, ``x``, ``zone``)."""
+        import xarray as xr
+
+        count, start, end = self.zone_table()
+        tx = ("time", "x")
+        ds = xr.Dataset(
+            {"pressure": (tx, self.pressure, {"units": "P/l"}),
+             "flux": (tx, self.flux, {"units": "f v P/l", "long_name": "q1 - q2"}),
+             "in_contact": (tx, self.in_contact.astype(np.int8)),
+             "gap": (tx, self.gap, {"units": "l^2/R"}),
+             "temperature1": (tx, self.theta1, {"units": "f v P/(pi K2)",
+                                                "long_name": "cylinder surface temperature rise"}),
+             "temperature2": (tx, self.theta2, {"units": "f v P/(pi K2)",
+                                                "long_name": "half-plane surface temperature rise"}),
+             "lam": ("time", self.lam),
+             "approach": ("time", self.approach, {"units": "l^2/R"}),
+             "temperature_difference": ("time", self.temperature_difference,
+                                        {"units": "f v P/(pi K2)"}),
+             "set_iterations": ("time", self.set_iterations),
+             "zones_count": ("time", count),
+             "zone_start": (("time", "zone"), start, {"units": "l"}),
+             "zone_end": (("time", "zone"), end, {"units": "l"})},
+            coords={"time": ("time", self.time, {"units": "l^2/kappa2"}),
+                    "x": ("x", self.x, {"units": "l"})})
+        attrs = {k: v for k, v in self.spec.__dict__.items() if k not in ("window", "conductance")}
+        attrs["window"] = list(self.spec.window)
+        if self.spec.conductance is not None:
+            attrs["conductance"] = list(self.spec.conductance)
+        ds.attrs.update(dataset_attrs(attrs))
+        ds.attrs["window"] = list(self.spec.window)
+        ds.attrs["status"] = self.status
+        ds.attrs["seconds"] = self.seconds
+        return ds
+
+
+@dataclass
+class _State:
+    """Everything a step needs from the steps before it."""
+
+    pressure: list = field(default_factory=list)
+    flux: list = field(default_factory=list)
+    gap: list = field(default_factory=list)
+    theta1: list = field(default_factory=list)
+    theta2: list = field(default_factory=list)
+    lam: list = field(default_factory=list)
+    approach: list = field(default_factory=list)
+    difference: list = field(default_factory=list)
+    iterations: list = field(default_factory=list)
+    chatter: list = field(default_factory=list)
+
+    def append(self, p, q, g, t1, t2, lam, D, C, it):
+        for name, v in zip(("pressure", "flux", "gap", "theta1", "theta2", "lam", "approach",
+                            "difference", "iterations"), (p, q, g, t1, t2, lam, D, C, it)):
+            getattr(self, name).append(v)
+
+
+def _hertz(X, h):
+    """Hertz's pressure ``(2/pi) sqrt(1 - X^2)`` as element averages (load 1)."""
+    def prim(x):
+        x = np.clip(x, -1.0, 1.0)
+        return (x * np.sqrt(1.0 - x * x) + np.arcsin(x)) / np.pi
+    return (prim(X + 0.5 * h) - prim(X - 0.5 * h)) / h
+
+
+def _set_solve(ops, g_known, t_known, h, active, load, closure, resistance_of, tol):
+    """The active set of one step (eq. R9): all changes at once, else the worst first.
+
+    The thermal coupling makes the step's matrix non-symmetric, and an element at a
+    zone's end can be tensile in contact and interpenetrate out of it (the edge lies
+    inside it).  Such a cycle, toggling only elements at the zones' ends, settles on
+    the state without tension that interpenetrates least, as the steady elements do
+    (section 14b); ``chatter`` counts its toggled elements.
+    """
+    seen = {}
+    one_at_a_time = False
+    for it in range(1, _MAX_SET_ITERATIONS + 1):
+        resistance = resistance_of(active, None)
+        p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
+                                       active, load=load, resistance=resistance, **closure)
+        for _ in range(50 if resistance_of.nonlinear else 0):
+            p_old = p
+            p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
+                                           active, load=load,
+                                           resistance=resistance_of(active, p), **closure)
+            if np.max(np.abs(p - p_old)) <= 1e-13 * np.max(np.abs(p)):
+                break
+        tension = active & (p < -tol)
+        overlap = ~active & (gap < -tol)
+        if not tension.any() and not overlap.any():
+            return p, q, gap, D, C, it, 0
+        seen[active.tobytes()] = (p, q, gap, D, C, active)
+        if not one_at_a_time:
+            new = (active & ~tension) | overlap
+            if new.tobytes() in seen:
+                one_at_a_time = True
+        if one_at_a_time:
+            new = active.copy()
+            if tension.any():
+                new[int(np.argmin(np.where(active, p, np.inf)))] = False
+            else:
+                new[int(np.argmin(np.where(active, np.inf, gap)))] = True
+            if new.tobytes() in seen:
+                return _settle(seen, it, tol)
+        if not new.any():
+            raise SolveError("every element left contact")
+        active = new
+    raise SolveError(f"the active set did not settle in {_MAX_SET_ITERATIONS} solves")
+
+
+def _settle(seen, it, tol):
+    """A cycle of the active set: the state without tension that interpenetrates least,
+    if the states differ only at the zones' ends (within two elements)."""
+    states = [v[5] for v in seen.values()]
+    every = np.logical_and.reduce(states)
+    toggled = np.flatnonzero(np.logical_or.reduce(states) & ~every)
+    ends = np.flatnonzero(np.diff(np.concatenate([[0], every.astype(int), [0]])))
+    near = toggled.size and np.all(np.min(np.abs(toggled[:, None] - ends[None, :] + 0.5),
+                                          axis=1) <= 2.5)
+    calm = [v for v in seen.values() if np.all(v[0][v[5]] >= -tol)]
+    if not near or not calm:
+        raise SolveError("the active set cycles: no settled contact set at this step")
+    p, q, gap, D, C, _ = min(calm, key=lambda v: -np.min(np.where(v[5], 0.0, v[2])))
+    return p, q, gap, D, C, it, int(toggled.size)
+
+
+class _Resistance:
+    """``pi/(2 Bi)`` per element, ``Bi = Bi0 (2 p)^m`` (section 15; None: perfect)."""
+
+    def __init__(self, conductance, N):
+        self.conductance = conductance
+        self.nonlinear = conductance is not None and conductance[1] != 0.0
+        self.N = N
+
+    def __call__(self, active, p):
+        if self.conductance is None:
+            return None
+        Bi0, m = self.conductance
+        if m == 0.0:
+            return np.full(self.N, np.pi / (2.0 * Bi0))
+        if p is None:
+            p = np.where(active, 1.0, 0.0)
+        return np.pi / (2.0 * Bi0 * np.maximum(2.0 * p, 1e-300) ** m)
+
+
+def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, progress=None,
+                  save=None, save_every: float = 30.0) -> TransientRun:
+    """Run the transient contact (derivation section 19).
+
+    Parameters
+    ----------
+    spec : TransientSpec
+    resume : TransientRun, optional
+        A partial run of the same ``spec``: its steps are replayed into the history (no
+        solves) and the run goes on from its last.
+    progress : callable, optional
+        ``progress(done, total)`` after each step.
+    save : callable, optional
+        ``save(partial_run)`` at most every ``save_every`` seconds and at the end.
+
+    Returns
+    -------
+    TransientRun
+        ``status`` says why a run stopped early: the contact reached the window's end,
+        or no contact set settled (then the run holds every step before).
+
+    Raises
+    ------
+    SolveError
+        When the steady start state does not exist on these elements.
+    """
+    t0 = _time.perf_counter()
+    par = spec.parameters()
+    X, h = spec.grid()
+    N = X.size
+    tops = transient_element_operators(par, X, h, spec.dt, spec.steps)
+    ops, conv = tops.current, tops.convolution
+    histories = [OnlineConvolution(k) for k in tops.kernels]
+    g0 = 0.5 * X * X
+    base_gap = np.zeros(N)
+    base_t1 = np.zeros(N)
+    base_t2 = np.zeros(N)
+    q1s = np.zeros(N)
+    q2s = np.zeros(N)
+    state = _State()
+    if spec.start == "hertz":
+        closure = {"lam": spec.lam} if spec.lam is not None else {"theta": spec.theta}
+        p0 = _hertz(X, h)
+        active = p0 > 0.0
+        zero = np.zeros(N)
+        # Hertz's contact before any heat: the approach that closes it on average.
+        elastic = g0 + ops.flamant @ p0
+        D0 = float(np.mean(elastic[active]))
+        state.append(p0, zero, np.where(active, 0.0, elastic - D0), zero, zero, np.nan, D0,
+                     np.nan, 0)
+    else:
+        steady = solve_elements(par, spec.lam, domain=spec.window, elements=N)
+        sops = steady_element_operators(par, X, h)
+        ps, qs = steady.pressure, steady.flux
+        q1s, q2s = 0.5 * (ps + qs), 0.5 * (ps - qs)
+        # The steady fields held for all time, less what the step's own lag adds back.
+        base_gap = (sops.gap1 @ q1s + sops.gap2 @ q2s) - (ops.gap1 @ q1s + ops.gap2 @ q2s)
+        base_t1 = sops.theta1 @ q1s - ops.theta1 @ q1s
+        base_t2 = sops.theta2 @ q2s - ops.theta2 @ q2s
+        active = steady.active.copy()
+        t1, t2 = sops.theta1 @ q1s, sops.theta2 @ q2s
+        # The steady state's own temperature difference on its contact.
+        C = float(np.mean((t1 - t2)[active]))
+        D = float(np.mean((g0 + sops.Gp @ ps + sops.Gq @ qs)[active]))
+        state.append(ps, qs, steady.gap, t1, t2, spec.lam, D, C, steady.iterations)
+        closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": C}
+    resistance = _Resistance(spec.conductance, N)
+    done = 0
+    if resume is not None:
+        if resume.spec != spec:
+            raise InputError("the partial run was computed with other inputs",
+                             parameters=("resume",))
+        done = resume.time.size - 1
+        for n in range(1, done + 1):
+            for hist in histories:
+                hist.history(n)
+            p, q = resume.pressure[n], resume.flux[n]
+            histories[0].push(conv.forward(0.5 * (p + q) - q1s)[None, :])
+            histories[1].push(conv.forward(0.5 * (p - q) - q2s)[None, :])
+        state = _State()
+        for n in range(done + 1):
+            state.append(resume.pressure[n], resume.flux[n], resume.gap[n], resume.theta1[n],
+                         resume.theta2[n], resume.lam[n], resume.approach[n],
+                         resume.temperature_difference[n], int(resume.set_iterations[n]))
+        active = resume.pressure[done] > 0.0
+    status = "complete"
+    last_save = _time.perf_counter()
+
+    def result(status):
+        return TransientRun(spec, spec.dt * np.arange(len(state.pressure)), X,
+                            np.array(state.pressure), np.array(state.flux), np.array(state.gap),
+                            np.array(state.theta1), np.array(state.theta2),
+                            np.array(state.lam, dtype=float), np.array(state.approach, dtype=float),
+                            np.array(state.difference, dtype=float),
+                            np.array(state.iterations, dtype=int), status,
+                            (resume.seconds if resume is not None else 0.0)
+                            + _time.perf_counter() - t0)
+
+    tol = 1e-12
+    for n in range(done + 1, spec.steps + 1):
+        y1 = conv.backward(histories[0].history(n))
+        y2 = conv.backward(histories[1].history(n))
+        gap_known = g0 + base_gap + y1[0] + y2[0]
+        t1_known = base_t1 + y1[1]
+        t2_known = base_t2 + y2[1]
+        load = 1.0 + spec.perturb if n == 1 else 1.0
+        try:
+            p, q, gap, D, C, it, chatter = _set_solve(ops, gap_known, t1_known - t2_known, h, active,
+                                             load, closure, resistance, tol)
+        except SolveError as exc:
+            status = f"stopped at step {n}: {exc}"
+            break
+        active = p > 0.0
+        if active[0] or active[-1]:
+            status = (f"stopped at step {n}: the contact reached the window's end "
+                      f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
+            break
+        q1, q2 = 0.5 * (p + q), 0.5 * (p - q)
+        histories[0].push(conv.forward(q1 - q1s)[None, :])
+        histories[1].push(conv.forward(q2 - q2s)[None, :])
+        t1 = t1_known + ops.theta1 @ q1
+        t2 = t2_known + ops.theta2 @ q2
+        lam = float(np.sum(q) / np.sum(p))
+        state.append(p, q, gap, t1, t2, lam, D, C, it)
+        state.chatter.append(chatter)
+        if progress is not None:
+            progress(n, spec.steps)
+        if save is not None and _time.perf_counter() - last_save > save_every and n < spec.steps:
+            save(result("partial"))
+            last_save = _time.perf_counter()
+    return result(status)
