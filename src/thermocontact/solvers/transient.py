@@ -43,6 +43,9 @@ __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
 #: The active set of one step: changes all at once, then one at a time (the worst
 #: first) if that cycles; at most this many solves.
 _MAX_SET_ITERATIONS = 400
+#: The implicit step's active set: at most this many solves before it settles or
+#: gives way to the IMEX step.
+_COUPLED_ITERATIONS = 12
 
 
 @dataclass(frozen=True)
@@ -181,6 +184,11 @@ class TransientRun(Result):
     status : str
         ``"complete"``, ``"partial"`` (a resumable part), or why the run stopped.
     set_iterations : ndarray of int, shape (T,)
+        Linear solves of each step's active sets.
+    scheme : ndarray of int, shape (T,)
+        How each step was solved: 0 implicit (R9), 2 implicit with its contact set
+        settled at an edge that lies inside an element, 1 IMEX (R10, R11) where the
+        implicit step has no settled contact set on these elements.
     """
 
     spec: TransientSpec
@@ -195,6 +203,7 @@ class TransientRun(Result):
     approach: np.ndarray
     temperature_difference: np.ndarray
     set_iterations: np.ndarray
+    scheme: np.ndarray
     status: str = "complete"
     seconds: float = 0.0
 
@@ -256,6 +265,7 @@ class TransientRun(Result):
              "temperature_difference": ("time", self.temperature_difference,
                                         {"units": "f v P/(pi K2)"}),
              "set_iterations": ("time", self.set_iterations),
+             "scheme": ("time", self.scheme, {"long_name": "0 implicit, 1 IMEX, 2 settled"}),
              "zones_count": ("time", count),
              "zone_start": (("time", "zone"), start, {"units": "l"}),
              "zone_end": (("time", "zone"), end, {"units": "l"})},
@@ -285,7 +295,7 @@ class _State:
     approach: list = field(default_factory=list)
     difference: list = field(default_factory=list)
     iterations: list = field(default_factory=list)
-    chatter: list = field(default_factory=list)
+    scheme: list = field(default_factory=list)
 
     def append(self, p, q, g, t1, t2, lam, D, C, it):
         for name, v in zip(("pressure", "flux", "gap", "theta1", "theta2", "lam", "approach",
@@ -301,8 +311,9 @@ def _hertz(X, h):
     return (prim(X + 0.5 * h) - prim(X - 0.5 * h)) / h
 
 
-def _set_solve(ops, g_known, t_known, h, active, load, closure, resistance_of, tol):
-    """The active set of one step (eq. R9): all changes at once, else the worst first.
+def _coupled(ops, g_known, t_known, h, active, load, closure, resistance, tol):
+    """The implicit step (eq. R9): contact and heat together on an active set, all
+    changes at once, else the worst first.
 
     The thermal coupling makes the step's matrix non-symmetric, and an element at a
     zone's end can be tensile in contact and interpenetrate out of it (the edge lies
@@ -312,17 +323,9 @@ def _set_solve(ops, g_known, t_known, h, active, load, closure, resistance_of, t
     """
     seen = {}
     one_at_a_time = False
-    for it in range(1, _MAX_SET_ITERATIONS + 1):
-        resistance = resistance_of(active, None)
+    for it in range(1, _COUPLED_ITERATIONS + 1):
         p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
                                        active, load=load, resistance=resistance, **closure)
-        for _ in range(50 if resistance_of.nonlinear else 0):
-            p_old = p
-            p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
-                                           active, load=load,
-                                           resistance=resistance_of(active, p), **closure)
-            if np.max(np.abs(p - p_old)) <= 1e-13 * np.max(np.abs(p)):
-                break
         tension = active & (p < -tol)
         overlap = ~active & (gap < -tol)
         if not tension.any() and not overlap.any():
@@ -343,7 +346,7 @@ def _set_solve(ops, g_known, t_known, h, active, load, closure, resistance_of, t
         if not new.any():
             raise SolveError("every element left contact")
         active = new
-    raise SolveError(f"the active set did not settle in {_MAX_SET_ITERATIONS} solves")
+    return _settle(seen, it, tol)
 
 
 def _settle(seen, it, tol):
@@ -353,7 +356,7 @@ def _settle(seen, it, tol):
     every = np.logical_and.reduce(states)
     toggled = np.flatnonzero(np.logical_or.reduce(states) & ~every)
     ends = np.flatnonzero(np.diff(np.concatenate([[0], every.astype(int), [0]])))
-    near = toggled.size and np.all(np.min(np.abs(toggled[:, None] - ends[None, :] + 0.5),
+    near = toggled.size and ends.size and np.all(np.min(np.abs(toggled[:, None] - ends[None, :] + 0.5),
                                           axis=1) <= 2.5)
     calm = [v for v in seen.values() if np.all(v[0][v[5]] >= -tol)]
     if not near or not calm:
@@ -362,22 +365,87 @@ def _settle(seen, it, tol):
     return p, q, gap, D, C, it, int(toggled.size)
 
 
+def _contact(flamant, g_known, h, active, load, tol):
+    """The step's elastic contact (eq. R10): ``g_known + flamant p - D >= 0``, ``p >= 0``,
+    complementary, ``h sum p = load``, by an active set from the last step's.
+
+    Flamant's operator is positive definite on loads of zero sum, so this is a convex
+    problem: all changes at once, then the worst one at a time should that cycle.
+    """
+    seen = set()
+    one_at_a_time = False
+    N = flamant.shape[0]
+    for it in range(1, _MAX_SET_ITERATIONS + 1):
+        idx = np.flatnonzero(active)
+        k = idx.size
+        A = np.empty((k + 1, k + 1))
+        A[:k, :k] = flamant[np.ix_(idx, idx)]
+        A[:k, k] = -1.0
+        A[k, :k] = h
+        A[k, k] = 0.0
+        b = np.concatenate([-g_known[idx], [load]])
+        x = np.linalg.solve(A, b)
+        p = np.zeros(N)
+        p[idx] = x[:k]
+        gap = g_known + flamant @ p - x[k]
+        gap[idx] = 0.0
+        tension = active & (p < -tol)
+        overlap = ~active & (gap < -tol)
+        if not tension.any() and not overlap.any():
+            return p, gap, x[k], active, it
+        seen.add(active.tobytes())
+        new = (active & ~tension) | overlap
+        if one_at_a_time or new.tobytes() in seen:
+            one_at_a_time = True
+            new = active.copy()
+            if tension.any():
+                new[int(np.argmin(np.where(active, p, np.inf)))] = False
+            else:
+                new[int(np.argmin(np.where(active, np.inf, gap)))] = True
+            if new.tobytes() in seen:
+                raise SolveError("the active set cycles: no settled contact set at this step")
+        if not new.any():
+            raise SolveError("every element left contact")
+        active = new
+    raise SolveError(f"the active set did not settle in {_MAX_SET_ITERATIONS} solves")
+
+
+def _partition(ops, p, t_known, h, active, closure, resistance):
+    """The step's heat (eq. R11): ``t_known + Tp p + (Tq + diag(resistance)) q = C`` on
+    the contact, with the closure ``h sum q = lam h sum p`` (``C`` unknown) or
+    ``C = theta``; ``q = 0`` off contact."""
+    idx = np.flatnonzero(active)
+    k = idx.size
+    free = "lam" in closure
+    A = np.zeros((k + free, k + free))
+    A[:k, :k] = ops.Tq[np.ix_(idx, idx)]
+    if resistance is not None:
+        A[np.arange(k), np.arange(k)] += resistance[idx]
+    b = -t_known[idx] - ops.Tp[np.ix_(idx, idx)] @ p[idx]
+    if free:
+        A[:k, k] = -1.0
+        A[k, :k] = h
+        b = np.concatenate([b, [closure["lam"] * h * p[idx].sum()]])
+    else:
+        b = b + closure["theta"]
+    x = np.linalg.solve(A, b)
+    q = np.zeros(p.size)
+    q[idx] = x[:k]
+    return q, (x[k] if free else closure["theta"])
+
+
 class _Resistance:
     """``pi/(2 Bi)`` per element, ``Bi = Bi0 (2 p)^m`` (section 15; None: perfect)."""
 
     def __init__(self, conductance, N):
         self.conductance = conductance
-        self.nonlinear = conductance is not None and conductance[1] != 0.0
         self.N = N
 
-    def __call__(self, active, p):
+    def __call__(self, p):
         if self.conductance is None:
             return None
         Bi0, m = self.conductance
-        if m == 0.0:
-            return np.full(self.N, np.pi / (2.0 * Bi0))
-        if p is None:
-            p = np.where(active, 1.0, 0.0)
+        # Where m > 0 makes Bi vanish with the pressure the row says q = 0 (section 15).
         return np.pi / (2.0 * Bi0 * np.maximum(2.0 * p, 1e-300) ** m)
 
 
@@ -431,6 +499,7 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
         D0 = float(np.mean(elastic[active]))
         state.append(p0, zero, np.where(active, 0.0, elastic - D0), zero, zero, np.nan, D0,
                      np.nan, 0)
+        state.scheme.append(0)
     else:
         steady = solve_elements(par, spec.lam, domain=spec.window, elements=N)
         sops = steady_element_operators(par, X, h)
@@ -446,8 +515,10 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
         C = float(np.mean((t1 - t2)[active]))
         D = float(np.mean((g0 + sops.Gp @ ps + sops.Gq @ qs)[active]))
         state.append(ps, qs, steady.gap, t1, t2, spec.lam, D, C, steady.iterations)
+        state.scheme.append(0)
         closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": C}
     resistance = _Resistance(spec.conductance, N)
+    q1_last, q2_last = q1s, q2s
     done = 0
     if resume is not None:
         if resume.spec != spec:
@@ -465,7 +536,11 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
             state.append(resume.pressure[n], resume.flux[n], resume.gap[n], resume.theta1[n],
                          resume.theta2[n], resume.lam[n], resume.approach[n],
                          resume.temperature_difference[n], int(resume.set_iterations[n]))
+            state.scheme.append(int(resume.scheme[n]))
         active = resume.pressure[done] > 0.0
+        if done:
+            p, q = resume.pressure[done], resume.flux[done]
+            q1_last, q2_last = 0.5 * (p + q), 0.5 * (p - q)
     status = "complete"
     last_save = _time.perf_counter()
 
@@ -475,7 +550,8 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
                             np.array(state.theta1), np.array(state.theta2),
                             np.array(state.lam, dtype=float), np.array(state.approach, dtype=float),
                             np.array(state.difference, dtype=float),
-                            np.array(state.iterations, dtype=int), status,
+                            np.array(state.iterations, dtype=int),
+                            np.array(state.scheme, dtype=int), status,
                             (resume.seconds if resume is not None else 0.0)
                             + _time.perf_counter() - t0)
 
@@ -487,25 +563,40 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
         t1_known = base_t1 + y1[1]
         t2_known = base_t2 + y2[1]
         load = 1.0 + spec.perturb if n == 1 else 1.0
+        # First the step with its own thermal bulge from the last step's heat (IMEX,
+        # eq. R10): the contact is then elastic, a convex problem with one solution.
+        # Then the implicit step (R9) from its contact set, which the IMEX one replaces
+        # where the implicit one has no settled contact set on these elements.
+        bulge = ops.gap1 @ q1_last + ops.gap2 @ q2_last
         try:
-            p, q, gap, D, C, it, chatter = _set_solve(ops, gap_known, t1_known - t2_known, h, active,
-                                             load, closure, resistance, tol)
+            p, gap, D, active, it = _contact(ops.flamant, gap_known + bulge, h, active, load, tol)
         except SolveError as exc:
             status = f"stopped at step {n}: {exc}"
             break
+        q, C = _partition(ops, p, t1_known - t2_known, h, active, closure, resistance(p))
+        scheme = 1
+        try:
+            p, q, gap, D, C, more, chatter = _coupled(ops, gap_known, t1_known - t2_known, h,
+                                                      active, load, closure, resistance(p), tol)
+            it += more
+            scheme = 0 if chatter == 0 else 2
+        except SolveError:
+            gap = gap_known + bulge + ops.flamant @ p - D
+            gap[active] = 0.0
         active = p > 0.0
         if active[0] or active[-1]:
             status = (f"stopped at step {n}: the contact reached the window's end "
                       f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
             break
         q1, q2 = 0.5 * (p + q), 0.5 * (p - q)
+        q1_last, q2_last = q1, q2
         histories[0].push(conv.forward(q1 - q1s)[None, :])
         histories[1].push(conv.forward(q2 - q2s)[None, :])
         t1 = t1_known + ops.theta1 @ q1
         t2 = t2_known + ops.theta2 @ q2
         lam = float(np.sum(q) / np.sum(p))
         state.append(p, q, gap, t1, t2, lam, D, C, it)
-        state.chatter.append(chatter)
+        state.scheme.append(scheme)
         if progress is not None:
             progress(n, spec.steps)
         if save is not None and _time.perf_counter() - last_save > save_every and n < spec.steps:

@@ -1,0 +1,122 @@
+"""The transient contact (derivation section 19): its steady limit, its balance laws,
+its short-time limit and its observed order in the time step."""
+
+import numpy as np
+import pytest
+
+import thermocontact as tc
+from thermocontact.problem.validation import InputError
+from thermocontact.solvers.elements import solve_elements
+from thermocontact.solvers.transient import TransientSpec, run_transient
+
+#: Below path (a)'s boundary (half its load): one zone, edges on element boundaries.
+CASE = dict(pe_hertz=2.7, fhpe_hertz=0.36, K2_over_K1=10.0)
+
+
+@pytest.mark.parametrize("hold", ["theta", "lam"])
+def test_the_steady_state_is_a_fixed_point(hold):
+    # Started from the steady element solution on the same elements (held for all
+    # t < 0), the steps stay on it: the tables summed over all lags are the steady
+    # operators, exactly as the deviation formulation uses them.
+    run = tc.transient(**CASE, lam=1.0, until=1.0, steps=40, elements=96, start="steady",
+                       hold=hold)
+    steady = solve_elements(TransientSpec(**CASE, lam=1.0, until=1.0, steps=40).parameters(),
+                            1.0, domain=(-3.0, 3.0), elements=96)
+    assert run.status == "complete"
+    assert np.max(np.abs(run.pressure - steady.pressure)) < 1e-11
+    assert np.max(np.abs(run.flux - steady.flux)) < 1e-10
+    assert np.max(np.abs(run.lam - 1.0)) < 1e-11
+    assert np.ptp(run.approach) < 1e-12
+    assert np.all(run.scheme == 0)
+
+
+def test_heat_balance_and_closures_at_every_step():
+    run = tc.transient(**CASE, lam=0.3, until=1.0, steps=50, elements=96)
+    h = run.h
+    # All the frictional work is heat: q1 + q2 = p on every element at every step,
+    # the load is P and the partition the one held.
+    q1, q2 = 0.5 * (run.pressure + run.flux), 0.5 * (run.pressure - run.flux)
+    assert np.max(np.abs(q1 + q2 - run.pressure)) < 1e-15
+    assert np.max(np.abs(h * run.pressure.sum(axis=1) - 1.0)) < 1e-12
+    assert np.max(np.abs(run.lam[1:] - 0.3)) < 1e-12
+    # Off contact no heat crosses; on it, the gap is closed and the pressure compressive.
+    off = ~run.in_contact
+    assert np.all(run.flux[off] == 0.0)
+    assert np.all(run.pressure >= 0.0)
+    assert np.all(run.gap[run.scheme == 0] >= -1e-12)
+    # The far temperatures held: C is theta at every step.
+    run = tc.transient(**CASE, theta=0.7, until=0.5, steps=20, elements=96)
+    assert np.all(run.temperature_difference[1:] == 0.7)
+    on = run.in_contact[-1]
+    assert np.max(np.abs((run.theta1[-1] - run.theta2[-1])[on] - 0.7)) < 1e-10
+
+
+def test_short_times_divide_the_heat_by_the_effusivities():
+    # While the heat has conducted a distance sqrt(kappa dt) much shorter than an
+    # element and been carried much less than one, each body is a 1-D conductor:
+    # equal temperatures give Q1/Q2 = e1/e2 = sqrt(k2/k1)/(K2/K1) (section 19).
+    rho, kr = 10.0, 4.0
+    e = np.sqrt(kr) / rho
+    target = (e - 1.0) / (e + 1.0)
+    errors = []
+    for dt in (1e-3, 2.5e-4, 6.25e-5):
+        run = tc.transient(**{**CASE, "K2_over_K1": rho}, k2_over_k1=kr, theta=0.0, until=dt,
+                           steps=1, elements=96)
+        errors.append(abs(run.lam[1] - target))
+    assert errors[0] < 5e-4 and errors[-1] < 2e-6
+    assert errors[0] > errors[1] > errors[2]
+
+
+def test_observed_order_in_the_time_step():
+    # A fixed contact set (weak coupling): the rigid approach at t = 0.5 converges at
+    # the observed order 1.4, the scheme's 3/2 (the tau^(-1/2) temperature kernel over
+    # the last step of a constant flux; derivation section 19).
+    D = []
+    for steps in (25, 50, 100, 200):
+        run = tc.transient(2.7, 0.1, 10.0, lam=1.0, until=0.5, steps=steps, elements=96)
+        assert run.zones(-1)[0].size == 1 and np.all(run.scheme == 0)
+        D.append(run.approach[-1])
+    d = np.abs(np.diff(D))
+    orders = np.log2(d[:-1] / d[1:])
+    assert np.all((orders > 1.3) & (orders < 1.7)), orders
+
+
+def test_a_resumed_run_equals_one_run():
+    spec = TransientSpec(**CASE, lam=1.0, until=0.6, steps=30, elements=96)
+    whole = run_transient(spec)
+    k = 12
+    part = whole.replace(**{name: getattr(whole, name)[:k + 1] for name in (
+        "time", "pressure", "flux", "gap", "theta1", "theta2", "lam", "approach",
+        "temperature_difference", "set_iterations", "scheme")}, status="partial")
+    again = run_transient(spec, resume=part)
+    for name in ("pressure", "flux", "gap", "theta1", "theta2", "approach"):
+        assert np.array_equal(getattr(again, name), getattr(whole, name)), name
+
+
+def test_a_contact_that_leaves_the_window_is_reported():
+    # Path (c) past its boundary migrates downstream (docs/transient.md): a window
+    # that stops at -2.5 is left, and the run says so and keeps the steps before.
+    run = tc.transient(1.439, 4.825, 1.0, lam=0.5, until=4.0, steps=100, elements=88,
+                       window=(-2.5, 3.0))
+    assert "window's end" in run.status
+    assert 1 < run.time.size < 101
+
+
+@pytest.mark.parametrize("kw, name", [
+    (dict(lam=None), "lam"),
+    (dict(theta=0.0), "lam"),
+    (dict(steps=0), "steps"),
+    (dict(until=-1.0), "until"),
+    (dict(window=(0.0, 3.0)), "window"),
+    (dict(lam=2.0), "lam"),
+    (dict(perturb=0.9), "perturb"),
+    (dict(start="steady", theta=1.0), "start"),
+    (dict(start="cold"), "start"),
+    (dict(elements=4), "elements"),
+    (dict(conductance=(0.0, 1.0)), "conductance"),
+])
+def test_bad_input_is_refused_naming_the_parameter(kw, name):
+    base = dict(CASE, lam=1.0, until=1.0, steps=10)
+    with pytest.raises(InputError) as err:
+        TransientSpec(**{**base, **kw})
+    assert name in str(err.value)
