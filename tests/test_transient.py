@@ -120,3 +120,25 @@ def test_bad_input_is_refused_naming_the_parameter(kw, name):
     with pytest.raises(InputError) as err:
         TransientSpec(**{**base, **kw})
     assert name in str(err.value)
+
+
+def test_a_stable_contact_relaxes_algebraically_as_its_spectrum_says():
+    # Fig. 4's contact at lam = 1, fHPe = 0.3 (Pe = 5, K2/K1 = 10) has no eigenvalue
+    # with Re b >= 0.5 (docs/stability/stability_study.json), and the stationary
+    # half-plane's branch point reaches b = 0 (derivation section 18, S8): a kick decays,
+    # not exponentially but like the step response's t^(-1/2) tail differentiated,
+    # t^(-3/2) (section 19, R3).  The heat partition held, as the steady model does.
+    import json
+    import pathlib
+
+    rec = json.loads((pathlib.Path(__file__).parents[1] / "docs" / "stability"
+                      / "stability_study.json").read_text())["fig4 lam=1 fHPe=0.3"]
+    assert rec["valid"] and rec["modes"] == []
+    s = np.sqrt(rec["load_ratio"])
+    run = tc.transient(rec["pe"] / s, rec["fhpe"] / s, 10.0, lam=1.0, until=40.0, steps=200,
+                       elements=96, start="steady", hold="lam", perturb=0.1)
+    D = np.abs(run.approach - run.approach[0])
+    late = run.time >= 5.0
+    slope = np.polyfit(np.log(run.time[late]), np.log(D[late]), 1)[0]
+    assert -1.6 < slope < -1.4, slope
+    assert D[-1] < 1e-3 * D[1]
