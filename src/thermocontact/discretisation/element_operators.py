@@ -20,6 +20,7 @@ steady kernels are the transient contact's (section 19).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.special import i0e, i1e, k0e, k1e
@@ -76,19 +77,19 @@ class ElementOperators:
     theta1: np.ndarray
     theta2: np.ndarray
 
-    @property
+    @cached_property
     def Gp(self):
         return self.flamant + 0.5 * (self.gap1 + self.gap2)
 
-    @property
+    @cached_property
     def Gq(self):
         return 0.5 * (self.gap1 - self.gap2)
 
-    @property
+    @cached_property
     def Tp(self):
         return 0.5 * (self.theta1 - self.theta2)
 
-    @property
+    @cached_property
     def Tq(self):
         return 0.5 * (self.theta1 + self.theta2)
 
