@@ -271,6 +271,51 @@ class TransientRun(Result):
         ds.attrs["seconds"] = self.seconds
         return ds
 
+    @classmethod
+    def from_dataset(cls, ds) -> TransientRun:
+        """The run that :meth:`to_dataset` wrote, from that dataset (or its file read back).
+
+        The inverse of :meth:`to_dataset`: the inputs (``"none"`` back to None, the
+        window and the conductance as tuples, steps and elements as integers), the
+        fields, the status and the seconds; other attributes are ignored.  A partial
+        run read so is what :func:`run_transient` resumes.
+
+        Raises
+        ------
+        InputError
+            The dataset is not a transient run's (an input or a field is missing).
+        """
+        attrs = ds.attrs
+
+        def optional(key):
+            value = attrs.get(key, "none")
+            return None if isinstance(value, str) and value == "none" else float(value)
+
+        try:
+            spec = TransientSpec(
+                pe_hertz=float(attrs["pe_hertz"]), fhpe_hertz=float(attrs["fhpe_hertz"]),
+                K2_over_K1=float(attrs["K2_over_K1"]), until=float(attrs["until"]),
+                steps=int(attrs["steps"]), k2_over_k1=optional("k2_over_k1"),
+                delta1_over_delta2=float(attrs["delta1_over_delta2"]),
+                lam=optional("lam"), theta=optional("theta"), elements=int(attrs["elements"]),
+                window=tuple(float(w) for w in np.ravel(attrs["window"])),
+                start=str(attrs["start"]), hold=str(attrs["hold"]),
+                perturb=float(attrs["perturb"]),
+                conductance=(tuple(float(c) for c in np.ravel(attrs["conductance"]))
+                             if "conductance" in attrs else None))
+
+            def values(name, dtype=float):
+                return np.asarray(ds[name].values, dtype=dtype)
+
+            return cls(spec, values("time"), values("x"), values("pressure"), values("flux"),
+                       values("gap"), values("temperature1"), values("temperature2"),
+                       values("lam"), values("approach"), values("temperature_difference"),
+                       values("set_iterations", int), str(attrs["status"]),
+                       float(attrs["seconds"]))
+        except KeyError as exc:
+            raise InputError(f"the dataset is not a transient run's: it has no {exc}",
+                             parameters=("ds",)) from None
+
 
 @dataclass
 class _State:
