@@ -101,7 +101,7 @@ def animation(ds, path, frames=100) -> None:
     bottom.set_ylabel("temperature rise, f v P/(pi K2)")
     bottom.legend(fontsize=7, loc="upper right")
     title = fig.suptitle("")
-    unit = tlabel.split(" ", 1)[1]
+    unit = tlabel.split(" ", 1)[1].strip("()")
     with atomic_path(path) as tmp:
         writer = PillowWriter(fps=10)
         with writer.saving(fig, tmp, dpi=80):
