@@ -118,7 +118,8 @@ def run_to_file(spec, out, plot=None, gif=None, as_json=False, extra=None):
     echo = (lambda text: click.echo(text, err=True)) if as_json else click.echo
     done, ds = _existing(out, spec, extra)
     if done is not None and done.status != "partial":
-        echo(f"{out} is complete (same inputs, {done.status}): nothing to compute")
+        state = "complete" if done.status == "complete" else f"finished ({done.status})"
+        echo(f"{out} is {state} with the same inputs: nothing to compute")
         written = _pictures(ds, plot, gif)
         if as_json:
             click.echo(json.dumps(done.to_dict(), allow_nan=False))

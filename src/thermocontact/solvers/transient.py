@@ -439,7 +439,8 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
     progress : callable, optional
         ``progress(done, total)`` after each step.
     save : callable, optional
-        ``save(partial_run)`` at most every ``save_every`` seconds and at the end.
+        ``save(partial_run)`` at most every ``save_every`` seconds, never after the
+        last step (the run returned is the whole one).
 
     Returns
     -------
