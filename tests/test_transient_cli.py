@@ -1,6 +1,8 @@
 """``thermocontact transient`` and ``contact --transient``: the file, its round trip, the
 resume after an interrupt, the pictures and one-line errors for bad input."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -110,9 +112,10 @@ def test_interrupt_leaves_a_partial_file_that_resumes_exactly(complete, tmp_path
 def test_resumed_from_a_sliced_run(complete, tmp_path, capsys):
     """A partial run made by slicing the complete one's arrays resumes to the same file."""
     run = tc.read_transient(read_dataset(complete[0]))
-    cut = {name: getattr(run, name)[:11] for name in (
-        "time", "pressure", "flux", "gap", "theta1", "theta2", "lam", "approach",
-        "temperature_difference", "set_iterations")}
+    steps = run.time.size
+    cut = {f.name: getattr(run, f.name)[:11] for f in dataclasses.fields(run)
+           if f.name != "x" and isinstance(getattr(run, f.name), np.ndarray)
+           and getattr(run, f.name).shape[0] == steps}
     out = tmp_path / "run.nc"
     write_dataset(run.replace(status="partial", **cut).to_dataset(), out)
     assert main(ARGS + ["--lam", "1", "--out", str(out)]) == 0

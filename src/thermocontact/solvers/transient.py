@@ -26,7 +26,7 @@ Closures (the far field):
 from __future__ import annotations
 
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -304,14 +304,16 @@ class TransientRun(Result):
                 conductance=(tuple(float(c) for c in np.ravel(attrs["conductance"]))
                              if "conductance" in attrs else None))
 
-            def values(name, dtype=float):
-                return np.asarray(ds[name].values, dtype=dtype)
-
-            return cls(spec, values("time"), values("x"), values("pressure"), values("flux"),
-                       values("gap"), values("temperature1"), values("temperature2"),
-                       values("lam"), values("approach"), values("temperature_difference"),
-                       values("set_iterations", int), str(attrs["status"]),
-                       float(attrs["seconds"]))
+            # Every array field from its variable (the temperatures renamed), so that
+            # a field added to the run is read back without a change here.
+            renamed = {"theta1": "temperature1", "theta2": "temperature2"}
+            arrays = {}
+            for f in fields(cls):
+                if f.name not in ("spec", "status", "seconds"):
+                    v = np.asarray(ds[renamed.get(f.name, f.name)].values)
+                    arrays[f.name] = v.astype(int if v.dtype.kind in "iub" else float)
+            return cls(spec=spec, status=str(attrs["status"]), seconds=float(attrs["seconds"]),
+                       **arrays)
         except KeyError as exc:
             raise InputError(f"the dataset is not a transient run's: it has no {exc}",
                              parameters=("ds",)) from None
