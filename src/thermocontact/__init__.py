@@ -55,6 +55,11 @@ _EXPORTS = {
     "StabilityResult": ".solvers.stability",
     "tei": ".api",
     "transient": ".api",
+    "transient_spec": ".api",
+    "compute_transient": ".api",
+    "read_transient": ".api",
+    "contact_transient": ".api",
+    "contact_transient_spec": ".api",
     "TransientRun": ".solvers.transient",
     "TransientSpec": ".solvers.transient",
 }

@@ -16,6 +16,9 @@ command                            call
 ``thermocontact zones``            :func:`contact_set`
 ``thermocontact boundary``         :func:`boundary`
 ``thermocontact map``              :func:`parameter_map`, :func:`operating_map`
+``thermocontact transient``        :func:`transient` (:func:`transient_spec`,
+                                   :func:`compute_transient`, :func:`read_transient`)
+``contact ... --transient``        :func:`contact_transient` (:func:`contact_transient_spec`)
 =================================  ===========================================
 """
 
@@ -28,8 +31,10 @@ from .problem.validation import InputError, check_positive
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
-__all__ = ["Axis", "Model", "boundary", "compute_map", "contact", "contact_set", "map_spec", "transient",
-           "operating_map", "parameter_map", "solve", "stability", "tei"]
+__all__ = ["Axis", "Model", "boundary", "compute_map", "compute_transient", "contact",
+           "contact_set", "contact_transient", "contact_transient_spec", "map_spec",
+           "operating_map", "parameter_map", "read_transient", "solve", "stability", "tei",
+           "transient", "transient_spec"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
 PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": "",
@@ -798,6 +803,86 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
                         points=points, rate_unit=rate_unit)
 
 
+def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
+                   k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
+                   start="hertz", hold="theta", perturb=0.0, conductance=None):
+    """The inputs of a transient run, checked (:func:`transient` without the run).
+
+    The command line makes the specification first, to compare it with a partial run
+    on disk and to check its output files, before any work; :func:`compute_transient`
+    then runs it.  Parameters as for :func:`transient`.
+
+    Returns
+    -------
+    TransientSpec
+    """
+    from .solvers.transient import TransientSpec
+
+    try:
+        lo, hi = window
+        window = (float(lo), float(hi))
+    except (TypeError, ValueError):
+        raise InputError(f"window must be two numbers lo < -1 and hi > 1, got {window!r}",
+                         parameters=("window",)) from None
+    return TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
+                         until=until, steps=steps, k2_over_k1=k2_over_k1,
+                         delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
+                         elements=elements, window=window, start=start, hold=hold,
+                         perturb=perturb,
+                         conductance=None if conductance is None else tuple(conductance))
+
+
+def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0):
+    """The transient run that a :func:`transient_spec` (or :func:`contact_transient_spec`)
+    describes.
+
+    Parameters
+    ----------
+    spec : TransientSpec
+    resume : TransientRun, optional
+        A partial run of the same ``spec`` (``status == "partial"``, e.g. read back
+        by :func:`read_transient`): its steps are taken as they are and the run goes
+        on from its last; the steps computed are the same as without the interruption.
+    progress : callable, optional
+        ``progress(done, total)`` after each step.
+    save : callable, optional
+        ``save(partial_run)`` at most every ``save_every`` seconds of computing.
+    save_every : float
+        Seconds.
+
+    Returns
+    -------
+    TransientRun
+    """
+    from .solvers.transient import TransientSpec, run_transient
+
+    if not isinstance(spec, TransientSpec):
+        raise InputError(f"spec must be a transient run's specification (transient_spec), "
+                         f"got {spec!r}", parameters=("spec",))
+    return run_transient(spec, resume=resume, progress=progress, save=save,
+                         save_every=save_every)
+
+
+def read_transient(ds):
+    """The :class:`~thermocontact.TransientRun` of a dataset that ``to_dataset`` wrote.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A transient run's dataset (its file read back): its attributes are the
+        inputs, ``status`` and ``seconds``; any others (those of
+        :func:`contact_transient`) are left out.
+
+    Returns
+    -------
+    TransientRun
+        Equal to the run that wrote the dataset.
+    """
+    from .solvers.transient import TransientRun
+
+    return TransientRun.from_dataset(ds)
+
+
 def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
               k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
               start="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
@@ -858,12 +943,124 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
     >>> run.status, run.zones(-1)[0].size
     ('complete', 1)
     """
-    from .solvers.transient import TransientSpec, run_transient
+    spec = transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, until=until, steps=steps, lam=lam,
+                          theta=theta, k2_over_k1=k2_over_k1,
+                          delta1_over_delta2=delta1_over_delta2, elements=elements,
+                          window=window, start=start, hold=hold, perturb=perturb,
+                          conductance=conductance)
+    return compute_transient(spec, resume=resume, progress=progress, save=save)
 
-    spec = TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
-                         until=until, steps=steps, k2_over_k1=k2_over_k1,
-                         delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
-                         elements=elements, window=tuple(float(w) for w in window),
-                         start=start, hold=hold, perturb=perturb,
-                         conductance=None if conductance is None else tuple(conductance))
-    return run_transient(spec, resume=resume, progress=progress, save=save)
+
+def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, friction, lam,
+                           duration, steps=1000, elements=240, window=(-3.0, 3.0),
+                           speed2=0.0, dundurs=True, materials=None, bulk_temperatures=None):
+    """The transient run of a contact in SI units: its specification and units.
+
+    The physical problem of :func:`contact` in the units of the transient run
+    (:func:`transient`), as the contact set of :func:`contact` with ``zones`` maps it:
+    lengths in the Hertz half-width ``l`` of the load, ``Pe_l = v l/(2 k2)``,
+    ``fHPe_l = f H Pe_l`` and the materials' ratios; time in ``l^2/k2`` (``k2`` the
+    half-plane's diffusivity).
+
+    Parameters
+    ----------
+    cylinder, half_plane, radius, load, speed, friction, materials
+        As for :func:`contact`.
+    lam : float
+        Heat partition held, in [-1, 1] (the bulk temperatures are not a closure of
+        the transient run: they set a sink the run's infinite half-plane lacks).
+    duration : float or str
+        Time computed, s (or with units, ``"10ms"``).
+    steps, elements, window
+        As for :func:`transient` (``window`` in units of ``l``).
+    speed2 : float or str
+        Must be 0: the transient run has a stationary half-plane.
+    dundurs : bool
+        The transient run has no Dundurs term: ``False``, or materials and friction
+        whose ``beta f`` is 0.
+    bulk_temperatures
+        Refused (see ``lam``).
+
+    Returns
+    -------
+    spec : TransientSpec
+    attrs : dict
+        The physical inputs and the units, the dataset's further attributes:
+        ``length_unit_m`` (``l``), ``time_unit_s`` (``l^2/k2``), ``duration_s``,
+        ``cylinder``, ``half_plane``, ``radius_m``, ``load_N_per_m``,
+        ``speed_m_per_s``, ``friction``, ``pressure_unit_Pa`` (``P/l``) and
+        ``temperature_unit_K`` (``f v P/(pi K2)``).
+    """
+    if bulk_temperatures is not None:
+        raise InputError("the transient contact holds lam, not bulk_temperatures (they set a "
+                         "sink the transient half-plane lacks): give lam",
+                         parameters=("bulk_temperatures", "lam"))
+    if lam is None:
+        raise InputError("the transient contact needs lam, the heat partition held",
+                         parameters=("lam",))
+    if _quantity("speed2", speed2, "m/s"):
+        raise InputError("the transient contact needs a stationary half-plane (speed2 = 0)",
+                         parameters=("speed2",))
+    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam,
+                                0.0, dundurs, materials)
+    if problem.beta_f:
+        raise InputError("the transient contact has no Dundurs term: give dundurs=False",
+                         parameters=("dundurs",))
+    ell = problem.hertz_half_width
+    time_unit = ell ** 2 / problem.half_plane.k
+    duration = check_positive("duration", _quantity("duration", duration, "s"))
+    groups = problem.ray_parameters()
+    spec = transient_spec(problem.pe_hertz, problem.fhpe(ell), groups["K2_over_K1"],
+                          until=duration / time_unit, steps=steps, lam=problem.lam,
+                          k2_over_k1=groups["k2_over_k1"],
+                          delta1_over_delta2=groups["delta1_over_delta2"], elements=elements,
+                          window=window)
+    attrs = {"length_unit_m": ell, "time_unit_s": time_unit, "duration_s": duration,
+             "cylinder": problem.cylinder.name, "half_plane": problem.half_plane.name,
+             "radius_m": problem.radius, "load_N_per_m": problem.load,
+             "speed_m_per_s": problem.speed, "friction": problem.friction,
+             "pressure_unit_Pa": problem.load / ell,
+             "temperature_unit_K": problem.temperature_units[1]}
+    return spec, attrs
+
+
+def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, lam, duration,
+                      steps=1000, elements=240, window=(-3.0, 3.0), speed2=0.0, dundurs=True,
+                      materials=None, progress=None):
+    """The transient contact of a cylinder on a half-plane in SI units, from switch-on.
+
+    ``thermocontact contact ... --transient`` from Python: :func:`contact_transient_spec`
+    run by :func:`compute_transient`, from Hertz's contact of isothermal bodies, the
+    heat partition ``lam`` held.
+
+    Parameters
+    ----------
+    cylinder, half_plane, radius, load, speed, friction, lam, duration, steps, elements, window, speed2, dundurs, materials
+        As for :func:`contact_transient_spec`.
+    progress : callable, optional
+        ``progress(done, total)`` after each step.
+
+    Returns
+    -------
+    xarray.Dataset
+        The run's dataset (:meth:`TransientRun.to_dataset`, dimensionless fields)
+        with the physical inputs and units as further attributes: the file of
+        ``thermocontact contact ... --transient --out``.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> ds = tc.contact_transient("copper", "steel", radius="10mm", load="50kN/m",
+    ...                           speed="2m/s", friction=0.2, lam=-1, dundurs=False,
+    ...                           duration="1ms", steps=20, elements=64)
+    >>> ds.attrs["status"], round(float(ds.attrs["time_unit_s"]) * 1e3, 3)  # ms
+    ('complete', 0.436)
+    """
+    spec, attrs = contact_transient_spec(cylinder, half_plane, radius=radius, load=load,
+                                         speed=speed, friction=friction, lam=lam,
+                                         duration=duration, steps=steps, elements=elements,
+                                         window=window, speed2=speed2, dundurs=dundurs,
+                                         materials=materials)
+    ds = compute_transient(spec, progress=progress).to_dataset()
+    ds.attrs.update(attrs)
+    return ds

@@ -158,13 +158,38 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @contact_set_options("The contact set at this load, of one zone or several (derivation "
                       "section 14), instead of the single patch's branches.",
                       "omitted: the mean Hertz pressure")
+@click.option("--transient", is_flag=True,
+              help="The contact in time from switch-on (derivation section 19; as the "
+                   "transient command, in SI units): with --lam, --no-dundurs, a stationary "
+                   "half-plane, --duration and --out; --plot draws pressure over space and "
+                   "time.")
+@click.option("--duration", default=None,
+              help="With --transient: the time computed (s, or with units: 10ms).")
+@click.option("--steps", type=int, default=1000, show_default=True,
+              help="With --transient: time steps, 1 to 100000.")
+@click.option("--elements", type=int, default=240, show_default=True,
+              help="With --transient: equal elements on -3 l < x < 3 l (l the Hertz "
+                   "half-width), 8 to 4000.")
+@click.option("--out", default=None,
+              help="With --transient: the run's NetCDF file (.nc), saved every 30 s while "
+                   "it is computed; the same command resumes a partial one.")
 def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, friction, dundurs,
                 lam, bulk_temperatures, sink_distance, layer_thickness, speed2, tol, as_json,
                 csv_file, plot_file, zones, conductance,
-                stability=False):
+                stability=False, transient=False, duration=None, steps=1000, elements=240,
+                out=None):
     """Contact width, pressures and temperatures from materials, load and speed."""
     from ..api import contact
     from ..io.files import check_output_file
+
+    if transient:
+        return _contact_transient(cylinder, half_plane, materials_file, radius, load, speed,
+                                  friction, dundurs, lam, bulk_temperatures, sink_distance,
+                                  layer_thickness, speed2, as_json, csv_file, plot_file, zones,
+                                  conductance, stability, duration, steps, elements, out)
+    for flag, value in (("--duration", duration), ("--out", out)):
+        if value is not None:
+            raise InputError(f"{flag} belongs to --transient", parameters=("transient",))
 
     # Output paths are checked before the computation, whose result would be lost.
     if csv_file is not None:
@@ -248,3 +273,33 @@ def write_contact_csv(res, path):
                        "surface temperature"],
                 ["branch", "valid", "x", "pressure", "temperature_cylinder",
                  "temperature_half_plane"], rows)
+
+
+def _contact_transient(cylinder, half_plane, materials_file, radius, load, speed, friction,
+                       dundurs, lam, bulk_temperatures, sink_distance, layer_thickness, speed2,
+                       as_json, csv_file, plot_file, zones, conductance, stability, duration,
+                       steps, elements, out):
+    """``contact --transient``: the run of :func:`thermocontact.contact_transient_spec`."""
+    from ..api import contact_transient_spec
+    from .transient import check_outputs, run_to_file
+
+    for flag, given in (("--zones", zones), ("--conductance", conductance is not None),
+                        ("--stability", stability), ("--csv", csv_file is not None),
+                        ("--bulk-temperatures", bulk_temperatures is not None),
+                        ("--sink-distance", sink_distance is not None),
+                        ("--layer-thickness", layer_thickness is not None)):
+        if given:
+            raise InputError(f"--transient takes no {flag} (the transient contact holds "
+                             f"--lam, with perfect thermal contact)")
+    if dundurs is not False:
+        raise InputError("--transient has no Dundurs term: give --no-dundurs")
+    for flag, value in (("--duration", duration), ("--out", out)):
+        if value is None:
+            raise InputError(f"--transient needs {flag}")
+    out, plot_file, _ = check_outputs(out, plot_file)
+    spec, extra = contact_transient_spec(cylinder, half_plane, radius=radius, load=load,
+                                         speed=speed, friction=friction, lam=lam,
+                                         duration=duration, steps=steps, elements=elements,
+                                         speed2=speed2, dundurs=False,
+                                         materials=materials_file)
+    run_to_file(spec, out, plot_file, None, as_json, extra)

@@ -29,6 +29,7 @@ COMMANDS = {
     "reproduce": (".reproduce", "reproduce_cmd"),
     "solve": (".solve", "solve_cmd"),
     "tei": (".tei", "tei_cmd"),
+    "transient": (".transient", "transient_cmd"),
     "zones": (".contact", "zones_cmd"),
 }
 

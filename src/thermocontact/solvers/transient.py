@@ -26,7 +26,7 @@ Closures (the far field):
 from __future__ import annotations
 
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -281,6 +281,53 @@ class TransientRun(Result):
         ds.attrs["seconds"] = self.seconds
         return ds
 
+    @classmethod
+    def from_dataset(cls, ds) -> TransientRun:
+        """The run that :meth:`to_dataset` wrote, from that dataset (or its file read back).
+
+        The inverse of :meth:`to_dataset`: the inputs (``"none"`` back to None, the
+        window and the conductance as tuples, steps and elements as integers), the
+        fields, the status and the seconds; other attributes are ignored.  A partial
+        run read so is what :func:`run_transient` resumes.
+
+        Raises
+        ------
+        InputError
+            The dataset is not a transient run's (an input or a field is missing).
+        """
+        attrs = ds.attrs
+
+        def optional(key):
+            value = attrs.get(key, "none")
+            return None if isinstance(value, str) and value == "none" else float(value)
+
+        try:
+            spec = TransientSpec(
+                pe_hertz=float(attrs["pe_hertz"]), fhpe_hertz=float(attrs["fhpe_hertz"]),
+                K2_over_K1=float(attrs["K2_over_K1"]), until=float(attrs["until"]),
+                steps=int(attrs["steps"]), k2_over_k1=optional("k2_over_k1"),
+                delta1_over_delta2=float(attrs["delta1_over_delta2"]),
+                lam=optional("lam"), theta=optional("theta"), elements=int(attrs["elements"]),
+                window=tuple(float(w) for w in np.ravel(attrs["window"])),
+                start=str(attrs["start"]), hold=str(attrs["hold"]),
+                perturb=float(attrs["perturb"]),
+                conductance=(tuple(float(c) for c in np.ravel(attrs["conductance"]))
+                             if "conductance" in attrs else None))
+
+            # Every array field from its variable (the temperatures renamed), so that
+            # a field added to the run is read back without a change here.
+            renamed = {"theta1": "temperature1", "theta2": "temperature2"}
+            arrays = {}
+            for f in fields(cls):
+                if f.name not in ("spec", "status", "seconds"):
+                    v = np.asarray(ds[renamed.get(f.name, f.name)].values)
+                    arrays[f.name] = v.astype(int if v.dtype.kind in "iub" else float)
+            return cls(spec=spec, status=str(attrs["status"]), seconds=float(attrs["seconds"]),
+                       **arrays)
+        except KeyError as exc:
+            raise InputError(f"the dataset is not a transient run's: it has no {exc}",
+                             parameters=("ds",)) from None
+
 
 @dataclass
 class _State:
@@ -462,7 +509,8 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
     progress : callable, optional
         ``progress(done, total)`` after each step.
     save : callable, optional
-        ``save(partial_run)`` at most every ``save_every`` seconds and at the end.
+        ``save(partial_run)`` at most every ``save_every`` seconds, never after the
+        last step (the run returned is the whole one).
 
     Returns
     -------
