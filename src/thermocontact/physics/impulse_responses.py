@@ -78,7 +78,8 @@ def dawson_log_integral(Z):
 
     Equivalently ``(sqrt(pi)/2) integral_0^(pi/2) erf(Z cos theta) d theta``.  A cubic
     Hermite interpolation of its values and exact slopes on a grid of ``1/2048`` for
-    ``|Z| <= 16`` (error below 1e-15), the asymptotic series beyond (below 1e-20).
+    ``|Z| <= 16`` (error below 1e-15), the asymptotic series beyond (its first omitted
+    term ``135135/(3840 Z^15)`` is below 4e-17).
     """
     Z = np.asarray(Z, dtype=float)
     a = np.abs(Z)
