@@ -14,8 +14,10 @@ A benchmark, not a test: it prints two markdown tables and asserts nothing.
   sum ``y[n] = sum_{m=1}^{n-1} A[m] x[n - m]`` for random complex inputs, their time
   ratio and their largest difference relative to the largest history.
 
-The last rows give each cost's growth exponent against ``L`` (the least-squares slope
-of ``log cost`` against ``log L``, and the slope between the last two rows).
+Wall times on a shared machine vary with its load; the stepping's CPU time (this
+process, all its threads) is given beside them.  The last rows give each cost's growth
+exponent against ``L`` (the least-squares slope of ``log cost`` against ``log L``, and
+the slope between the last two rows).
 """
 
 from __future__ import annotations
@@ -33,19 +35,20 @@ class _Timed:
     """A callable wrapper adding up the time spent in ``func``."""
 
     def __init__(self, func):
-        self.func, self.seconds = func, 0.0
+        self.func, self.seconds, self.cpu = func, 0.0, 0.0
 
     def __call__(self, *args, **kwargs):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         try:
             return self.func(*args, **kwargs)
         finally:
             self.seconds += time.perf_counter() - t0
+            self.cpu += time.process_time() - c0
 
 
 def run_row(steps):
     """One cold transient run: (total, tables, other operators, stepping) in seconds, the
-    status, and the kernels it convolved."""
+    stepping's CPU seconds, the status, and the kernels it convolved."""
     import thermocontact.api as api
     from thermocontact.discretisation import history
     from thermocontact.solvers import transient as solver
@@ -63,14 +66,14 @@ def run_row(steps):
     saved = history.lag_tables, solver.transient_element_operators
     history.lag_tables, solver.transient_element_operators = tables, operators_kept
     try:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         run = api.transient(until=steps * DT, steps=steps, **CASE)
-        total = time.perf_counter() - t0
+        total, cpu = time.perf_counter() - t0, time.process_time() - c0
     finally:
         history.lag_tables, solver.transient_element_operators = saved
     history.lag_tables.cache_clear()
     return (total, tables.seconds, operators.seconds - tables.seconds,
-            total - operators.seconds, run.status, kept["kernels"])
+            total - operators.seconds, cpu - operators.cpu, run.status, kept["kernels"])
 
 
 def direct_history(kernel, x):
@@ -130,24 +133,25 @@ def main(steps_list=(250, 500, 1000, 2000, 4000)):
           f"{CASE['elements']} elements, dt = {DT}; {cpu_count()} cores\n")
     rows = []
     for steps in steps_list:
-        total, tables, other, stepping, status, kernels = run_row(steps)
+        total, tables, other, stepping, cpu, status, kernels = run_row(steps)
         online, direct, diff = history_row(kernels)
-        rows.append((steps, total, tables, other, stepping, online, direct, diff, status))
+        rows.append((steps, total, tables, other, stepping, online, direct, diff, status, cpu))
         print(f"  L = {steps}: {total:.1f} s, {status}", file=sys.stderr, flush=True)
     print("| L | total s | tables s | other operators s | stepping s | ms/step | "
-          "history online s | history direct s | direct/online | max rel. diff | status |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
-    for L, total, tables, other, stepping, online, direct, diff, status in rows:
+          "stepping CPU ms/step | history online s | history direct s | direct/online | "
+          "max rel. diff | status |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for L, total, tables, other, stepping, online, direct, diff, status, cpu in rows:
         print(f"| {L} | {total:.2f} | {tables:.2f} | {other:.2f} | {stepping:.2f} | "
-              f"{1e3 * stepping / L:.2f} | {online:.3f} | {direct:.3f} | "
-              f"{direct / online:.1f} | {diff:.1e} | {status} |")
+              f"{1e3 * stepping / L:.2f} | {1e3 * cpu / L:.2f} | {online:.3f} | "
+              f"{direct:.3f} | {direct / online:.1f} | {diff:.1e} | {status} |")
     L = [r[0] for r in rows]
     print("\ngrowth exponent of each cost against L (least squares over all rows; "
           "last two rows):\n")
     print("| cost | exponent (fit) | exponent (last pair) |")
     print("|---|---:|---:|")
     for name, col in (("total", 1), ("tables", 2), ("other operators", 3), ("stepping", 4),
-                      ("history online", 5), ("history direct", 6)):
+                      ("stepping CPU", 9), ("history online", 5), ("history direct", 6)):
         fit, last = exponents(L, [r[col] for r in rows])
         print(f"| {name} | {fit:.2f} | {last:.2f} |")
 
