@@ -31,8 +31,9 @@ class OnlineConvolution:
     Notes
     -----
     Call :meth:`history` for step ``n`` (``n = 1, 2, ...``) before :meth:`push` of that
-    step's input ``x[n]``.  The FFT lengths are powers of two; the lags' transforms of
-    the levels below ``2^8`` steps are kept.
+    step's input ``x[n]``; calling it again in the same step returns the same history,
+    and a :meth:`push` without it is refused.  The FFT lengths are powers of two; the
+    lags' transforms of the levels below ``2^8`` steps are kept.
     """
 
     def __init__(self, kernel):
@@ -44,6 +45,7 @@ class OnlineConvolution:
         self._acc = np.zeros((2 * self.steps + 2, self.outputs, self.modes),
                              dtype=np.result_type(dtype, self._x.dtype))
         self._n = 1
+        self._ready = 0
         self._lags = {}
 
     def _lag_transform(self, q):
@@ -64,6 +66,8 @@ class OnlineConvolution:
         if n is not None and n != self._n:
             raise ValueError(f"history of step {n} asked at step {self._n}")
         n = self._n
+        if self._ready == n:
+            return self._acc[n]
         q = (n & -n).bit_length() - 1
         B = 1 << q
         if n > 1:
@@ -76,9 +80,12 @@ class OnlineConvolution:
             if not np.iscomplexobj(self._acc):
                 full = full.real
             self._acc[n:n + B] += full[B:2 * B]
+        self._ready = n
         return self._acc[n]
 
     def push(self, x):
         """Record the input ``x[n]`` (shape ``(inputs, modes)``) of the current step."""
+        if self._ready != self._n:
+            raise ValueError(f"push of step {self._n} before its history")
         self._x[self._n] = x
         self._n += 1

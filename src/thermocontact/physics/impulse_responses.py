@@ -57,7 +57,12 @@ def _table():
     mid = 0.5 * (nodes[1:] + nodes[:-1])
     pts = mid[:, None] + 0.5 * _STEP * x[None, :]
     cells = 0.5 * _STEP * (_dawson_ratio(pts) @ w)
-    values = np.concatenate([[0.0], np.cumsum(cells)])
+    # Compensated running sum: the plain one drifts by 1.5e-14 over the 32768 cells.
+    total = np.add.accumulate(cells)
+    before = np.concatenate([[0.0], total[:-1]])
+    added = total - before
+    lost = (before - (total - added)) + (cells - added)
+    values = np.concatenate([[0.0], total + np.add.accumulate(lost)])
     return values, _dawson_ratio(nodes)
 
 
@@ -73,7 +78,8 @@ def dawson_log_integral(Z):
 
     Equivalently ``(sqrt(pi)/2) integral_0^(pi/2) erf(Z cos theta) d theta``.  A cubic
     Hermite interpolation of its values and exact slopes on a grid of ``1/2048`` for
-    ``|Z| <= 16`` (error below 1e-15), the asymptotic series beyond (below 1e-20).
+    ``|Z| <= 16`` (error below 1e-15), the asymptotic series beyond (its first omitted
+    term ``135135/(3840 Z^15)`` is below 4e-17).
     """
     Z = np.asarray(Z, dtype=float)
     a = np.abs(Z)
@@ -87,7 +93,8 @@ def dawson_log_integral(Z):
     inner = (y0 * (2 * f3 - 3 * f2 + 1) + d0 * (f3 - 2 * f2 + f) + y1 * (-2 * f3 + 3 * f2)
              + d1 * (f3 - f2))
     big = np.where(inside, _Z_MAX, a)
-    inv2 = 1.0 / (big * big)
+    inv = 1.0 / big
+    inv2 = inv * inv
     tail = np.zeros_like(big)
     for coef in _ASYMPTOTIC[::-1]:
         tail = tail * inv2 + coef
