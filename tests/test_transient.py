@@ -142,3 +142,36 @@ def test_a_stable_contact_relaxes_algebraically_as_its_spectrum_says():
     slope = np.polyfit(np.log(run.time[late]), np.log(D[late]), 1)[0]
     assert -1.6 < slope < -1.4, slope
     assert D[-1] < 1e-3 * D[1]
+
+
+def test_the_transient_page_states_its_study():
+    # docs/transient.md's table is the study's JSON as the script prints it, and the
+    # cycle's period on path (c) converges as the page says: differences falling by
+    # about 1.6 per halving of the step (order ~2/3), extrapolated to 2.6 +- 0.05.
+    import contextlib
+    import importlib.util
+    import io
+    import pathlib
+
+    root = pathlib.Path(__file__).parents[1]
+    spec = importlib.util.spec_from_file_location(
+        "transient_study", root / "docs" / "transient" / "transient_study.py")
+    study = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(study)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        study.table()
+    assert out.getvalue() in (root / "docs" / "transient.md").read_text()
+    import json
+
+    runs = json.loads(study.OUT.read_text())["runs"]
+    periods = [runs[f"c|perfect|{k}"]["period_mean"] for k in ("base", "dt/2", "dt/4", "dt/8")]
+    d = np.diff(periods)
+    ratios = d[:-1] / d[1:]
+    assert np.all((ratios > 1.45) & (ratios < 1.75)), ratios
+    limit = periods[-1] + d[-1] / (ratios[-1] - 1.0)
+    assert abs(limit - 2.63) < 0.02
+    assert runs["c|perfect|h/2"]["period_mean"] == pytest.approx(periods[0], abs=0.02)
+    # (a) and (b) stay one zone at every resolution; (c) has two during handovers.
+    for name in ("a", "b"):
+        assert all(r["zones_max"] == 1 for k, r in runs.items() if k.startswith(name))

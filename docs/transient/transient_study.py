@@ -10,7 +10,7 @@ the path that cycles with a quarter (and, perfect, an eighth) of the time step, 
 transient_study.json and path_*.png beside this file (the base runs' datasets in
 runs/), keeping each run as it finishes
 so that an interrupted study resumes; ``--table`` prints the summary of
-docs/transient.md from the JSON.  About 15 minutes on one core.
+docs/transient.md from the JSON.  About 5 minutes on one core.
 
     python docs/transient/transient_study.py [--table]
 """
