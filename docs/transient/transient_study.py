@@ -108,14 +108,18 @@ def pictures():
     """The space-time pictures of the base runs (from the runs' files)."""
     import xarray as xr
 
-    from thermocontact.plotting.transient import space_time
+    from thermocontact.plotting.transient import animation, space_time
 
     for name, *_ in PATHS:
         for cond in CONDUCTANCES:
             path = RUNS / f"{name}{_tag(cond)}.nc"
             if path.exists():
                 with xr.open_dataset(path) as ds:
-                    space_time(ds.load(), HERE / f"path_{name}{_tag(cond)}.png")
+                    ds = ds.load()
+                space_time(ds, HERE / f"path_{name}{_tag(cond)}.png")
+                if name == "c" and cond is None:
+                    # The cycle, from t = 14: about three periods.
+                    animation(ds.sel(time=slice(14.0, None)), HERE / "path_c.gif", frames=120)
 
 
 def table():
