@@ -175,3 +175,12 @@ def test_the_transient_page_states_its_study():
     # (a) and (b) stay one zone at every resolution; (c) has two during handovers.
     for name in ("a", "b"):
         assert all(r["zones_max"] == 1 for k, r in runs.items() if k.startswith(name))
+
+
+def test_a_run_says_when_its_zones_span_too_few_elements():
+    fine = tc.transient(**CASE, lam=1.0, until=0.5, steps=10, elements=120)
+    coarse = tc.transient(**CASE, lam=1.0, until=0.5, steps=10, elements=12)
+    assert fine.resolution == "resolved" and fine.fewest_elements() >= 30
+    assert coarse.fewest_elements() == 4
+    assert coarse.resolution.startswith("under-resolved: a zone spans 4 elements")
+    assert coarse.to_dict()["resolution"] == coarse.resolution

@@ -84,8 +84,10 @@ def summary(run, extra, written) -> str:
                                   for s, e in zip(a, b)) if extra and a.size else ""),
              f"  lam = {run.lam[-1]:.6g}, approach = {run.approach[-1]:.6g} l^2/R, "
              f"peak pressure = {run.pressure[-1].max():.6g} P/l, "
-             f"C = {run.temperature_difference[-1]:.6g} f v P/(pi K2)",
-             "wrote " + ", ".join(written)]
+             f"C = {run.temperature_difference[-1]:.6g} f v P/(pi K2)"]
+    if run.resolution != "resolved":
+        lines.append(f"  warning: {run.resolution}")
+    lines.append("wrote " + ", ".join(written))
     return "\n".join(lines)
 
 

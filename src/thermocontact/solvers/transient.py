@@ -40,6 +40,9 @@ from .elements import solve_elements, solve_on_set
 
 __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
 
+#: Fewest elements a zone should span for its pressure to be carried (below, a run's
+#: ``resolution`` says so).
+RESOLVED_ELEMENTS = 8
 #: The active set of one step: changes all at once, then one at a time (the worst
 #: first) if that cycles; at most this many solves.
 _MAX_SET_ITERATIONS = 400
@@ -221,6 +224,31 @@ class TransientRun(Result):
     def h(self) -> float:
         return float(self.x[1] - self.x[0])
 
+    def fewest_elements(self, share: float = 0.1) -> int:
+        """The fewest elements spanned by a zone carrying at least ``share`` of the load,
+        at any step after the first (0: none).  A zone just formed or about to open
+        carries less and spans a few elements by nature."""
+        fewest = 0
+        h = self.h
+        for p in self.pressure[1:]:
+            on = np.concatenate([[0], (p > 0.0).astype(np.int8), [0]])
+            d = np.diff(on)
+            for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)):
+                if h * p[a:b].sum() >= share and (fewest == 0 or b - a < fewest):
+                    fewest = int(b - a)
+        return fewest
+
+    @property
+    def resolution(self) -> str:
+        """``"resolved"``, or why the elements are too coarse: a zone carrying a tenth of
+        the load on fewer than :data:`RESOLVED_ELEMENTS` elements has its pressure on
+        too few constants."""
+        k = self.fewest_elements()
+        if k >= RESOLVED_ELEMENTS or k == 0:
+            return "resolved"
+        return (f"under-resolved: a zone spans {k} element{'s' if k > 1 else ''} (fewer than "
+                f"{RESOLVED_ELEMENTS}); give more elements or a narrower window")
+
     def zones(self, n):
         """Zones ``(starts, ends)`` at step ``n`` (to half an element)."""
         return zones_of(self.in_contact[n], self.x, self.h)
@@ -243,7 +271,8 @@ class TransientRun(Result):
                 "zones": [[float(s), float(e)] for s, e in zip(a, b)],
                 "lam": float(self.lam[-1]), "approach": float(self.approach[-1]),
                 "temperature_difference": float(self.temperature_difference[-1]),
-                "peak_pressure": float(self.pressure[-1].max()), "seconds": self.seconds}
+                "peak_pressure": float(self.pressure[-1].max()), "seconds": self.seconds,
+                "resolution": self.resolution}
 
     def to_dataset(self):
         """The run as an :class:`xarray.Dataset` (coordinates ``time``, ``x``, ``zone``)."""
