@@ -437,7 +437,8 @@ class EdgeGraded(Representation):
         def build():
             # cos(j tau_k): the cosine series at the samples is one product.
             tau = np.linspace(np.pi, 0.0, count)
-            return np.cos(graded.stretch(tau)), np.cos(np.outer(tau, np.arange(self.n)))
+            cosines = np.multiply.outer(tau, np.arange(self.n))
+            return np.cos(graded.stretch(tau)), np.cos(cosines, out=cosines)  # in place
         s, cosines = self.rows(("phi_samples", count), build)
         return s, cosines @ (self.to_cos @ phi)
 

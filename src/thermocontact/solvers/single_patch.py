@@ -557,7 +557,8 @@ class Model:
             for sol in [lv[0] for lv in levels[-2:]]:
                 wanted.setdefault(sol.n, []).append((i, sol))
         validities = {}
-        for group in wanted.values():
+        # The finest n first, whose moment bases the last level's assembly left cached.
+        for _, group in sorted(wanted.items(), reverse=True):
             found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
                                 np.array([sol.phi for _, sol in group]),
                                 np.array([sol.psi for _, sol in group]),
