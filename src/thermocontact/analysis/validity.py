@@ -576,8 +576,7 @@ def _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish):
     # margin's to judge, not the pressure's or the gap's.
     band = k_log != 0.0  # (a layer needs an edge term)
 
-    sp, _ = rep.phi_samples(phi[0], 2049)
-    phis = columns(lambda f: rep.phi_samples(f, 2049)[1], phi).T
+    sp, phis = rep.phi_samples_many(phi, 2049)
     p = rep.pressure_weight(sp)[None, :] * phis
     ip = np.argmin(p, axis=1)
     phi_min, phi_min_at = np.empty(m), np.empty(m)

@@ -30,7 +30,6 @@ sections 14-16).  The single patch is its one zone in its own scaling: the zone
 
 from __future__ import annotations
 
-from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -165,20 +164,43 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
         a = None if aux is None else aux[rows]
         # A block's point geometry serves its kernels only; the 2n points' whole, when
         # one block, may serve another assembly at these points (a sweep).
-        with GEOMETRY.transient() if step < x.size else nullcontext():
+        if step < x.size:
+            C, Tp, Tq, Hp, Hq = _block_operators(par, rep, s[rows], a)
+        else:
             C, Tp, Tq = contact_operators(par, rep, s[rows], a)
             Hp, Hq = heat_operators(par, rep, s[rows], a)
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
         if total is None:
             total = [P @ M for P, M in pairs] + [p1.sum(axis=1), p1 @ s[rows]]
+            product = np.empty_like(total[0])
         else:
-            # Each product added as it is formed: one block (8 MB at n = 1024) at a time.
+            # Each product added as it is formed, into one buffer (8 MB at n = 1024)
+            # reused for every block rather than allocated anew.
             for t, (P, M) in zip(total, pairs):
-                t += P @ M
+                t += np.matmul(P, M, out=product[:P.shape[0]])
             total[5] += p1.sum(axis=1)
             total[6] += p1 @ s[rows]
     return Blocks(rep, *total)
 
+
+def _block_operators(par, rep, s, aux):
+    """The five operators at one block of points, their rows formed
+    :data:`OPERATOR_BLOCKS` parts at a time, each part's point geometry (about 25 MB
+    for 128 points at n = 1024) dropped once its kernels are integrated.  Each row is
+    its point's alone, so the rows are the block's own."""
+    sub = -(-s.size // OPERATOR_BLOCKS)
+    parts = []
+    for i in range(0, s.size, sub):
+        rows = slice(i, i + sub)
+        a = None if aux is None else aux[rows]
+        with GEOMETRY.transient():
+            parts.append(contact_operators(par, rep, s[rows], a)
+                         + heat_operators(par, rep, s[rows], a))
+    return parts[0] if len(parts) == 1 else [np.concatenate(ops) for ops in zip(*parts)]
+
+
+#: Parts of a block of points whose operators are formed one at a time.
+OPERATOR_BLOCKS = 2
 
 #: Points of a block times n: a block is one block of the moment engine (128 points at
 #: n = 1024, 256 at 512: arrays of about 4 MB, and one point geometry, which the

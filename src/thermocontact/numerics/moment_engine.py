@@ -366,6 +366,8 @@ GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
 BLOCK_ENTRIES = 2**19
+#: Entries of the far field's kernel values evaluated at once (columns of a block).
+KERNEL_ENTRIES = 2**16
 #: Fewest rows in a block: the validity checks' kernels carry their points' own
 #: distances as arrays of up to a few hundred rows.
 MIN_BLOCK = 256
@@ -457,10 +459,26 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     geo = _geometry(key, n, tau_key, cmap)
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
+    far = geo.far_e if from_edge else geo.far_u
     with np.errstate(divide="ignore", invalid="ignore"):
-        kf = kernel(geo.far_e if from_edge else geo.far_u)
+        if far.size <= KERNEL_ENTRIES:
+            kf = kernel(far)
+        else:
+            # A few columns at a time: a kernel's temporaries (ten or more arrays of the
+            # block's size for the Bessel kernels) stay small.  Kernels are elementwise
+            # in u, their rows' own parameters broadcast down the columns.
+            kf = np.empty(far.shape)
+            step = max(1, KERNEL_ENTRIES // far.shape[0])
+            for c in range(0, far.shape[1], step):
+                kf[:, c:c + step] = kernel(np.ascontiguousarray(far[:, c:c + step]))
     kf[geo.near] = 0.0
-    out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
+    # Both weights' products into one array, through one temporary.
+    out = np.empty((2, kf.shape[0], n))
+    weighted = np.multiply(kf, wts[0])
+    np.matmul(weighted, g, out=out[0])
+    np.multiply(kf, wts[1], out=weighted)
+    np.matmul(weighted, g, out=out[1])
+    del weighted
     for index, side in enumerate(geo.sides):
         u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
         with np.errstate(divide="ignore", invalid="ignore"):
