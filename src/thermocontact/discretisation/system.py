@@ -30,13 +30,14 @@ sections 14-16).  The single patch is its one zone in its own scaling: the zone
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
 
 from dataclasses import replace
 
-from ..numerics.moment_engine import GEOMETRY
+from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError, check_range
@@ -157,6 +158,16 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     x = projection_nodes(n)
     s, aux = rep.projection_points(x)
     step = max(1, ASSEMBLY_ENTRIES // n)
+    if step >= x.size:
+        return _projected(par, rep, x, s, aux, step)
+    # The moment bases of a large n (34 MB at n = 1024) are not kept beside the blocks
+    # and the system's matrix: the validity checks form them again.
+    with BASES.transient():
+        return _projected(par, rep, x, s, aux, step)
+
+
+def _projected(par, rep, x, s, aux, step):
+    n = rep.n
     total = None
     for i in range(0, x.size, step):
         rows = slice(i, i + step)
@@ -164,9 +175,7 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
         a = None if aux is None else aux[rows]
         # A block's point geometry serves its kernels only; the 2n points' whole, when
         # one block, may serve another assembly at these points (a sweep).
-        if step < x.size:
-            C, Tp, Tq, Hp, Hq = _block_operators(par, rep, s[rows], a)
-        else:
+        with GEOMETRY.transient() if step < x.size else nullcontext():
             C, Tp, Tq = contact_operators(par, rep, s[rows], a)
             Hp, Hq = heat_operators(par, rep, s[rows], a)
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
@@ -182,25 +191,6 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
             total[6] += p1 @ s[rows]
     return Blocks(rep, *total)
 
-
-def _block_operators(par, rep, s, aux):
-    """The five operators at one block of points, their rows formed
-    :data:`OPERATOR_BLOCKS` parts at a time, each part's point geometry (about 25 MB
-    for 128 points at n = 1024) dropped once its kernels are integrated.  Each row is
-    its point's alone, so the rows are the block's own."""
-    sub = -(-s.size // OPERATOR_BLOCKS)
-    parts = []
-    for i in range(0, s.size, sub):
-        rows = slice(i, i + sub)
-        a = None if aux is None else aux[rows]
-        with GEOMETRY.transient():
-            parts.append(contact_operators(par, rep, s[rows], a)
-                         + heat_operators(par, rep, s[rows], a))
-    return parts[0] if len(parts) == 1 else [np.concatenate(ops) for ops in zip(*parts)]
-
-
-#: Parts of a block of points whose operators are formed one at a time.
-OPERATOR_BLOCKS = 2
 
 #: Points of a block times n: a block is one block of the moment engine (128 points at
 #: n = 1024, 256 at 512: arrays of about 4 MB, and one point geometry, which the

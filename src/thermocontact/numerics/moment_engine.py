@@ -467,13 +467,16 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
             # A few columns at a time: a kernel's temporaries (ten or more arrays of the
             # block's size for the Bessel kernels) stay small.  Kernels are elementwise
             # in u, their rows' own parameters broadcast down the columns.
-            kf = np.empty(far.shape)
             step = max(1, KERNEL_ENTRIES // far.shape[0])
+            kf = None
             for c in range(0, far.shape[1], step):
-                kf[:, c:c + step] = kernel(np.ascontiguousarray(far[:, c:c + step]))
+                part = kernel(np.ascontiguousarray(far[:, c:c + step]))
+                if kf is None:  # real or complex, as the kernel's values are
+                    kf = np.empty(far.shape, dtype=part.dtype)
+                kf[:, c:c + step] = part
     kf[geo.near] = 0.0
     # Both weights' products into one array, through one temporary.
-    out = np.empty((2, kf.shape[0], n))
+    out = np.empty((2, kf.shape[0], n), dtype=np.result_type(kf, g))
     weighted = np.multiply(kf, wts[0])
     np.matmul(weighted, g, out=out[0])
     np.multiply(kf, wts[1], out=weighted)
