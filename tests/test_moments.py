@@ -35,8 +35,9 @@ def _clear_rules():
     from thermocontact.numerics import moment_engine as graded
 
     for f in (mm.gauss_legendre, mm._graded_reference, mm.inner_reference, mm.panel_rule,
-              graded._common, graded.weight_integrals):
+              graded.weight_integrals):
         f.cache_clear()
+    graded.BASES.clear()
     graded.GEOMETRY.clear()
 
 

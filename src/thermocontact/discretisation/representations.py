@@ -74,6 +74,9 @@ class NodeRule:
     edge_factor: np.ndarray
 
 
+#: Largest table of sample cosines (points times n) kept in :data:`ROWS`.
+SAMPLE_TABLE_ENTRIES = 2**20
+
 #: Quadrature points per unknown of the Galerkin projections.
 OVERSAMPLING = 2
 
@@ -212,6 +215,12 @@ class Representation:
     def pressure_rows(self, s, aux=None):
         """``M`` with ``M @ phi = p(s)`` (``aux``, the points' own coordinate, unused)."""
         return self.pressure_matrix(s)
+
+    def phi_samples_many(self, phi, count):
+        """:meth:`phi_samples` of each row of ``phi`` (m, n): the points and an array
+        (m, count)."""
+        rows = [self.phi_samples(f, count) for f in phi]
+        return rows[0][0], np.stack([f for _, f in rows])
 
 
 class _ChebyshevSeries(Representation):
@@ -434,12 +443,26 @@ class EdgeGraded(Representation):
 
         Denser toward the edges than Chebyshev points, and no ``tau`` is inverted.
         """
-        def build():
-            # cos(j tau_k): the cosine series at the samples is one product.
-            tau = np.linspace(np.pi, 0.0, count)
-            return np.cos(graded.stretch(tau)), np.cos(np.outer(tau, np.arange(self.n)))
-        s, cosines = self.rows(("phi_samples", count), build)
+        s, cosines = self._sample_table(count)
         return s, cosines @ (self.to_cos @ phi)
+
+    def phi_samples_many(self, phi, count):
+        """:meth:`phi_samples` of each row of ``phi`` (m, n): the points and an array
+        (m, count), each row as :meth:`phi_samples` gives it, from one table."""
+        s, cosines = self._sample_table(count)
+        return s, np.stack([cosines @ (self.to_cos @ f) for f in phi])
+
+    def _sample_table(self, count):
+        """The samples' points and ``cos(j tau_k)``: the cosine series at the samples is
+        one product.  Kept for reuse up to 2^20 entries (count 2049 up to n = 256);
+        larger tables (17 MB at n = 1024) are formed per call and dropped after it."""
+        def build():
+            tau = np.linspace(np.pi, 0.0, count)
+            cosines = np.multiply.outer(tau, np.arange(self.n))
+            return np.cos(graded.stretch(tau)), np.cos(cosines, out=cosines)  # in place
+        if count * self.n > SAMPLE_TABLE_ENTRIES:
+            return build()
+        return self.rows(("phi_samples", count), build)
 
     def _pressure_matrix(self, s):
         # phi(s) = sum_j (to_cos @ phi)_j cos(j tau(s)): one inversion of tau for all j.

@@ -37,7 +37,7 @@ import numpy as np
 
 from dataclasses import replace
 
-from ..numerics.moment_engine import GEOMETRY
+from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError, check_range
@@ -158,6 +158,16 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     x = projection_nodes(n)
     s, aux = rep.projection_points(x)
     step = max(1, ASSEMBLY_ENTRIES // n)
+    if step >= x.size:
+        return _projected(par, rep, x, s, aux, step)
+    # The moment bases of a large n (34 MB at n = 1024) are not kept beside the blocks
+    # and the system's matrix: the validity checks form them again.
+    with BASES.transient():
+        return _projected(par, rep, x, s, aux, step)
+
+
+def _projected(par, rep, x, s, aux, step):
+    n = rep.n
     total = None
     for i in range(0, x.size, step):
         rows = slice(i, i + step)
@@ -171,10 +181,12 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
         if total is None:
             total = [P @ M for P, M in pairs] + [p1.sum(axis=1), p1 @ s[rows]]
+            product = np.empty_like(total[0])
         else:
-            # Each product added as it is formed: one block (8 MB at n = 1024) at a time.
+            # Each product added as it is formed, into one buffer (8 MB at n = 1024)
+            # reused for every block rather than allocated anew.
             for t, (P, M) in zip(total, pairs):
-                t += P @ M
+                t += np.matmul(P, M, out=product[:P.shape[0]])
             total[5] += p1.sum(axis=1)
             total[6] += p1 @ s[rows]
     return Blocks(rep, *total)

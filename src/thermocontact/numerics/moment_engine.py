@@ -220,20 +220,31 @@ def weight_integrals(n: int, alpha=0.5):
     """
     m = max(256, 4 * n)
     tq = np.pi * (np.arange(m) + 0.5) / m
-    basis = (np.pi / m) * np.cos(np.arange(n)[:, None] * tq[None, :])
+    # One (n, 4n) array, formed in place (32 MB at n = 1024; no temporaries beside it).
+    basis = np.multiply.outer(np.arange(n), tq)
+    np.cos(basis, out=basis)
+    basis *= np.pi / m
     return basis @ bounded_weight(tq, alpha), basis @ singular_weight(tq)
 
 
-@small_cache(16)
+#: The bases ``cos(j tau)`` at the common rule's nodes, per n (34 MB at n = 1024, 8.5 MB
+#: at 512): bounded in bytes, so that a refinement to n = 1024 does not keep the coarser
+#: levels' bases beside the finest one's; a level visited again forms them again.
+BASES = BoundedCache("moment bases", 40 * 2**20)
+
+
 def _common(n: int, cmap=None):
     """Common panel rule in ``x``, the bases and weights at its nodes."""
     cmap = GRADED if cmap is None else cmap
-    m, h, tau, wt, panel = panel_rule(n)
-    g = np.multiply.outer(tau, np.arange(n))  # cos(j tau) formed in place
-    np.cos(g, out=g)
-    r = np.cos(cmap.T(tau))
-    wts = np.stack(cmap.weights(tau)) * wt[None, :]
-    return m, h, r, g, panel, wts
+
+    def build():
+        m, h, tau, wt, panel = panel_rule(n)
+        g = np.multiply.outer(tau, np.arange(n))  # cos(j tau) formed in place
+        np.cos(g, out=g)
+        r = np.cos(cmap.T(tau))
+        wts = np.stack(cmap.weights(tau)) * wt[None, :]
+        return m, h, r, g, panel, wts
+    return BASES.get((n, cmap.name), build)
 
 
 def _u(s, tau_s, t_s, d, wq, cmap):
@@ -355,6 +366,8 @@ GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
 BLOCK_ENTRIES = 2**19
+#: Entries of the far field's kernel values evaluated at once (columns of a block).
+KERNEL_ENTRIES = 2**16
 #: Fewest rows in a block: the validity checks' kernels carry their points' own
 #: distances as arrays of up to a few hundred rows.
 MIN_BLOCK = 256
@@ -446,10 +459,29 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     geo = _geometry(key, n, tau_key, cmap)
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
+    far = geo.far_e if from_edge else geo.far_u
     with np.errstate(divide="ignore", invalid="ignore"):
-        kf = kernel(geo.far_e if from_edge else geo.far_u)
+        if far.size <= KERNEL_ENTRIES:
+            kf = kernel(far)
+        else:
+            # A few columns at a time: a kernel's temporaries (ten or more arrays of the
+            # block's size for the Bessel kernels) stay small.  Kernels are elementwise
+            # in u, their rows' own parameters broadcast down the columns.
+            step = max(1, KERNEL_ENTRIES // far.shape[0])
+            kf = None
+            for c in range(0, far.shape[1], step):
+                part = kernel(np.ascontiguousarray(far[:, c:c + step]))
+                if kf is None:  # real or complex, as the kernel's values are
+                    kf = np.empty(far.shape, dtype=part.dtype)
+                kf[:, c:c + step] = part
     kf[geo.near] = 0.0
-    out = np.stack([(kf * wts[0]) @ g, (kf * wts[1]) @ g])
+    # Both weights' products into one array, through one temporary.
+    out = np.empty((2, kf.shape[0], n), dtype=np.result_type(kf, g))
+    weighted = np.multiply(kf, wts[0])
+    np.matmul(weighted, g, out=out[0])
+    np.multiply(kf, wts[1], out=weighted)
+    np.matmul(weighted, g, out=out[1])
+    del weighted
     for index, side in enumerate(geo.sides):
         u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
         with np.errstate(divide="ignore", invalid="ignore"):

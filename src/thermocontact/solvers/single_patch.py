@@ -556,8 +556,12 @@ class Model:
         for i, (_, levels, _) in refined.items():
             for sol in [lv[0] for lv in levels[-2:]]:
                 wanted.setdefault(sol.n, []).append((i, sol))
+        # The systems (34 MB at n = 1024, partly resident) are formed again for any
+        # further level.
+        systems.clear()
         validities = {}
-        for group in wanted.values():
+        # The finest n first: its moment bases, formed again, serve its checks and polish.
+        for _, group in sorted(wanted.items(), reverse=True):
             found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
                                 np.array([sol.phi for _, sol in group]),
                                 np.array([sol.psi for _, sol in group]),
