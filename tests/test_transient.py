@@ -184,3 +184,16 @@ def test_a_run_says_when_its_zones_span_too_few_elements():
     assert coarse.fewest_elements() == 4
     assert coarse.resolution.startswith("under-resolved: a zone spans 4 elements")
     assert coarse.to_dict()["resolution"] == coarse.resolution
+
+
+def test_the_run_ends_on_the_steady_zone_to_its_elements():
+    # Switched on from Hertz's, the contact settles on the steady single zone that
+    # `zones` computes by another method (edge-graded, edges by Newton's method,
+    # section 14): every edge within half an element, the elements' resolution, at
+    # two element widths.
+    ref = tc.contact_set(**CASE, lam=1.0).answer.zone_records()
+    assert len(ref) == 1
+    for N in (96, 192):
+        run = tc.transient(**CASE, lam=1.0, until=40.0, steps=200, elements=N)
+        (a,), (b,) = run.zones(-1)
+        assert abs(a - ref[0]["a"]) <= 0.5 * run.h and abs(b - ref[0]["b"]) <= 0.5 * run.h
