@@ -114,6 +114,7 @@ def test_a_contact_that_leaves_the_window_is_reported():
     (dict(start="cold"), "start"),
     (dict(elements=4), "elements"),
     (dict(conductance=(0.0, 1.0)), "conductance"),
+    (dict(delta1_over_delta2=2000.0), "delta1_over_delta2"),
 ])
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
     base = dict(CASE, lam=1.0, until=1.0, steps=10)

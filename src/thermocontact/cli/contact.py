@@ -11,7 +11,8 @@ import click
 
 from .._version import __version__
 from ..problem.validation import InputError
-from .options import contact_set_options, parse_conductance, physical_options
+from .options import (contact_set_options, hertz_unit_options, parse_conductance,
+                      physical_options)
 
 __all__ = ["contact_cmd", "zones_cmd"]
 
@@ -74,16 +75,7 @@ def contact_summary(res) -> str:
 
 
 @click.command("zones")
-@click.option("--pe-hertz", "pe_hertz", type=float, required=True,
-              help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load.")
-@click.option("--fhpe-hertz", "fhpe_hertz", type=float, required=True,
-              help="fHPe_l = f H Pe_l >= 0.")
-@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
-              help="Conductivity ratio K2/K1 > 0.")
-@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
-              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
-@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
-              help="Distortivity ratio in [0, 1000] (the materials known span 550).")
+@hertz_unit_options
 @click.option("--lam", type=float, required=True,
               help="Heat partition (Q1 - Q2)/(Q1 + Q2), in [-1, 1]: both bodies take a "
                    "non-negative share of the heat.")

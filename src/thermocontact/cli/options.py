@@ -84,6 +84,26 @@ def physical_options(required: bool):
     return deco
 
 
+def hertz_unit_options(func):
+    """The problem in units of the Hertz half-width ``l`` of the load (``zones``,
+    ``transient``): ``--pe-hertz``, ``--fhpe-hertz``, the ratios."""
+    options = [
+        click.option("--pe-hertz", "pe_hertz", type=float, required=True,
+                     help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load."),
+        click.option("--fhpe-hertz", "fhpe_hertz", type=float, required=True,
+                     help="fHPe_l = f H Pe_l >= 0."),
+        click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
+                     help="Conductivity ratio K2/K1 > 0."),
+        click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
+                     help="Diffusivity ratio k2/k1 > 0 [default: K2/K1]."),
+        click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
+                     help="Distortivity ratio in [0, 1000] (the materials known span 550)."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
 def contact_set_options(zones_help: str, p_ref_help: str):
     """``--zones`` and ``--conductance`` of the physical commands (``contact``, ``map``),
     which differ only in what the flag adds and what an omitted ``p_ref`` means."""

@@ -9,7 +9,7 @@ import os
 import click
 
 from ..problem.validation import InputError
-from .options import parse_conductance
+from .options import hertz_unit_options, parse_conductance
 
 __all__ = ["run_to_file", "transient_cmd"]
 
@@ -165,16 +165,7 @@ def _window(text):
 
 
 @click.command("transient")
-@click.option("--pe-hertz", "pe_hertz", type=float, required=True,
-              help="Pe_l = v l/(2 k2) > 0, l the Hertz half-width of the load.")
-@click.option("--fhpe-hertz", "fhpe_hertz", type=float, required=True,
-              help="fHPe_l = f H Pe_l >= 0.")
-@click.option("--K2-over-K1", "K2_over_K1", type=float, required=True,
-              help="Conductivity ratio K2/K1 > 0.")
-@click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
-              help="Diffusivity ratio k2/k1 > 0 [default: K2/K1].")
-@click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
-              help="Distortivity ratio >= 0.")
+@hertz_unit_options
 @click.option("--lam", type=float, default=None,
               help="Heat partition held, in [-1, 1] (or, with --start steady, the steady "
                    "state started from); give this or --theta.")

@@ -9,7 +9,7 @@ import numpy as np
 from .errors import ConvergenceWarning, SolveError
 from .validation import InputError, check_finite, check_nonnegative, check_positive
 
-__all__ = ["ConvergenceWarning", "PARTITION", "Parameters", "SolveError"]
+__all__ = ["ConvergenceWarning", "DISTORTIVITY_RATIO_MAX", "PARTITION", "Parameters", "SolveError"]
 
 
 #: Range of c = Pe k2/k1.  Above C_MAX the cylinder's kernels are narrower than any
@@ -29,6 +29,12 @@ B_MAX = 20.0
 #: continuation of the closure, smooth through +-1, which the paper's Fig. 5 uses),
 #: contact sets of several zones take the physical interval only.
 PARTITION = (-1.0, 1.0)
+#: Largest distortivity ratio delta1/delta2 of a contact set (``zones``) and of a
+#: transient contact.  The materials in the library span 550 (copper against an
+#: organic brake block); the cylinder's distortion, ~ delta1 Q1 + delta2 Q2, grows with
+#: the ratio as fHPe_l does, so that beyond 1e3 a path from Hertz's zone crosses ever
+#: more of its branch.
+DISTORTIVITY_RATIO_MAX = 1e3
 
 
 @dataclass(frozen=True)

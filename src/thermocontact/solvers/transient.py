@@ -34,8 +34,8 @@ from ..discretisation.element_operators import steady_element_operators
 from ..discretisation.history import transient_element_operators
 from ..io.results import Result, dataset_attrs
 from ..numerics.online_convolution import OnlineConvolution
-from ..problem.parameters import Parameters, SolveError
-from ..problem.validation import InputError, check_finite, check_positive
+from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
+from ..problem.validation import InputError, check_finite, check_positive, check_range
 from .elements import solve_elements, solve_on_set
 
 __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
@@ -102,6 +102,7 @@ class TransientSpec:
         if self.fhpe_hertz < 0:
             raise InputError(f"fhpe_hertz must be >= 0, got {self.fhpe_hertz!r}",
                              parameters=("fhpe_hertz",))
+        check_range("delta1_over_delta2", self.delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
         check_positive("until", self.until)
         if not (isinstance(self.steps, (int, np.integer)) and 1 <= self.steps <= 100_000):
             raise InputError(f"steps must be an integer in [1, 100000], got {self.steps!r}",
@@ -387,6 +388,22 @@ def _hertz(X, h):
     return (prim(X + 0.5 * h) - prim(X - 0.5 * h)) / h
 
 
+def _next_set(active, p, gap, tension, overlap, seen, one_at_a_time):
+    """The next active set: every change at once until that revisits a set, then the
+    worst violation alone (the most tensile element out, else the most interpenetrating
+    in).  Returns ``(new, one_at_a_time, cycled)``; ``cycled`` when ``new`` was seen."""
+    if not one_at_a_time:
+        new = (active & ~tension) | overlap
+        if new.tobytes() not in seen:
+            return new, False, False
+    new = active.copy()
+    if tension.any():
+        new[int(np.argmin(np.where(active, p, np.inf)))] = False
+    else:
+        new[int(np.argmin(np.where(active, np.inf, gap)))] = True
+    return new, True, new.tobytes() in seen
+
+
 def _coupled(ops, g_known, t_known, h, active, load, closure, resistance, tol):
     """The implicit step (eq. R9): contact and heat together on an active set, all
     changes at once, else the worst first.
@@ -407,18 +424,10 @@ def _coupled(ops, g_known, t_known, h, active, load, closure, resistance, tol):
         if not tension.any() and not overlap.any():
             return p, q, gap, D, C, it, 0
         seen[active.tobytes()] = (p, q, gap, D, C, active)
-        if not one_at_a_time:
-            new = (active & ~tension) | overlap
-            if new.tobytes() in seen:
-                one_at_a_time = True
-        if one_at_a_time:
-            new = active.copy()
-            if tension.any():
-                new[int(np.argmin(np.where(active, p, np.inf)))] = False
-            else:
-                new[int(np.argmin(np.where(active, np.inf, gap)))] = True
-            if new.tobytes() in seen:
-                return _settle(seen, it, tol)
+        new, one_at_a_time, cycled = _next_set(active, p, gap, tension, overlap, seen,
+                                               one_at_a_time)
+        if cycled:
+            return _settle(seen, it, tol)
         if not new.any():
             raise SolveError("every element left contact")
         active = new
@@ -470,16 +479,10 @@ def _contact(flamant, g_known, h, active, load, tol):
         if not tension.any() and not overlap.any():
             return p, gap, x[k], active, it
         seen.add(active.tobytes())
-        new = (active & ~tension) | overlap
-        if one_at_a_time or new.tobytes() in seen:
-            one_at_a_time = True
-            new = active.copy()
-            if tension.any():
-                new[int(np.argmin(np.where(active, p, np.inf)))] = False
-            else:
-                new[int(np.argmin(np.where(active, np.inf, gap)))] = True
-            if new.tobytes() in seen:
-                raise SolveError("the active set cycles: no settled contact set at this step")
+        new, one_at_a_time, cycled = _next_set(active, p, gap, tension, overlap, seen,
+                                               one_at_a_time)
+        if cycled:
+            raise SolveError("the active set cycles: no settled contact set at this step")
         if not new.any():
             raise SolveError("every element left contact")
         active = new

@@ -19,7 +19,7 @@ from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import C_MAX, C_MIN, PARTITION, SolveError
+from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, PARTITION, SolveError
 from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
@@ -169,11 +169,6 @@ MAX_EDGE_MOVE = 0.25
 #: (far past the boundary, at a large distortivity ratio) ends where it got to, so
 #: that every contact set is answered in bounded time.
 MAX_STEPS = 150
-#: Largest distortivity ratio delta1/delta2 of a contact set.  The materials in the
-#: library span 550 (copper against an organic brake block); the cylinder's
-#: distortion, ~ delta1 Q1 + delta2 Q2, grows with the ratio as fHPe_l does, so that
-#: beyond 1e3 a path from Hertz's zone crosses ever more of its branch.
-DISTORTIVITY_RATIO_MAX = 1e3
 
 
 def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
