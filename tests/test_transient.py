@@ -115,6 +115,7 @@ def test_a_contact_that_leaves_the_window_is_reported():
     (dict(elements=4), "elements"),
     (dict(conductance=(0.0, 1.0)), "conductance"),
     (dict(delta1_over_delta2=2000.0), "delta1_over_delta2"),
+    (dict(start="steady", conductance=(2.0, 0.0)), "conductance"),
 ])
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
     base = dict(CASE, lam=1.0, until=1.0, steps=10)
@@ -176,6 +177,16 @@ def test_the_transient_page_states_its_study():
     # (a) and (b) stay one zone at every resolution; (c) has two during handovers.
     for name in ("a", "b"):
         assert all(r["zones_max"] == 1 for k, r in runs.items() if k.startswith(name))
+
+
+def test_a_conductance_that_vanishes_with_the_pressure_is_carried():
+    # m = 1.5 makes Bi = Bi0 (2p)^m vanish at the edges faster than 1e-300 allows a
+    # power: the resistance is capped, every step stays finite (once it crashed).
+    pe = 1.1 * 5.43262
+    run = tc.transient(pe, 0.133072 * pe, 10.0, lam=1.0, until=2.0, steps=100, elements=240,
+                       conductance=(2.0, 1.5))
+    assert run.status == "complete" and np.all(np.isfinite(run.pressure))
+    assert np.all(np.isfinite(run.flux)) and np.max(np.abs(run.lam[1:] - 1.0)) < 1e-10
 
 
 def test_a_run_says_when_its_zones_span_too_few_elements():

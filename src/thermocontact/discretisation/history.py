@@ -78,8 +78,9 @@ def lag_tables(elements: int, h: float, dt: float, steps: int, r: float = 1.0, s
     temperature, displacement : ndarray, shape (2N - 1, steps)
         Times ``E/(pi K)`` and ``delta E`` per unit element-flux and step: the
         temperature rise and outward displacement at an element's centre at the end of a
-        step, from a unit flux on an element ``d`` places upstream over the step ``m``
-        steps before.  Read-only (cached).
+        step, from a unit flux over the step ``m`` steps before on the element ``d``
+        places before it (``d = i - j``: the source at smaller x for ``d > 0``, which is
+        downstream of the cylinder's surface, moving toward -x).  Read-only (cached).
     """
     X = h * np.arange(-(elements - 1), elements, dtype=float)
     T = np.empty((X.size, steps))

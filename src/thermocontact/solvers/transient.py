@@ -43,12 +43,17 @@ __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
 #: Fewest elements a zone should span for its pressure to be carried (below, a run's
 #: ``resolution`` says so).
 RESOLVED_ELEMENTS = 8
+#: Largest interface resistance pi/(2 Bi) of a step's rows: where the pressure (and
+#: with m > 0 the conductance) vanishes, q is held at zero to 1e-12 of the row's scale.
+RESISTANCE_MAX = 1e12
 #: The active set of one step: changes all at once, then one at a time (the worst
 #: first) if that cycles; at most this many solves.
 _MAX_SET_ITERATIONS = 400
 #: The implicit step's active set: at most this many solves before it settles or
 #: gives way to the IMEX step.
 _COUPLED_ITERATIONS = 12
+#: Passes of Bi = Bi0 (2p)^m on a set's own pressure (m > 0).
+_BI_PASSES = 20
 
 
 @dataclass(frozen=True)
@@ -139,6 +144,10 @@ class TransientSpec:
         if not -0.5 <= self.perturb <= 0.5:
             raise InputError(f"perturb must lie in [-0.5, 0.5], got {self.perturb!r}",
                              parameters=("perturb",))
+        if self.conductance is not None and self.start == "steady":
+            raise InputError("start='steady' takes no conductance: the steady element "
+                             "solution is one of perfect thermal contact",
+                             parameters=("conductance", "start"))
         if self.conductance is not None:
             Bi0, m = self.conductance
             check_positive("conductance", Bi0)
@@ -404,7 +413,26 @@ def _next_set(active, p, gap, tension, overlap, seen, one_at_a_time):
     return new, True, new.tobytes() in seen
 
 
-def _coupled(ops, g_known, t_known, h, active, load, closure, resistance, tol):
+def _solve_set(ops, g_known, t_known, h, active, load, closure, resistance_of, p):
+    """(R9) on one active set; with a pressure-dependent conductance, Bi from the
+    solution's own pressure (a few passes from ``p``).  Raises SolveError where the
+    solution is not finite."""
+    for _ in range(_BI_PASSES if resistance_of.nonlinear else 1):
+        p_old = p
+        try:
+            p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
+                                           active, load=load, resistance=resistance_of(p),
+                                           **closure)
+        except np.linalg.LinAlgError:
+            raise SolveError("a singular contact set at this step") from None
+        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(q))):
+            raise SolveError("no finite solution on this contact set")
+        if resistance_of.nonlinear and np.max(np.abs(p - p_old)) <= 1e-12 * np.max(p):
+            break
+    return p, q, gap, D, C
+
+
+def _coupled(ops, g_known, t_known, h, active, load, closure, resistance_of, p_start, tol):
     """The implicit step (eq. R9): contact and heat together on an active set, all
     changes at once, else the worst first.
 
@@ -412,13 +440,15 @@ def _coupled(ops, g_known, t_known, h, active, load, closure, resistance, tol):
     zone's end can be tensile in contact and interpenetrate out of it (the edge lies
     inside it).  Such a cycle, toggling only elements at the zones' ends, settles on
     the state without tension that interpenetrates least, as the steady elements do
-    (section 14b); ``chatter`` counts its toggled elements.
+    (section 14b); ``chatter`` counts its toggled elements.  So does a set that has
+    not settled after ``_COUPLED_ITERATIONS`` solves.
     """
     seen = {}
     one_at_a_time = False
     for it in range(1, _COUPLED_ITERATIONS + 1):
-        p, q, gap, D, C = solve_on_set(ops.Gp, ops.Gq, ops.Tp, ops.Tq, g_known, t_known, h,
-                                       active, load=load, resistance=resistance, **closure)
+        p, q, gap, D, C = _solve_set(ops, g_known, t_known, h, active, load, closure,
+                                     resistance_of, p_start)
+        p_start = p
         tension = active & (p < -tol)
         overlap = ~active & (gap < -tol)
         if not tension.any() and not overlap.any():
@@ -469,7 +499,10 @@ def _contact(flamant, g_known, h, active, load, tol):
         A[k, :k] = h
         A[k, k] = 0.0
         b = np.concatenate([-g_known[idx], [load]])
-        x = np.linalg.solve(A, b)
+        try:
+            x = np.linalg.solve(A, b)
+        except np.linalg.LinAlgError:
+            raise SolveError("a singular contact set at this step") from None
         p = np.zeros(N)
         p[idx] = x[:k]
         gap = g_known + flamant @ p - x[k]
@@ -518,14 +551,18 @@ class _Resistance:
 
     def __init__(self, conductance, N):
         self.conductance = conductance
+        self.nonlinear = conductance is not None and conductance[1] != 0.0
         self.N = N
 
     def __call__(self, p):
         if self.conductance is None:
             return None
         Bi0, m = self.conductance
-        # Where m > 0 makes Bi vanish with the pressure the row says q = 0 (section 15).
-        return np.pi / (2.0 * Bi0 * np.maximum(2.0 * p, 1e-300) ** m)
+        # Where m > 0 makes Bi vanish with the pressure the row says q = 0 (section 15):
+        # a resistance of RESISTANCE_MAX does so to rounding and stays finite.
+        with np.errstate(divide="ignore", over="ignore"):
+            r = np.pi / (2.0 * Bi0 * (2.0 * np.maximum(p, 0.0)) ** m)
+        return np.minimum(r, RESISTANCE_MAX)
 
 
 def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, progress=None,
@@ -662,15 +699,22 @@ def _run(spec, resume, progress, save, save_every):
         except SolveError as exc:
             status = f"stopped at step {n}: {exc}"
             break
-        q, C = _partition(ops, p, t1_known - t2_known, h, active, closure, resistance(p))
+        try:
+            q, C = _partition(ops, p, t1_known - t2_known, h, active, closure, resistance(p))
+        except np.linalg.LinAlgError:
+            status = f"stopped at step {n}: the heat on the contact set is singular"
+            break
         scheme = 1
         try:
             p, q, gap, D, C, more, chatter = _coupled(ops, gap_known, t1_known - t2_known, h,
-                                                      active, load, closure, resistance(p), tol)
+                                                      active, load, closure, resistance, p, tol)
             it += more
             scheme = 0 if chatter == 0 else 2
         except SolveError:
-            gap = gap_known + bulge + ops.flamant @ p - D
+            # The IMEX state's gap with its own heat (R9's left side; it may be negative
+            # where the explicit bulge let the surfaces overlap).
+            gap = (gap_known + ops.gap1 @ (0.5 * (p + q)) + ops.gap2 @ (0.5 * (p - q))
+                   + ops.flamant @ p - D)
             gap[active] = 0.0
         active = p > 0.0
         if active[0] or active[-1]:
