@@ -29,7 +29,7 @@ from ..discretisation.element_operators import steady_element_operators
 from ..io.results import FieldResult
 from ..problem.parameters import Parameters, SolveError
 
-__all__ = ["ElementSolution", "solve_elements", "solve_on_set"]
+__all__ = ["ElementSolution", "contact_runs", "solve_elements", "solve_on_set"]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -71,18 +71,22 @@ class ElementSolution(FieldResult):
     @property
     def zones(self) -> np.ndarray:
         """``(a, b)`` of each run of contact elements (to half an element)."""
-        on = np.concatenate([[False], self.active, [False]]).astype(int)
-        starts = np.flatnonzero(np.diff(on) == 1)
-        ends = np.flatnonzero(np.diff(on) == -1) - 1
+        starts, stops = contact_runs(self.active)
         h = self.h
-        return np.column_stack([self.centres[starts] - 0.5 * h, self.centres[ends] + 0.5 * h])
+        return np.column_stack([self.centres[starts] - 0.5 * h,
+                                self.centres[stops - 1] + 0.5 * h])
 
     @property
     def loads(self) -> np.ndarray:
-        on = np.concatenate([[False], self.active, [False]]).astype(int)
-        starts = np.flatnonzero(np.diff(on) == 1)
-        ends = np.flatnonzero(np.diff(on) == -1)
-        return np.array([self.h * self.pressure[a:b].sum() for a, b in zip(starts, ends)])
+        starts, stops = contact_runs(self.active)
+        return np.array([self.h * self.pressure[a:b].sum() for a, b in zip(starts, stops)])
+
+
+def contact_runs(active):
+    """``(starts, stops)``: the index ranges ``[start, stop)`` of each run of contact
+    elements in ``active`` (one zone each)."""
+    on = np.diff(np.concatenate([[0], np.asarray(active, dtype=np.int8), [0]]))
+    return np.flatnonzero(on == 1), np.flatnonzero(on == -1)
 
 
 def solve_elements(par: Parameters, lam, *, profile=None, domain=(-2.5, 2.5), elements=800,

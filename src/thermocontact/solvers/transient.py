@@ -36,7 +36,7 @@ from ..io.results import Result, dataset_attrs
 from ..numerics.online_convolution import OnlineConvolution
 from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_positive, check_range
-from .elements import solve_elements, solve_on_set
+from .elements import contact_runs, solve_elements, solve_on_set
 
 __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
 
@@ -172,10 +172,8 @@ class TransientSpec:
 
 def zones_of(active, X, h):
     """``(start, end)`` of each run of contact elements (edges to half an element)."""
-    on = np.concatenate([[False], active, [False]]).astype(int)
-    starts = np.flatnonzero(np.diff(on) == 1)
-    ends = np.flatnonzero(np.diff(on) == -1) - 1
-    return X[starts] - 0.5 * h, X[ends] + 0.5 * h
+    starts, stops = contact_runs(active)
+    return X[starts] - 0.5 * h, X[stops - 1] + 0.5 * h
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -241,9 +239,7 @@ class TransientRun(Result):
         fewest = 0
         h = self.h
         for p in self.pressure[1:]:
-            on = np.concatenate([[0], (p > 0.0).astype(np.int8), [0]])
-            d = np.diff(on)
-            for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)):
+            for a, b in zip(*contact_runs(p > 0.0)):
                 if h * p[a:b].sum() >= share and (fewest == 0 or b - a < fewest):
                     fewest = int(b - a)
         return fewest
