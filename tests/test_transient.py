@@ -116,6 +116,8 @@ def test_a_contact_that_leaves_the_window_is_reported():
     (dict(conductance=(0.0, 1.0)), "conductance"),
     (dict(delta1_over_delta2=2000.0), "delta1_over_delta2"),
     (dict(start="steady", conductance=(2.0, 0.0)), "conductance"),
+    (dict(steps=100_000, elements=4000), "steps x elements"),
+    (dict(until=1e9, steps=10), "until/steps"),
 ])
 def test_bad_input_is_refused_naming_the_parameter(kw, name):
     base = dict(CASE, lam=1.0, until=1.0, steps=10)

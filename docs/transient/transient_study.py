@@ -24,6 +24,7 @@ import numpy as np
 
 import thermocontact as tc
 from thermocontact import __version__
+from thermocontact.io.datasets import write_dataset
 from thermocontact.io.files import atomic_write
 
 HERE = pathlib.Path(__file__).parent
@@ -94,7 +95,7 @@ def compute():
                 print(f"{k}: {time.time() - t0:.0f} s, {run}", flush=True)
                 if label == "base":
                     RUNS.mkdir(exist_ok=True)
-                    run.to_dataset().to_netcdf(RUNS / f"{name}{_tag(cond)}.nc")
+                    write_dataset(run.to_dataset(), RUNS / f"{name}{_tag(cond)}.nc")
                 with atomic_write(OUT) as f:
                     json.dump({"version": __version__, "until": UNTIL, "runs": results}, f,
                               indent=1)

@@ -40,6 +40,13 @@ from .elements import contact_runs, solve_elements, solve_on_set
 
 __all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
 
+#: Most steps x elements of a run: its history (the inputs' and outputs' transforms, in
+#: complex spatial modes) and its fields stay within a few hundred MB.
+MAX_STEP_ELEMENTS = 3_000_000
+#: Most half-widths the cylinder's surface may move in one step: beyond, a step resolves
+#: nothing of the convected heat and its tables' panels (a quarter of a pulse's width
+#: each) grow without bound.
+MAX_SHIFT = 100.0
 #: Fewest elements a zone should span for its pressure to be carried (below, a run's
 #: ``resolution`` says so).
 RESOLVED_ELEMENTS = 8
@@ -115,6 +122,16 @@ class TransientSpec:
         if not (isinstance(self.elements, (int, np.integer)) and 8 <= self.elements <= 4000):
             raise InputError(f"elements must be an integer in [8, 4000], got {self.elements!r}",
                              parameters=("elements",))
+        if self.steps * self.elements > MAX_STEP_ELEMENTS:
+            raise InputError(f"steps x elements must be at most {MAX_STEP_ELEMENTS:.0e} (the "
+                             f"history's memory), got {self.steps} x {self.elements}",
+                             parameters=("steps", "elements"))
+        shift = 2.0 * self.pe_hertz * self.until / self.steps
+        if shift > MAX_SHIFT:
+            raise InputError(f"until/steps must be at most {MAX_SHIFT / (2 * self.pe_hertz):.4g} "
+                             f"l^2/kappa2 at this Pe_l: the cylinder's surface would move "
+                             f"{shift:.4g} half-widths in one step (at most {MAX_SHIFT:g}); give "
+                             f"more steps", parameters=("until", "steps"))
         lo, hi = self.window
         check_finite("window", lo)
         check_finite("window", hi)
