@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..io.results import Result
+from ..numerics.batched import stacked
 from ..numerics.moment_engine import GEOMETRY, MIN_BLOCK
 from ..numerics.extrema import interpolated_minima, polish_minimum
 from ..physics.green_functions import cylinder_displacement_drop, moving_slope
@@ -254,24 +255,6 @@ def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
     return g[0], (float(residual[0, 0]), float(residual[0, 1]))
 
 
-def columns(f, *arrays):
-    """``f`` of each row of ``arrays`` (each (m, n)), stacked as columns: (..., m).
-
-    The batched evaluations below apply each solution's row operators one solution at
-    a time, as the single evaluation does, so that a batch gives the same numbers to
-    the last bit (a matrix product over all solutions would round differently);
-    everything else is formed on all solutions at once.
-    """
-    return np.stack([np.asarray(f(*row), dtype=float) for row in zip(*arrays)], axis=-1)
-
-
-def products(M, x):
-    """``M @ x[j]`` for each row ``x[j]`` of ``x`` (m, n), as columns (k, m): a stack of
-    matrix-vector products, each rounded as ``M @ x[j]`` alone is (not one matrix
-    product, whose sums run in another order)."""
-    return np.matmul(M, np.asarray(x, dtype=float)[:, :, None])[:, :, 0].T
-
-
 def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
     """:func:`gap` of ``m`` solutions that differ only in ``fHPe`` and the closure,
     at the same points ``s`` (a grid line: every row operator applied once to all).
@@ -301,7 +284,7 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
                  for i in range(0, s.size, GAP_BLOCK)]
         return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
     F, L = fhpe, load_ratio
-    cauchy_left, cauchy_right = columns(rep.cauchy_edges, phi)
+    cauchy_left, cauchy_right = rep.cauchy_edges_many(phi).T
     eta = par.eta
     # The moving bodies' slope kernels sgn(c) N(c u) H(c u), each with its weight on
     # the heat it receives: the cylinder d (p + q) with c > 0, a moving half-plane
@@ -313,6 +296,10 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         moving.append(("cylinder", par.cylinder_scale, par.delta1_over_delta2, 1.0))
     if c2:
         moving.append(("half-plane", c2, 1.0, -1.0))
+    if not np.any(F):
+        # No heat: every thermal term is multiplied by F = 0, so its kernels (a grid
+        # line's Hertzian point) are not formed.
+        moving = []
 
     def against(key, kernel, points, scale, sign):
         # integral K (p + sign q) dr with q = q' + eta p; the row operators depend
@@ -321,7 +308,7 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         points = np.asarray(points, dtype=float)
         ib, iq = rep.rows((key, scale, points.tobytes()),
                           lambda: rep.integrate(kernel, points, scale=abs(scale)))
-        return (1.0 + sign * eta) * products(ib, phi) + sign * products(iq, psi)
+        return (1.0 + sign * eta) * stacked(ib, phi).T + sign * stacked(iq, psi).T
 
     # Residual slope mismatch at the edges (D14 evaluated at s = -1, +1).  A moving
     # body's kernel vanishes at the edge its material reaches last (c > 0: s = -1).
@@ -345,7 +332,7 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
             continue
         tt = side * s[on] - 1.0
         right = side > 0.0
-        jc = columns(lambda f, tt=tt, right=right: rep.cauchy_outside(f, tt, right=right), phi)
+        jc = rep.cauchy_outside_many(phi, tt, right).T
         col = tt[:, None]
         jt = 0.0 if c2 else side * 0.5 * (1.0 - lam)[None, :] * col
         for name, c, weight, sign in moving:
@@ -477,14 +464,14 @@ def edge_terms_many(par: Parameters, rep, phi, psi, fhpe):
     closure: ``phi``, ``psi`` of shape (m, n), ``fhpe`` of shape (m,); every result
     but ``exponents`` gains a first axis of length m."""
     b = par.free_term
-    psi_edges = columns(rep.psi_edges, psi).T
+    psi_edges = rep.psi_edges_many(psi)
     k_log = (np.sqrt(2.0) * np.asarray(fhpe, dtype=float)[:, None]
              * (1.0 - par.delta1_over_delta2) * psi_edges / np.pi)
     t = float(np.arctan(b) / b) if b else 1.0
     exponents = np.array([1.0 - rep.alpha, rep.alpha])
     e = _EDGE_DEPTH
     near = np.array([-1.0 + e, 1.0 - e])
-    p_near = products(rep.pressure_matrix(near), phi).T
+    p_near = stacked(rep.pressure_matrix(near), phi)
     count = p_near.shape[0]
     margins, log_widths = np.zeros((count, 2)), np.full((count, 2), -np.inf)
     layer = np.zeros((count, 2), dtype=bool)

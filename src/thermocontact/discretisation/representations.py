@@ -40,6 +40,7 @@ from functools import cached_property
 import numpy as np
 
 from ..numerics import moment_engine as graded
+from ..numerics.batched import stacked
 from ..numerics.cache import BoundedCache, small_cache
 from ..numerics.moments import sgn_moments
 from ..numerics.quadrature import (bounded_rule, singular_rule, t_coefficient_matrix,
@@ -188,6 +189,12 @@ class Representation:
         extra = "" if self.alpha == 0.5 else f", alpha={self.alpha!r}"
         return f"{type(self).__name__}(n={self.n}{extra})"
 
+    def prolongation(self, finer):
+        """The matrix taking this representation's nodal values of ``phi`` (and of
+        ``psi``) to ``finer``'s nodal values of the same functions, or None where the
+        finer representation does not hold them exactly (derivation section 12)."""
+        return None
+
     def rows(self, key, build):
         """A row operator of this representation, cached under ``key``."""
         return ROWS.get((type(self).__name__,) + self._identity() + tuple(key), build)
@@ -221,6 +228,21 @@ class Representation:
         (m, count)."""
         rows = [self.phi_samples(f, count) for f in phi]
         return rows[0][0], np.stack([f for _, f in rows])
+
+    # The checks of a grid line evaluate many solutions at once: each row of ``phi``
+    # (m, n) as the single evaluation gives it.
+    def psi_edges_many(self, psi):
+        """:meth:`psi_edges` of each row of ``psi`` (m, n): shape (m, 2)."""
+        return np.array([self.psi_edges(f) for f in psi]).reshape(-1, 2)
+
+    def cauchy_edges_many(self, phi):
+        """:meth:`cauchy_edges` of each row of ``phi`` (m, n): shape (m, 2)."""
+        return np.array([self.cauchy_edges(f) for f in phi]).reshape(-1, 2)
+
+    def cauchy_outside_many(self, phi, tt, right: bool):
+        """:meth:`cauchy_outside` of each row of ``phi`` (m, n): shape (m, tt.size)."""
+        return np.array([self.cauchy_outside(f, tt, right) for f in phi]).reshape(
+            len(phi), np.size(tt))
 
 
 class _ChebyshevSeries(Representation):
@@ -426,6 +448,15 @@ class EdgeGraded(Representation):
         to_cos = self.to_cos
         return b @ to_cos, q @ to_cos
 
+    def prolongation(self, finer):
+        """A cosine series of ``n`` terms in ``tau`` is one of any ``m >= n`` terms: its
+        values at ``finer``'s nodes are the series summed there, exact but for rounding
+        (an edge-graded ``finer`` of the same exponent and ``m >= n``; else None)."""
+        if type(finer) is not type(self) or finer.alpha != self.alpha or finer.n < self.n:
+            return None
+        return finer.rows(("prolongation", self.n), lambda: np.cos(
+            np.multiply.outer(graded.nodes(finer.n), np.arange(self.n))) @ self.to_cos)
+
     def cauchy(self, s, aux=None):
         b, q = graded.moments(lambda u: 1.0 / u, np.asarray(s, dtype=float), self.n,
                               scale=1.0, cauchy=True, tau=aux, cmap=self._cmap)
@@ -448,9 +479,11 @@ class EdgeGraded(Representation):
 
     def phi_samples_many(self, phi, count):
         """:meth:`phi_samples` of each row of ``phi`` (m, n): the points and an array
-        (m, count), each row as :meth:`phi_samples` gives it, from one table."""
+        (m, count), from one table; the rows as stacked products
+        (:func:`~thermocontact.numerics.batched.stacked`), the
+        same whatever their number."""
         s, cosines = self._sample_table(count)
-        return s, np.stack([cosines @ (self.to_cos @ f) for f in phi])
+        return s, stacked(cosines, stacked(self.to_cos, phi))
 
     def _sample_table(self, count):
         """The samples' points and ``cos(j tau_k)``: the cosine series at the samples is
@@ -488,8 +521,13 @@ class EdgeGraded(Representation):
         return (basis @ self.to_cos) / np.sin(graded.stretch(aux))[:, None]
 
     def psi_edges(self, psi):
-        b = self.to_cos @ psi
-        return np.array([np.sum(b * (-1.0) ** np.arange(b.size)), np.sum(b)])
+        return self.psi_edges_many(np.asarray(psi, dtype=float)[None, :])[0]
+
+    def psi_edges_many(self, psi):
+        # psi(tau = pi) and psi(0): the cosine series' alternating and plain sums.
+        edges = self.rows(("psi edges",), lambda: np.vstack(
+            [(-1.0) ** np.arange(self.n), np.ones(self.n)]) @ self.to_cos)
+        return stacked(edges, psi)
 
     def _pressure_row(self, key, kernel, points, from_edge=False):
         points = np.asarray(points, dtype=float)
@@ -500,11 +538,17 @@ class EdgeGraded(Representation):
         return self.rows((key, _key(points)), build)
 
     def cauchy_edges(self, phi):
-        # p ~ sqrt(1 -+ r) at the edge, so p/(s - r) is integrable there.
-        v = self._pressure_row("edges", lambda u: 1.0 / u, [-1.0, 1.0]) @ phi
+        v = self.cauchy_edges_many(np.asarray(phi, dtype=float)[None, :])[0]
         return float(v[0]), float(v[1])
 
+    def cauchy_edges_many(self, phi):
+        # p ~ sqrt(1 -+ r) at the edge, so p/(s - r) is integrable there.
+        return stacked(self._pressure_row("edges", lambda u: 1.0 / u, [-1.0, 1.0]), phi)
+
     def cauchy_outside(self, phi, tt, right: bool):
+        return self.cauchy_outside_many(np.asarray(phi, dtype=float)[None, :], tt, right)[0]
+
+    def cauchy_outside_many(self, phi, tt, right: bool):
         # integral of (1/pi) p(r)/(y - r) over y: (1/pi) integral p(r) ln(...) dr,
         # with the kernel of e = 1 - r (right) or -(1 + r) (left), never of u - tt.
         # In tau the kernels are smooth but at the edge itself, where the weight
@@ -514,8 +558,8 @@ class EdgeGraded(Representation):
         if right:  # ln((1 - r + tt)/(1 - r))
             row = self._pressure_row("right", lambda e: np.log1p(col / e), 1.0 + tt,
                                      from_edge=True)
-            return row @ phi
+            return stacked(row, phi)
         # -ln((1 + r + tt)/(1 + r))
         row = self._pressure_row("left", lambda e: np.log1p(col / -e), -1.0 - tt,
                                  from_edge=True)
-        return -(row @ phi)
+        return -stacked(row, phi)

@@ -17,7 +17,7 @@ import numpy as np
 from ..io.results import Result
 
 __all__ = ["N_RANGE", "P_MAX", "QUANTITIES", "QUANTITIES_WITH_LAM", "Refinement", "error_estimate",
-           "refine"]
+           "refine", "refine_each"]
 
 log = logging.getLogger("thermocontact")
 
@@ -146,6 +146,13 @@ def _measure(levels, p_max, quantities=QUANTITIES):
     return est
 
 
+def _done(est, unsolved, n, tol, n_max) -> bool:
+    """Whether a refinement stops at ``n``: no target, the target met, ``2n`` beyond
+    ``n_max``, or nothing to estimate because nothing solved at ``n``."""
+    return (tol is None or (est is not None and est <= tol) or 2 * n > n_max
+            or (est is None and unsolved))
+
+
 def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None,
            quantities=QUANTITIES) -> Refinement:
     """Solve at ``sizes``, then at doubled ``n`` until the estimate meets ``tol``.
@@ -194,8 +201,7 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None,
         est = _measure(levels, p_max, quantities) if len(levels) > 1 else None
         log.debug("refinement: n = %d, error estimate %s", n, est)
         unsolved = all(s is None for s in levels[-1])
-        if (tol is None or (est is not None and est <= tol) or 2 * n > n_max
-                or (est is None and unsolved)):
+        if _done(est, unsolved, n, tol, n_max):
             break
         n *= 2
         sizes.append(n)
@@ -219,3 +225,66 @@ def refine(at, sizes, *, tol=None, n_max=None, p_max=P_MAX, progress=None,
         status = "not converged"
         reason = f"error estimate {est:.1e} > target {tol:.0e} at the largest n = {n}"
     return Refinement(tuple(levels), tuple(sizes), est, status, reason, tol)
+
+
+def refine_each(solve, sizes, count, *, tol=None, n_max=None, p_max=P_MAX, progress=None,
+                quantities=QUANTITIES) -> list:
+    """:func:`refine` of ``count`` cases each refined on its own (each stops at its
+    own ``n``), the cases that need a level solved together: a grid line's points
+    share their systems' assembly and are solved as one stack.
+
+    Each case's levels, estimate and stopping are those :func:`refine` gives it
+    alone (same rule, :func:`_done`).
+
+    Parameters
+    ----------
+    solve : callable
+        ``solve(m, cases)`` returns, per case of the list ``cases``, its result at
+        ``n = m`` or the exception that ends that case.
+    sizes : sequence of int
+        The first levels, increasing by factors of 2.
+    count : int
+        Number of cases.
+    tol, n_max, p_max, progress, quantities
+        As :func:`refine`; ``progress`` is called for each case.
+
+    Returns
+    -------
+    list
+        Per case, ``(levels, estimate)`` (the results coarsest first, and the estimate
+        or None with one level), or the exception that ended it.
+    """
+    sizes = [int(m) for m in sizes]
+    n_max = sizes[-1] if n_max is None else int(n_max)
+    levels = {i: [] for i in range(count)}
+    out = [None] * count
+    active, n, est = list(range(count)), None, {}
+
+    def advance(m, cases):
+        if progress is not None:
+            for i in cases:
+                progress(m, est.get(i))
+        for i, res in zip(cases, solve(m, cases)):
+            if isinstance(res, Exception):
+                out[i] = res
+            else:
+                levels[i].append(res)
+        return [i for i in cases if out[i] is None]
+
+    for m in sizes:
+        active = advance(m, active)
+    n = sizes[-1]
+    while active:
+        going = []
+        for i in active:
+            lv = levels[i]
+            est[i] = error_estimate(lv[-3:], quantities, p_max=p_max) if len(lv) > 1 else None
+            if _done(est[i], False, n, tol, n_max):
+                out[i] = (lv, est[i])
+            else:
+                going.append(i)
+        if not going:
+            break
+        n *= 2
+        active = advance(n, going)
+    return out

@@ -37,7 +37,7 @@ from ..problem.closure import Temperatures, check_sink_distance
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
                                   check_positive, check_range)
-from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine
+from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
 
 __all__ = [
@@ -123,6 +123,53 @@ def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=N
     if not np.all(np.isfinite(x)):
         raise SolveError(f"{what}: the linear solve produced non-finite values")
     return x, float(rcond)
+
+
+def solve_stack(system: ContactSetSystem, F, what="the contact set's linear system") -> list:
+    """:func:`solve_contact_system` of a system without conductance or shared blocks at
+    each of several ``F``: per ``F``, ``(x, rcond)`` or the :class:`SolveError`.
+
+    The matrices ``A0 + F A1`` are formed and their rows equilibrated as one stack,
+    each entry by the same operations as :meth:`ContactSetSystem.matrix` and
+    :func:`solve_equilibrated` apply to it alone; each is then factorised, its
+    condition estimated and solved by LAPACK (``getrf``, ``gecon``, ``getrs``), as
+    alone.  What is saved is the per-solve work around the linear algebra.
+    """
+    F = np.asarray(F, dtype=float)
+    # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
+    A0t = system.A0.T
+    if system.A1 is None:
+        S = np.repeat(A0t[None], F.size, axis=0)
+    else:
+        S = np.multiply(system.A1.T[None], F[:, None, None])
+        S += A0t[None]
+    # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
+    scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
+                             np.finfo(float).tiny)
+    S *= scale[:, None, :]
+    B = system.b[None, :] * scale
+    finite = np.isfinite(S).all(axis=(1, 2))
+    norms = np.abs(S).sum(axis=2).max(axis=1)
+    out = []
+    for i in range(F.size):
+        if not finite[i]:
+            out.append(SolveError(f"{what} could not be factorised (array must not contain "
+                                  f"infs or NaNs)"))
+            continue
+        lu, piv, info = dgetrf(S[i].T, overwrite_a=True)
+        rcond, info = dgecon(lu, norms[i], norm="1")
+        if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
+            out.append(SolveError(
+                f"{what} is singular or ill-conditioned (reciprocal condition "
+                f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
+                f"well-determined solution"))
+            continue
+        x, _ = dgetrs(lu, piv, B[i])
+        if not np.all(np.isfinite(x)):
+            out.append(SolveError(f"{what}: the linear solve produced non-finite values"))
+            continue
+        out.append((x, float(rcond)))
+    return out
 
 
 def solve_contact_system(system: ContactSetSystem, F: float, rep, half, conductance=None,
@@ -256,20 +303,26 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
     """:func:`solve_system` without validity; ``systems`` keeps the assembled systems
     by closure for the next solve with the same blocks (they do not depend on
     ``fhpe``: a grid line assembles its system once per ``n``)."""
-    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
-    n = blocks.n
-    F = par.fhpe
-    rep = blocks.representation
-    pr, fr = rep.pressure_rule, rep.flux_rule
-    eta = par.eta
+    out = _solve_patches([par], blocks, method, [(lam, sigma_over_delta, temperatures)],
+                         conductance, systems)[0]
+    if isinstance(out, Exception):
+        raise out
+    return out
 
+
+def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conductance,
+                  systems: dict):
+    """The checked closure ``(lam, sigma, temperatures)`` and its assembled system
+    (kept in ``systems`` by closure)."""
+    lam, sigma_over_delta, temperatures = closure
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     if lam is not None:
         lam = check_range("lam", lam, -LIMIT, LIMIT)
     elif temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
     else:
-        sigma = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
-        if F == 0.0:
+        sigma_over_delta = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
+        if par.fhpe == 0.0:
             raise InputError(
                 "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
                 "coupling the contact is Hertzian, a bounded solution needs "
@@ -278,17 +331,64 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
     # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
     key = (lam, sigma_over_delta, temperatures)
     if key not in systems:
-        systems[key] = contact_set_system(par, _PATCH, rep, METHODS[method].scheme, lam=lam,
+        systems[key] = contact_set_system(par, _PATCH, blocks.representation,
+                                          METHODS[method].scheme, lam=lam,
                                           sigma_over_delta=sigma_over_delta,
                                           temperatures=temperatures, blocks=blocks,
                                           conductance=conductance is not None)
-    x, rcond = solve_contact_system(systems[key], F, rep, [1.0], conductance,
-                                    "the linear system")
+    return key, systems[key]
+
+
+def _solve_patches(pars, blocks: Blocks, method: str, closures, conductance,
+                   systems: dict) -> list:
+    """:func:`_solve_patch` of several points of one model (``pars`` equal but for
+    ``fhpe``; ``closures`` their ``(lam, sigma, temperatures)``): per point its
+    solution or the :class:`InputError` or :class:`SolveError` it raises.  The points
+    that share a system are solved as one stack (:func:`solve_stack`), each as
+    :func:`solve_contact_system` solves it alone."""
+    out = [None] * len(pars)
+    groups = {}
+    for i, (par, closure) in enumerate(zip(pars, closures)):
+        try:
+            key, system = _patch_system(par, blocks, method, closure, conductance, systems)
+        except (InputError, SolveError) as exc:
+            out[i] = exc
+            continue
+        groups.setdefault(key, (system, []))[1].append(i)
+    for key, (system, rows) in groups.items():
+        F = np.array([pars[i].fhpe for i in rows])
+        if system.local or system.shared:
+            found = []
+            for f in F:
+                try:
+                    found.append(solve_contact_system(system, float(f), blocks.representation,
+                                                      [1.0], conductance, "the linear system"))
+                except SolveError as exc:
+                    found.append(exc)
+        else:
+            found = solve_stack(system, F, "the linear system")
+        for i, res in zip(rows, found):
+            if isinstance(res, Exception):
+                out[i] = res
+                continue
+            try:
+                out[i] = _patch_solution(pars[i], blocks, method, key, *res, conductance)
+            except SolveError as exc:
+                out[i] = exc
+    return out
+
+
+def _patch_solution(par, blocks, method, closure, x, rcond, conductance) -> ContactSolution:
+    """The single patch's solution from the unknowns ``x`` of its system."""
+    lam, sigma_over_delta, temperatures = closure
+    n = blocks.n
+    rep = blocks.representation
+    pr, fr = rep.pressure_rule, rep.flux_rule
     phi, psi = x[:n], x[n:2 * n]
     if sigma_over_delta is None:
         L_sigma, L = x[2 * n], x[2 * n + 1]
         if lam is None:
-            lam = float(fr.weights @ psi + eta * (pr.weights @ phi))
+            lam = float(fr.weights @ psi + par.eta * (pr.weights @ phi))
         if abs(L) <= 1e-12 * max(1.0, abs(L_sigma)):
             raise SolveError(
                 f"lam = {lam:g} is reached by no finite sigma_over_delta (it is the "
@@ -296,8 +396,9 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
                 + ("" if temperatures is None else " or other temperatures"))
         sigma = L_sigma / L
     else:
+        sigma = sigma_over_delta
         L = x[2 * n]
-        lam = float(fr.weights @ psi + eta * (pr.weights @ phi))
+        lam = float(fr.weights @ psi + par.eta * (pr.weights @ phi))
     if not np.all(np.isfinite(x)):
         raise SolveError("the linear solve produced non-finite values")
     return ContactSolution(
@@ -305,6 +406,25 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
         validity=None, rcond=rcond, conductance=conductance,
         temperatures=temperatures)
+
+
+def _as_in(sol: ContactSolution, fine: ContactSolution) -> ContactSolution:
+    """``sol`` in ``fine``'s representation where that holds it exactly
+    (:meth:`~thermocontact.discretisation.representations.Representation.prolongation`):
+    a coarser level's margins are then evaluated by the finer level's operators, formed
+    once for both (its margins the same but for rounding)."""
+    P = sol.representation.prolongation(fine.representation)
+    if P is None or fine.n == sol.n:
+        return sol
+    return sol.replace(n=fine.n, representation=fine.representation, phi=P @ sol.phi,
+                       psi=P @ sol.psi)
+
+
+def _raising(result):
+    """``result``, or raised where it is an exception."""
+    if isinstance(result, Exception):
+        raise result
+    return result
 
 
 def check_n(n) -> int:
@@ -532,30 +652,43 @@ class Model:
         method = METHODS[self.method]
         systems = {}  # by n, the systems by closure
         out = [None] * count
-        refined = {}
-        for i in range(count):
-            kw = {closure: given[closure][i]}
+        pars = {}
+        for i, f in enumerate(given["fhpe"]):
             try:
-                par = self.parameters_at(given["fhpe"][i])
-
-                def at(m, par=par, kw=kw):
-                    # Validity only for the solution returned: the coarser levels feed
-                    # the error estimate alone.
-                    return (_solve_patch(par, self.blocks(m), self.method,
-                                         kw.get("lam"), kw.get("sigma_over_delta"),
-                                         self.conductance, systems.setdefault(m, {}),
-                                         kw.get("temperatures")),)
-                refined[i] = (at, *refine(at, sizes, tol=self.tol if self.n is None else None,
-                                          n_max=n_max, p_max=method.order_cap,
-                                          progress=progress, quantities=quantities))
-            except (InputError, SolveError) as exc:
+                pars[i] = self.parameters_at(f)
+            except InputError as exc:
                 out[i] = exc
+        cases = sorted(pars)
+        keys = [(given["lam"][i] if closure == "lam" else None,
+                 given["sigma_over_delta"][i] if closure == "sigma_over_delta" else None,
+                 given["temperatures"][i] if closure == "temperatures" else None)
+                for i in range(count)]
+
+        def solve_level(m, which):
+            # Validity only for the solutions returned: the coarser levels feed the
+            # error estimate alone.
+            points = [cases[j] for j in which]
+            return _solve_patches([pars[i] for i in points], self.blocks(m), self.method,
+                                  [keys[i] for i in points], self.conductance,
+                                  systems.setdefault(m, {}))
+
+        refined = {}
+        for j, res in enumerate(refine_each(solve_level, sizes, len(cases),
+                                            tol=self.tol if self.n is None else None,
+                                            n_max=n_max, p_max=method.order_cap,
+                                            progress=progress, quantities=quantities)):
+            if isinstance(res, Exception):
+                out[cases[j]] = res
+            else:
+                refined[cases[j]] = (lambda m, j=j: _raising(solve_level(m, [j])[0]), *res)
         # The validity of every point's finest level and of the one before (whose
         # margins' change is their error), all points at one n together.
         wanted = {}
         for i, (_, levels, _) in refined.items():
-            for sol in [lv[0] for lv in levels[-2:]]:
-                wanted.setdefault(sol.n, []).append((i, sol))
+            fine = levels[-1]
+            for sol in levels[-2:]:
+                checked = _as_in(sol, fine)
+                wanted.setdefault(checked.n, []).append(((i, sol.n), checked))
         # The systems (34 MB at n = 1024, partly resident) are formed again for any
         # further level.
         systems.clear()
@@ -568,23 +701,24 @@ class Model:
                                 [sol.load_ratio for _, sol in group],
                                 [sol.sigma_over_delta for _, sol in group],
                                 [sol.lam for _, sol in group], polish=polish)
-            validities.update({(i, sol.n): v for (i, sol), v in zip(group, found)})
+            validities.update({key: v for (key, _), v in zip(group, found)})
 
         for i, (at, levels, est) in refined.items():
-            def validity_of(sol, i=i):
+            def validity_of(sol, fine, i=i):
                 known = validities.get((i, sol.n))
                 if known is not None:
                     return known
+                sol = _as_in(sol, fine)
                 return assess(sol.parameters, sol.representation, sol.phi, sol.psi,
                               sol.load_ratio, sol.sigma_over_delta, sol.lam, polish=polish)
             try:
-                fin = levels[-1][0]
-                validity = validity_of(fin)
+                fin = levels[-1]
+                validity = validity_of(fin, fin)
                 if len(levels) > 1:
                     # The margins' error: their change since n/2.  With n chosen, refine
                     # on until every margin's sign is beyond it (or n reaches its largest).
                     while True:
-                        coarse = validity_of(levels[-2][0]).margins()
+                        coarse = validity_of(levels[-2], fin).margins()
                         change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
                         validity = replace(validity, margin_change=float(change))
                         if self.n is not None or validity.certain() or 2 * fin.n > n_max:
@@ -592,14 +726,14 @@ class Model:
                         if progress is not None:
                             progress(2 * fin.n, est)
                         levels.append(at(2 * fin.n))
-                        fin = levels[-1][0]
-                        est = error_estimate([lv[0] for lv in levels], quantities,
+                        fin = levels[-1]
+                        est = error_estimate(levels, quantities,
                                              p_max=method.order_cap)
-                        validity = validity_of(fin)
+                        validity = validity_of(fin, fin)
                 lam_error = None
                 if closures is not None and len(levels) > 1:
                     # Absolute: error_estimate is relative to max(|lam|, 0.01).
-                    lam_error = float(error_estimate([lv[0] for lv in levels], ("lam",),
+                    lam_error = float(error_estimate(levels, ("lam",),
                                                      p_max=method.order_cap)
                                       * max(abs(fin.lam), 0.01))
             except (InputError, SolveError) as exc:
