@@ -216,3 +216,62 @@ def test_one_matrix_at_F_and_its_factors_in_place():
 
     r2, _ = dgecon(lu_factor(M)[0], np.linalg.norm(M, 1), norm="1")
     assert r1 == pytest.approx(r2, rel=1e-12)
+
+
+@pytest.mark.parametrize("closure", [{"lam": -1.0}, {"sigma_over_delta": 0.1}])
+def test_a_stack_of_systems_is_each_system_solved_alone(closure):
+    """solve_stack (a grid line's systems at many F, formed, equilibrated and solved as
+    one stack) gives each F the solution of the plain path (the matrix at F, rows
+    equilibrated, LU) to the last bit, and its condition number; an F that makes the
+    matrix non-finite is refused at that F only."""
+    from thermocontact.discretisation.system import contact_set_system
+    from thermocontact.problem.parameters import SolveError
+    from thermocontact.solvers.single_patch import solve_equilibrated, solve_stack
+
+    rep = EdgeGraded(16)
+    par = Parameters(5.0, 0.2, 10.0)
+    system = contact_set_system(par, np.array([[-1.0, 1.0]]), rep, "projection", **closure)
+    F = np.array([0.0, 0.2, 0.55, 3.7, np.inf])
+    found = solve_stack(system, F, "the linear system")
+    for f, res in zip(F[:-1], found):
+        try:
+            x, rcond = solve_equilibrated(system.matrix(f), system.b.copy())
+        except SolveError as exc:
+            # The offset imposed without heat (F = 0): singular either way.
+            assert "sigma_over_delta" in closure and f == 0.0
+            assert isinstance(res, SolveError) and str(res) == str(exc)
+            continue
+        assert np.array_equal(res[0], x)
+        assert res[1] == pytest.approx(rcond, rel=1e-12)
+    assert isinstance(found[-1], SolveError) and "infs or NaNs" in str(found[-1])
+
+
+def test_refining_cases_each_on_its_own_is_refining_each_alone():
+    """refine_each (cases at one n solved together, each stopping at its own n) gives
+    every case the levels and estimate that refine gives it alone; a case that fails at
+    a level is that case's exception."""
+    from types import SimpleNamespace
+
+    from thermocontact.solvers.refinement import refine, refine_each
+
+    # Case k converges like 2^-p_k n^-p_k toward 1 + k; case 3 fails at n = 16.
+    orders = [1.0, 2.0, 4.0, 3.0]
+
+    def value(k, n):
+        return SimpleNamespace(load_ratio=1.0 + k + (2.0 / n) ** orders[k],
+                               sigma_over_delta=0.1 * k, n=n)
+    calls = []
+
+    def solve(m, cases):
+        calls.append((m, list(cases)))
+        return [ValueError("no solution") if (k == 3 and m == 16) else value(k, m)
+                for k in cases]
+    got = refine_each(solve, [4, 8], 4, tol=1e-4, n_max=1024)
+    for k in range(3):
+        levels, est = refine(lambda m, k=k: (value(k, m),), [4, 8], tol=1e-4, n_max=1024)
+        assert [lv.n for lv in got[k][0]] == [lv[0].n for lv in levels]
+        assert got[k][1] == est
+    assert isinstance(got[3], ValueError)
+    # Each level solved once, for the cases still going.
+    assert [m for m, _ in calls] == sorted({m for m, _ in calls})
+    assert calls[0] == (4, [0, 1, 2, 3])

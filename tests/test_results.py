@@ -289,3 +289,17 @@ def test_transient_entries_are_dropped_and_the_others_kept():
         assert cache.get("kept", lambda: None) is not None
     assert "inside" not in cache._data and "kept" in cache._data
     assert len(cache) == 1 and cache.bytes == 800
+
+
+def test_replace_is_the_dataclass_replace(sol):
+    """Result.replace (the fields copied directly where no __post_init__ checks them)
+    gives what dataclasses.replace gives, leaves the original alone and refuses an
+    unknown field."""
+    import dataclasses
+
+    changed = sol.replace(load_ratio=0.5, error_estimate=1e-3)
+    assert changed == dataclasses.replace(sol, load_ratio=0.5, error_estimate=1e-3)
+    assert changed.load_ratio == 0.5 and sol.load_ratio != 0.5
+    assert type(changed) is type(sol) and changed.validity is sol.validity
+    with pytest.raises(TypeError, match="no field 'loads'"):
+        sol.replace(loads=1.0)

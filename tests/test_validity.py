@@ -377,3 +377,26 @@ def test_overlap_layer_outside_an_edge_is_judged_beyond_the_tolerated_width():
                   delta1_over_delta2=kw["delta1_over_delta2"])
     sampled = model.solve_at(128, kw["fhpe"], lam=1.0, polish=False).validity
     assert abs(sampled.gap_margin - margins[1]) < 1e-7
+
+
+def test_a_line_without_heat_forms_no_thermal_kernels():
+    """The gaps of solutions all at fHPe = 0 skip the moving bodies' kernels (every
+    thermal term is F times them): the same numbers, to the last bit, as the same
+    solutions evaluated beside a heated one, whose kernels are then formed."""
+    from thermocontact import Model
+    from thermocontact.analysis.validity import gaps
+
+    m = Model(5.0, 10.0, n=16)
+    cold, hot = (m.solve_at(16, f, lam=0.5, check_validity=False) for f in (0.0, 0.3))
+    s = np.concatenate([-1.0 - np.geomspace(1e-6, 10, 7), 1.0 + np.geomspace(1e-6, 10, 7)])
+
+    def of(sols):
+        def column(get):
+            return np.array([get(x) for x in sols])
+        return gaps(sols[0].parameters, sols[0].representation, column(lambda x: x.phi),
+                    column(lambda x: x.psi), column(lambda x: x.parameters.fhpe),
+                    column(lambda x: x.load_ratio), column(lambda x: x.sigma_over_delta),
+                    column(lambda x: x.lam), s)
+    alone, beside = of([cold]), of([cold, hot])
+    assert np.array_equal(alone[0][0], beside[0][0])
+    assert np.array_equal(alone[1][0], beside[1][0])

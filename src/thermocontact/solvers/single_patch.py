@@ -91,8 +91,7 @@ def factorise(A, what="the linear system", overwrite=False):
     """
     A = np.asarray(A, dtype=float)
     if not np.all(np.isfinite(A)):
-        raise SolveError(f"{what} could not be factorised (array must not contain infs "
-                         f"or NaNs)")
+        raise _not_finite(what)
     # The 1-norm a block of columns at a time: no copy of A (34 MB at n = 1024).
     step = max(1, 2**18 // max(1, A.shape[0]))
     norm = max((np.abs(A[:, i:i + step]).sum(axis=0).max()
@@ -103,12 +102,18 @@ def factorise(A, what="the linear system", overwrite=False):
                          f"{-info} of the LU factorisation)")
     rcond, info = dgecon(lu, norm, norm="1")
     if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
-        raise SolveError(
-            f"{what} is singular or ill-conditioned (reciprocal condition "
-            f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
-            f"well-determined solution"
-        )
+        raise _ill_conditioned(what, rcond)
     return (lu, piv), float(rcond)
+
+
+def _not_finite(what):
+    return SolveError(f"{what} could not be factorised (array must not contain infs or NaNs)")
+
+
+def _ill_conditioned(what, rcond):
+    return SolveError(f"{what} is singular or ill-conditioned (reciprocal condition "
+                      f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
+                      f"well-determined solution")
 
 
 #: Newton steps of the interface conductance's dependence on the pressure.
@@ -153,16 +158,12 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     out = []
     for i in range(F.size):
         if not finite[i]:
-            out.append(SolveError(f"{what} could not be factorised (array must not contain "
-                                  f"infs or NaNs)"))
+            out.append(_not_finite(what))
             continue
         lu, piv, info = dgetrf(S[i].T, overwrite_a=True)
         rcond, info = dgecon(lu, norms[i], norm="1")
         if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
-            out.append(SolveError(
-                f"{what} is singular or ill-conditioned (reciprocal condition "
-                f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
-                f"well-determined solution"))
+            out.append(_ill_conditioned(what, rcond))
             continue
         x, _ = dgetrs(lu, piv, B[i])
         if not np.all(np.isfinite(x)):
@@ -720,7 +721,7 @@ class Model:
                     while True:
                         coarse = validity_of(levels[-2], fin).margins()
                         change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
-                        validity = replace(validity, margin_change=float(change))
+                        validity = validity.replace(margin_change=float(change))
                         if self.n is not None or validity.certain() or 2 * fin.n > n_max:
                             break
                         if progress is not None:

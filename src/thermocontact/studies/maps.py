@@ -267,7 +267,9 @@ def _events(fixed, name, values, sols, method, tol):
                                                         **closure(kw))
             except InputError:
                 return None
-        ends = [at(a), at(b)]
+        # A point solved at the event's n is its end as solve_at gives it (the margins
+        # are the same numbers: the map's points are solved without polish).
+        ends = [s if s.n == n else at(x) for s, x in ((sa, a), (sb, b))]
         if ends[0] is None or ends[1] is None:
             continue
         found = locate_events(at, [a, b], ends, only_validity_changes=True,
