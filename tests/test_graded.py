@@ -203,23 +203,24 @@ def test_a_coarse_series_is_held_by_a_finer_one_and_checked_there():
     values = rng.standard_normal(12)
     tau = rng.uniform(0.0, np.pi, 50)
     for fine in (EdgeGraded(24), EdgeGraded(48), EdgeGraded(13)):
-        P = coarse.prolongation(fine)
+        held = coarse.prolong(np.array([values, 2 * values]), fine)
         here = graded.cosine_value(coarse.to_cos @ values, tau)
-        there = graded.cosine_value(fine.to_cos @ (P @ values), tau)
+        there = graded.cosine_value(fine.to_cos @ held[0], tau)
         assert np.max(np.abs(there - here)) < 1e-14 * np.max(np.abs(values)) * 10
-    assert coarse.prolongation(EdgeGraded(8)) is None
-    assert coarse.prolongation(EdgeGraded(24, alpha=0.4)) is None
-    assert coarse.prolongation(Chebyshev(24)) is None
-    assert Chebyshev(12).prolongation(Chebyshev(24)) is None
+        assert np.array_equal(held[1], coarse.prolong(2 * values[None, :], fine)[0])
+    assert coarse.prolong(values[None, :], EdgeGraded(8)) is None
+    assert coarse.prolong(values[None, :], EdgeGraded(24, alpha=0.4)) is None
+    assert coarse.prolong(values[None, :], Chebyshev(24)) is None
+    assert Chebyshev(12).prolong(values[None, :], Chebyshev(24)) is None
     for pe, fhpe, d in ((7.0, 0.3, 1.0), (0.7, 0.9, 0.3), (50.0, 0.5, 1.0)):
         m = Model(pe, 10.0, delta1_over_delta2=d)
         for n, tol in ((8, 1e-10), (16, 1e-12), (32, 1e-12)):
             sol = m.solve_at(n, fhpe, lam=1.0, check_validity=False)
             fine = m.blocks(2 * n).representation
-            P = sol.representation.prolongation(fine)
+            phi, psi = sol.representation.prolong(np.array([sol.phi, sol.psi]), fine)
             own = assess(sol.parameters, sol.representation, sol.phi, sol.psi,
                          sol.load_ratio, sol.sigma_over_delta, sol.lam, polish=False)
-            held = assess(sol.parameters, fine, P @ sol.phi, P @ sol.psi, sol.load_ratio,
+            held = assess(sol.parameters, fine, phi, psi, sol.load_ratio,
                           sol.sigma_over_delta, sol.lam, polish=False)
             for k, v in own.margins().items():
                 assert held.margins()[k] == pytest.approx(v, abs=tol * max(1.0, abs(v))), \

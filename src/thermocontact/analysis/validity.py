@@ -214,8 +214,12 @@ def _edge_name(s: float) -> str:
     return "leading edge" if s > 0.0 else "trailing edge"
 
 
-#: Points per block of :func:`gap`: no more than the moments take in one block.
+#: Points per block of :func:`gap`: no more than the moments take in one block, and
+#: from n = 512 fewer, so that a block's point geometry (points times the common rule's
+#: nodes, about 4 n) stays near 4 MB.
 GAP_BLOCK = MIN_BLOCK
+GAP_ENTRIES = 2**16
+GAP_BLOCK_MIN = 32
 
 
 def gap(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, s):
@@ -277,11 +281,17 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         ``(G(-1), G(1))`` of each solution.
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
-    if s.size > GAP_BLOCK:
+    block = max(GAP_BLOCK_MIN, min(GAP_BLOCK, GAP_ENTRIES // rep.n))
+    if s.size > block:
         # The kernels below carry each point's own distance past the edge: blocks of
-        # points small enough for the moments to take whole.
-        parts = [gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam, s[i:i + GAP_BLOCK])
-                 for i in range(0, s.size, GAP_BLOCK)]
+        # points small enough for the moments to take whole, each block's point
+        # geometry dropped once its row operators are formed (17 MB for 256 points at
+        # n = 1024).
+        parts = []
+        for i in range(0, s.size, block):
+            with GEOMETRY.transient():
+                parts.append(gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam,
+                                  s[i:i + block]))
         return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
     F, L = fhpe, load_ratio
     cauchy_left, cauchy_right = rep.cauchy_edges_many(phi).T

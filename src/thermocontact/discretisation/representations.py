@@ -189,10 +189,10 @@ class Representation:
         extra = "" if self.alpha == 0.5 else f", alpha={self.alpha!r}"
         return f"{type(self).__name__}(n={self.n}{extra})"
 
-    def prolongation(self, finer):
-        """The matrix taking this representation's nodal values of ``phi`` (and of
-        ``psi``) to ``finer``'s nodal values of the same functions, or None where the
-        finer representation does not hold them exactly (derivation section 12)."""
+    def prolong(self, values, finer):
+        """``finer``'s nodal values (m, finer.n) of the functions whose nodal values here
+        are the rows of ``values`` (m, n) (``phi`` or ``psi``), or None where the finer
+        representation does not hold them exactly (derivation section 12)."""
         return None
 
     def rows(self, key, build):
@@ -448,14 +448,15 @@ class EdgeGraded(Representation):
         to_cos = self.to_cos
         return b @ to_cos, q @ to_cos
 
-    def prolongation(self, finer):
+    def prolong(self, values, finer):
         """A cosine series of ``n`` terms in ``tau`` is one of any ``m >= n`` terms: its
-        values at ``finer``'s nodes are the series summed there, exact but for rounding
-        (an edge-graded ``finer`` of the same exponent and ``m >= n``; else None)."""
+        values at ``finer``'s nodes are the series summed there (Clenshaw's recurrence,
+        no matrix), exact but for rounding (an edge-graded ``finer`` of the same
+        exponent and ``m >= n``; else None)."""
         if type(finer) is not type(self) or finer.alpha != self.alpha or finer.n < self.n:
             return None
-        return finer.rows(("prolongation", self.n), lambda: np.cos(
-            np.multiply.outer(graded.nodes(finer.n), np.arange(self.n))) @ self.to_cos)
+        coefficients = stacked(self.to_cos, values).T  # (n, m), each row as alone
+        return graded.cosine_value(coefficients, graded.nodes(finer.n))  # (m, finer.n)
 
     def cauchy(self, s, aux=None):
         b, q = graded.moments(lambda u: 1.0 / u, np.asarray(s, dtype=float), self.n,
@@ -474,28 +475,30 @@ class EdgeGraded(Representation):
 
         Denser toward the edges than Chebyshev points, and no ``tau`` is inverted.
         """
-        s, cosines = self._sample_table(count)
-        return s, cosines @ (self.to_cos @ phi)
+        s, values = self.phi_samples_many(np.asarray(phi, dtype=float)[None, :], count)
+        return s, values[0]
 
     def phi_samples_many(self, phi, count):
         """:meth:`phi_samples` of each row of ``phi`` (m, n): the points and an array
-        (m, count), from one table; the rows as stacked products
-        (:func:`~thermocontact.numerics.batched.stacked`), the
-        same whatever their number."""
-        s, cosines = self._sample_table(count)
-        return s, stacked(cosines, stacked(self.to_cos, phi))
+        (m, count), the cosine series summed at the samples by a table of
+        ``cos(j tau_k)``, the rows as stacked products
+        (:func:`~thermocontact.numerics.batched.stacked`: the same whatever their
+        number).  The table is kept for reuse up to 2^20 entries (count 2049 up to
+        n = 256); a larger one (17 MB at n = 1024) is formed a block of samples at a
+        time and not kept."""
+        tau = np.linspace(np.pi, 0.0, count)
+        coefficients = stacked(self.to_cos, phi)
 
-    def _sample_table(self, count):
-        """The samples' points and ``cos(j tau_k)``: the cosine series at the samples is
-        one product.  Kept for reuse up to 2^20 entries (count 2049 up to n = 256);
-        larger tables (17 MB at n = 1024) are formed per call and dropped after it."""
-        def build():
-            tau = np.linspace(np.pi, 0.0, count)
-            cosines = np.multiply.outer(tau, np.arange(self.n))
-            return np.cos(graded.stretch(tau)), np.cos(cosines, out=cosines)  # in place
-        if count * self.n > SAMPLE_TABLE_ENTRIES:
-            return build()
-        return self.rows(("phi_samples", count), build)
+        def table(k):
+            cosines = np.multiply.outer(tau[k], np.arange(self.n))
+            return np.cos(cosines, out=cosines)  # in place
+        if count * self.n <= SAMPLE_TABLE_ENTRIES:
+            cosines = self.rows(("phi_samples", count), lambda: table(slice(None)))
+            return np.cos(graded.stretch(tau)), stacked(cosines, coefficients)
+        step = max(1, SAMPLE_TABLE_ENTRIES // (8 * self.n))
+        values = np.concatenate([stacked(table(slice(i, i + step)), coefficients)
+                                 for i in range(0, count, step)], axis=1)
+        return np.cos(graded.stretch(tau)), values
 
     def _pressure_matrix(self, s):
         # phi(s) = sum_j (to_cos @ phi)_j cos(j tau(s)): one inversion of tau for all j.

@@ -157,7 +157,7 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     # the five 2n x n operators are never held whole (80 MB at n = 1024).
     x = projection_nodes(n)
     s, aux = rep.projection_points(x)
-    step = max(1, ASSEMBLY_ENTRIES // n)
+    step = max(1, ASSEMBLY_ENTRIES // n) if 2 * n * n <= ASSEMBLY_ENTRIES else ASSEMBLY_BLOCK
     if step >= x.size:
         return _projected(par, rep, x, s, aux, step)
     # The moment bases of a large n (34 MB at n = 1024) are not kept beside the blocks
@@ -181,22 +181,32 @@ def _projected(par, rep, x, s, aux, step):
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))
         if total is None:
             total = [P @ M for P, M in pairs] + [p1.sum(axis=1), p1 @ s[rows]]
-            product = np.empty_like(total[0])
         else:
-            # Each product added as it is formed, into one buffer (8 MB at n = 1024)
-            # reused for every block rather than allocated anew.
+            # Each product added into its block by the BLAS itself (C = A B + C: no
+            # temporary of the block's size, 8 MB at n = 1024).
             for t, (P, M) in zip(total, pairs):
-                t += np.matmul(P, M, out=product[:P.shape[0]])
+                _accumulate(t, P, M)
             total[5] += p1.sum(axis=1)
             total[6] += p1 @ s[rows]
     return Blocks(rep, *total)
 
 
-#: Points of a block times n: a block is one block of the moment engine (128 points at
-#: n = 1024, 256 at 512: arrays of about 4 MB, and one point geometry, which the
-#: geometry cache keeps for all the block's kernels); up to n = 256 the 2n points are
-#: one block.
+def _accumulate(t, P, M):
+    """``t += P @ M`` in place: row-major ``t`` is column-major ``t.T``, and
+    ``t.T += M.T @ P.T`` is one ``dgemm`` with ``beta = 1`` on views of the three."""
+    from scipy.linalg.blas import dgemm
+
+    out = dgemm(1.0, M.T, P.T, beta=1.0, c=t.T, overwrite_c=True)
+    if not np.shares_memory(out, t):  # a copy was made (an operand not contiguous)
+        t[...] = out.T
+
+
+#: Points of a block times n: up to n = 256 the 2n points are one block (one point
+#: geometry, which the geometry cache keeps for all the block's kernels and for another
+#: assembly at these points, a sweep); a larger n takes ASSEMBLY_BLOCK points at a time
+#: (arrays of about 2 MB at n = 1024, and a point geometry of 4 MB).
 ASSEMBLY_ENTRIES = 2**17
+ASSEMBLY_BLOCK = 64
 
 
 def equation_points(rep: Representation, scheme: str):

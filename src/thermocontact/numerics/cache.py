@@ -17,7 +17,7 @@ from threading import RLock
 
 import numpy as np
 
-__all__ = ["BoundedCache", "cache_info", "clear_caches", "small_cache"]
+__all__ = ["BoundedCache", "cache_info", "clear_caches", "release_freed_memory", "small_cache"]
 
 _ALL: dict[str, "BoundedCache"] = {}
 #: The functools caches of small, n-dependent tables (rules, coefficient matrices).
@@ -89,6 +89,13 @@ class BoundedCache:
                     del self._data[key]
                     self._bytes -= self._sizes.pop(key)
 
+    def discard(self, key):
+        """Drop ``key``'s entry, if any."""
+        with self._lock:
+            if key in self._data:
+                del self._data[key]
+                self._bytes -= self._sizes.pop(key)
+
     def clear(self):
         with self._lock:
             self._data.clear()
@@ -127,3 +134,39 @@ def clear_caches():
 def cache_info() -> dict[str, tuple[int, int, int]]:
     """Per cache: entries, bytes held and budget."""
     return {name: (len(c), c.bytes, c.max_bytes) for name, c in _ALL.items()}
+
+
+_LIBC = []
+#: glibc's mallopt parameter, and the size from which arrays are mapped directly.
+_M_MMAP_THRESHOLD = -3
+MAPPED_FROM = 2**20
+
+
+def release_freed_memory():
+    """Let the resident size follow the arrays held, where the C library allows it
+    (glibc; nothing elsewhere): for the large levels (n >= 512) of a solve.
+
+    glibc maps an array of more than its threshold directly, and returns it to the
+    system when it is freed; smaller arrays come from the heap, whose freed pages stay
+    resident until reused.  The threshold starts at 128 kB but rises to the size of
+    every mapped array freed, up to 32 MB: after the first large temporary, arrays of
+    a few MB (a large level's blocks of points) are taken from the heap and leave it
+    fragmented, 30-40 MB beyond what is held at n = 1024.  This fixes the threshold at
+    :data:`MAPPED_FROM` (1 MB) for the rest of the process, and returns the heap's
+    free pages now (``malloc_trim``).  Arrays of a megabyte or more then cost a page
+    mapping each, which a large level's work does not notice.
+    """
+    if not _LIBC:
+        import ctypes
+        import ctypes.util
+
+        try:
+            libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+            libc.malloc_trim.argtypes, libc.mallopt.argtypes = [ctypes.c_size_t], [
+                ctypes.c_int, ctypes.c_int]
+            libc.mallopt(_M_MMAP_THRESHOLD, MAPPED_FROM)
+        except (OSError, AttributeError):
+            libc = None
+        _LIBC.append(libc)
+    if _LIBC[0] is not None:
+        _LIBC[0].malloc_trim(0)

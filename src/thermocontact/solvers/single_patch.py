@@ -30,9 +30,10 @@ from scipy.linalg.lapack import dgecon, dgetrf, dgetrs
 
 from ..analysis.validity import assess, assess_many
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..discretisation.system import (Blocks, Conductance, ContactSetSystem, check_temperatures,
-                                     contact_set_system)
-from ..numerics.cache import BoundedCache
+from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, ContactSetSystem,
+                                     check_temperatures, contact_set_system)
+from ..numerics.cache import BoundedCache, release_freed_memory
+from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import Temperatures, check_sink_distance
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
@@ -143,16 +144,18 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     F = np.asarray(F, dtype=float)
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
     A0t = system.A0.T
-    if system.A1 is None:
-        S = np.repeat(A0t[None], F.size, axis=0)
-    else:
-        S = np.multiply(system.A1.T[None], F[:, None, None])
-        S += A0t[None]
-    # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
-    scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
-                             np.finfo(float).tiny)
-    S *= scale[:, None, :]
-    B = system.b[None, :] * scale
+    # A non-finite F makes its matrix non-finite: refused below, at that F only.
+    with np.errstate(invalid="ignore", over="ignore"):
+        if system.A1 is None:
+            S = np.repeat(A0t[None], F.size, axis=0)
+        else:
+            S = np.multiply(system.A1.T[None], F[:, None, None])
+            S += A0t[None]
+        # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
+        scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
+                                 np.finfo(float).tiny)
+        S *= scale[:, None, :]
+        B = system.b[None, :] * scale
     finite = np.isfinite(S).all(axis=(1, 2))
     norms = np.abs(S).sum(axis=2).max(axis=1)
     out = []
@@ -411,14 +414,16 @@ def _patch_solution(par, blocks, method, closure, x, rcond, conductance) -> Cont
 
 def _as_in(sol: ContactSolution, fine: ContactSolution) -> ContactSolution:
     """``sol`` in ``fine``'s representation where that holds it exactly
-    (:meth:`~thermocontact.discretisation.representations.Representation.prolongation`):
+    (:meth:`~thermocontact.discretisation.representations.Representation.prolong`):
     a coarser level's margins are then evaluated by the finer level's operators, formed
     once for both (its margins the same but for rounding)."""
-    P = sol.representation.prolongation(fine.representation)
-    if P is None or fine.n == sol.n:
+    if fine.n == sol.n:
         return sol
-    return sol.replace(n=fine.n, representation=fine.representation, phi=P @ sol.phi,
-                       psi=P @ sol.psi)
+    held = sol.representation.prolong(np.array([sol.phi, sol.psi]), fine.representation)
+    if held is None:
+        return sol
+    return sol.replace(n=fine.n, representation=fine.representation, phi=held[0],
+                       psi=held[1])
 
 
 def _raising(result):
@@ -523,13 +528,31 @@ class Model:
     __hash__ = None
 
     def blocks(self, n: int) -> Blocks:
-        """The assembled blocks at ``n``."""
+        """The assembled blocks at ``n``.
+
+        A large level (``n >= 512``) is assembled without the coarser levels' blocks
+        beside it (12.5 MB at n = 1024): they are dropped from the model and the cache,
+        and a coarser level asked for again is assembled again; so is the point
+        geometry kept for assemblies at the coarser levels' points
+        (:func:`~thermocontact.numerics.cache.release_freed_memory` too)."""
         if n not in self._blocks:
+            if n >= SHARED_BLOCKS_N:
+                for m in [m for m in self._blocks if m < n]:
+                    del self._blocks[m]
+                    ASSEMBLIES.discard(self._assembly_key(m))
+                # Nor beside the point geometry the coarser levels' assemblies kept for
+                # another assembly at their points (11 MB at n = 256).
+                GEOMETRY.clear()
+                release_freed_memory()
             p = self.parameters
-            key = (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2,
-                   p.speed_ratio, p.beta_f, n)
-            self._blocks[n] = ASSEMBLIES.get(key, lambda: METHODS[self.method].assemble(p, n))
+            self._blocks[n] = ASSEMBLIES.get(self._assembly_key(n),
+                                             lambda: METHODS[self.method].assemble(p, n))
         return self._blocks[n]
+
+    def _assembly_key(self, n: int):
+        p = self.parameters
+        return (self.method, p.pe, p.K2_over_K1, p.k2_over_k1, p.delta1_over_delta2,
+                p.speed_ratio, p.beta_f, n)
 
     def parameters_at(self, fhpe) -> Parameters:
         """The full parameters at ``fhpe``."""
@@ -669,7 +692,15 @@ class Model:
             # Validity only for the solutions returned: the coarser levels feed the
             # error estimate alone.
             points = [cases[j] for j in which]
-            return _solve_patches([pars[i] for i in points], self.blocks(m), self.method,
+            blocks = self.blocks(m)
+            if m >= SHARED_BLOCKS_N:
+                # A large level's system (34 MB at n = 1024) is not formed beside the
+                # coarser levels' systems, nor beside the heap pages its assembly freed;
+                # a level asked for again forms its system again.
+                for k in [k for k in systems if k < m]:
+                    del systems[k]
+                release_freed_memory()
+            return _solve_patches([pars[i] for i in points], blocks, self.method,
                                   [keys[i] for i in points], self.conductance,
                                   systems.setdefault(m, {}))
 
@@ -694,6 +725,8 @@ class Model:
         # further level.
         systems.clear()
         validities = {}
+        if max(wanted, default=0) >= SHARED_BLOCKS_N:
+            release_freed_memory()  # the heap pages the levels' systems left
         # The finest n first: its moment bases, formed again, serve its checks and polish.
         for _, group in sorted(wanted.items(), reverse=True):
             found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
