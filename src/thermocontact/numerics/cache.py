@@ -137,24 +137,17 @@ def cache_info() -> dict[str, tuple[int, int, int]]:
 
 
 _LIBC = []
-#: glibc's mallopt parameter, and the size from which arrays are mapped directly.
-_M_MMAP_THRESHOLD = -3
-MAPPED_FROM = 2**20
 
 
 def release_freed_memory():
-    """Let the resident size follow the arrays held, where the C library allows it
-    (glibc; nothing elsewhere): for the large levels (n >= 512) of a solve.
+    """Return to the system the heap pages that freed arrays left, where the C library
+    can (glibc's ``malloc_trim``; nothing elsewhere): before each stage of a large
+    level (n >= 512) of a solve.
 
-    glibc maps an array of more than its threshold directly, and returns it to the
-    system when it is freed; smaller arrays come from the heap, whose freed pages stay
-    resident until reused.  The threshold starts at 128 kB but rises to the size of
-    every mapped array freed, up to 32 MB: after the first large temporary, arrays of
-    a few MB (a large level's blocks of points) are taken from the heap and leave it
-    fragmented, 30-40 MB beyond what is held at n = 1024.  This fixes the threshold at
-    :data:`MAPPED_FROM` (1 MB) for the rest of the process, and returns the heap's
-    free pages now (``malloc_trim``).  Arrays of a megabyte or more then cost a page
-    mapping each, which a large level's work does not notice.
+    glibc takes arrays below its mmap threshold from the heap, and the threshold rises
+    to the size of every large array freed (up to 32 MB): after the first large
+    temporary, arrays of a few MB come from the heap and leave freed pages resident,
+    30-50 MB beyond what is held at n = 1024, until they are reused or trimmed.
     """
     if not _LIBC:
         import ctypes
@@ -162,9 +155,7 @@ def release_freed_memory():
 
         try:
             libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-            libc.malloc_trim.argtypes, libc.mallopt.argtypes = [ctypes.c_size_t], [
-                ctypes.c_int, ctypes.c_int]
-            libc.mallopt(_M_MMAP_THRESHOLD, MAPPED_FROM)
+            libc.malloc_trim.argtypes = [ctypes.c_size_t]
         except (OSError, AttributeError):
             libc = None
         _LIBC.append(libc)
