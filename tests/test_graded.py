@@ -225,3 +225,21 @@ def test_a_coarse_series_is_held_by_a_finer_one_and_checked_there():
             for k, v in own.margins().items():
                 assert held.margins()[k] == pytest.approx(v, abs=tol * max(1.0, abs(v))), \
                     (pe, n, k)
+
+
+@pytest.mark.parametrize("n", [4, 8, 33, 256])
+def test_far_field_by_the_rules_symmetry_is_the_whole_tables_product(n):
+    """The common rule's nodes mirror about pi/2 (node N - 1 - k is pi - tau_k to
+    rounding, N even), the premise of the far field's half table; its product equals
+    the product with the whole table cos(j tau_k) to 1e-13 of the values' size."""
+    from thermocontact.numerics.moment_engine import _common, _far_product
+    from thermocontact.numerics.moments import panel_rule
+
+    _, _, tau, _, _ = panel_rule(n)
+    assert tau.size % 2 == 0
+    assert np.max(np.abs(tau[::-1] - (np.pi - tau))) < 1e-15
+    values = np.random.default_rng(n).standard_normal((5, tau.size))
+    out = np.empty((5, n))
+    _far_product(values, _common(n)[3], out)
+    whole = values @ np.cos(np.multiply.outer(tau, np.arange(n)))
+    assert np.max(np.abs(out - whole)) < 1e-13 * np.abs(values).sum(axis=1).max()

@@ -157,13 +157,12 @@ def assemble(par: Parameters, rep: Representation, scheme: str) -> Blocks:
     # the five 2n x n operators are never held whole (80 MB at n = 1024).
     x = projection_nodes(n)
     s, aux = rep.projection_points(x)
-    step = max(1, ASSEMBLY_ENTRIES // n) if 2 * n * n <= ASSEMBLY_ENTRIES else ASSEMBLY_BLOCK
-    if step >= x.size:
-        return _projected(par, rep, x, s, aux, step)
-    # The moment bases of a large n (34 MB at n = 1024) are not kept beside the blocks
+    if x.size * n <= ASSEMBLY_ENTRIES:
+        return _projected(par, rep, x, s, aux, x.size)
+    # The moment bases of a large n (17 MB at n = 1024) are not kept beside the blocks
     # and the system's matrix: the validity checks form them again.
     with BASES.transient():
-        return _projected(par, rep, x, s, aux, step)
+        return _projected(par, rep, x, s, aux, ASSEMBLY_BLOCK)
 
 
 def _projected(par, rep, x, s, aux, step):

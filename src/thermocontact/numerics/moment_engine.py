@@ -266,7 +266,7 @@ def _far_product(values, bases, out):
     values and the odd ``j`` their difference.  Half the products of the full table."""
     even, odd = bases
     h = even.shape[0]
-    first, mirrored = values[:, :h], values[:, :h - 1:-1] if h else values[:, :0]
+    first, mirrored = values[:, :h], values[:, ::-1][:, :h]
     out[:, 0::2] = (first + mirrored) @ even
     out[:, 1::2] = (first - mirrored) @ odd
 

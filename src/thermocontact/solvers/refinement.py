@@ -258,7 +258,7 @@ def refine_each(solve, sizes, count, *, tol=None, n_max=None, p_max=P_MAX, progr
     n_max = sizes[-1] if n_max is None else int(n_max)
     levels = {i: [] for i in range(count)}
     out = [None] * count
-    active, n, est = list(range(count)), None, {}
+    active, est = list(range(count)), {}
 
     def advance(m, cases):
         if progress is not None:

@@ -111,6 +111,10 @@ def _not_finite(what):
     return SolveError(f"{what} could not be factorised (array must not contain infs or NaNs)")
 
 
+def _not_finite_solution(what):
+    return SolveError(f"{what}: the linear solve produced non-finite values")
+
+
 def _ill_conditioned(what, rcond):
     return SolveError(f"{what} is singular or ill-conditioned (reciprocal condition "
                       f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
@@ -127,7 +131,7 @@ def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=N
     b = system.b.copy() if b is None else b.copy()
     x, rcond = solve_equilibrated(A, b, what)
     if not np.all(np.isfinite(x)):
-        raise SolveError(f"{what}: the linear solve produced non-finite values")
+        raise _not_finite_solution(what)
     return x, float(rcond)
 
 
@@ -170,7 +174,7 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
             continue
         x, _ = dgetrs(lu, piv, B[i])
         if not np.all(np.isfinite(x)):
-            out.append(SolveError(f"{what}: the linear solve produced non-finite values"))
+            out.append(_not_finite_solution(what))
             continue
         out.append((x, float(rcond)))
     return out
