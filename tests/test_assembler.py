@@ -219,7 +219,7 @@ def test_one_matrix_at_F_and_its_factors_in_place():
 
 
 @pytest.mark.parametrize("closure", [{"lam": -1.0}, {"sigma_over_delta": 0.1}])
-def test_a_stack_of_systems_is_each_system_solved_alone(closure):
+def test_a_stack_of_systems_is_each_system_solved_alone(closure, monkeypatch):
     """solve_stack (a grid line's systems at many F, formed, equilibrated and solved as
     one stack) gives each F the solution of the plain path (the matrix at F, rows
     equilibrated, LU) to the last bit, and its condition number; an F that makes the
@@ -233,6 +233,14 @@ def test_a_stack_of_systems_is_each_system_solved_alone(closure):
     system = contact_set_system(par, np.array([[-1.0, 1.0]]), rep, "projection", **closure)
     F = np.array([0.0, 0.2, 0.55, 3.7, np.inf])
     found = solve_stack(system, F, "the linear system")
+    # Formed a few matrices at a time: 40 F in chunks of 3 give what one chunk gives.
+    many = np.concatenate([np.linspace(0.0, 0.8, 39), [np.inf]])
+    monkeypatch.setattr("thermocontact.solvers.single_patch.STACK_ENTRIES", 3 * system.A0.size)
+    chunked = solve_stack(system, many, "the linear system")
+    monkeypatch.undo()
+    for a, b in zip(solve_stack(system, many, "the linear system"), chunked):
+        assert (str(a) == str(b) if isinstance(a, Exception)
+                else np.array_equal(a[0], b[0]) and a[1] == b[1])
     for f, res in zip(F[:-1], found):
         try:
             x, rcond = solve_equilibrated(system.matrix(f), system.b.copy())
@@ -244,6 +252,13 @@ def test_a_stack_of_systems_is_each_system_solved_alone(closure):
         assert np.array_equal(res[0], x)
         assert res[1] == pytest.approx(rcond, rel=1e-12)
     assert isinstance(found[-1], SolveError) and "infs or NaNs" in str(found[-1])
+    # A right side that overflows once its row is equilibrated: refused at that F only.
+    from types import SimpleNamespace
+
+    tiny = SimpleNamespace(A0=np.diag([1e-10, 1.0]), A1=np.eye(2), b=np.array([1e300, 1.0]))
+    bad, good = solve_stack(tiny, [0.0, 1.0], "the linear system")
+    assert isinstance(bad, SolveError) and "non-finite" in str(bad)
+    assert np.allclose(good[0], np.linalg.solve(np.diag([1.0 + 1e-10, 2.0]), tiny.b))
 
 
 def test_refining_cases_each_on_its_own_is_refining_each_alone():

@@ -14,10 +14,12 @@ decided by the solution's ``(|s| - 1)^{3/2}`` term, not by that residual.
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..discretisation.system import SHARED_BLOCKS_N
 from ..io.results import Result
 from ..numerics.batched import stacked
 from ..numerics.moment_engine import GEOMETRY, MIN_BLOCK
@@ -284,12 +286,14 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
     block = max(GAP_BLOCK_MIN, min(GAP_BLOCK, GAP_ENTRIES // rep.n))
     if s.size > block:
         # The kernels below carry each point's own distance past the edge: blocks of
-        # points small enough for the moments to take whole, each block's point
-        # geometry dropped once its row operators are formed (17 MB for 256 points at
-        # n = 1024).
+        # points small enough for the moments to take whole.  From n = 512 each
+        # block's point geometry is dropped once its row operators are formed (17 MB
+        # for 256 points at n = 1024); below, it is kept for the next grid line's
+        # kernels at the same points (1 MB at n = 32).
+        keep = block == GAP_BLOCK
         parts = []
         for i in range(0, s.size, block):
-            with GEOMETRY.transient():
+            with nullcontext() if keep else GEOMETRY.transient():
                 parts.append(gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam,
                                   s[i:i + block]))
         return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
@@ -557,8 +561,10 @@ def assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> 
         Each as :func:`assess` gives it.
     """
     # The point geometry of the checks' kernels serves their row operators only, which
-    # the row-operator cache keeps: dropped at the end (30 MB at n = 512 and 1024).
-    with GEOMETRY.transient():
+    # the row-operator cache keeps: from n = 512 dropped at the end (30 MB at n = 512
+    # and 1024); below kept for the next grid line's kernels at the same points (a few
+    # MB).
+    with nullcontext() if rep.n < SHARED_BLOCKS_N else GEOMETRY.transient():
         return _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish)
 
 

@@ -21,6 +21,8 @@ equation by the temperature equation (D33).
 
 from __future__ import annotations
 
+import math
+
 import logging
 import warnings
 from dataclasses import replace
@@ -146,6 +148,20 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     alone.  What is saved is the per-solve work around the linear algebra.
     """
     F = np.asarray(F, dtype=float)
+    out = []
+    # A few matrices at a time, so that a chunk's stack stays in the cache from its
+    # forming to its factorisation (the arithmetic is per matrix either way).
+    step = max(1, STACK_ENTRIES // system.A0.size)
+    for i in range(0, F.size, step):
+        out += _solve_chunk(system, F[i:i + step], what)
+    return out
+
+
+#: Matrix entries formed at once by :func:`solve_stack` (1 MB).
+STACK_ENTRIES = 2**17
+
+
+def _solve_chunk(system, F, what):
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
     A0t = system.A0.T
     # A non-finite F makes its matrix non-finite: refused below, at that F only.
@@ -162,21 +178,25 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
         B = system.b[None, :] * scale
     finite = np.isfinite(S).all(axis=(1, 2))
     norms = np.abs(S).sum(axis=2).max(axis=1)
-    out = []
+    out, solved = [], []
     for i in range(F.size):
         if not finite[i]:
             out.append(_not_finite(what))
             continue
         lu, piv, info = dgetrf(S[i].T, overwrite_a=True)
         rcond, info = dgecon(lu, norms[i], norm="1")
-        if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
+        rcond = float(rcond)
+        if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
             out.append(_ill_conditioned(what, rcond))
             continue
         x, _ = dgetrs(lu, piv, B[i])
-        if not np.all(np.isfinite(x)):
-            out.append(_not_finite_solution(what))
-            continue
-        out.append((x, float(rcond)))
+        out.append((x, rcond))
+        solved.append(i)
+    if solved:
+        # Non-finite solutions, all checked at once.
+        ok = np.isfinite(np.concatenate([out[i][0] for i in solved]))
+        for i in np.asarray(solved)[~ok.reshape(len(solved), -1).all(axis=1)]:
+            out[i] = _not_finite_solution(what)
     return out
 
 
@@ -421,13 +441,26 @@ def _as_in(sol: ContactSolution, fine: ContactSolution) -> ContactSolution:
     (:meth:`~thermocontact.discretisation.representations.Representation.prolong`):
     a coarser level's margins are then evaluated by the finer level's operators, formed
     once for both (its margins the same but for rounding)."""
-    if fine.n == sol.n:
-        return sol
-    held = sol.representation.prolong(np.array([sol.phi, sol.psi]), fine.representation)
-    if held is None:
-        return sol
-    return sol.replace(n=fine.n, representation=fine.representation, phi=held[0],
-                       psi=held[1])
+    return _all_as_in([(sol, fine)])[0]
+
+
+def _all_as_in(pairs) -> list:
+    """:func:`_as_in` of each ``(sol, fine)``: the pairs of one ``(n, fine n)``
+    prolonged as one stack (each row summed as alone)."""
+    out = [sol for sol, _ in pairs]
+    groups = {}
+    for i, (sol, fine) in enumerate(pairs):
+        if fine.n != sol.n:
+            groups.setdefault((sol.representation, fine.representation), []).append(i)
+    for (rep, finer), which in groups.items():
+        held = rep.prolong(np.array([v for i in which
+                                     for v in (out[i].phi, out[i].psi)]), finer)
+        if held is None:
+            continue
+        for k, i in enumerate(which):
+            out[i] = out[i].replace(n=finer.n, representation=finer, phi=held[2 * k],
+                                    psi=held[2 * k + 1])
+    return out
 
 
 def _raising(result):
@@ -720,11 +753,10 @@ class Model:
         # The validity of every point's finest level and of the one before (whose
         # margins' change is their error), all points at one n together.
         wanted = {}
-        for i, (_, levels, _) in refined.items():
-            fine = levels[-1]
-            for sol in levels[-2:]:
-                checked = _as_in(sol, fine)
-                wanted.setdefault(checked.n, []).append(((i, sol.n), checked))
+        pairs = [(i, sol, levels[-1]) for i, (_, levels, _) in refined.items()
+                 for sol in levels[-2:]]
+        for (i, sol, _), checked in zip(pairs, _all_as_in([p[1:] for p in pairs])):
+            wanted.setdefault(checked.n, []).append(((i, sol.n), checked))
         # The systems (34 MB at n = 1024, partly resident) are formed again for any
         # further level.
         systems.clear()
