@@ -647,26 +647,19 @@ def _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish):
                                                      np.argmin(ms, axis=1), polish)
             gap_min_at[rows[on]] = side * (1.0 + np.exp(y_min))
 
-    out = []
-    for r in range(m):
-        positive = bool(L[r] > 0.0)
-        sound = positive and phi_min[r] >= 0.0 and gap_min[r] >= 0.0
-        valid = sound and np.all(edge_margins[r] >= 0.0)
-        out.append(Validity(
-            valid=bool(valid),
-            positive_load=positive,
-            min_pressure=float(p[r, ip[r]]),
-            min_pressure_at=float(sp[ip[r]]),
-            pressure_margin=float(phi_min[r]),
-            pressure_margin_at=float(phi_min_at[r]),
-            min_gap=float(min_gap[r]),
-            min_gap_at=float(min_gap_at[r]),
-            gap_margin=float(gap_min[r]),
-            gap_margin_at=float(gap_min_at[r]),
-            edge_log_coefficients=(float(k_log[r, 0]), float(k_log[r, 1])),
-            edge_slope_residual=(float(residual[r, 0]), float(residual[r, 1])),
-            edge_layer_log_widths=(float(log_widths[r, 0]), float(log_widths[r, 1])),
-            edge_margins=(float(edge_margins[r, 0]), float(edge_margins[r, 1])),
-            strictly_valid=bool(sound and not np.any(layer[r])),
-        ))
-    return out
+    positive = L > 0.0
+    sound = positive & (phi_min >= 0.0) & (gap_min >= 0.0)
+    valid = sound & np.all(edge_margins >= 0.0, axis=1)
+    strict = sound & ~np.any(layer, axis=1)
+    # Plain Python numbers, converted once per array.
+    fields = {"valid": valid.tolist(), "positive_load": positive.tolist(),
+              "min_pressure": p[np.arange(m), ip].tolist(), "min_pressure_at": sp[ip].tolist(),
+              "pressure_margin": phi_min.tolist(), "pressure_margin_at": phi_min_at.tolist(),
+              "min_gap": min_gap.tolist(), "min_gap_at": min_gap_at.tolist(),
+              "gap_margin": gap_min.tolist(), "gap_margin_at": gap_min_at.tolist(),
+              "edge_log_coefficients": list(map(tuple, k_log.tolist())),
+              "edge_slope_residual": list(map(tuple, residual.tolist())),
+              "edge_layer_log_widths": list(map(tuple, log_widths.tolist())),
+              "edge_margins": list(map(tuple, edge_margins.tolist())),
+              "strictly_valid": strict.tolist()}
+    return [Validity(**dict(zip(fields, row))) for row in zip(*fields.values())]

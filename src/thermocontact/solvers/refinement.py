@@ -10,9 +10,8 @@ none (None), and the :class:`Refinement`'s status says why.
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
-
-import numpy as np
 
 from ..io.results import Result
 
@@ -74,7 +73,7 @@ def error_estimate(levels, quantities=QUANTITIES, p_max=P_MAX) -> float:
         if len(v) == 3:
             d1 = abs(v[1] - v[0])
             if d1 > 0.0 and d2 > 0.0:
-                p = float(np.clip(np.log2(d1 / d2), 1.0, p_max))
+                p = min(max(math.log2(d1 / d2), 1.0), p_max)
             elif d2 == 0.0:
                 p = p_max
         est = max(est, d2 / (2.0**p - 1.0) / _relative(v[-1]))

@@ -25,7 +25,6 @@ import math
 
 import logging
 import warnings
-from dataclasses import replace
 
 import numpy as np
 from scipy.linalg.lapack import dgecon, dgetrf, dgetrs
@@ -257,6 +256,8 @@ def solve_contact_system(system: ContactSetSystem, F: float, rep, half, conducta
         # Converged when the residual is at rounding level or the step is.
         if (norm <= 1e-11 * max(1.0, np.linalg.norm(system.b))
                 or step <= 1e-13 * np.linalg.norm(x)):
+            if not np.isfinite(x).all():
+                raise _not_finite_solution(what)
             return x, rcond
         J = A + system.conductance_jacobian(x, bi, [cond.dbiot(q) for q in p], rows, scale)
         dx, rcond = _solve_linear(system, F, A=J, b=-r, what=what)
@@ -343,6 +344,9 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
     """The checked closure ``(lam, sigma, temperatures)`` and its assembled system
     (kept in ``systems`` by closure)."""
     lam, sigma_over_delta, temperatures = closure
+    if lam is not None and closure in systems:
+        # A heat partition checked before (a grid line's points): checked alike.
+        return closure, systems[closure]
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     if lam is not None:
         lam = check_range("lam", lam, -LIMIT, LIMIT)
@@ -427,8 +431,6 @@ def _patch_solution(par, blocks, method, closure, x, rcond, conductance) -> Cont
         sigma = sigma_over_delta
         L = x[2 * n]
         lam = float(fr.weights @ psi + par.eta * (pr.weights @ phi))
-    if not np.all(np.isfinite(x)):
-        raise SolveError("the linear solve produced non-finite values")
     return ContactSolution(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
@@ -593,7 +595,7 @@ class Model:
 
     def parameters_at(self, fhpe) -> Parameters:
         """The full parameters at ``fhpe``."""
-        return replace(self.parameters, fhpe=fhpe)
+        return self.parameters.with_fhpe(fhpe)
 
     def solve_at(self, n: int, fhpe, *, lam=None, sigma_over_delta=None,
                  check_validity=True, polish=True, temperatures=None) -> ContactSolution:
