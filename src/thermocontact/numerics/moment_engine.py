@@ -507,12 +507,16 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     _far_product(weighted, g, out[1])
     del weighted
     for index, side in enumerate(geo.sides):
+        full, short = side.rows
+        if not (full.size or short.size):
+            # Every point at or beyond this side's edge (a block of the gap's points):
+            # nothing to integrate, no kernel to evaluate on its dummies.
+            continue
         u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
         with np.errstate(divide="ignore", invalid="ignore"):
             # Rows of a side of zero length (points at or beyond an edge) hold dummies.
             inner = (np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr
             outer = np.where(side.outer_live, kernel(side.outer_u[pick]), 0.0)[None] * side.outer_w
-        full, short = side.rows
         if full.size:
             nf = side.n_fixed
             own = np.matmul(outer[:, full, None, nf:], side.own_lagrange)[:, :, 0]

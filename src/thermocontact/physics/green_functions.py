@@ -224,6 +224,10 @@ def moving_slope(u, scale):
     return np.sign(scale) * cylinder_slope(scale * np.asarray(u, dtype=float))
 
 
+#: The 2-point Gauss–Legendre rule on [-1, 1].
+_GAUSS_2 = np.polynomial.legendre.leggauss(2)
+
+
 def cylinder_displacement_drop(a, h):
     """``E(a) - E(a + h)`` elementwise for ``a, h >= 0``: the slope kernel integrated.
 
@@ -239,7 +243,7 @@ def cylinder_displacement_drop(a, h):
     big = ~small
     out[big] = cylinder_displacement(a[big]) - cylinder_displacement(a[big] + h[big])
     if np.any(small):
-        x, wq = np.polynomial.legendre.leggauss(2)
+        x, wq = _GAUSS_2
         hs = h[small][:, None]
         pts = a[small][:, None] + 0.5 * hs * (1.0 + x[None, :])
         out[small] = 0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)

@@ -243,7 +243,13 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
             if k != "load" and (ma["load"] <= 0 or mb["load"] <= 0):
                 continue
 
-            def f(x, k=k):
+            # The samples' own margins at the ends: Brent's method starts from them
+            # without solving there again.
+            known = {a: ma[k], b: mb[k]}
+
+            def f(x, k=k, known=known):
+                if x in known:
+                    return known[x]
                 try:
                     m = validity_margins(at(x))
                 except SolveError:
