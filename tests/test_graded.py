@@ -243,3 +243,26 @@ def test_far_field_by_the_rules_symmetry_is_the_whole_tables_product(n):
     _far_product(values, _common(n)[3], out)
     whole = values @ np.cos(np.multiply.outer(tau, np.arange(n)))
     assert np.max(np.abs(out - whole)) < 1e-13 * np.abs(values).sum(axis=1).max()
+
+
+def test_points_beyond_an_edge_skip_the_side_they_have_not():
+    """Points beyond the leading edge have no contact on their right: the moments
+    evaluate no kernel there, and give those points what they get in a block with
+    interior points (where that side is integrated for the interior ones)."""
+    calls = []
+
+    def kernel(u):
+        calls.append(np.size(u))
+        return cylinder_slope(3.0 * u)
+
+    out = 1.0 + np.geomspace(1e-8, 10.0, 7)
+    alone = graded.moments(kernel, out, 16, scale=3.0)
+    alone_values = sum(calls)
+    calls.clear()
+    inside = np.array([-0.5, 0.2, 0.9])
+    mixed = graded.moments(kernel, np.concatenate([inside, out]), 16, scale=3.0)
+    for a, b in zip(alone, mixed):
+        assert np.allclose(a, b[3:], rtol=1e-14, atol=1e-15 * np.abs(a).max())
+    # Far field and one side's inner and outer nodes per point: the other side's
+    # nodes (as many again) are not evaluated.
+    assert alone_values < 0.75 * sum(calls) * out.size / (out.size + inside.size)
