@@ -149,10 +149,13 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     F = np.asarray(F, dtype=float)
     out = []
     # A few matrices at a time, so that a chunk's stack stays in the cache from its
-    # forming to its factorisation (the arithmetic is per matrix either way).
-    step = max(1, STACK_ENTRIES // system.A0.size)
+    # forming to its factorisation (the arithmetic is per matrix either way), in two
+    # buffers that every chunk reuses.
+    k = system.A0.shape[0]
+    step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
+    buffers = np.empty((2, step, k, k))
     for i in range(0, F.size, step):
-        out += _solve_chunk(system, F[i:i + step], what)
+        out += _solve_chunk(system, F[i:i + step], what, buffers[:, :F[i:i + step].size])
     return out
 
 
@@ -160,23 +163,26 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
 STACK_ENTRIES = 2**17
 
 
-def _solve_chunk(system, F, what):
+def _solve_chunk(system, F, what, buffers):
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
     A0t = system.A0.T
+    S, work = buffers
     # A non-finite F makes its matrix non-finite: refused below, at that F only.
     with np.errstate(invalid="ignore", over="ignore"):
         if system.A1 is None:
-            S = np.repeat(A0t[None], F.size, axis=0)
+            S[...] = A0t[None]
         else:
-            S = np.multiply(system.A1.T[None], F[:, None, None])
+            np.multiply(system.A1.T[None], F[:, None, None], out=S)
             S += A0t[None]
         # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
         scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
                                  np.finfo(float).tiny)
         S *= scale[:, None, :]
         B = system.b[None, :] * scale
-    finite = np.isfinite(S).all(axis=(1, 2))
-    norms = np.abs(S).sum(axis=2).max(axis=1)
+        norms = np.abs(S, out=work).sum(axis=2).max(axis=1)
+    # Each equilibrated row is at most 1 in magnitude, so a norm is finite exactly when
+    # the whole matrix is (an inf or a NaN makes its row's scale and so the row NaN).
+    finite = np.isfinite(norms)
     out, solved = [], []
     for i in range(F.size):
         if not finite[i]:
