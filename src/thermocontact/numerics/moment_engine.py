@@ -317,6 +317,8 @@ class _Side:
         # Sides of zero length (points at or beyond an edge) contribute nothing.
         self.rows = np.flatnonzero(self.full), np.flatnonzero(~self.full & (side > 0.0))
         self.inner = np.where(self.full, w, np.minimum(side, w))
+        if not (self.rows[0].size or self.rows[1].size):
+            return  # no point has this side (the moments skip it): no rule to form
         # The panels' points: the same rule as the common panels (moments._GL).
         xg, wg = gauss_legendre(_moments.GAUSS_POINTS)
         # Offsets and weights of the outer panels: fixed ones then the row's own.
