@@ -308,6 +308,29 @@ def test_run_yields_every_task_once():
         list(run(abs, [1], workers="many"))
 
 
+def test_the_callers_preparation_runs_beside_workers_elsewhere_only():
+    """run_chunks' ``meanwhile`` runs once, in a thread of this process, while workers
+    elsewhere compute (never in a run in this process, where it would only compete);
+    its failure does not fail the run."""
+    import threading
+
+    from thermocontact.execution.resumable import run_chunks
+
+    seen = []
+
+    def prepare():
+        seen.append(threading.current_thread() is not threading.main_thread())
+        raise RuntimeError("the caller tries again after the run")
+
+    tasks = [-1, -2, 3, -4]
+    out = run_chunks(abs, tasks, {"kind": "test"}, workers=lambda f, t: map(f, t),
+                     meanwhile=prepare)
+    assert out == {0: 1, 1: 2, 2: 3, 3: 4} and seen == [True]
+    seen.clear()
+    run_chunks(abs, tasks, {"kind": "test"}, workers=1, meanwhile=prepare)
+    assert seen == []
+
+
 def test_progress_line_reports_rate_and_time_left():
     """10 of 100 chunks 5 s after the first report: 2 chunks/s, 45 s left."""
     import io

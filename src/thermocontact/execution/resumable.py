@@ -10,6 +10,7 @@ manifest, it computes only what is missing.
 from __future__ import annotations
 
 import json
+import threading
 
 from ..io.chunks import ChunkStore
 from .executors import run
@@ -18,11 +19,15 @@ __all__ = ["run_chunks"]
 
 
 def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=None,
-               what="the map") -> dict:
+               what="the map", meanwhile=None) -> dict:
     """``{index: func(task)}`` for every task, each kept in ``store_path`` as it finishes
     and read from there when present (a resumed run computes only what is missing).
 
     ``what`` names the run in the refusal of a store that holds another run's work.
+    ``meanwhile``, a callable, is the caller's own preparation for what follows the run
+    (the imports of its dataset, about a second): with workers outside this process it
+    runs in a thread of its own once the first chunk is in, while the workers compute
+    the rest (not before: no process is forked beside a thread).
 
     Every result goes through its stored (JSON) form, so a resumed run's results equal
     an uninterrupted run's exactly.
@@ -35,11 +40,25 @@ def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=No
         if progress is not None:
             progress(len(tasks) - total + done, len(tasks))
 
+    helper = None
     for k, result in run(func, [tasks[i] for i in todo], workers=workers, progress=report):
+        if meanwhile is not None and helper is None and workers != 1:
+            helper = threading.Thread(target=_quietly, args=(meanwhile,), daemon=True)
+            helper.start()
         i = todo[k]
         if store is not None:
             store.put(i, result)
             chunks[i] = store.get(i)
         else:
             chunks[i] = json.loads(json.dumps(result))
+    if helper is not None:
+        helper.join()
     return chunks
+
+
+def _quietly(prepare):
+    """``prepare()``, its failure left to the caller's own attempt after the run."""
+    try:
+        prepare()
+    except Exception:  # noqa: BLE001 - the caller does the same work again and reports
+        pass

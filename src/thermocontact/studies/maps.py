@@ -471,5 +471,15 @@ def compute_map(spec: MapSpec, *, workers=1, store_path=None, progress=None, com
     xarray.Dataset
     """
     chunks = run_chunks(evaluate_chunk, spec.tasks(), spec.manifest(), store_path,
-                        workers=workers, progress=progress)
+                        workers=workers, progress=progress, meanwhile=prepare_dataset)
     return _dataset(spec, chunks, command)
+
+
+def prepare_dataset():
+    """Import xarray and make a first dataset: the first costs about a second (xarray
+    imports dask, where installed, to recognise its arrays), which a run with workers
+    elsewhere spends while they compute (:func:`~thermocontact.execution.resumable.
+    run_chunks`)."""
+    import xarray as xr
+
+    xr.Dataset({"a": ("x", np.zeros(1))}, coords={"x": [0.0]})

@@ -39,7 +39,7 @@ from .boundaries import estimate_events, locate_events
 from .contact_sets import PhysicalConductance, physical_contact_set
 from ..execution.resumable import run_chunks
 from ..problem.axes import PHYSICAL_UNITS
-from .maps import Axis, check_axis_name, parse_axis
+from .maps import Axis, check_axis_name, parse_axis, prepare_dataset
 from .physical_contact import problem_ray
 from .ray import Ray
 from .ray import interpolated_roots as _interpolated_roots
@@ -378,7 +378,8 @@ def line_fields(spec: OperatingSpec, func, part, names, workers=1, progress=None
     for task, extra in zip(tasks, per_line or ()):
         task.update(extra)
     manifest = {**spec.manifest(), "part": part, **(manifest or {})}
-    parts = run_chunks(func, tasks, manifest, store_path, workers=workers, progress=progress)
+    parts = run_chunks(func, tasks, manifest, store_path, workers=workers, progress=progress,
+                       meanwhile=prepare_dataset)
     return {k: np.array([parts[i][k] for i in range(len(tasks))]) for k in names}
 
 
