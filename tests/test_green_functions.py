@@ -738,3 +738,21 @@ def test_regular_gradient_kernel_against_mpmath(c):
     np.testing.assert_allclose(got[~near_zero], ref[~near_zero], rtol=1e-13, atol=0)
     assert np.all(np.abs(got - ref) <= 1e-14 * np.abs(1 / u))
     assert abs(float(_regular_reference(_ROOT, 1.0))) < 1e-15
+
+
+def test_far_upstream_gradient_kernel_is_minus_one_over_u_to_the_last_bit():
+    """Beyond c u = 22 the regular gradient kernel skips its Bessel functions: the
+    values equal c M(c u) - 1/u formed in full, bit for bit, on both sides of the
+    threshold and for scales from 1e-3 to 1e4 (x M(x) stays below 1e-18 there, far
+    under half an ulp)."""
+    from thermocontact.physics.green_functions import (UPSTREAM_NEGLIGIBLE,
+                                                       cylinder_temperature_gradient)
+
+    x = np.linspace(UPSTREAM_NEGLIGIBLE, 400.0, 5000)
+    assert np.max(x * cylinder_temperature_gradient(x)) < 1e-18
+    for c in np.geomspace(1e-3, 1e4, 30):
+        u = np.concatenate([np.linspace(0.5, 2.0, 301) * UPSTREAM_NEGLIGIBLE / c,
+                            np.linspace(-3.0, 3.0, 301)])
+        u = u[np.abs(c * u) >= 1e-3]
+        full = c * cylinder_temperature_gradient(c * u) - 1.0 / u
+        assert np.array_equal(kernels.cylinder_temperature_gradient_regular(u, c), full)

@@ -592,7 +592,10 @@ def _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish):
             keep &= sp >= -1.0 + EDGE_LAYER_TOLERANCE
         if key[1]:
             keep &= sp <= 1.0 - EDGE_LAYER_TOLERANCE
-        sp_in, phis_in = sp[keep], phis[np.ix_(rows, keep)]
+        if rows.size == m and keep.all():  # (the common case: no copy)
+            sp_in, phis_in = sp, phis
+        else:
+            sp_in, phis_in = sp[keep], phis[np.ix_(rows, keep)]
         phi_min_at[rows], phi_min[rows] = least_of_many(
             lambda r: (lambda x, ph=phi[rows[r]]: rep.phi_at(ph, x)), sp_in, phis_in,
             np.argmin(phis_in, axis=1), polish)

@@ -130,6 +130,11 @@ def cylinder_temperature_gradient(u):
     return out[()]
 
 
+#: ``c u`` beyond which ``c M(c u)`` no longer changes ``c M(c u) - 1/u`` in floating
+#: point (:func:`cylinder_temperature_gradient_regular`).
+UPSTREAM_NEGLIGIBLE = 22.0
+
+
 def cylinder_temperature_gradient_regular(u, scale):
     """The Cauchy-free part ``c M(c u) - 1/u`` of the scaled gradient kernel.
 
@@ -154,8 +159,14 @@ def cylinder_temperature_gradient_regular(u, scale):
     # For small |cu| the two terms cancel to O(ln|cu|); form the difference with
     # the series of k1e to keep full relative accuracy there.
     small = a < 1e-3
-    big = ~small
+    # Far upstream c M(c u) = c exp(-2cu) [...] is below half an ulp of 1/u
+    # (x M(x) < 1e-18 for x >= 22): the kernel is -1/u there to the last bit, without
+    # its Bessel functions.
+    upstream = cu >= UPSTREAM_NEGLIGIBLE
+    big = ~(small | upstream)
     out = np.empty_like(cu)
+    if np.any(upstream):
+        out[upstream] = -1.0 / u[upstream]
     if np.any(big):
         out[big] = scale * cylinder_temperature_gradient(cu[big]) - 1.0 / u[big]
     if np.any(small):
