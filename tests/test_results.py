@@ -303,3 +303,26 @@ def test_replace_is_the_dataclass_replace(sol):
     assert type(changed) is type(sol) and changed.validity is sol.validity
     with pytest.raises(TypeError, match="no field 'loads'"):
         sol.replace(loads=1.0)
+
+
+def test_build_is_the_constructor(sol):
+    """Result.build (no constructor where no __post_init__ checks the fields) gives what
+    the constructor gives, defaults included, pickles alike, and leaves a missing or
+    unknown field to the constructor's own error."""
+    import dataclasses
+    import pickle
+
+    from thermocontact.analysis.validity import Validity
+
+    values = {f.name: getattr(sol, f.name) for f in dataclasses.fields(sol)
+              if f.name not in ("error_estimate", "tol")}
+    built = type(sol).build(**values)
+    assert built == type(sol)(**values) and type(built) is type(sol)
+    assert built.error_estimate is None and pickle.loads(pickle.dumps(built)) == built
+    v = {f.name: getattr(sol.validity, f.name) for f in dataclasses.fields(sol.validity)
+         if f.default is dataclasses.MISSING}
+    assert Validity.build(**v) == Validity(**v)
+    with pytest.raises(TypeError):
+        Validity.build(**{k: x for k, x in v.items() if k != "valid"})
+    with pytest.raises(TypeError):
+        Validity.build(**v, loads=1.0)

@@ -437,7 +437,7 @@ def _patch_solution(par, blocks, method, closure, x, rcond, conductance) -> Cont
         sigma = sigma_over_delta
         L = x[2 * n]
         lam = float(fr.weights @ psi + par.eta * (pr.weights @ phi))
-    return ContactSolution(
+    return ContactSolution.build(
         parameters=par, method=method, n=n, load_ratio=float(L), lam=float(lam),
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
         validity=None, rcond=rcond, conductance=conductance,
