@@ -35,7 +35,8 @@ from ..problem.axes import MAX_AXIS_POINTS, Axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
 from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
 
-__all__ = ["Axis", "MAX_AXIS_POINTS", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis"]
+__all__ = ["Axis", "MAX_AXIS_POINTS", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis",
+           "prepare_dataset"]
 
 #: Parameter names a dimensionless map accepts: the command line's and Python's.
 NAMES = {**SPELLINGS, **{name: name for name in ALONG}}
