@@ -241,6 +241,8 @@ def test_a_stack_of_systems_is_each_system_solved_alone(closure, monkeypatch):
     for a, b in zip(solve_stack(system, many, "the linear system"), chunked):
         assert (str(a) == str(b) if isinstance(a, Exception)
                 else np.array_equal(a[0], b[0]) and a[1] == b[1])
+    one = solve_stack(system, 0.55, "the linear system")  # a number is a stack of one
+    assert len(one) == 1 and np.array_equal(one[0][0], found[2][0])
     for f, res in zip(F[:-1], found):
         try:
             x, rcond = solve_equilibrated(system.matrix(f), system.b.copy())

@@ -314,7 +314,7 @@ def test_the_callers_preparation_runs_beside_workers_elsewhere_only():
     its failure does not fail the run."""
     import threading
 
-    from thermocontact.execution.resumable import run_chunks
+    from thermocontact.execution.resumable import MEANWHILE_THREAD, run_chunks
 
     seen = []
 
@@ -323,12 +323,29 @@ def test_the_callers_preparation_runs_beside_workers_elsewhere_only():
         raise RuntimeError("the caller tries again after the run")
 
     tasks = [-1, -2, 3, -4]
-    out = run_chunks(abs, tasks, {"kind": "test"}, workers=lambda f, t: map(f, t),
-                     meanwhile=prepare)
+
+    def helpers():
+        return [t for t in threading.enumerate() if t.name == MEANWHILE_THREAD]
+    out = run_chunks(abs, tasks, {"kind": "test"}, workers=2, meanwhile=prepare)
     assert out == {0: 1, 1: 2, 2: 3, 3: 4} and seen == [True]
+    assert helpers() == []  # joined: a later pool may fork
     seen.clear()
-    run_chunks(abs, tasks, {"kind": "test"}, workers=1, meanwhile=prepare)
+    for here in (1, lambda f, t: map(f, t)):
+        run_chunks(abs, tasks, {"kind": "test"}, workers=here, meanwhile=prepare)
     assert seen == []
+    # A run that fails while the preparation is still at work leaves no thread behind.
+    import time
+
+    with pytest.raises(ValueError):
+        run_chunks(_fails_at_three, tasks, {"kind": "test"}, workers=2,
+                   meanwhile=lambda: time.sleep(0.5))
+    assert helpers() == []
+
+
+def _fails_at_three(x):
+    if x == 3:
+        raise ValueError("the third task fails")
+    return x
 
 
 def test_progress_line_reports_rate_and_time_left():

@@ -282,3 +282,38 @@ def test_approach_to_barber_with_equal_capacities_is_half_order():
     # n = 128: error estimates below 1e-14, the ratio as at n = 512 to 1e-12.
     d = [solve(5, 0.2, rho, lam=-1, n=128).load_ratio - LB for rho in (100.0, 1000.0)]
     assert abs(d[0] / d[1] / np.sqrt(10) - 1) < 0.05
+
+
+def test_a_heat_partition_met_again_is_checked_alike():
+    """A grid line's heat partition is checked once per system: met again, -0.0 is the
+    checked 0.0 (not a signed zero in the result) and a value the checks refuse (True,
+    equal to 1.0) is refused as the first time; parameters at another fHPe refuse a bad
+    fHPe as the constructor does, the constructor naming fHPe first."""
+    import math
+
+    from thermocontact.problem.parameters import Parameters
+    from thermocontact.solvers.single_patch import Model, _solve_patches
+
+    model = Model(5.0, 10.0)
+    blocks, systems = model.blocks(16), {}
+    par = model.parameters_at(0.2)
+
+    def lam_of(lam):
+        return _solve_patches([par], blocks, model.method, [(lam, None, None)], None,
+                              systems)[0]
+    first, again = lam_of(0.0), lam_of(-0.0)
+    assert again.lam == 0.0 and math.copysign(1.0, again.lam) == 1.0
+    assert np.array_equal(again.phi, first.phi)
+    lam_of(1.0)
+    assert isinstance(lam_of(True), InputError)
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(InputError, match="fhpe") as alone:
+            Parameters(5.0, bad, 10.0)
+        with pytest.raises(InputError, match="fhpe") as moved:
+            par.with_fhpe(bad)
+        assert str(alone.value) == str(moved.value)
+    with pytest.raises(InputError, match="fhpe"):
+        Parameters(5.0, -1.0, -1.0)
+    with pytest.raises(InputError, match="pure rolling"):
+        Parameters(5.0, 0.0, 10.0, speed_ratio=1.0).with_fhpe(0.1)
+    assert par.with_fhpe(0.3) == Parameters(5.0, 0.3, 10.0)

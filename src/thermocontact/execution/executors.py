@@ -24,7 +24,8 @@ import re
 
 from ..problem.validation import InputError, check_integer
 
-__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "side_process"]
+__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "runs_elsewhere",
+           "side_process"]
 
 #: Tasks in flight per worker.
 IN_FLIGHT = 2
@@ -181,6 +182,16 @@ def run(func, tasks, *, workers=1, progress=None):
         if progress is not None:
             progress(done, total)
         yield i, result
+
+
+def runs_elsewhere(workers, count: int) -> bool:
+    """Whether :func:`run` sends ``count`` tasks to processes other than this one: a
+    process pool of more than one worker, an executor or a Dask client (a map-like
+    callable may run them here)."""
+    if isinstance(workers, (int, type(None))) and not isinstance(workers, bool):
+        n = cpu_count() if workers is None else workers
+        return min(n, count) > 1
+    return isinstance(workers, cf.Executor) or _is_dask_client(workers)
 
 
 def _run(func, tasks, workers):

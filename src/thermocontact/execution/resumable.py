@@ -13,9 +13,13 @@ import json
 import threading
 
 from ..io.chunks import ChunkStore
-from .executors import run
+from .executors import run, runs_elsewhere
 
 __all__ = ["run_chunks"]
+
+
+#: The name of :func:`run_chunks`' thread for the caller's preparation.
+MEANWHILE_THREAD = "thermocontact: the caller's preparation"
 
 
 def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=None,
@@ -41,18 +45,26 @@ def run_chunks(func, tasks, manifest, store_path=None, *, workers=1, progress=No
             progress(len(tasks) - total + done, len(tasks))
 
     helper = None
-    for k, result in run(func, [tasks[i] for i in todo], workers=workers, progress=report):
-        if meanwhile is not None and helper is None and workers != 1:
-            helper = threading.Thread(target=_quietly, args=(meanwhile,), daemon=True)
-            helper.start()
-        i = todo[k]
-        if store is not None:
-            store.put(i, result)
-            chunks[i] = store.get(i)
-        else:
-            chunks[i] = json.loads(json.dumps(result))
-    if helper is not None:
-        helper.join()
+    if meanwhile is not None and not runs_elsewhere(workers, len(todo)):
+        meanwhile = None  # here it would only take the tasks' own time
+    try:
+        for k, result in run(func, [tasks[i] for i in todo], workers=workers,
+                             progress=report):
+            if meanwhile is not None and helper is None:
+                helper = threading.Thread(target=_quietly, args=(meanwhile,), daemon=True,
+                                          name=MEANWHILE_THREAD)
+                helper.start()
+            i = todo[k]
+            if store is not None:
+                store.put(i, result)
+                chunks[i] = store.get(i)
+            else:
+                chunks[i] = json.loads(json.dumps(result))
+    finally:
+        # Not left running, even when the run is interrupted: a process pool started
+        # after it would not fork beside a thread.
+        if helper is not None:
+            helper.join()
     return chunks
 
 

@@ -88,6 +88,7 @@ class Parameters:
 
     def __post_init__(self):
         object.__setattr__(self, "pe", check_positive("pe", self.pe))
+        object.__setattr__(self, "fhpe", check_nonnegative("fhpe", self.fhpe))
         object.__setattr__(
             self, "K2_over_K1", check_positive("K2_over_K1", self.K2_over_K1)
         )
@@ -105,7 +106,7 @@ class Parameters:
                 f"|speed_ratio| * pe (the half-plane's kernel scale) must be 0 or in "
                 f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c2:.3g} (pe = {self.pe:.3g}, "
                 f"speed_ratio = {self.speed_ratio:.3g})")
-        self._check_fhpe()
+        self._check_rolling()
         object.__setattr__(self, "beta_f", check_finite("beta_f", self.beta_f))
         if abs(self.beta_f) > B_MAX:
             raise InputError(f"beta_f must be in [-{B_MAX:g}, {B_MAX:g}], got {self.beta_f:g}")
@@ -116,19 +117,18 @@ class Parameters:
                 f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c:.3g} (pe = {self.pe:.3g}, "
                 f"k2_over_k1 = {self.k2_over_k1:.3g})")
 
-    def _check_fhpe(self):
-        # The checks that involve fhpe (the others do not change along a grid line).
-        object.__setattr__(self, "fhpe", check_nonnegative("fhpe", self.fhpe))
+    def _check_rolling(self):
         if self.speed_ratio == 1.0 and self.fhpe > 0.0:
             raise InputError("speed_ratio 1 is pure rolling, which makes no frictional "
                              f"heat: fhpe must be 0 there, got {self.fhpe:g}")
 
     def with_fhpe(self, fhpe) -> "Parameters":
         """These parameters at another ``fhpe``: ``dataclasses.replace(self, fhpe=fhpe)``
-        with only the checks that involve ``fhpe`` run again."""
+        with only the checks that involve ``fhpe`` run again (the others do not change
+        along a grid line)."""
         new = object.__new__(Parameters)
-        new.__dict__.update(self.__dict__, fhpe=fhpe)
-        new._check_fhpe()
+        new.__dict__.update(self.__dict__, fhpe=check_nonnegative("fhpe", fhpe))
+        new._check_rolling()
         return new
 
     @property

@@ -146,7 +146,7 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     condition estimated and solved by LAPACK (``getrf``, ``gecon``, ``getrs``), as
     alone.  What is saved is the per-solve work around the linear algebra.
     """
-    F = np.asarray(F, dtype=float)
+    F = np.atleast_1d(np.asarray(F, dtype=float))
     out = []
     # A few matrices at a time, so that a chunk's stack stays in the cache from its
     # forming to its factorisation (the arithmetic is per matrix either way), in two
@@ -350,9 +350,11 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
     """The checked closure ``(lam, sigma, temperatures)`` and its assembled system
     (kept in ``systems`` by closure)."""
     lam, sigma_over_delta, temperatures = closure
-    if lam is not None and closure in systems:
-        # A heat partition checked before (a grid line's points): checked alike.
-        return closure, systems[closure]
+    if type(lam) is float and closure in systems:
+        # A heat partition checked before (a grid line's points): its checked key (the
+        # stored one: 0.0 where this is -0.0).
+        key = next(k for k in systems if k == closure)
+        return key, systems[key]
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     if lam is not None:
         lam = check_range("lam", lam, -LIMIT, LIMIT)

@@ -243,13 +243,7 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
             if k != "load" and (ma["load"] <= 0 or mb["load"] <= 0):
                 continue
 
-            # The samples' own margins at the ends: Brent's method starts from them
-            # without solving there again.
-            known = {a: ma[k], b: mb[k]}
-
-            def f(x, k=k, known=known):
-                if x in known:
-                    return known[x]
+            def f(x, k=k):
                 try:
                     m = validity_margins(at(x))
                 except SolveError:

@@ -273,7 +273,11 @@ def _events(fixed, name, values, sols, method, tol):
         ends = [s if s.n == n else at(x) for s, x in ((sa, a), (sb, b))]
         if ends[0] is None or ends[1] is None:
             continue
-        found = locate_events(at, [a, b], ends, only_validity_changes=True,
+        # Brent's method starts from the ends without solving there again: at(x) is
+        # what they are (a line's points depend on nothing but their own x and n).
+        known = {a: ends[0], b: ends[1]}
+        found = locate_events(lambda x: known[x] if x in known else at(x), [a, b], ends,
+                              only_validity_changes=True,
                               xtol=lambda p, q: BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300))
         events += [e.to_dict() for e in found]
     return events
