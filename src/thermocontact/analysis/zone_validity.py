@@ -21,7 +21,7 @@ import numpy as np
 from ..discretisation.operator import contact_operators, outside_operators
 from ..io.results import Result
 from ..problem.parameters import Parameters
-from .validity import EDGE_LAYER_TOLERANCE, edge_terms, least_of
+from .validity import EDGE_LAYER_TOLERANCE, edge_terms, least_of, pressure_samples
 
 __all__ = ["ZoneValidity", "assess_zones", "zone_gap"]
 
@@ -157,7 +157,7 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
     """Evaluate every contact inequality of a contact set (derivation section 14).
 
     The pressure of each zone as :func:`~thermocontact.analysis.validity.assess` does
-    (2049 samples, the least polished); the gap on 160 distances per edge from
+    (:func:`~thermocontact.analysis.validity.pressure_samples`, the least polished); the gap on 160 distances per edge from
     ``1e-8`` of the zone's half-width (``1e-6`` where an edge term exists) to the
     middle of a region between zones, or ``1e3`` half-widths beyond the outermost
     edges, its least margin polished in ``ln t``.
@@ -177,7 +177,7 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
         band = k_log != 0.0
         bands += list(band)
         exps += list(exponents)
-        sp, f = rep.phi_samples(phi[j], 2049)
+        sp, f = rep.phi_samples(phi[j], pressure_samples(rep.n))
         min_p = min(min_p, float(np.min(rep.pressure_weight(sp) * f)))
         keep = np.ones(sp.size, dtype=bool)
         if band[0]:
