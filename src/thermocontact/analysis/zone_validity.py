@@ -157,10 +157,11 @@ def assess_zones(par: Parameters, rep, edges, phi, psi, profile, *, polish=True
     """Evaluate every contact inequality of a contact set (derivation section 14).
 
     The pressure of each zone as :func:`~thermocontact.analysis.validity.assess` does
-    (:func:`~thermocontact.analysis.validity.pressure_samples`, the least polished); the gap on 160 distances per edge from
-    ``1e-8`` of the zone's half-width (``1e-6`` where an edge term exists) to the
-    middle of a region between zones, or ``1e3`` half-widths beyond the outermost
-    edges, its least margin polished in ``ln t``.
+    (:func:`~thermocontact.analysis.validity.pressure_samples` samples, the least
+    polished); the gap on 160 distances per edge from ``1e-8`` of the zone's half-width
+    (``1e-6`` where an edge term exists) to the middle of a region between zones, or
+    ``1e3`` half-widths beyond the outermost edges, its least margin polished in
+    ``ln t``.
     """
     m = len(edges)
     centre, half = edges.mean(axis=1), 0.5 * (edges[:, 1] - edges[:, 0])
