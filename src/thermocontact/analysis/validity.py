@@ -14,7 +14,6 @@ decided by the solution's ``(|s| - 1)^{3/2}`` term, not by that residual.
 
 from __future__ import annotations
 
-from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -290,10 +289,9 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         # block's point geometry is dropped once its row operators are formed (17 MB
         # for 256 points at n = 1024); below, it is kept for the next grid line's
         # kernels at the same points (1 MB at n = 32).
-        keep = block == GAP_BLOCK
         parts = []
         for i in range(0, s.size, block):
-            with nullcontext() if keep else GEOMETRY.transient():
+            with GEOMETRY.transient(when=rep.n >= SHARED_BLOCKS_N):
                 parts.append(gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam,
                                   s[i:i + block]))
         return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
@@ -574,7 +572,7 @@ def assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> 
     # the row-operator cache keeps: from n = 512 dropped at the end (30 MB at n = 512
     # and 1024); below kept for the next grid line's kernels at the same points (a few
     # MB).
-    with nullcontext() if rep.n < SHARED_BLOCKS_N else GEOMETRY.transient():
+    with GEOMETRY.transient(when=rep.n >= SHARED_BLOCKS_N):
         return _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish)
 
 

@@ -30,7 +30,6 @@ sections 14-16).  The single patch is its one zone in its own scaling: the zone
 
 from __future__ import annotations
 
-from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -174,7 +173,7 @@ def _projected(par, rep, x, s, aux, step):
         a = None if aux is None else aux[rows]
         # A block's point geometry serves its kernels only; the 2n points' whole, when
         # one block, may serve another assembly at these points (a sweep).
-        with GEOMETRY.transient() if step < x.size else nullcontext():
+        with GEOMETRY.transient(when=step < x.size):
             C, Tp, Tq = contact_operators(par, rep, s[rows], a)
             Hp, Hq = heat_operators(par, rep, s[rows], a)
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))

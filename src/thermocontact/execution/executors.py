@@ -188,14 +188,19 @@ def runs_elsewhere(workers, count: int) -> bool:
     """Whether :func:`run` sends ``count`` tasks to processes other than this one: a
     process pool of more than one worker, an executor or a Dask client (a map-like
     callable may run them here)."""
-    if isinstance(workers, (int, type(None))) and not isinstance(workers, bool):
+    if _is_count(workers):
         n = cpu_count() if workers is None else workers
         return min(n, count) > 1
     return isinstance(workers, cf.Executor) or _is_dask_client(workers)
 
 
+def _is_count(workers) -> bool:
+    """Whether ``workers`` is a number of local processes (None: one per core)."""
+    return isinstance(workers, (int, type(None))) and not isinstance(workers, bool)
+
+
 def _run(func, tasks, workers):
-    if isinstance(workers, (int, type(None))) and not isinstance(workers, bool):
+    if _is_count(workers):
         n = cpu_count() if workers is None else check_integer("workers", workers, 1, MAX_WORKERS)
         n = min(n, max(len(tasks), 1))
         if n == 1:

@@ -167,9 +167,8 @@ class Result:
             if name not in names:
                 raise TypeError(f"{type(self).__name__} has no field {name!r}")
         # The fields only (nothing derived from them is carried over).
-        new = object.__new__(type(self))
-        new.__dict__.update({name: self.__dict__[name] for name in names}, **changes)
-        return new
+        return type(self).build(**{**{name: self.__dict__[name] for name in names},
+                                   **changes})
 
 
 def dataset_attrs(record: dict, skip=()) -> dict:

@@ -76,18 +76,19 @@ class BoundedCache:
         return value
 
     @contextmanager
-    def transient(self):
+    def transient(self, when=True):
         """Drop, at the end of the block, the entries added within it: for work whose
-        entries are not used again (the blocks of points of a large assembly)."""
+        entries are not used again (the blocks of points of a large assembly).  With
+        ``when`` false the block keeps them, as any other."""
         with self._lock:
             before = set(self._data)
         try:
             yield self
         finally:
-            with self._lock:
-                for key in [k for k in self._data if k not in before]:
-                    del self._data[key]
-                    self._bytes -= self._sizes.pop(key)
+            if when:
+                with self._lock:
+                    for key in [k for k in self._data if k not in before]:
+                        self.discard(key)
 
     def discard(self, key):
         """Drop ``key``'s entry, if any."""

@@ -317,8 +317,10 @@ class _Side:
         # Sides of zero length (points at or beyond an edge) contribute nothing.
         self.rows = np.flatnonzero(self.full), np.flatnonzero(~self.full & (side > 0.0))
         self.inner = np.where(self.full, w, np.minimum(side, w))
-        if not (self.rows[0].size or self.rows[1].size):
-            return  # no point has this side (the moments skip it): no rule to form
+        # Whether any point has this side; without one the moments skip it.
+        self.live = bool(self.rows[0].size or self.rows[1].size)
+        if not self.live:
+            return  # no rule to form
         # The panels' points: the same rule as the common panels (moments._GL).
         xg, wg = gauss_legendre(_moments.GAUSS_POINTS)
         # Offsets and weights of the outer panels: fixed ones then the row's own.
@@ -509,11 +511,11 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     _far_product(weighted, g, out[1])
     del weighted
     for index, side in enumerate(geo.sides):
-        full, short = side.rows
-        if not (full.size or short.size):
+        if not side.live:
             # Every point at or beyond this side's edge (a block of the gap's points):
             # nothing to integrate, no kernel to evaluate on its dummies.
             continue
+        full, short = side.rows
         u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
         with np.errstate(divide="ignore", invalid="ignore"):
             # Rows of a side of zero length (points at or beyond an edge) hold dummies.

@@ -21,9 +21,8 @@ equation by the temperature equation (D33).
 
 from __future__ import annotations
 
-import math
-
 import logging
+import math
 import warnings
 
 import numpy as np
@@ -155,7 +154,8 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
     buffers = np.empty((2, step, k, k))
     for i in range(0, F.size, step):
-        out += _solve_chunk(system, F[i:i + step], what, buffers[:, :F[i:i + step].size])
+        chunk = F[i:i + step]
+        out += _solve_chunk(system, chunk, what, buffers[:, :chunk.size])
     return out
 
 
