@@ -148,14 +148,16 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     F = np.atleast_1d(np.asarray(F, dtype=float))
     out = []
     # A few matrices at a time, so that a chunk's stack stays in the cache from its
-    # forming to its factorisation (the arithmetic is per matrix either way), in two
-    # buffers that every chunk reuses.
+    # forming to its factorisation (the arithmetic is per matrix either way), in a
+    # buffer that every chunk reuses; their |entries| for the 1-norms a block of rows
+    # at a time (no second matrix of 34 MB at n = 1024).
     k = system.A0.shape[0]
     step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
-    buffers = np.empty((2, step, k, k))
+    stack = np.empty((step, k, k))
+    work = np.empty((step, min(k, max(1, STACK_ENTRIES // (step * k))), k))
     for i in range(0, F.size, step):
         chunk = F[i:i + step]
-        out += _solve_chunk(system, chunk, what, buffers[:, :chunk.size])
+        out += _solve_chunk(system, chunk, what, stack[:chunk.size], work[:chunk.size])
     return out
 
 
@@ -163,10 +165,9 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
 STACK_ENTRIES = 2**17
 
 
-def _solve_chunk(system, F, what, buffers):
+def _solve_chunk(system, F, what, S, work):
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
     A0t = system.A0.T
-    S, work = buffers
     # A non-finite F makes its matrix non-finite: refused below, at that F only.
     with np.errstate(invalid="ignore", over="ignore"):
         if system.A1 is None:
@@ -179,7 +180,13 @@ def _solve_chunk(system, F, what, buffers):
                                  np.finfo(float).tiny)
         S *= scale[:, None, :]
         B = system.b[None, :] * scale
-        norms = np.abs(S, out=work).sum(axis=2).max(axis=1)
+        # Rows of S[i] are columns of A_i: the 1-norm is the largest of their sums.
+        sums = np.empty(S.shape[:2])
+        rows = work.shape[1]
+        for r in range(0, S.shape[1], rows):
+            part = S[:, r:r + rows]
+            sums[:, r:r + rows] = np.abs(part, out=work[:, :part.shape[1]]).sum(axis=2)
+        norms = sums.max(axis=1)
     # Each equilibrated row is at most 1 in magnitude, so a norm is finite exactly when
     # the whole matrix is (an inf or a NaN makes its row's scale and so the row NaN).
     finite = np.isfinite(norms)
