@@ -266,3 +266,69 @@ def test_points_beyond_an_edge_skip_the_side_they_have_not():
     # Far field and one side's inner and outer nodes per point: the other side's
     # nodes (as many again) are not evaluated.
     assert alone_values < 0.75 * sum(calls) * out.size / (out.size + inside.size)
+
+
+@pytest.mark.parametrize("n", [16, 64])
+def test_points_beyond_an_edge_move_the_edge_geometry(monkeypatch, n):
+    """Points beyond an edge share that edge's tau_s: their geometry is the edge
+    point's, built once and moved by s - clip(s).  Their moments equal, bit for bit,
+    those of a geometry built for them alone, on both sides and for a kernel that
+    carries each point's own parameter (the gap's)."""
+    built = []
+    init = graded._Geometry.__init__
+
+    def counting(self, s, *args):
+        built.append(np.array(s))
+        init(self, s, *args)
+    monkeypatch.setattr(graded._Geometry, "__init__", counting)
+    sides = [1.0 + np.geomspace(1e-8, 30.0, 9), -1.0 - np.geomspace(1e-6, 3.0, 4)]
+    kernels = [lambda u: cylinder_slope(3.0 * u),
+               lambda u: cylinder_temperature_gradient_regular(u, 40.0)]
+
+    def run():
+        graded.GEOMETRY.clear()
+        out = []
+        for s in sides:
+            h = 3.0 * (np.abs(s) - 1.0)[:, None]
+            drop = lambda u, h=h: cylinder_slope(3.0 * u - h) * h  # noqa: E731
+            for kern, log in zip(kernels + [drop], (False, True, False)):
+                out += graded.moments(kern, s, n, scale=3.0, logarithmic=log)
+                out += graded.moments(kern, s, n, scale=3.0, logarithmic=log, from_edge=True)
+            out += graded.moments(kernels[0], s[3:4], n, scale=3.0)  # one point alone
+        return out
+
+    moved = run()
+    # Built: the two edge points, nothing else.
+    assert sorted(float(b[0]) for b in built) == [-1.0, 1.0] and all(b.size == 1 for b in built)
+    monkeypatch.setattr(graded._Geometry, "moved",
+                        lambda self, s, key: graded._Geometry(s, self.n, None, self.cmap))
+    built.clear()
+    alone = run()
+    assert len(built) == 2 + 2 * len(sides)
+    for a, b in zip(moved, alone):
+        assert np.array_equal(a, b)
+
+
+def test_kernel_called_once_per_block():
+    """A block of points small enough (KERNEL_ENTRIES) calls its kernel once, on the far
+    field's and both sides' nodes side by side, and gets the same numbers as when each
+    part is evaluated on its own (a larger block's path)."""
+    calls = []
+
+    def kernel(u):
+        calls.append(u.shape)
+        return cylinder_temperature_gradient_regular(u, 7.0)
+
+    s = np.array([-0.9, -0.2, 0.3, 0.95])
+    once = graded.moments(kernel, s, 16, scale=7.0, logarithmic=True)
+    assert len(calls) == 1 and calls[0][0] == s.size
+    calls.clear()
+    old = graded.KERNEL_ENTRIES
+    try:
+        graded.KERNEL_ENTRIES = 64  # the far field a few columns at a time, sides apart
+        apart = graded.moments(kernel, s, 16, scale=7.0, logarithmic=True)
+    finally:
+        graded.KERNEL_ENTRIES = old
+    assert len(calls) > 4
+    for a, b in zip(once, apart):
+        assert np.array_equal(a, b)

@@ -90,8 +90,27 @@ def _short(value) -> str:
     return repr(value)
 
 
-#: Per result class, its fields' defaults (None where one is made by a factory).
-_DEFAULTS: dict = {}
+#: Per result class, how :meth:`Result.build` makes one (:func:`_plan`).
+_PLANS: dict = {}
+
+
+def _plan(cls):
+    """``(field names in order, the same as a set, the fields without a default, the
+    defaults)``; None where the class checks its fields (``__post_init__``) or a
+    default is made by a factory: the constructor then."""
+    try:
+        return _PLANS[cls]
+    except KeyError:
+        pass
+    fs = fields(cls)
+    plan = None
+    if not (hasattr(cls, "__post_init__")
+            or any(f.default_factory is not MISSING for f in fs)):
+        defaults = {f.name: f.default for f in fs if f.default is not MISSING}
+        names = tuple(f.name for f in fs)
+        plan = names, frozenset(names), frozenset(names) - defaults.keys(), defaults
+    _PLANS[cls] = plan
+    return plan
 
 
 class Result:
@@ -139,36 +158,34 @@ class Result:
         """``cls(**values)`` without the constructor for a result without
         ``__post_init__`` (the frozen dataclass's ``__init__`` costs a grid line
         microseconds per field and point): the same fields, the defaults filled in."""
-        if hasattr(cls, "__post_init__"):
+        plan = _plan(cls)
+        # A field missing or unknown: the constructor's own error.
+        if plan is None or not plan[2] <= values.keys() <= plan[1]:
             return cls(**values)
-        if cls not in _DEFAULTS:
-            fs = fields(cls)
-            _DEFAULTS[cls] = (None if any(f.default_factory is not MISSING for f in fs)
-                              else {f.name: f.default for f in fs if f.default is not MISSING})
-        defaults = _DEFAULTS[cls]
-        if defaults is None:
-            return cls(**values)
-        names = cls.__dataclass_fields__
-        missing = [n for n in names if n not in values and n not in defaults]
-        if missing or any(n not in names for n in values):
-            return cls(**values)  # the constructor's own error
         new = object.__new__(cls)
-        new.__dict__.update(defaults, **values)
+        fields_ = new.__dict__
+        fields_.update(plan[3])
+        fields_.update(values)
         return new
 
     def replace(self, **changes):
         """A copy with some fields changed: :func:`dataclasses.replace`, or for a result
         without ``__post_init__`` the same object built from the fields directly (the
         constructor's checks cost a grid line tens of microseconds per point)."""
-        if hasattr(self, "__post_init__"):
+        cls = type(self)
+        plan = _plan(cls)
+        if plan is None:
             return replace(self, **changes)
-        names = self.__dataclass_fields__
-        for name in changes:
-            if name not in names:
-                raise TypeError(f"{type(self).__name__} has no field {name!r}")
+        if not changes.keys() <= plan[1]:
+            name = next(name for name in changes if name not in plan[1])
+            raise TypeError(f"{cls.__name__} has no field {name!r}")
         # The fields only (nothing derived from them is carried over).
-        return type(self).build(**{**{name: self.__dict__[name] for name in names},
-                                   **changes})
+        old = self.__dict__
+        new = object.__new__(cls)
+        fields_ = new.__dict__
+        fields_.update({name: old[name] for name in plan[0]})
+        fields_.update(changes)
+        return new
 
 
 def dataset_attrs(record: dict, skip=()) -> dict:

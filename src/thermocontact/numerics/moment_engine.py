@@ -311,6 +311,10 @@ class _Side:
     zero length at or beyond it) is graded and paneled row by row.
     """
 
+    #: For a side moved from a point at an edge (:meth:`moved`): that point's geometry
+    #: and key, whose innermost interval the moved side's is.
+    template = None
+
     def __init__(self, geo, sign, side, n, h, w):
         self.sign = sign
         self.full = side >= h
@@ -353,6 +357,27 @@ class _Side:
         self.fixed_cos = np.cos(np.outer(offsets, j))
         self.fixed_sin = np.sin(np.outer(offsets, j))
 
+    def moved(self, offset, template):
+        """This side of one point at an edge, for points ``offset = s - clip(s)``
+        beyond it (:meth:`_Geometry.moved`): every row the point's, the distances
+        ``u = offset + e`` formed as :func:`_u` forms them."""
+        k = offset.size
+        new = object.__new__(_Side)
+        new.sign, new.live, new.template = self.sign, self.live, template
+        new.full, new.inner = _rows(self.full, k), _rows(self.inner, k)
+        new.rows = tuple(np.arange(k) if r.size else r for r in self.rows)
+        if not self.live:
+            return new
+        e = self.outer_u[1]
+        new.outer_u = (offset[:, None] + e, _rows(e, k))
+        new.outer_w = np.broadcast_to(self.outer_w, (2, k) + self.outer_w.shape[2:])
+        new.outer_live, new.n_fixed = _rows(self.outer_live, k), self.n_fixed
+        new.own_lagrange = _rows(self.own_lagrange, k if self.rows[0].size else 0)
+        new.short_cos = _rows(self.short_cos, k if self.rows[1].size else 0)
+        new.short_sin = _rows(self.short_sin, k if self.rows[1].size else 0)
+        new.fixed_cos, new.fixed_sin = self.fixed_cos, self.fixed_sin
+        return new
+
     def inner_parts(self, geo, levels):
         """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix (kept
         in :data:`GEOMETRY` as entries of their own, so that the cache counts them)."""
@@ -387,6 +412,30 @@ class _Geometry:
         w = min(6.0 / (n + 1), h)
         self.sides = [_Side(self, sign, side, n, h, w) for sign, side in sides]
 
+    def moved(self, s, key):
+        """This geometry of one point at an edge (``key`` its key), for points ``s`` at
+        or beyond that edge: their ``tau_s`` is the edge's, so everything but the
+        distances ``s - r`` is the point's row, repeated (read-only views), and the
+        distances are the point's plus ``s - clip(s)``, as :func:`_u` forms them: the
+        same numbers as a geometry of its own, without its sines and cosines (a
+        polished gap margin's points)."""
+        k = s.size
+        new = object.__new__(_Geometry)
+        new.s, new.n, new.cmap = s, self.n, self.cmap
+        new.t_s, new.tau_s = _rows(self.t_s, k), _rows(self.tau_s, k)
+        new.near = _rows(self.near, k)
+        new.far_u = s[:, None] - _common(self.n, self.cmap)[2][None, :]
+        new.far_e = _rows(self.far_e, k)
+        new.cos_s, new.sin_s = _rows(self.cos_s, k), _rows(self.sin_s, k)
+        offset = s - np.clip(s, -1.0, 1.0)
+        new.sides = [side.moved(offset, (self, key)) for side in self.sides]
+        return new
+
+
+def _rows(a, k):
+    """``a``'s first row repeated ``k`` times (a read-only view)."""
+    return np.broadcast_to(a[:1], (k,) + a.shape[1:])
+
 
 #: The point geometry of the moments, shared by the kernels of one assembly.
 GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
@@ -403,16 +452,33 @@ MIN_BLOCK = 256
 
 def _geometry(key: bytes, n: int, tau_key: bytes | None, cmap) -> _Geometry:
     def build():
-        tau = None if tau_key is None else np.frombuffer(tau_key, dtype=float)
-        return _Geometry(np.frombuffer(key, dtype=float), n, tau, cmap)
+        s = np.frombuffer(key, dtype=float)
+        if tau_key is not None:
+            return _Geometry(s, n, np.frombuffer(tau_key, dtype=float), cmap)
+        edge = 1.0 if np.all(s >= 1.0) else -1.0 if np.all(s <= -1.0) else None
+        if edge is None or (s.size == 1 and s[0] == edge):
+            return _Geometry(s, n, None, cmap)
+        # Points beyond one edge: the edge's own geometry, moved (kept, for the next).
+        at_edge = np.array([edge]).tobytes()
+        return _geometry(at_edge, n, None, cmap).moved(s, at_edge)
     return GEOMETRY.get((key, n, tau_key, cmap.name), build)
 
 
 def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes | None):
-    """The innermost interval of the side ``index`` of ``geo`` (:meth:`_Side.inner_parts`)."""
+    """The innermost interval of the side ``index`` of ``geo`` (:meth:`_Side.inner_parts`;
+    a moved side's from its edge point's, as :meth:`_Side.moved`)."""
     side = geo.sides[index]
-    return GEOMETRY.get((key, geo.n, tau_key, geo.cmap.name, index, levels),
-                        lambda: side.inner_parts(geo, levels))
+
+    def build():
+        if side.template is None:
+            return side.inner_parts(geo, levels)
+        edge_geo, edge_key = side.template
+        (_, e), live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
+        k = geo.s.size
+        offset = geo.s - np.clip(geo.s, -1.0, 1.0)
+        return ((offset[:, None] + e, _rows(e, k)), _rows(live, k),
+                np.broadcast_to(wq, (2, k) + wq.shape[2:]), lagr)
+    return GEOMETRY.get((key, geo.n, tau_key, geo.cmap.name, index, levels), build)
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
@@ -488,9 +554,21 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     pick = 1 if from_edge else 0
     levels = levels_for(n, scale, logarithmic)
     far = geo.far_e if from_edge else geo.far_u
+    live = [(index, side) for index, side in enumerate(geo.sides) if side.live]
+    parts = {index: _inner_parts(geo, index, levels, key, tau_key) for index, _ in live}
+    # The graded sides' nodes (innermost interval, then outer panels, per side).
+    near = [u for index, side in live for u in (parts[index][0][pick], side.outer_u[pick])]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if far.size <= KERNEL_ENTRIES:
-            kf = kernel(far)
+        if far.size + sum(u.size for u in near) <= KERNEL_ENTRIES:
+            # The kernel called once on all the nodes, the far field's and the sides'
+            # side by side (a kernel's fixed cost, its masks and temporaries, paid
+            # once; each value is the same as alone: kernels are elementwise in u, their
+            # rows' own parameters broadcast along the rows).
+            values = kernel(np.concatenate([far, *near], axis=1))
+            edges = np.cumsum([far.shape[1]] + [u.shape[1] for u in near])
+            kf, *near = np.split(values, edges[:-1], axis=1)
+        elif far.size <= KERNEL_ENTRIES:
+            kf, near = kernel(far), None
         else:
             # A few columns at a time: a kernel's temporaries (ten or more arrays of the
             # block's size for the Bessel kernels) stay small.  Kernels are elementwise
@@ -502,6 +580,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
                 if kf is None:  # real or complex, as the kernel's values are
                     kf = np.empty(far.shape, dtype=part.dtype)
                 kf[:, c:c + step] = part
+            near = None
     kf[geo.near] = 0.0
     # Both weights' products into one array, through one temporary.
     out = np.empty((2, kf.shape[0], n), dtype=np.result_type(kf, g[0]))
@@ -510,17 +589,19 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     np.multiply(kf, wts[1], out=weighted)
     _far_product(weighted, g, out[1])
     del weighted
-    for index, side in enumerate(geo.sides):
-        if not side.live:
-            # Every point at or beyond this side's edge (a block of the gap's points):
-            # nothing to integrate, no kernel to evaluate on its dummies.
-            continue
+    # A side without points (every point at or beyond its edge: a block of the gap's
+    # points) has nothing to integrate and no kernel values.
+    for k, (index, side) in enumerate(live):
         full, short = side.rows
-        u, live, wq, lagr = _inner_parts(geo, index, levels, key, tau_key)
+        u, inside, wq, lagr = parts[index]
         with np.errstate(divide="ignore", invalid="ignore"):
+            if near is None:
+                k_inner, k_outer = kernel(u[pick]), kernel(side.outer_u[pick])
+            else:
+                k_inner, k_outer = near[2 * k], near[2 * k + 1]
             # Rows of a side of zero length (points at or beyond an edge) hold dummies.
-            inner = (np.where(live, kernel(u[pick]), 0.0)[None] * wq) @ lagr
-            outer = np.where(side.outer_live, kernel(side.outer_u[pick]), 0.0)[None] * side.outer_w
+            inner = (np.where(inside, k_inner, 0.0)[None] * wq) @ lagr
+            outer = np.where(side.outer_live, k_outer, 0.0)[None] * side.outer_w
         if full.size:
             nf = side.n_fixed
             own = np.matmul(outer[:, full, None, nf:], side.own_lagrange)[:, :, 0]

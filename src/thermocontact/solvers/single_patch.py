@@ -26,7 +26,7 @@ import math
 import warnings
 
 import numpy as np
-from scipy.linalg.lapack import dgecon, dgetrf, dgetrs
+from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetrs
 
 from ..analysis.validity import assess, assess_many
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
@@ -195,13 +195,14 @@ def _solve_chunk(system, F, what, S, work):
         if not finite[i]:
             out.append(_not_finite(what))
             continue
-        lu, piv, info = dgetrf(S[i].T, overwrite_a=True)
+        # getrf and getrs in one call (gesv: the same factors and solution, one call
+        # fewer per point); a system then refused by its condition costs one solve.
+        lu, _, x, _ = dgesv(S[i].T, B[i], overwrite_a=True)
         rcond, info = dgecon(lu, norms[i], norm="1")
         rcond = float(rcond)
         if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
             out.append(_ill_conditioned(what, rcond))
             continue
-        x, _ = dgetrs(lu, piv, B[i])
         out.append((x, rcond))
         solved.append(i)
     if solved:
