@@ -232,3 +232,34 @@ def test_an_event_is_estimated_within_its_own_stretch_of_the_path():
     assert first is None and second == pytest.approx(0.2, rel=1e-9)
     # Without the samples the first took the second's sign change: 59.2.
     assert estimates()[0] == pytest.approx(59.2, rel=1e-9)
+
+
+def test_the_point_past_an_event_is_brents_own(monkeypatch):
+    """The validity after an event is read from Brent's own point nearest the root on
+    the far side of the sign change (the root itself when there): no solve past it.
+    Against a solve 10 xtol past each root (the reading before), the same events, roots
+    and validity after, the margins' positions within 1e-8, with a solve fewer per
+    event."""
+    import thermocontact.studies.boundaries as bd
+
+    calls = []
+    solve_at = bd.Model.solve_at
+
+    def counting(self, *args, **kwargs):
+        calls.append(args)
+        return solve_at(self, *args, **kwargs)
+    monkeypatch.setattr(bd.Model, "solve_at", counting)
+    kw = dict(pe=5, fhpe=0.2, K2_over_K1=10)
+    path = follow(kw, "lam", -1e6, 1e6, n=32)
+    own = len(calls)
+    monkeypatch.setattr(bd, "_just_past", lambda *args: None)
+    calls.clear()
+    again = follow(kw, "lam", -1e6, 1e6, n=32)
+    assert own == len(calls) - 2
+    assert len(path.events) == len(again.events) == 3
+    for e, f in zip(path.events, again.events):
+        assert (e.at, e.inequality, e.edge, e.valid_before, e.valid_after) == \
+            (f.at, f.inequality, f.edge, f.valid_before, f.valid_after)
+        assert (e.position is None) == (f.position is None)
+        if e.position is not None:
+            assert abs(e.position - f.position) <= 1e-8 * abs(f.position)

@@ -242,36 +242,53 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
             # through L = 0.
             if k != "load" and (ma["load"] <= 0 or mb["load"] <= 0):
                 continue
+            seen = {}  # Brent's points: x -> (solution, margin)
 
-            def f(x, k=k):
+            def f(x, k=k, seen=seen):
                 try:
-                    m = validity_margins(at(x))
+                    sol = at(x)
                 except SolveError:
-                    m = None
+                    sol = None
+                m = validity_margins(sol)
                 if m is None:
                     # Refused only where P_H/P vanishes (sigma infinite): the load
                     # margin's root itself.
                     return 0.0 if k == "load" else np.nan
+                seen[x] = (sol, m[k])
                 return m[k]
             try:
                 root = locate(f, min(a, b), max(a, b), xtol=xtol(a, b))
             except (ValueError, RuntimeError):
                 continue
-            found.append((abs(root - a), root, k))
-        found.sort()
+            found.append((abs(root - a), root, k, seen))
+        found.sort(key=lambda event: event[:3])
         # Events chain: each starts from the validity the previous one left.
         before = bool(sa.valid)
-        for _, root, k in found[:1] if only_validity_changes else found:
+        for _, root, k, seen in found[:1] if only_validity_changes else found:
             step = 10 * xtol(a, b) * np.sign(b - a)
-            try:
-                past = at(root + step) if abs(step) < abs(b - a) else None
-            except SolveError:
-                past = None
+            past = _just_past(seen, root, step, mb[k] >= 0)
+            if past is None:
+                try:
+                    past = at(root + step) if abs(step) < abs(b - a) else None
+                except SolveError:
+                    past = None
             past = past if past is not None else sb
             position, edge = _where(past, k)
             events.append(Event(float(root), k, edge, before, bool(past.valid), position))
             before = bool(past.valid)
     return tuple(events)
+
+
+def _just_past(seen, root, step, after):
+    """The solution just past an event at ``root`` among Brent's own points ``seen``
+    (``x -> (solution, margin)``): the one nearest the root, from the root itself up to
+    ``step`` beyond it, whose margin has the sign it has after the event
+    (``after``: ``>= 0``); None without one.  Brent's method ends with the root and a
+    point on the other side of the sign change within its tolerance, so that the
+    validity after the event is read without another solve."""
+    near = [(abs(x - root), sol) for x, (sol, margin) in seen.items()
+            if (margin >= 0) == after and 0.0 <= (x - root) * np.sign(step) <= abs(step)]
+    return min(near, key=lambda pair: pair[0])[1] if near else None
 
 
 def _asinh_spaced(start, stop, points):
