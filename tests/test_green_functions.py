@@ -756,3 +756,32 @@ def test_far_upstream_gradient_kernel_is_minus_one_over_u_to_the_last_bit():
         u = u[np.abs(c * u) >= 1e-3]
         full = c * cylinder_temperature_gradient(c * u) - 1.0 / u
         assert np.array_equal(kernels.cylinder_temperature_gradient_regular(u, c), full)
+
+
+def test_kernel_values_do_not_depend_on_the_other_points():
+    """The kernels take shortcuts on whole arrays (no mask where every point is
+    upstream, or every drop is wide): a point's value is the same, bit for bit, in an
+    array of its own kind, in a mixed one and alone, for both signs of a moving body's
+    scale."""
+    from thermocontact.physics.green_functions import cylinder_displacement_drop
+
+    rng = np.random.default_rng(3)
+    up = rng.uniform(1e-6, 30.0, 400)
+    mixed = np.concatenate([up, -up[:100], [0.0]])
+    h_wide, h_any = rng.uniform(2e-3, 5.0, 400), np.geomspace(1e-9, 5.0, 400)
+
+    def alone(f, *arrays):
+        return np.array([f(*(np.array([a[i]]) for a in arrays))[0]
+                         for i in range(arrays[0].size)])
+    for f in (kernels.cylinder_displacement, lambda u: kernels.moving_slope(u, 7.0),
+              lambda u: kernels.moving_slope(u, -7.0),
+              lambda u: kernels.cylinder_temperature_gradient_regular(u, 7.0)):
+        values = f(mixed[mixed != 0.0])
+        assert np.array_equal(values[:up.size], f(up))
+        assert np.array_equal(values, alone(f, mixed[mixed != 0.0]))
+    assert np.array_equal(cylinder_displacement_drop(up, h_wide),
+                          alone(cylinder_displacement_drop, up, h_wide))
+    both = cylinder_displacement_drop(up, np.where(np.arange(400) < 200, h_wide, h_any))
+    assert np.array_equal(both[:200], cylinder_displacement_drop(up[:200], h_wide[:200]))
+    assert np.array_equal(both, alone(cylinder_displacement_drop, up,
+                                      np.where(np.arange(400) < 200, h_wide, h_any)))

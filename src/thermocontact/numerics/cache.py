@@ -80,15 +80,17 @@ class BoundedCache:
         """Drop, at the end of the block, the entries added within it: for work whose
         entries are not used again (the blocks of points of a large assembly).  With
         ``when`` false the block keeps them, as any other."""
+        if not when:
+            yield self
+            return
         with self._lock:
             before = set(self._data)
         try:
             yield self
         finally:
-            if when:
-                with self._lock:
-                    for key in [k for k in self._data if k not in before]:
-                        self.discard(key)
+            with self._lock:
+                for key in [k for k in self._data if k not in before]:
+                    self.discard(key)
 
     def discard(self, key):
         """Drop ``key``'s entry, if any."""

@@ -47,8 +47,10 @@ def cylinder_displacement(u):
         ``E(u)``, in ``(0, 1]``.
     """
     u = np.asarray(u, dtype=float)
-    out = np.ones(u.shape)
     up = u > 0.0
+    if up.all():
+        return i0e(u)  # (a grid of upstream points: no mask)
+    out = np.ones(u.shape)
     out[up] = i0e(u[up])
     return out
 
@@ -168,7 +170,10 @@ def cylinder_temperature_gradient_regular(u, scale):
     if np.any(upstream):
         out[upstream] = -1.0 / u[upstream]
     if np.any(big):
-        out[big] = scale * cylinder_temperature_gradient(cu[big]) - 1.0 / u[big]
+        # cylinder_temperature_gradient's formula on these points, none of which is
+        # beyond its own cut-off (|c u| < 22 here): the same numbers without its masks.
+        x, ax = cu[big], a[big]
+        out[big] = scale * (np.exp(-x - ax) * (k0e(ax) + np.sign(x) * k1e(ax))) - 1.0 / u[big]
     if np.any(small):
         x = cu[small]
         out[small] = scale * _regular_series(x)
@@ -232,7 +237,8 @@ def moving_slope(u, scale):
     -------
     ndarray
     """
-    return np.sign(scale) * cylinder_slope(scale * np.asarray(u, dtype=float))
+    slope = cylinder_slope(scale * np.asarray(u, dtype=float))
+    return slope if scale > 0.0 else -slope  # sgn(c) N H, without a product by 1
 
 
 #: The 2-point Gauss–Legendre rule on [-1, 1].
@@ -250,9 +256,12 @@ def cylinder_displacement_drop(a, h):
     """
     a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
     small = h < 1e-3
+    if not small.any():
+        return cylinder_displacement(a) - cylinder_displacement(a + h)
     out = np.empty(a.shape)
     big = ~small
-    out[big] = cylinder_displacement(a[big]) - cylinder_displacement(a[big] + h[big])
+    above = a[big]
+    out[big] = cylinder_displacement(above) - cylinder_displacement(above + h[big])
     if np.any(small):
         x, wq = _GAUSS_2
         hs = h[small][:, None]
