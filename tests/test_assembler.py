@@ -292,3 +292,21 @@ def test_refining_cases_each_on_its_own_is_refining_each_alone():
     # Each level solved once, for the cases still going.
     assert [m for m, _ in calls] == sorted({m for m, _ in calls})
     assert calls[0] == (4, [0, 1, 2, 3])
+
+
+@pytest.mark.parametrize("n", [32, 128])
+def test_a_stack_solves_as_the_plain_path_on_the_blas_threads(n):
+    """Small systems are solved by gesv (getrf then getrs in one call), larger ones by
+    getrf and getrs apart, so that getrf may use the BLAS threads the Python API leaves
+    it: at n = 32 (66 unknowns) and n = 128 (258), with BLAS on its own threads, the
+    stack gives each F the plain path's solution to the last bit."""
+    from thermocontact.discretisation.system import contact_set_system
+    from thermocontact.solvers.single_patch import GESV_ENTRIES, solve_equilibrated, solve_stack
+
+    system = contact_set_system(Parameters(5.0, 0.2, 10.0), np.array([[-1.0, 1.0]]),
+                                EdgeGraded(n), "projection", lam=-1.0)
+    assert (system.A0.size < GESV_ENTRIES) == (n == 32)
+    F = np.array([0.1, 0.4])
+    for f, (x, rcond) in zip(F, solve_stack(system, F, "the linear system")):
+        expected, r = solve_equilibrated(system.matrix(f), system.b.copy())
+        assert np.array_equal(x, expected) and rcond == pytest.approx(r, rel=1e-12)

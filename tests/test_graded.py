@@ -332,3 +332,33 @@ def test_kernel_called_once_per_block():
     assert len(calls) > 4
     for a, b in zip(once, apart):
         assert np.array_equal(a, b)
+
+
+def test_a_blockwise_kernel_is_called_on_each_part_apart():
+    """A kernel whose values depend on the array it is given (``elementwise = False``:
+    the transient distortion's quadrature takes its depth per block of points) is called
+    on the far field's nodes and on each side's innermost interval and outer panels
+    apart, as the moments always called it; the numbers are those of the same kernel
+    called once on all of them, where it is elementwise.  The stability operator's
+    transient distortion kernels say so."""
+    from thermocontact import Model
+    from thermocontact.solvers.stability import linearised
+
+    shapes = []
+
+    def blockwise(u):
+        shapes.append(u.shape)
+        return cylinder_temperature_gradient_regular(u, 7.0)
+    blockwise.elementwise = False
+    s = np.array([-0.9, -0.2, 0.3, 0.95])
+    apart = graded.moments(blockwise, s, 16, scale=7.0, logarithmic=True)
+    assert len(shapes) == 1 + 2 * 2 and all(shape[0] == s.size for shape in shapes)
+    once = graded.moments(lambda u: cylinder_temperature_gradient_regular(u, 7.0), s, 16,
+                          scale=7.0, logarithmic=True)
+    for a, b in zip(apart, once):
+        assert np.array_equal(a, b)
+    cyl, half = (kernels for kernels, _ in linearised(
+        Model(1.0, 1.0, n=8).solve_at(8, 0.3, lam=-1.0))._kernels(0.5 + 0.5j)[:2])
+    for body in (cyl, half):
+        assert body["W"].elementwise is False and body["dS"].elementwise is False
+        assert getattr(body["T"], "elementwise", True)

@@ -785,3 +785,17 @@ def test_kernel_values_do_not_depend_on_the_other_points():
     assert np.array_equal(both[:200], cylinder_displacement_drop(up[:200], h_wide[:200]))
     assert np.array_equal(both, alone(cylinder_displacement_drop, up,
                                       np.where(np.arange(400) < 200, h_wide, h_any)))
+
+
+def test_kernels_keep_their_types_and_their_sign_of_the_scale():
+    """A number gives a 0-d array as before, whatever path it takes; a moving slope's
+    sign is that of its scale, 0 and NaN included (np.sign)."""
+    from thermocontact.physics.green_functions import cylinder_displacement_drop
+
+    for u in (2.0, -2.0):
+        assert isinstance(kernels.cylinder_displacement(u), np.ndarray)
+        assert isinstance(cylinder_displacement_drop(abs(u), 0.5), np.ndarray)
+    u = np.array([0.5, 1.0])
+    assert np.array_equal(kernels.moving_slope(u, 0.0), np.zeros(2))
+    assert np.isnan(kernels.moving_slope(u, np.nan)).all()
+    assert np.array_equal(kernels.moving_slope(u, -2.0), -kernels.cylinder_slope(-2.0 * u))

@@ -278,6 +278,12 @@ def test_the_geometry_cache_counts_everything_it_holds():
     assert len(GEOMETRY) > 0
     assert GEOMETRY.bytes == sum(nbytes(v) for v in GEOMETRY._data.values())
     assert GEOMETRY.bytes <= GEOMETRY.max_bytes
+    # A broadcast view (a geometry moved from an edge point's) holds its distinct
+    # entries only.
+    row = np.arange(6.0)
+    assert nbytes(np.broadcast_to(row, (1000, 6))) == row.nbytes
+    assert nbytes(np.broadcast_to(row[:, None], (6, 7))) == row.nbytes
+    assert nbytes(np.zeros((0, 3))) == 0 and nbytes(np.zeros((4, 3))) == 96
 
 
 def test_transient_entries_are_dropped_and_the_others_kept():
@@ -303,6 +309,20 @@ def test_replace_is_the_dataclass_replace(sol):
     assert type(changed) is type(sol) and changed.validity is sol.validity
     with pytest.raises(TypeError, match="no field 'loads'"):
         sol.replace(loads=1.0)
+    # A result with a default made by a factory is replaced by the constructor, its
+    # unknown fields refused alike.
+    import dataclasses as dc
+
+    from thermocontact.io.results import Result
+
+    @dc.dataclass(frozen=True, eq=False, repr=False)
+    class Listed(Result):
+        a: float
+        items: list = dc.field(default_factory=list)
+    listed = Listed(1.0).replace(a=2.0)
+    assert listed == Listed(2.0) and listed.items == []
+    with pytest.raises(TypeError, match="Listed has no field 'b'"):
+        Listed(1.0).replace(b=2.0)
 
 
 def test_build_is_the_constructor(sol):

@@ -129,14 +129,14 @@ class LinearisedContact:
         ell = logarithm_constant(b)
         w0 = 2.0 / (np.pi * np.sqrt(complex(b)))
         ws1, ws2 = _shared(c, b1), _shared(0.0, b)
-        cyl = dict(W=lambda u: ws1(u)[0],
+        cyl = dict(W=_blockwise(lambda u: ws1(u)[0]),
                    T=lambda u: transient_temperature(u, c, b1),
-                   dS=lambda u: ws1(u)[1] - cylinder_slope(c * u),
+                   dS=_blockwise(lambda u: ws1(u)[1] - cylinder_slope(c * u)),
                    dG=lambda u: (transient_temperature_gradient_regular(u, c, b1)
                                  - cylinder_temperature_gradient_regular(u, c)), **steady1)
-        half = dict(W=lambda u: ws2(u)[0] - w0,
+        half = dict(W=_blockwise(lambda u: ws2(u)[0] - w0),
                     T=lambda u: transient_temperature(u, 0.0, b) - ell,
-                    dS=lambda u: ws2(u)[1] - 0.5 * np.sign(u),
+                    dS=_blockwise(lambda u: ws2(u)[1] - 0.5 * np.sign(u)),
                     dG=lambda u: transient_temperature_gradient_regular(u, 0.0, b), **steady2)
         return ((cyl, max(1.0, c, abs(np.sqrt(complex(b1))))),
                 (half, max(1.0, abs(np.sqrt(complex(b))))), ell)
@@ -234,6 +234,15 @@ class LinearisedContact:
         else:
             rows[n + 3] += ell * row
         return rows
+
+
+def _blockwise(kernel):
+    """``kernel``, marked as one whose values depend on the array it is given (the
+    transient distortion's quadrature in ``phi`` takes its depth and panels per block
+    of points): the moments evaluate it on each part of their nodes apart
+    (:func:`~thermocontact.numerics.moment_engine.moments`), as they always have."""
+    kernel.elementwise = False
+    return kernel
 
 
 def _shared(c, b):

@@ -173,12 +173,15 @@ class Result:
         without ``__post_init__`` the same object built from the fields directly (the
         constructor's checks cost a grid line tens of microseconds per point)."""
         cls = type(self)
-        plan = _plan(cls)
-        if plan is None:
+        if hasattr(self, "__post_init__"):
             return replace(self, **changes)
-        if not changes.keys() <= plan[1]:
-            name = next(name for name in changes if name not in plan[1])
+        plan = _plan(cls)
+        names = cls.__dataclass_fields__.keys() if plan is None else plan[1]
+        if not changes.keys() <= names:
+            name = next(name for name in changes if name not in names)
             raise TypeError(f"{cls.__name__} has no field {name!r}")
+        if plan is None:  # a default made by a factory: the constructor
+            return replace(self, **changes)
         # The fields only (nothing derived from them is carried over).
         old = self.__dict__
         new = object.__new__(cls)

@@ -25,8 +25,13 @@ _SMALL: list = []
 
 
 def nbytes(value) -> int:
-    """Bytes of the arrays held by ``value`` (arrays, tuples, lists, dicts, objects' dicts)."""
+    """Bytes of the arrays held by ``value`` (arrays, tuples, lists, dicts, objects' dicts;
+    a broadcast view by the entries it holds distinct)."""
     if isinstance(value, np.ndarray):
+        if value.size and 0 in value.strides:
+            # A broadcast view: its distinct entries only.
+            return value.itemsize * int(np.prod([d for d, st in zip(value.shape, value.strides)
+                                                 if st != 0]))
         return value.nbytes
     if isinstance(value, (tuple, list)):
         return sum(nbytes(v) for v in value)

@@ -311,8 +311,9 @@ class _Side:
     zero length at or beyond it) is graded and paneled row by row.
     """
 
-    #: For a side moved from a point at an edge (:meth:`moved`): that point's geometry
-    #: and key, whose innermost interval the moved side's is.
+    #: For a side moved from a point at an edge (:meth:`moved`): that point's key (its
+    #: geometry is the cache's, not held here, where the cache would count it again),
+    #: whose innermost interval the moved side's is.
     template = None
 
     def __init__(self, geo, sign, side, n, h, w):
@@ -428,7 +429,7 @@ class _Geometry:
         new.far_e = _rows(self.far_e, k)
         new.cos_s, new.sin_s = _rows(self.cos_s, k), _rows(self.sin_s, k)
         offset = s - np.clip(s, -1.0, 1.0)
-        new.sides = [side.moved(offset, (self, key)) for side in self.sides]
+        new.sides = [side.moved(offset, key) for side in self.sides]
         return new
 
 
@@ -456,7 +457,7 @@ def _geometry(key: bytes, n: int, tau_key: bytes | None, cmap) -> _Geometry:
         if tau_key is not None:
             return _Geometry(s, n, np.frombuffer(tau_key, dtype=float), cmap)
         edge = 1.0 if np.all(s >= 1.0) else -1.0 if np.all(s <= -1.0) else None
-        if edge is None or (s.size == 1 and s[0] == edge):
+        if s.size == 0 or edge is None or (s.size == 1 and s[0] == edge):
             return _Geometry(s, n, None, cmap)
         # Points beyond one edge: the edge's own geometry, moved (kept, for the next).
         at_edge = np.array([edge]).tobytes()
@@ -472,7 +473,8 @@ def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes 
     def build():
         if side.template is None:
             return side.inner_parts(geo, levels)
-        edge_geo, edge_key = side.template
+        edge_key = side.template
+        edge_geo = _geometry(edge_key, geo.n, None, geo.cmap)
         (_, e), live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
         k = geo.s.size
         offset = geo.s - np.clip(geo.s, -1.0, 1.0)
@@ -559,11 +561,15 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     # The graded sides' nodes (innermost interval, then outer panels, per side).
     near = [u for index, side in live for u in (parts[index][0][pick], side.outer_u[pick])]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if far.size + sum(u.size for u in near) <= KERNEL_ENTRIES:
+        if (getattr(kernel, "elementwise", True)
+                and far.size + sum(u.size for u in near) <= KERNEL_ENTRIES):
             # The kernel called once on all the nodes, the far field's and the sides'
             # side by side (a kernel's fixed cost, its masks and temporaries, paid
-            # once; each value is the same as alone: kernels are elementwise in u, their
-            # rows' own parameters broadcast along the rows).
+            # once; each value is the same as alone: such kernels are elementwise in u,
+            # their rows' own parameters broadcast along the rows).  A kernel whose
+            # values depend on the array it is given says so (``elementwise = False``:
+            # the transient kernels' quadrature takes its depth per block of points)
+            # and is called on each part apart, as always.
             values = kernel(np.concatenate([far, *near], axis=1))
             edges = np.cumsum([far.shape[1]] + [u.shape[1] for u in near])
             kf, *near = np.split(values, edges[:-1], axis=1)

@@ -48,8 +48,8 @@ def cylinder_displacement(u):
     """
     u = np.asarray(u, dtype=float)
     up = u > 0.0
-    if up.all():
-        return i0e(u)  # (a grid of upstream points: no mask)
+    if u.ndim and up.all():
+        return i0e(u)  # (an array of upstream points: no mask)
     out = np.ones(u.shape)
     out[up] = i0e(u[up])
     return out
@@ -238,7 +238,9 @@ def moving_slope(u, scale):
     ndarray
     """
     slope = cylinder_slope(scale * np.asarray(u, dtype=float))
-    return slope if scale > 0.0 else -slope  # sgn(c) N H, without a product by 1
+    if np.ndim(scale) == 0 and scale > 0.0:
+        return slope  # sgn(c) N H, without a product by 1
+    return np.sign(scale) * slope
 
 
 #: The 2-point Gauss–Legendre rule on [-1, 1].
@@ -256,7 +258,7 @@ def cylinder_displacement_drop(a, h):
     """
     a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
     small = h < 1e-3
-    if not small.any():
+    if a.ndim and not small.any():
         return cylinder_displacement(a) - cylinder_displacement(a + h)
     out = np.empty(a.shape)
     big = ~small

@@ -163,6 +163,11 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
 
 #: Matrix entries formed at once by :func:`solve_stack` (1 MB).
 STACK_ENTRIES = 2**17
+#: Matrices of fewer entries are solved by LAPACK's ``gesv`` (``getrf`` then ``getrs``
+#: in one call): OpenBLAS factorises them on one thread whatever its threads, as
+#: ``getrf`` alone does; larger ones by ``getrf`` and ``getrs`` apart, so that ``getrf``
+#: may use the threads the Python API leaves it (the same factors as before).
+GESV_ENTRIES = 10_000
 
 
 def _solve_chunk(system, F, what, S, work):
@@ -190,19 +195,27 @@ def _solve_chunk(system, F, what, S, work):
     # Each equilibrated row is at most 1 in magnitude, so a norm is finite exactly when
     # the whole matrix is (an inf or a NaN makes its row's scale and so the row NaN).
     finite = np.isfinite(norms)
+    # gesv's factors are getrf's where OpenBLAS factorises on one thread whatever its
+    # threads (fewer than GESV_ENTRIES entries); above, getrf may use several, gesv not.
+    small = S.shape[1] * S.shape[2] < GESV_ENTRIES
     out, solved = [], []
     for i in range(F.size):
         if not finite[i]:
             out.append(_not_finite(what))
             continue
-        # getrf and getrs in one call (gesv: the same factors and solution, one call
-        # fewer per point); a system then refused by its condition costs one solve.
-        lu, _, x, _ = dgesv(S[i].T, B[i], overwrite_a=True)
+        if small:
+            # getrf and getrs in one call (gesv), one call fewer per point; a system
+            # then refused by its condition costs one solve.
+            lu, piv, x, _ = dgesv(S[i].T, B[i], overwrite_a=True)
+        else:
+            lu, piv, _ = dgetrf(S[i].T, overwrite_a=True)
         rcond, info = dgecon(lu, norms[i], norm="1")
         rcond = float(rcond)
         if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
             out.append(_ill_conditioned(what, rcond))
             continue
+        if not small:
+            x, _ = dgetrs(lu, piv, B[i])
         out.append((x, rcond))
         solved.append(i)
     if solved:

@@ -266,12 +266,14 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
         before = bool(sa.valid)
         for _, root, k, seen in found[:1] if only_validity_changes else found:
             step = 10 * xtol(a, b) * np.sign(b - a)
-            past = _just_past(seen, root, step, mb[k] >= 0)
-            if past is None:
-                try:
-                    past = at(root + step) if abs(step) < abs(b - a) else None
-                except SolveError:
-                    past = None
+            past = None
+            if abs(step) < abs(b - a):
+                past = _just_past(seen, root, step, mb[k] >= 0)
+                if past is None:
+                    try:
+                        past = at(root + step)
+                    except SolveError:
+                        past = None
             past = past if past is not None else sb
             position, edge = _where(past, k)
             events.append(Event(float(root), k, edge, before, bool(past.valid), position))
