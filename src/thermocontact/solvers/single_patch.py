@@ -155,9 +155,13 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
     stack = np.empty((step, k, k))
     work = np.empty((step, min(k, max(1, STACK_ENTRIES // (step * k))), k))
+    # The transposed matrices once, contiguous: every chunk reads them in order.
+    A0t = np.ascontiguousarray(system.A0.T)
+    A1t = None if system.A1 is None else np.ascontiguousarray(system.A1.T)
     for i in range(0, F.size, step):
         chunk = F[i:i + step]
-        out += _solve_chunk(system, chunk, what, stack[:chunk.size], work[:chunk.size])
+        out += _solve_chunk(A0t, A1t, system.b, chunk, what, stack[:chunk.size],
+                            work[:chunk.size])
     return out
 
 
@@ -170,21 +174,20 @@ STACK_ENTRIES = 2**17
 GESV_ENTRIES = 10_000
 
 
-def _solve_chunk(system, F, what, S, work):
+def _solve_chunk(A0t, A1t, b, F, what, S, work):
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
-    A0t = system.A0.T
     # A non-finite F makes its matrix non-finite: refused below, at that F only.
     with np.errstate(invalid="ignore", over="ignore"):
-        if system.A1 is None:
+        if A1t is None:
             S[...] = A0t[None]
         else:
-            np.multiply(system.A1.T[None], F[:, None, None], out=S)
+            np.multiply(A1t[None], F[:, None, None], out=S)
             S += A0t[None]
         # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
         scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
                                  np.finfo(float).tiny)
         S *= scale[:, None, :]
-        B = system.b[None, :] * scale
+        B = b[None, :] * scale
         # Rows of S[i] are columns of A_i: the 1-norm is the largest of their sums.
         sums = np.empty(S.shape[:2])
         rows = work.shape[1]
