@@ -453,3 +453,45 @@ def test_fewer_pressure_samples_move_the_margin_by_rounding_only(monkeypatch):
         assert dense.valid == sol.valid
         worst = max(worst, abs(dense.pressure_margin - sol.validity.pressure_margin))
     assert len(cases) > 50 and worst < 1e-11, worst
+
+
+def test_edge_brackets_of_many_solutions_are_each_as_alone():
+    """The edge margins, layers and their log widths of many solutions, formed per edge
+    for all at once, equal bit for bit (signs of zero and NaN included) the same
+    formulas applied to each solution and edge alone (D22, D22b), for both exponents'
+    kinds and with and without the Dundurs term's factor."""
+    from thermocontact.analysis.validity import (_EDGE_DEPTH, EDGE_LAYER_TOLERANCE,
+                                                 _edge_brackets, _expm1_over)
+
+    def alone(p_near, k_log, exponents, t):
+        e, count = _EDGE_DEPTH, p_near.shape[0]
+        margins, widths = np.zeros((count, 2)), np.full((count, 2), -np.inf)
+        layer = np.zeros((count, 2), dtype=bool)
+        for j in range(count):
+            for i in range(2):
+                r, kt = 0.5 - exponents[i], k_log[j, i] * t
+                a = p_near[j, i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
+                at_edge = a - kt / r if r > 0.0 else (-np.inf * np.sign(kt) if kt else a)
+                tolerated = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
+                if kt and at_edge < 0.0:
+                    layer[j, i] = True
+                    margins[j, i] = tolerated
+                    widths[j, i] = (0.0 if a <= 0.0 else -a / kt if r == 0.0
+                                    else np.log1p(-a * r / kt) / r)
+                else:
+                    margins[j, i] = max(tolerated if kt else a, 0.0)
+        return margins, widths, layer
+
+    rng = np.random.default_rng(5)
+    for alpha in (0.5, 0.3, 0.7):
+        for t in (1.0, 0.83):
+            p, k = rng.normal(0.0, 1e-2, (3000, 2)), rng.normal(0.0, 1.0, (3000, 2))
+            k[::7], k[1::11], p[2::13], p[3::17] = 0.0, -0.0, 0.0, -0.0
+            k[5::97], p[6::89], k[8::50], p[9::31] = np.nan, np.nan, 1e-12, 1e4
+            exponents = np.array([1.0 - alpha, alpha])
+            with np.errstate(all="ignore"):
+                expected = alone(p, k, exponents, t)
+            for got, want in zip(_edge_brackets(p, k, exponents, t), expected):
+                assert np.array_equal(got, want, equal_nan=True)
+                if got.dtype.kind == "f":
+                    assert np.array_equal(np.signbit(got), np.signbit(want))

@@ -493,33 +493,42 @@ def edge_terms_many(par: Parameters, rep, phi, psi, fhpe):
     e = _EDGE_DEPTH
     near = np.array([-1.0 + e, 1.0 - e])
     p_near = stacked(rep.pressure_matrix(near), phi)
-    count = p_near.shape[0]
-    margins, log_widths = np.zeros((count, 2)), np.full((count, 2), -np.inf)
-    layer = np.zeros((count, 2), dtype=bool)
-    for j in range(count):
-        for i in range(2):
-            r, kt = 0.5 - exponents[i], k_log[j, i] * t
-            a = p_near[j, i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
-            # The bracket at the edge itself: -inf * sign(k) unless r > 0, where E -> -1/r.
-            at_edge = a - kt / r if r > 0.0 else (-np.inf * np.sign(kt) if kt else a)
-            if kt and at_edge < 0.0:  # without an edge term a tensile edge is no layer
-                layer[j, i] = True
-                margins[j, i] = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
-                # Depth where a + kt E(r, y) = 0: y = -a/kt, or log1p(-a r/kt)/r.
-                if a <= 0.0:
-                    log_widths[j, i] = 0.0  # tensile from the whole edge region inward
-                else:
-                    log_widths[j, i] = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
-            elif kt:
-                # No layer yet: the bracket at the tolerated depth where positive, the
-                # value it takes there when a layer opens (so the margin is continuous).
-                margins[j, i] = max(a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE)),
-                                    0.0)
-            else:
-                # No edge term: the bracket where positive, else 0 (a tensile edge without
-                # a layer is the pressure margin's to judge).
-                margins[j, i] = max(a, 0.0)
+    margins, log_widths, layer = _edge_brackets(p_near, k_log, exponents, t)
     return k_log, exponents, margins, log_widths, layer
+
+
+def _edge_brackets(p_near, k_log, exponents, t):
+    """The edge margins, the layers' log widths and whether a layer opens, of the
+    pressures ``p_near`` (m, 2) at depth :data:`_EDGE_DEPTH` from the edges with the
+    coefficients ``k_log`` (m, 2) (:func:`edge_terms`): per edge, all solutions at once,
+    each by the operations it would take alone."""
+    e = _EDGE_DEPTH
+    count = p_near.shape[0]
+    margins, log_widths = np.empty((count, 2)), np.empty((count, 2))
+    layer = np.empty((count, 2), dtype=bool)
+    for i in range(2):
+        r, kt = 0.5 - exponents[i], k_log[:, i] * t
+        a = p_near[:, i] / e ** exponents[i] - kt * _expm1_over(r, np.log(e))
+        has = kt != 0.0  # an edge term (NaN counts, as its truth value does)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            # The bracket at the edge itself: -inf * sign(k) unless r > 0, where E -> -1/r.
+            at_edge = a - kt / r if r > 0.0 else np.where(has, -np.inf * np.sign(kt), a)
+            # Without an edge term a tensile edge is no layer.
+            layer[:, i] = opens = has & (at_edge < 0.0)
+            at_tolerance = a + kt * _expm1_over(r, np.log(EDGE_LAYER_TOLERANCE))
+            # A layer: the bracket at the tolerated depth.  No layer yet: there where
+            # positive, the value it takes when a layer opens (so the margin is
+            # continuous).  No edge term: the bracket where positive, else 0 (a tensile
+            # edge without a layer is the pressure margin's to judge).  (max(x, 0.0): x
+            # unless 0 is greater, NaN and -0.0 kept.)
+            bracket = np.where(has, at_tolerance, a)
+            margins[:, i] = np.where(opens, at_tolerance,
+                                     np.where(0.0 > bracket, 0.0, bracket))
+            # Depth where a + kt E(r, y) = 0: y = -a/kt, or log1p(-a r/kt)/r; 0 where
+            # tensile from the whole edge region inward.
+            depth = -a / kt if r == 0.0 else np.log1p(-a * r / kt) / r
+            log_widths[:, i] = np.where(opens, np.where(a <= 0.0, 0.0, depth), -np.inf)
+    return margins, log_widths, layer
 
 
 def assess(par: Parameters, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> Validity:
