@@ -155,9 +155,14 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
     stack = np.empty((step, k, k))
     work = np.empty((step, min(k, max(1, STACK_ENTRIES // (step * k))), k))
-    # The transposed matrices once, contiguous: every chunk reads them in order.
-    A0t = np.ascontiguousarray(system.A0.T)
-    A1t = None if system.A1 is None else np.ascontiguousarray(system.A1.T)
+    # The transposed matrices once, contiguous, so that every chunk reads them in order;
+    # a large one (a chunk of one matrix) through its view, without a copy (34 MB each
+    # at n = 1024).
+    def transposed(A):
+        if A is None:
+            return None
+        return np.ascontiguousarray(A.T) if A.size <= STACK_ENTRIES else A.T
+    A0t, A1t = transposed(system.A0), transposed(system.A1)
     for i in range(0, F.size, step):
         chunk = F[i:i + step]
         out += _solve_chunk(A0t, A1t, system.b, chunk, what, stack[:chunk.size],
