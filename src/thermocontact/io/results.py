@@ -183,12 +183,7 @@ class Result:
         if plan is None:  # a default made by a factory: the constructor
             return replace(self, **changes)
         # The fields only (nothing derived from them is carried over).
-        old = self.__dict__
-        new = object.__new__(cls)
-        fields_ = new.__dict__
-        fields_.update({name: old[name] for name in plan[0]})
-        fields_.update(changes)
-        return new
+        return cls.build(**{**{name: self.__dict__[name] for name in plan[0]}, **changes})
 
 
 def dataset_attrs(record: dict, skip=()) -> dict:

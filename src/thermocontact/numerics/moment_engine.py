@@ -285,7 +285,12 @@ def _u(s, tau_s, t_s, d, wq, cmap):
     e = 2.0 * np.sin(half) * np.sin(0.5 * dt)
     singular = cmap.dT(tau_s[:, None] + d) * wq
     bounded = cmap.pressure_factor(half + 0.5 * dt) * singular
-    return ((s - np.clip(s, -1.0, 1.0))[:, None] + e, e), np.stack([bounded, singular])
+    return (_past_edge(s)[:, None] + e, e), np.stack([bounded, singular])
+
+
+def _past_edge(s):
+    """``s - clip(s)``: how far each point lies beyond the nearer edge (0 inside)."""
+    return s - np.clip(s, -1.0, 1.0)
 
 
 #: Geometric panels of 16 points between the innermost interval and ``h`` on a full side.
@@ -428,8 +433,7 @@ class _Geometry:
         new.far_u = s[:, None] - _common(self.n, self.cmap)[2][None, :]
         new.far_e = _rows(self.far_e, k)
         new.cos_s, new.sin_s = _rows(self.cos_s, k), _rows(self.sin_s, k)
-        offset = s - np.clip(s, -1.0, 1.0)
-        new.sides = [side.moved(offset, key) for side in self.sides]
+        new.sides = [side.moved(_past_edge(s), key) for side in self.sides]
         return new
 
 
@@ -477,10 +481,40 @@ def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes 
         edge_geo = _geometry(edge_key, geo.n, None, geo.cmap)
         (_, e), live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
         k = geo.s.size
-        offset = geo.s - np.clip(geo.s, -1.0, 1.0)
-        return ((offset[:, None] + e, _rows(e, k)), _rows(live, k),
+        return ((_past_edge(geo.s)[:, None] + e, _rows(e, k)), _rows(live, k),
                 np.broadcast_to(wq, (2, k) + wq.shape[2:]), lagr)
     return GEOMETRY.get((key, geo.n, tau_key, geo.cmap.name, index, levels), build)
+
+
+def _kernel_values(kernel, far, near):
+    """The kernel's values on the far field's nodes ``far`` and on each array of the
+    sides' nodes ``near``: ``(values on far, [values on each of near])``.
+
+    Called once on all of them side by side where they are few (KERNEL_ENTRIES): a
+    kernel's fixed cost, its masks and temporaries, paid once, each value the same as
+    alone (kernels are elementwise in ``u``, their rows' own parameters broadcast along
+    the rows).  A kernel whose values depend on the array it is given says so
+    (``elementwise = False``: the transient kernels' quadrature takes its depth per
+    block of points) and is called on each part apart; so is every kernel on a large
+    far field, a few of its columns at a time, so that a kernel's temporaries (ten or
+    more arrays of the block's size for the Bessel kernels) stay small."""
+    if (getattr(kernel, "elementwise", True)
+            and far.size + sum(u.size for u in near) <= KERNEL_ENTRIES):
+        values = kernel(np.concatenate([far, *near], axis=1))
+        edges = np.cumsum([far.shape[1]] + [u.shape[1] for u in near])
+        kf, *rest = np.split(values, edges[:-1], axis=1)
+        return kf, rest
+    if far.size <= KERNEL_ENTRIES:
+        kf = kernel(far)
+    else:
+        step = max(1, KERNEL_ENTRIES // far.shape[0])
+        kf = None
+        for c in range(0, far.shape[1], step):
+            part = kernel(np.ascontiguousarray(far[:, c:c + step]))
+            if kf is None:  # real or complex, as the kernel's values are
+                kf = np.empty(far.shape, dtype=part.dtype)
+            kf[:, c:c + step] = part
+    return kf, [kernel(u) for u in near]
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
@@ -561,32 +595,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     # The graded sides' nodes (innermost interval, then outer panels, per side).
     near = [u for index, side in live for u in (parts[index][0][pick], side.outer_u[pick])]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if (getattr(kernel, "elementwise", True)
-                and far.size + sum(u.size for u in near) <= KERNEL_ENTRIES):
-            # The kernel called once on all the nodes, the far field's and the sides'
-            # side by side (a kernel's fixed cost, its masks and temporaries, paid
-            # once; each value is the same as alone: such kernels are elementwise in u,
-            # their rows' own parameters broadcast along the rows).  A kernel whose
-            # values depend on the array it is given says so (``elementwise = False``:
-            # the transient kernels' quadrature takes its depth per block of points)
-            # and is called on each part apart, as always.
-            values = kernel(np.concatenate([far, *near], axis=1))
-            edges = np.cumsum([far.shape[1]] + [u.shape[1] for u in near])
-            kf, *near = np.split(values, edges[:-1], axis=1)
-        elif far.size <= KERNEL_ENTRIES:
-            kf, near = kernel(far), None
-        else:
-            # A few columns at a time: a kernel's temporaries (ten or more arrays of the
-            # block's size for the Bessel kernels) stay small.  Kernels are elementwise
-            # in u, their rows' own parameters broadcast down the columns.
-            step = max(1, KERNEL_ENTRIES // far.shape[0])
-            kf = None
-            for c in range(0, far.shape[1], step):
-                part = kernel(np.ascontiguousarray(far[:, c:c + step]))
-                if kf is None:  # real or complex, as the kernel's values are
-                    kf = np.empty(far.shape, dtype=part.dtype)
-                kf[:, c:c + step] = part
-            near = None
+        kf, near_values = _kernel_values(kernel, far, near)
     kf[geo.near] = 0.0
     # Both weights' products into one array, through one temporary.
     out = np.empty((2, kf.shape[0], n), dtype=np.result_type(kf, g[0]))
@@ -599,15 +608,10 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     # points) has nothing to integrate and no kernel values.
     for k, (index, side) in enumerate(live):
         full, short = side.rows
-        u, inside, wq, lagr = parts[index]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            if near is None:
-                k_inner, k_outer = kernel(u[pick]), kernel(side.outer_u[pick])
-            else:
-                k_inner, k_outer = near[2 * k], near[2 * k + 1]
-            # Rows of a side of zero length (points at or beyond an edge) hold dummies.
-            inner = (np.where(inside, k_inner, 0.0)[None] * wq) @ lagr
-            outer = np.where(side.outer_live, k_outer, 0.0)[None] * side.outer_w
+        _, inside, wq, lagr = parts[index]
+        # Rows of a side of zero length (points at or beyond an edge) hold dummies.
+        inner = (np.where(inside, near_values[2 * k], 0.0)[None] * wq) @ lagr
+        outer = np.where(side.outer_live, near_values[2 * k + 1], 0.0)[None] * side.outer_w
         if full.size:
             nf = side.n_fixed
             own = np.matmul(outer[:, full, None, nf:], side.own_lagrange)[:, :, 0]

@@ -127,9 +127,14 @@ def cylinder_temperature_gradient(u):
     # does not underflow (exp(-745) is below the smallest subnormal; NaN passes).
     live = ~(u >= 372.0)
     x = u[live]
-    a = np.abs(x)
-    out[live] = np.exp(-x - a) * (k0e(a) + np.sign(x) * k1e(a))
+    out[live] = _gradient(x, np.abs(x))
     return out[()]
+
+
+def _gradient(x, a):
+    """``M(x) = exp(-x - a) [k0e(a) + sgn(x) k1e(a)]`` with ``a = |x|``: the formula of
+    :func:`cylinder_temperature_gradient` without its cut-off (callers keep ``x < 372``)."""
+    return np.exp(-x - a) * (k0e(a) + np.sign(x) * k1e(a))
 
 
 #: ``c u`` beyond which ``c M(c u)`` no longer changes ``c M(c u) - 1/u`` in floating
@@ -170,10 +175,9 @@ def cylinder_temperature_gradient_regular(u, scale):
     if np.any(upstream):
         out[upstream] = -1.0 / u[upstream]
     if np.any(big):
-        # cylinder_temperature_gradient's formula on these points, none of which is
-        # beyond its own cut-off (|c u| < 22 here): the same numbers without its masks.
-        x, ax = cu[big], a[big]
-        out[big] = scale * (np.exp(-x - ax) * (k0e(ax) + np.sign(x) * k1e(ax))) - 1.0 / u[big]
+        # None of these points is beyond the gradient's own cut-off (|c u| < 22 here):
+        # its formula without its masks.
+        out[big] = scale * _gradient(cu[big], a[big]) - 1.0 / u[big]
     if np.any(small):
         x = cu[small]
         out[small] = scale * _regular_series(x)
