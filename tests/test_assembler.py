@@ -310,3 +310,102 @@ def test_a_stack_solves_as_the_plain_path_on_the_blas_threads(n):
     for f, (x, rcond) in zip(F, solve_stack(system, F, "the linear system")):
         expected, r = solve_equilibrated(system.matrix(f), system.b.copy())
         assert np.array_equal(x, expected) and rcond == pytest.approx(r, rel=1e-12)
+
+
+def _true_rcond(A):
+    """The reciprocal 1-norm condition number of ``A`` with its rows equilibrated, from
+    its inverse."""
+    A = A / np.abs(A).max(axis=1)[:, None]
+    return 1.0 / (np.linalg.norm(A, 1) * np.linalg.norm(np.linalg.inv(A), 1))
+
+
+def _same_stacks(a, b):
+    """Two solve_stack results: the same solutions to the last bit, the same refusals."""
+    for p, q in zip(a, b, strict=True):
+        if isinstance(p, Exception):
+            assert isinstance(q, Exception) and str(p) == str(q)
+        else:
+            assert np.array_equal(p[0], q[0])
+
+
+@pytest.mark.parametrize("pe", [0.5, 42.0])
+def test_a_line_s_condition_is_proven_from_a_few_anchors(pe, monkeypatch):
+    """The benchmark map's lines (K2/K1 = 10, lam = 1, fHPe 0-0.8) at n = 8, 16, 32:
+    with rcond="bound" the condition of every matrix is proven from its anchors
+    (derivation (D6b.2)) without LAPACK's estimate; the bound never exceeds the true
+    reciprocal condition number, is within a factor 20 of it, and the solutions are
+    those of the estimate's path to the last bit."""
+    from thermocontact.discretisation.system import contact_set_system
+    from thermocontact.solvers import single_patch
+
+    F = np.linspace(0.0, 0.8, 200)
+    for n in (8, 16, 32):
+        system = contact_set_system(Parameters(pe, 0.2, 10.0), np.array([[-1.0, 1.0]]),
+                                    EdgeGraded(n), "projection", lam=1.0)
+        estimated = single_patch.solve_stack(system, F)
+        calls = []
+        monkeypatch.setattr(single_patch, "dgecon", lambda *a, **k: calls.append(a))
+        bounded = single_patch.solve_stack(system, F, rcond="bound")
+        monkeypatch.undo()
+        assert calls == []
+        _same_stacks(bounded, estimated)
+        anchors = single_patch.condition_bounds(system.A0, system.A1, F)
+        assert anchors.F0.size <= 3
+        for f, (_, bound) in zip(F, bounded):
+            true = _true_rcond(system.A0 + f * system.A1)
+            assert true / 20 <= bound <= true * (1 + 1e-9)
+
+
+def test_a_stack_through_a_singular_matrix_is_refused_as_without_the_bound():
+    """A(F) = M (I - F e1 e1^T) is singular at F = 1: the matrices near it are left to
+    LAPACK's estimate and refused as without the bound (non-finite F too); every bound
+    given is at most the true reciprocal condition number."""
+    from types import SimpleNamespace
+
+    from thermocontact.problem.parameters import SolveError
+    from thermocontact.solvers.single_patch import CERTIFIED_RCOND, solve_stack
+
+    rng = np.random.default_rng(1)
+    M = rng.standard_normal((6, 6)) + 6 * np.eye(6)
+    E = np.zeros((6, 6))
+    E[0, 0] = 1.0
+    system = SimpleNamespace(A0=M, A1=-M @ E, b=rng.standard_normal(6))
+    F = np.concatenate([np.linspace(0.0, 2.0, 81), 1 + np.array([-1e-11, -1e-13, 1e-13, 1e-11]),
+                        [np.nan, np.inf]])
+    bounded = solve_stack(system, F, rcond="bound")
+    estimated = solve_stack(system, F)
+    _same_stacks(bounded, estimated)
+    refused = [f for f, res in zip(F, bounded) if isinstance(res, SolveError)]
+    assert 1.0 in refused and 1 - 1e-13 in refused and 1 + 1e-13 in refused
+    assert 1 - 1e-11 not in refused
+    # The anchor at F = 1 itself is singular: the sides get theirs.
+    proven = [(f, p[1]) for f, p, q in zip(F, bounded, estimated)
+              if not isinstance(p, SolveError) and p[1] != q[1]]
+    assert len(proven) >= 60 and all(b >= CERTIFIED_RCOND for _, b in proven)
+    for f, bound in proven:
+        assert bound <= _true_rcond(system.A0 + f * system.A1) * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_condition_bounds_never_exceed_the_true_condition(seed):
+    """(D6b.2) on random pencils A0 + F A1 (3-12 unknowns, rows of very different
+    scales, F anywhere in [-5, 5]): every bound is at most the true reciprocal
+    condition number, and the matrices at the anchors themselves are bounded."""
+    from thermocontact.solvers.single_patch import condition_bounds
+
+    rng = np.random.default_rng(seed)
+    k = int(rng.integers(3, 13))
+    rows = 10.0 ** rng.uniform(-6, 6, (k, 1))
+    A0 = rows * (rng.standard_normal((k, k)) + rng.uniform(0, 2 * k) * np.eye(k))
+    A1 = rows * rng.standard_normal((k, k)) * 10.0 ** rng.uniform(-2, 1)
+    F = np.sort(rng.uniform(-5, 5, 64))
+    anchors = condition_bounds(A0, A1, F)
+    A = A0[None] + F[:, None, None] * A1[None]
+    scale = 1.0 / np.abs(A).max(axis=2)
+    Ae = scale[:, :, None] * A
+    norms = np.abs(Ae).sum(axis=1).max(axis=1)
+    bounds = anchors.rcond_bounds(F, scale, norms)
+    assert np.isfinite(bounds[anchors.which >= 0]).all()
+    for f, bound in zip(F, bounds):
+        if np.isfinite(bound) and bound > 0:
+            assert bound <= _true_rcond(A0 + f * A1) * (1 + 1e-9)

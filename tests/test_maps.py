@@ -440,6 +440,32 @@ def test_a_line_solved_together_equals_its_points_solved_one_by_one(model, fhpe,
                    or s.validity.edge_log_coefficients != (0.0, 0.0) for s in together)
 
 
+def test_a_line_with_proven_condition_is_the_same_line():
+    """Model.solve_many(rcond="bound"), as the map solves its lines: every solution and
+    validity is that of the estimated path, and its rcond a proven lower bound
+    (derivation section 6b) at most LAPACK's estimate; an unknown choice is refused by
+    name."""
+    import warnings
+
+    from thermocontact import Model
+    from thermocontact.problem.parameters import ConvergenceWarning
+    from thermocontact.solvers.single_patch import CERTIFIED_RCOND
+
+    m = Model(0.7, 1.0, delta1_over_delta2=0.3, tol=1e-6)
+    fhpe = np.linspace(0.0, 1.5, 24)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        bounded = m.solve_many(fhpe, lam=1.0, polish=False, rcond="bound")
+        estimated = m.solve_many(fhpe, lam=1.0, polish=False)
+    for b, e in zip(bounded, estimated, strict=True):
+        assert b.replace(rcond=e.rcond) == e
+        assert b.validity.to_dict() == e.validity.to_dict()
+        assert CERTIFIED_RCOND <= b.rcond <= e.rcond
+    assert sum(b.rcond < e.rcond for b, e in zip(bounded, estimated)) >= len(fhpe) // 2
+    with pytest.raises(InputError, match="rcond"):
+        m.solve_many(fhpe, lam=1.0, rcond="exact")
+
+
 @pytest.mark.parametrize("axis, fixed", [("lam:-1:1:3", {"fhpe": 0.2}),
                                          ("sigma_over_delta:0.1:0.3:2", {"fhpe": 0.2})])
 def test_a_closure_on_an_axis_is_the_coordinate(axis, fixed):

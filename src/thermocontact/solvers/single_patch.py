@@ -24,9 +24,10 @@ from __future__ import annotations
 import logging
 import math
 import warnings
+from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetrs
+from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetri, dgetrs
 
 from ..analysis.validity import assess, assess_many
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
@@ -135,7 +136,8 @@ def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=N
     return x, float(rcond)
 
 
-def solve_stack(system: ContactSetSystem, F, what="the contact set's linear system") -> list:
+def solve_stack(system: ContactSetSystem, F, what="the contact set's linear system",
+                rcond="estimate") -> list:
     """:func:`solve_contact_system` of a system without conductance or shared blocks at
     each of several ``F``: per ``F``, ``(x, rcond)`` or the :class:`SolveError`.
 
@@ -144,9 +146,17 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     :func:`solve_equilibrated` apply to it alone; each is then factorised, its
     condition estimated and solved by LAPACK (``getrf``, ``gecon``, ``getrs``), as
     alone.  What is saved is the per-solve work around the linear algebra.
+
+    ``rcond="bound"``: a matrix is not refused where :func:`condition_bounds` proves
+    its reciprocal condition number at least :data:`CERTIFIED_RCOND` (then LAPACK's
+    estimate, never below the true number, would not have refused it either), and
+    its ``rcond`` is that proven lower bound; elsewhere it is estimated as above.
+    The solutions ``x`` and the systems refused are the same.
     """
+    check_choice("rcond", rcond, ("estimate", "bound"))
     F = np.atleast_1d(np.asarray(F, dtype=float))
     out = []
+    anchors = condition_bounds(system.A0, system.A1, F) if rcond == "bound" else None
     # A few matrices at a time, so that a chunk's stack stays in the cache from its
     # forming to its factorisation (the arithmetic is per matrix either way), in a
     # buffer that every chunk reuses; their |entries| for the 1-norms a block of rows
@@ -166,7 +176,8 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     for i in range(0, F.size, step):
         chunk = F[i:i + step]
         out += _solve_chunk(A0t, A1t, system.b, chunk, what, stack[:chunk.size],
-                            work[:chunk.size])
+                            work[:chunk.size],
+                            None if anchors is None else anchors.part(i, i + step))
     return out
 
 
@@ -177,9 +188,123 @@ STACK_ENTRIES = 2**17
 #: ``getrf`` alone does; larger ones by ``getrf`` and ``getrs`` apart, so that ``getrf``
 #: may use the threads the Python API leaves it (the same factors as before).
 GESV_ENTRIES = 10_000
+#: A matrix whose reciprocal condition number :func:`condition_bounds` proves at least
+#: this (a thousand times :data:`RCOND_MIN`, far beyond the rounding of the proof) is
+#: not refused, without LAPACK's estimate.
+CERTIFIED_RCOND = 1e3 * RCOND_MIN
+#: Points of a stack per anchor of :func:`condition_bounds` at least (an anchor's
+#: inverse costs about what the estimates of a few matrices cost).
+POINTS_PER_ANCHOR = 8
+#: Anchors of :func:`condition_bounds` per stack at most.
+MAX_ANCHORS = 16
+#: An anchor of :func:`condition_bounds` covers ``|F - F0| ||C||_1 <= COVERED`` (< 1).
+COVERED = 0.9
 
 
-def _solve_chunk(A0t, A1t, b, F, what, S, work):
+@dataclass(frozen=True)
+class ConditionBounds:
+    """Anchors of a stack ``A(F) = A0 + F A1`` (:func:`condition_bounds`): per ``F``
+    the index of the anchor that bounds its condition (-1: none); per anchor its
+    ``F0``, row scales ``d0`` (shape ``(anchors, k)``), ``||A~0^-1||_1`` and
+    ``||A~0^-1 d0 A1||_1``."""
+
+    which: np.ndarray
+    F0: np.ndarray
+    d0: np.ndarray
+    inverse_norm: np.ndarray
+    growth: np.ndarray
+
+    def part(self, start, stop) -> ConditionBounds:
+        """The anchors of the stack's matrices ``start:stop``."""
+        return replace(self, which=self.which[start:stop])
+
+    def rcond_bounds(self, F, scale, norms) -> np.ndarray:
+        """Lower bounds of the reciprocal 1-norm condition numbers of the equilibrated
+        matrices ``diag(scale) A(F)`` (``norms``: their 1-norms), NaN where no anchor
+        bounds it (derivation section 6b)::
+
+            rcond >= (1 - |F - F0| ||C||_1) / (||A~||_1 ||A~0^-1||_1 max_i d0_i/d_i)
+        """
+        out = np.full(F.size, np.nan)
+        ok = self.which >= 0
+        if ok.any():
+            a = self.which[ok]
+            with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+                rows = (self.d0[a] / scale[ok]).max(axis=1)
+                out[ok] = ((1.0 - np.abs(F[ok] - self.F0[a]) * self.growth[a])
+                           / (norms[ok] * self.inverse_norm[a] * rows))
+        return out
+
+
+def condition_bounds(A0, A1, F) -> ConditionBounds:
+    """Anchors that bound the condition of every matrix of a stack ``A(F) = A0 + F A1``,
+    each row equilibrated (``d(F)``: the reciprocals of the rows' largest magnitudes,
+    as :func:`solve_equilibrated` scales them).
+
+    At an anchor ``F0`` with ``A~0 = diag(d0) A(F0)`` and ``C = A~0^-1 diag(d0) A1``,
+    ``diag(d(F)) A(F) = E (I + (F - F0) C) ...`` gives for ``|F - F0| ||C||_1 < 1``::
+
+        ||(diag(d) A)^-1||_1 <= ||A~0^-1||_1 max_i(d0_i / d_i) / (1 - |F - F0| ||C||_1)
+
+    (derivation section 6b).  An anchor at the middle of the ``F`` range covers
+    ``|F - F0| <= COVERED / ||C||_1`` (a bound within a factor ``1 - COVERED`` of the
+    anchor's), and each range left on either side gets one at its middle in turn; at
+    most one per :data:`POINTS_PER_ANCHOR` matrices and :data:`MAX_ANCHORS` in all (the
+    rest are left to LAPACK's estimate).
+    """
+    F = np.asarray(F, dtype=float)
+    k = A0.shape[0]
+    which = np.full(F.size, -1)
+    order = np.flatnonzero(np.isfinite(F))
+    order = order[np.argsort(F[order], kind="stable")]
+    fs = F[order]
+    found = []
+    tries = min(MAX_ANCHORS, F.size // POINTS_PER_ANCHOR)
+    spans = [(0, fs.size)] if fs.size else []  # sorted F's [i, j) not yet bounded
+    while spans and tries > 0:
+        tries -= 1
+        i, j = spans.pop()
+        F0 = 0.5 * (fs[i] + fs[j - 1])
+        anchor = _anchor(A0, A1, F0)
+        # Singular there: the two sides in turn, without the F equal to F0.
+        r = 0.0 if anchor is None else COVERED / anchor[2] if anchor[2] > 0 else math.inf
+        lo = int(np.searchsorted(fs, F0 - r, side="left"))
+        hi = int(np.searchsorted(fs, F0 + r, side="right"))
+        if anchor is not None:
+            which[order[lo:hi]] = len(found)
+            found.append((F0, *anchor))
+        spans += [s for s in ((i, lo), (hi, j)) if s[0] < s[1]]
+    if not found:
+        return ConditionBounds(which, np.empty(0), np.empty((0, k)), np.empty(0), np.empty(0))
+    F0s, d0s, inverse_norms, growths = zip(*found)
+    return ConditionBounds(which, np.array(F0s), np.array(d0s), np.array(inverse_norms),
+                           np.array(growths))
+
+
+def _anchor(A0, A1, F0):
+    """``(d0, ||A~0^-1||_1, ||C||_1)`` of :func:`condition_bounds` at ``F0``; None where
+    ``A~0`` is singular or not finite."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        A = A0 + F0 * A1 if A1 is not None else A0.copy()
+        d0 = 1.0 / np.maximum(np.maximum(A.max(axis=1), -A.min(axis=1)),
+                              np.finfo(float).tiny)
+        A *= d0[:, None]
+    if not np.all(np.isfinite(A)):
+        return None
+    lu, piv, info = dgetrf(A, overwrite_a=True)
+    if info != 0:
+        return None
+    inverse, info = dgetri(lu, piv, overwrite_lu=True)
+    if info != 0:
+        return None
+    inverse_norm = np.abs(inverse).sum(axis=0).max()
+    growth = 0.0 if A1 is None else np.abs(inverse @ (d0[:, None] * A1)).sum(axis=0).max()
+    if not (math.isfinite(inverse_norm) and math.isfinite(growth)):
+        return None
+    return d0, float(inverse_norm), float(growth)
+
+
+def _solve_chunk(A0t, A1t, b, F, what, S, work, anchors=None):
     # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
     # A non-finite F makes its matrix non-finite: refused below, at that F only.
     with np.errstate(invalid="ignore", over="ignore"):
@@ -203,6 +328,8 @@ def _solve_chunk(A0t, A1t, b, F, what, S, work):
     # Each equilibrated row is at most 1 in magnitude, so a norm is finite exactly when
     # the whole matrix is (an inf or a NaN makes its row's scale and so the row NaN).
     finite = np.isfinite(norms)
+    proven = (np.full(F.size, np.nan) if anchors is None
+              else anchors.rcond_bounds(F, scale, norms))
     # gesv's factors are getrf's where OpenBLAS factorises on one thread whatever its
     # threads (fewer than GESV_ENTRIES entries); above, getrf may use several, gesv not.
     small = S.shape[1] * S.shape[2] < GESV_ENTRIES
@@ -217,11 +344,14 @@ def _solve_chunk(A0t, A1t, b, F, what, S, work):
             lu, piv, x, _ = dgesv(S[i].T, B[i], overwrite_a=True)
         else:
             lu, piv, _ = dgetrf(S[i].T, overwrite_a=True)
-        rcond, info = dgecon(lu, norms[i], norm="1")
-        rcond = float(rcond)
-        if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
-            out.append(_ill_conditioned(what, rcond))
-            continue
+        if proven[i] >= CERTIFIED_RCOND:
+            rcond = float(proven[i])
+        else:
+            rcond, info = dgecon(lu, norms[i], norm="1")
+            rcond = float(rcond)
+            if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
+                out.append(_ill_conditioned(what, rcond))
+                continue
         if not small:
             x, _ = dgetrs(lu, piv, B[i])
         out.append((x, rcond))
@@ -409,12 +539,12 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
 
 
 def _solve_patches(pars, blocks: Blocks, method: str, closures, conductance,
-                   systems: dict) -> list:
+                   systems: dict, rcond="estimate") -> list:
     """:func:`_solve_patch` of several points of one model (``pars`` equal but for
     ``fhpe``; ``closures`` their ``(lam, sigma, temperatures)``): per point its
     solution or the :class:`InputError` or :class:`SolveError` it raises.  The points
     that share a system are solved as one stack (:func:`solve_stack`), each as
-    :func:`solve_contact_system` solves it alone."""
+    :func:`solve_contact_system` solves it alone (``rcond``: as :func:`solve_stack`)."""
     out = [None] * len(pars)
     groups = {}
     for i, (par, closure) in enumerate(zip(pars, closures)):
@@ -435,7 +565,7 @@ def _solve_patches(pars, blocks: Blocks, method: str, closures, conductance,
                 except SolveError as exc:
                     found.append(exc)
         else:
-            found = solve_stack(system, F, "the linear system")
+            found = solve_stack(system, F, "the linear system", rcond)
         for i, res in zip(rows, found):
             if isinstance(res, Exception):
                 out[i] = res
@@ -699,7 +829,7 @@ class Model:
         return sol
 
     def solve_many(self, fhpe, *, lam=None, sigma_over_delta=None, temperatures=None,
-                   polish=True, progress=None, _stacklevel=2) -> list:
+                   polish=True, progress=None, rcond="estimate", _stacklevel=2) -> list:
         """:meth:`solve` at several points of this model: a grid line along ``fhpe``,
         ``lam`` or ``sigma_over_delta``.
 
@@ -721,6 +851,11 @@ class Model:
             As :meth:`solve`.
         progress : callable, optional
             As :meth:`solve`, for every point.
+        rcond : {"estimate", "bound"}, optional
+            Each solution's ``rcond``: LAPACK's estimate, as :meth:`solve` gives it;
+            or, cheaper along a line, a lower bound proven from a few anchors
+            (:func:`solve_stack`; derivation section 6b), LAPACK's estimate where none
+            is proven.  The solutions and the points refused are the same.
 
         Returns
         -------
@@ -730,6 +865,7 @@ class Model:
         """
         closure = check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
                                     temperatures=temperatures)
+        check_choice("rcond", rcond, ("estimate", "bound"))
         closures = None
         if closure == "temperatures":
             # One closure (a Temperatures or a tuple (Theta, L/Delta)) or a list of them.
@@ -778,7 +914,7 @@ class Model:
                 release_freed_memory()
             return _solve_patches([pars[i] for i in points], blocks, self.method,
                                   [keys[i] for i in points], self.conductance,
-                                  systems.setdefault(m, {}))
+                                  systems.setdefault(m, {}), rcond)
 
         refined = {}
         for j, res in enumerate(refine_each(solve_level, sizes, len(cases),
