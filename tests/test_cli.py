@@ -291,6 +291,29 @@ def test_a_command_help_loads_only_its_own_command():
     others = [f"thermocontact.cli.{m}" for m in ("boundary", "contact", "maps", "reproduce",
                                                   "tei")]
     assert _under(rec["modules"], _HEAVY + tuple(others)) == []
+    # Nor what click would import for the terminal's width, nor dataclasses.
+    assert _under(rec["modules"], ("shutil", "dataclasses")) == []
+
+
+@pytest.mark.parametrize("columns", [None, "30", "60", "100", "abc", "-5", "0"])
+def test_the_help_width_is_the_one_click_finds(columns, monkeypatch):
+    """help_width (given to click so that it does not import shutil) is click's own
+    width: max(min(columns, 80) - 2, 50) with the terminal's columns as shutil finds
+    them; click's forced width (its test runner's) wins."""
+    import shutil
+
+    import click
+
+    from thermocontact.cli.main import help_width
+
+    if columns is None:
+        monkeypatch.delenv("COLUMNS", raising=False)
+    else:
+        monkeypatch.setenv("COLUMNS", columns)
+    monkeypatch.setattr(click.formatting, "FORCED_WIDTH", None)
+    assert help_width() == max(min(shutil.get_terminal_size().columns, 80) - 2, 50)
+    monkeypatch.setattr(click.formatting, "FORCED_WIDTH", 123)
+    assert help_width() == 123
 
 
 def test_group_help_lists_every_command_without_computing():

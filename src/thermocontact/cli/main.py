@@ -8,6 +8,7 @@ that ``--version`` and ``--help`` answer at once.
 
 from __future__ import annotations
 
+import os
 import sys
 from importlib import import_module
 
@@ -38,6 +39,14 @@ class LazyGroup(click.Group):
     """A click group whose commands (:data:`COMMANDS`) are imported on first use; the
     group's help still lists every command with its short help."""
 
+    def make_context(self, info_name, args, parent=None, **extra):
+        # The help's width as click finds it (the terminal's, at most 80, less 2, at
+        # least 50), given here so that click does not import shutil for it (and
+        # with it bz2, lzma and zlib: 3-5 ms of ``solve --help``); the commands'
+        # contexts inherit it.
+        extra.setdefault("terminal_width", help_width())
+        return super().make_context(info_name, args, parent=parent, **extra)
+
     def list_commands(self, ctx):
         return sorted(COMMANDS)
 
@@ -46,6 +55,26 @@ class LazyGroup(click.Group):
             return None
         module, attr = COMMANDS[name]
         return getattr(import_module(module, __package__), attr)
+
+
+def help_width() -> int:
+    """Click's help width: its forced width (its test runner's) if set, else
+    ``max(min(columns, 80) - 2, 50)`` with ``columns`` as
+    :func:`shutil.get_terminal_size` finds it: ``$COLUMNS`` when a positive integer,
+    else the terminal of standard output, else 80."""
+    if click.formatting.FORCED_WIDTH is not None:
+        return click.formatting.FORCED_WIDTH
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+        columns = columns or 80
+    return max(min(columns, 80) - 2, 50)
 
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})

@@ -8,9 +8,8 @@ benchmarks are parametrised over :data:`METHODS`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from importlib import import_module
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from ..problem.validation import InputError
 
@@ -21,9 +20,10 @@ if TYPE_CHECKING:  # the registry is read (for the command line's help) without 
 __all__ = ["DEFAULT_METHOD", "DEFAULT_TOL", "METHODS", "Method"]
 
 
-@dataclass(frozen=True)
-class Method:
-    """One discretisation method.
+# A NamedTuple, not a frozen dataclass: the registry is read for the command line's
+# help, which dataclasses (its import and its generated methods) would slow by 2-3 ms.
+class Method(NamedTuple):
+    """One discretisation method (an immutable record).
 
     Attributes
     ----------
