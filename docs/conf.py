@@ -231,8 +231,17 @@ def escape_help(app, ctx, lines):
         lines[i] = indent + keep + _RST_SPECIAL.sub(r"\\\1", stripped[len(keep):])
 
 
+def skip_field_aliases(app, what, name, obj, skip, options):
+    """A NamedTuple's fields (``Method``'s) are documented in its Attributes section:
+    not again as "Alias for field number k"."""
+    if (getattr(obj, "__doc__", None) or "").startswith("Alias for field number"):
+        return True
+    return None
+
+
 def setup(app):
     app.connect("builder-inited", write_api_pages)
+    app.connect("autodoc-skip-member", skip_field_aliases)
     app.connect("missing-reference", resolve_internal)
     for event in ("description", "options", "epilog"):
         app.connect(f"sphinx-click-process-{event}", escape_help)
