@@ -452,7 +452,7 @@ def test_a_line_with_proven_condition_is_the_same_line():
     from thermocontact.solvers.single_patch import CERTIFIED_RCOND
 
     m = Model(0.7, 1.0, delta1_over_delta2=0.3, tol=1e-6)
-    fhpe = np.linspace(0.0, 1.5, 24)
+    fhpe = np.linspace(0.0, 1.5, 100)  # enough points at n = 32 for anchors
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         bounded = m.solve_many(fhpe, lam=1.0, polish=False, rcond="bound")

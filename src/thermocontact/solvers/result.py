@@ -50,7 +50,9 @@ class ContactSolution(FieldResult):
     validity : Validity or None
         The contact inequalities (None when not evaluated).
     rcond : float
-        Reciprocal condition number (1-norm) of the equilibrated linear system.
+        Reciprocal condition number (1-norm) of the equilibrated linear system:
+        LAPACK's estimate; from ``Model.solve_many(..., rcond="bound")`` a proven lower
+        bound where one was proven (derivation section 6b).
     error_estimate : float or None
         Estimated relative error of ``P_H/P`` and ``sigma/Delta`` (the larger;
         :func:`~thermocontact.solvers.refinement.error_estimate`).

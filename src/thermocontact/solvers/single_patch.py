@@ -24,6 +24,7 @@ from __future__ import annotations
 import logging
 import math
 import warnings
+from collections import deque
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -148,10 +149,11 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     alone.  What is saved is the per-solve work around the linear algebra.
 
     ``rcond="bound"``: a matrix is not refused where :func:`condition_bounds` proves
-    its reciprocal condition number at least :data:`CERTIFIED_RCOND` (then LAPACK's
-    estimate, never below the true number, would not have refused it either), and
-    its ``rcond`` is that proven lower bound; elsewhere it is estimated as above.
-    The solutions ``x`` and the systems refused are the same.
+    its reciprocal condition number at least :data:`CERTIFIED_RCOND` and its LU has no
+    exact zero pivot (then LAPACK's estimate, not below the true number up to rounding,
+    would not have refused it either), and its ``rcond`` is that proven lower bound;
+    elsewhere it is estimated as above.  The solutions ``x`` and the systems refused are
+    the same.
     """
     check_choice("rcond", rcond, ("estimate", "bound"))
     F = np.atleast_1d(np.asarray(F, dtype=float))
@@ -189,30 +191,35 @@ STACK_ENTRIES = 2**17
 #: may use the threads the Python API leaves it (the same factors as before).
 GESV_ENTRIES = 10_000
 #: A matrix whose reciprocal condition number :func:`condition_bounds` proves at least
-#: this (a thousand times :data:`RCOND_MIN`, far beyond the rounding of the proof) is
-#: not refused, without LAPACK's estimate.
+#: this (a thousand times :data:`RCOND_MIN`) is not refused, without LAPACK's estimate.
 CERTIFIED_RCOND = 1e3 * RCOND_MIN
-#: Points of a stack per anchor of :func:`condition_bounds` at least (an anchor's
-#: inverse costs about what the estimates of a few matrices cost).
+#: Points of a stack per anchor of :func:`condition_bounds` at least, and per unknown
+#: of its systems at least half a point: an anchor (an inverse and a product) costs
+#: about what LAPACK's estimates of ``k / 4`` matrices of ``k`` unknowns cost.
 POINTS_PER_ANCHOR = 8
 #: Anchors of :func:`condition_bounds` per stack at most.
 MAX_ANCHORS = 16
 #: An anchor of :func:`condition_bounds` covers ``|F - F0| ||C||_1 <= COVERED`` (< 1).
 COVERED = 0.9
+#: Bound on the relative rounding of a formed, equilibrated entry (``F A1``, ``+ A0``,
+#: ``* d``: three roundings of at most 2^-53 each), with room to spare.
+FORMING_ROUNDING = 8 * 2.0**-53
 
 
 @dataclass(frozen=True)
 class ConditionBounds:
     """Anchors of a stack ``A(F) = A0 + F A1`` (:func:`condition_bounds`): per ``F``
     the index of the anchor that bounds its condition (-1: none); per anchor its
-    ``F0``, row scales ``d0`` (shape ``(anchors, k)``), ``||A~0^-1||_1`` and
-    ``||A~0^-1 d0 A1||_1``."""
+    ``F0``, row scales ``d0`` (shape ``(anchors, k)``), the bound ``inverse_norm`` on
+    ``||A~0^-1||_1`` and ``growth`` on ``||C||_1``, and ``magnitudes``: the 1-norms of
+    ``diag(d0) |A0|`` and ``diag(d0) |A1|`` (shape ``(anchors, 2)``)."""
 
     which: np.ndarray
     F0: np.ndarray
     d0: np.ndarray
     inverse_norm: np.ndarray
     growth: np.ndarray
+    magnitudes: np.ndarray
 
     def part(self, start, stop) -> ConditionBounds:
         """The anchors of the stack's matrices ``start:stop``."""
@@ -220,19 +227,22 @@ class ConditionBounds:
 
     def rcond_bounds(self, F, scale, norms) -> np.ndarray:
         """Lower bounds of the reciprocal 1-norm condition numbers of the equilibrated
-        matrices ``diag(scale) A(F)`` (``norms``: their 1-norms), NaN where no anchor
-        bounds it (derivation section 6b)::
-
-            rcond >= (1 - |F - F0| ||C||_1) / (||A~||_1 ||A~0^-1||_1 max_i d0_i/d_i)
-        """
+        matrices ``diag(scale) A(F)`` as formed in floating point (``norms``: their
+        1-norms), NaN where no anchor bounds them (derivation (D6b.2), (D6b.3))."""
         out = np.full(F.size, np.nan)
         ok = self.which >= 0
         if ok.any():
             a = self.which[ok]
             with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-                rows = (self.d0[a] / scale[ok]).max(axis=1)
-                out[ok] = ((1.0 - np.abs(F[ok] - self.F0[a]) * self.growth[a])
-                           / (norms[ok] * self.inverse_norm[a] * rows))
+                ratio = self.d0[a] / scale[ok]
+                # (D6b.2): the exact matrix's inverse, bounded.
+                beta = (self.inverse_norm[a] * ratio.max(axis=1)
+                        / (1.0 - np.abs(F[ok] - self.F0[a]) * self.growth[a]))
+                # (D6b.3): the formed matrix differs from it by its entries' rounding.
+                eta = (FORMING_ROUNDING / ratio.min(axis=1)
+                       * (self.magnitudes[a, 0] + np.abs(F[ok]) * self.magnitudes[a, 1]))
+                lost = beta * eta
+                out[ok] = np.where(lost < 0.5, (1.0 - lost) / (norms[ok] * beta), np.nan)
         return out
 
 
@@ -241,16 +251,19 @@ def condition_bounds(A0, A1, F) -> ConditionBounds:
     each row equilibrated (``d(F)``: the reciprocals of the rows' largest magnitudes,
     as :func:`solve_equilibrated` scales them).
 
-    At an anchor ``F0`` with ``A~0 = diag(d0) A(F0)`` and ``C = A~0^-1 diag(d0) A1``,
-    ``diag(d(F)) A(F) = E (I + (F - F0) C) ...`` gives for ``|F - F0| ||C||_1 < 1``::
+    At an anchor ``F0``, with ``A~0 = diag(d0) A(F0)`` and ``C = A~0^-1 diag(d0) A1``,
+    ``diag(d) A(F) = diag(d / d0) A~0 (I + (F - F0) C)`` (D6b.1), so that for
+    ``|F - F0| ||C||_1 < 1``::
 
-        ||(diag(d) A)^-1||_1 <= ||A~0^-1||_1 max_i(d0_i / d_i) / (1 - |F - F0| ||C||_1)
+        ||(diag(d) A(F))^-1||_1 <= ||A~0^-1||_1 max_i(d0_i / d_i) / (1 - |F - F0| ||C||_1)
 
-    (derivation section 6b).  An anchor at the middle of the ``F`` range covers
-    ``|F - F0| <= COVERED / ||C||_1`` (a bound within a factor ``1 - COVERED`` of the
-    anchor's), and each range left on either side gets one at its middle in turn; at
-    most one per :data:`POINTS_PER_ANCHOR` matrices and :data:`MAX_ANCHORS` in all (the
-    rest are left to LAPACK's estimate).
+    (D6b.2), and the matrix as formed in floating point is within its entries'
+    rounding of it (D6b.3; derivation section 6b).  An anchor at the middle of the
+    ``F`` range covers ``|F - F0| <= COVERED / ||C||_1`` (a bound within a factor
+    ``1 - COVERED`` of the anchor's), and the ranges left on either side get one at
+    their middles in turn (breadth first); at most one per :data:`POINTS_PER_ANCHOR`
+    matrices or per ``k / 2`` matrices of ``k`` unknowns, whichever is fewer, and
+    :data:`MAX_ANCHORS` in all (the rest are left to LAPACK's estimate).
     """
     F = np.asarray(F, dtype=float)
     k = A0.shape[0]
@@ -259,49 +272,71 @@ def condition_bounds(A0, A1, F) -> ConditionBounds:
     order = order[np.argsort(F[order], kind="stable")]
     fs = F[order]
     found = []
-    tries = min(MAX_ANCHORS, F.size // POINTS_PER_ANCHOR)
-    spans = [(0, fs.size)] if fs.size else []  # sorted F's [i, j) not yet bounded
-    while spans and tries > 0:
-        tries -= 1
-        i, j = spans.pop()
-        F0 = 0.5 * (fs[i] + fs[j - 1])
-        anchor = _anchor(A0, A1, F0)
-        # Singular there: the two sides in turn, without the F equal to F0.
-        r = 0.0 if anchor is None else COVERED / anchor[2] if anchor[2] > 0 else math.inf
-        lo = int(np.searchsorted(fs, F0 - r, side="left"))
-        hi = int(np.searchsorted(fs, F0 + r, side="right"))
-        if anchor is not None:
-            which[order[lo:hi]] = len(found)
-            found.append((F0, *anchor))
-        spans += [s for s in ((i, lo), (hi, j)) if s[0] < s[1]]
+    tries = min(MAX_ANCHORS, F.size // max(POINTS_PER_ANCHOR, k // 2))
+    spans = deque([(0, fs.size)] if fs.size and tries else [])  # sorted F's [i, j) to bound
+    # F near the largest floats: spans and reaches that overflow are inf, as meant.
+    with np.errstate(over="ignore", invalid="ignore"):
+        while spans and tries > 0:
+            tries -= 1
+            i, j = spans.popleft()
+            F0 = fs[i] + 0.5 * (fs[j - 1] - fs[i]) if fs[j - 1] - fs[i] < math.inf else fs[i]
+            anchor = _anchor(A0, A1, F0)
+            # Singular there: the two sides in turn, without the F equal to F0.
+            r = 0.0 if anchor is None else COVERED / anchor[2] if anchor[2] > 0 else math.inf
+            lo = int(np.searchsorted(fs, F0 - r, side="left"))
+            hi = int(np.searchsorted(fs, F0 + r, side="right"))
+            if anchor is not None:
+                which[order[lo:hi]] = len(found)
+                found.append((F0, *anchor))
+            spans += [s for s in ((i, lo), (hi, j)) if s[0] < s[1]]
     if not found:
-        return ConditionBounds(which, np.empty(0), np.empty((0, k)), np.empty(0), np.empty(0))
-    F0s, d0s, inverse_norms, growths = zip(*found)
+        return ConditionBounds(which, np.empty(0), np.empty((0, k)), np.empty(0), np.empty(0),
+                               np.empty((0, 2)))
+    F0s, d0s, inverse_norms, growths, magnitudes = zip(*found)
     return ConditionBounds(which, np.array(F0s), np.array(d0s), np.array(inverse_norms),
-                           np.array(growths))
+                           np.array(growths), np.array(magnitudes))
 
 
 def _anchor(A0, A1, F0):
-    """``(d0, ||A~0^-1||_1, ||C||_1)`` of :func:`condition_bounds` at ``F0``; None where
-    ``A~0`` is singular or not finite."""
-    with np.errstate(invalid="ignore", over="ignore"):
+    """``(d0, ||A~0^-1||_1, ||C||_1, (||d0 |A0|||_1, ||d0 |A1|||_1))`` of
+    :func:`condition_bounds` at ``F0``, the norms bounded for the rounding of ``A~0``
+    as formed (D6b.3); None where ``A~0`` is singular, not finite or too ill-conditioned
+    for that bound."""
+    if not math.isfinite(F0):
+        return None
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         A = A0 + F0 * A1 if A1 is not None else A0.copy()
         d0 = 1.0 / np.maximum(np.maximum(A.max(axis=1), -A.min(axis=1)),
                               np.finfo(float).tiny)
         A *= d0[:, None]
-    if not np.all(np.isfinite(A)):
-        return None
-    lu, piv, info = dgetrf(A, overwrite_a=True)
-    if info != 0:
-        return None
-    inverse, info = dgetri(lu, piv, overwrite_lu=True)
-    if info != 0:
-        return None
-    inverse_norm = np.abs(inverse).sum(axis=0).max()
-    growth = 0.0 if A1 is None else np.abs(inverse @ (d0[:, None] * A1)).sum(axis=0).max()
+        if not np.all(np.isfinite(A)):
+            return None
+        norm = np.abs(A).sum(axis=0).max()
+        lu, piv, info = dgetrf(A, overwrite_a=True)
+        if info != 0:
+            return None
+        inverse, info = dgetri(lu, piv, overwrite_lu=True)
+        if info != 0:
+            return None
+        B = np.zeros_like(A0) if A1 is None else d0[:, None] * A1
+        magnitudes = (float(np.abs(d0[:, None] * A0).sum(axis=0).max()),
+                      float(np.abs(B).sum(axis=0).max()))
+        computed = np.abs(inverse).sum(axis=0).max()
+        # An anchor that could prove nothing: and its inverse's own rounding (about
+        # k 1e-16 / rcond relative) stays far below the factor CERTIFIED_RCOND spares.
+        if not 1.0 / (norm * computed) >= CERTIFIED_RCOND:
+            return None
+        # A~0 exact differs from the one inverted by eta0 in norm at most: its inverse's
+        # norm and C's, bounded (D6b.3).
+        eta0 = FORMING_ROUNDING * (magnitudes[0] + abs(F0) * magnitudes[1])
+        if not computed * eta0 < 0.5:
+            return None
+        inverse_norm = computed / (1.0 - computed * eta0)
+        growth = (np.abs(inverse @ B).sum(axis=0).max()
+                  + computed * inverse_norm * eta0 * magnitudes[1])
     if not (math.isfinite(inverse_norm) and math.isfinite(growth)):
         return None
-    return d0, float(inverse_norm), float(growth)
+    return d0, float(inverse_norm), float(growth), magnitudes
 
 
 def _solve_chunk(A0t, A1t, b, F, what, S, work, anchors=None):
@@ -341,10 +376,11 @@ def _solve_chunk(A0t, A1t, b, F, what, S, work, anchors=None):
         if small:
             # getrf and getrs in one call (gesv), one call fewer per point; a system
             # then refused by its condition costs one solve.
-            lu, piv, x, _ = dgesv(S[i].T, B[i], overwrite_a=True)
+            lu, piv, x, singular = dgesv(S[i].T, B[i], overwrite_a=True)
         else:
-            lu, piv, _ = dgetrf(S[i].T, overwrite_a=True)
-        if proven[i] >= CERTIFIED_RCOND:
+            lu, piv, singular = dgetrf(S[i].T, overwrite_a=True)
+        # An exact zero pivot is refused by the estimate (0), as without the bound.
+        if proven[i] >= CERTIFIED_RCOND and singular == 0:
             rcond = float(proven[i])
         else:
             rcond, info = dgecon(lu, norms[i], norm="1")
