@@ -35,8 +35,8 @@ def test_passes_where_the_branch_is_regular():
 
 import math
 
-from thermocontact.numerics.continuation import (REJECT, STOP, locate, march, secant,
-                                                 sign_changes, subdivide, widen)
+from thermocontact.numerics.continuation import (REJECT, STOP, inverse_interpolation, locate,
+                                                 march, secant, sign_changes, subdivide, widen)
 
 
 def test_march_halves_rejected_steps_and_grows_accepted_ones():
@@ -100,6 +100,55 @@ def test_locate_finds_a_known_root_to_its_tolerance():
     assert lo < 0.3 <= hi and hi - lo < 1e-9
     with pytest.raises(ValueError):
         locate(lambda x: x + 1.0, 0.0, 1.0, xtol=1e-9)
+
+
+@pytest.mark.parametrize("offset", [0.0, 3e-13, -3e-13, 5e-12, -5e-12, 0.2, -0.5])
+def test_a_first_guess_gives_the_root_brent_gives(offset):
+    """locate with a guess: within the tolerance of the root, the root in two new
+    evaluations (the guess and one tolerance beyond it); farther, Brent's method on the
+    bracket left, to the same tolerance; f never evaluated twice at one point."""
+    dottie = 0.7390851332151607
+    seen = []
+
+    def f(x):
+        seen.append(x)
+        return math.cos(x) - x
+    x = locate(f, 0.0, 1.0, xtol=1e-12, guess=dottie + offset)
+    assert abs(x - dottie) <= 1e-12 + 4 * np.finfo(float).eps * dottie
+    assert len(seen) == len(set(seen))
+    if abs(offset) < 1e-12:
+        assert len(seen) <= 3  # a, the guess and (unless f vanishes there) its neighbour
+    plain = []
+    locate(lambda x: plain.append(x) or math.cos(x) - x, 0.0, 1.0, xtol=1e-12)
+    if abs(offset) < 1e-12:
+        assert len(seen) < len(plain)
+
+
+def test_a_guess_that_cannot_help_is_left_to_brent():
+    """A guess outside the bracket, one where f is not finite, and one exactly at the
+    root: the root, to the tolerance, each time."""
+    def f(x):
+        return math.nan if 0.49 < x < 0.51 else 0.6 - x
+    for guess in (-1.0, 0.5, 2.0, 0.6):
+        assert abs(locate(f, 0.0, 1.0, xtol=1e-12, guess=guess) - 0.6) <= 1e-12 + 1e-15
+
+
+def test_inverse_interpolation_converges_at_fourth_order():
+    """The zero of exp(x) - 2 from four samples spaced h about it: exact for a cubic
+    inverse, the error falling 16-fold per halving of h (observed order 4); None for
+    values that are not monotone or not finite."""
+    errors = []
+    for h in (0.04, 0.02, 0.01, 0.005):
+        xs = math.log(2) + h * np.array([-1.7, -0.7, 0.3, 1.3])
+        errors.append(abs(inverse_interpolation(xs, np.exp(xs) - 2.0) - math.log(2)))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all((orders > 3.8) & (orders < 4.2)), orders
+    v = np.array([-2.0, -1.0, 0.5, 3.0])
+    assert inverse_interpolation(1 + v + 0.1 * v**2 - 0.01 * v**3, v) == pytest.approx(1.0,
+                                                                                   abs=1e-15)
+    assert inverse_interpolation([0.0, 1.0, 2.0], [-1.0, 1.0, 0.5]) is None
+    assert inverse_interpolation([0.0, 1.0], [-1.0, math.nan]) is None
+    assert inverse_interpolation([0.0], [-1.0]) is None
 
 
 def test_locate_returns_the_bracket_reached_when_the_margin_cannot_be_evaluated():

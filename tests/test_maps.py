@@ -480,3 +480,33 @@ def test_a_closure_on_an_axis_is_the_coordinate(axis, fixed):
     sol = solve(5.0, 0.2, 10.0, **{name: float(spec.x.values[-1])}, tol=1e-6)
     assert float(ds.load_ratio.isel(pe=1, **{name: -1})) == pytest.approx(sol.load_ratio,
                                                                         rel=1e-6)
+
+
+def test_a_line_s_events_from_a_first_guess_are_brent_s(monkeypatch):
+    """The benchmark map's lines at Pe = 2 and 10 (fHPe 0-0.8 in 200 points), each
+    crossing the boundary: Brent's method started from the margin's zero interpolated
+    through the samples around the event finds the same events (inequality, edge,
+    validity either side) at the same places to the events' tolerance
+    (BOUNDARY_RTOL), with fewer single-point solves than started from the bracket."""
+    from thermocontact.solvers.single_patch import Model
+    from thermocontact.studies import maps
+
+    calls = []
+    solve_at = Model.solve_at
+    monkeypatch.setattr(Model, "solve_at",
+                        lambda self, *a, **k: calls.append(1) or solve_at(self, *a, **k))
+    spec = MapSpec(parse_axis("--x", "fhpe:0:0.8:200"), parse_axis("--y", "pe:2:10:2:log"),
+                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    guessed, plain = [], []
+    for found in (guessed, plain):
+        calls.clear()
+        found += [maps.evaluate_chunk(task)["events"] for task in spec.tasks()]
+        found.append(len(calls))
+        monkeypatch.setattr(maps, "inverse_interpolation", lambda xs, values: None)
+    assert guessed[-1] < plain[-1]
+    for a, b in zip(guessed[:-1], plain[:-1], strict=True):
+        assert len(a) == len(b) >= 1
+        for e, f in zip(a, b):
+            assert {k: v for k, v in e.items() if k not in ("at", "position")} == \
+                   {k: v for k, v in f.items() if k not in ("at", "position")}
+            assert abs(e["at"] - f["at"]) <= maps.BOUNDARY_RTOL * abs(f["at"])

@@ -30,8 +30,8 @@ import math
 
 import numpy as np
 
-__all__ = ["REJECT", "RTOL", "STOP", "arclength", "locate", "march", "secant", "sign_changes",
-           "subdivide", "widen"]
+__all__ = ["REJECT", "RTOL", "STOP", "arclength", "inverse_interpolation", "locate", "march",
+           "secant", "sign_changes", "subdivide", "widen"]
 
 #: Brent's default relative tolerance (four machine epsilons, scipy's own default).
 RTOL = 4 * np.finfo(float).eps
@@ -156,7 +156,7 @@ def sign_changes(values) -> np.ndarray:
     return np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(g[:-1]) * np.sign(g[1:]) < 0))
 
 
-def locate(f, a, b, *, xtol, rtol=RTOL, bracket=False, interrupt=()):
+def locate(f, a, b, *, xtol, rtol=RTOL, bracket=False, interrupt=(), guess=None):
     """The sign change of ``f`` on ``[a, b]`` by Brent's method.
 
     Parameters
@@ -173,6 +173,12 @@ def locate(f, a, b, *, xtol, rtol=RTOL, bracket=False, interrupt=()):
         With ``bracket``: an evaluation of ``f`` that raises one of these ends the
         search with the bracket reached so far (as does a search that does not
         converge).
+    guess : float, optional
+        Without ``bracket``: a point of ``(a, b)`` believed within the tolerance of
+        the root (an interpolation of samples beyond the bracket).  ``f`` is evaluated
+        there and one tolerance beyond it, on the side of the sign change: where the
+        sign changes between the two, the root is their secant point (two evaluations
+        of ``f``); else Brent's method continues on the bracket they leave.
 
     Returns
     -------
@@ -190,6 +196,17 @@ def locate(f, a, b, *, xtol, rtol=RTOL, bracket=False, interrupt=()):
     from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
     if not bracket:
+        if guess is not None and a < guess < b:
+            known = {}
+
+            def f(x, f=f):  # Brent starts from the ends: each evaluated once
+                if x not in known:
+                    known[x] = f(x)
+                return known[x]
+            found = _near_guess(f, a, b, guess, xtol + rtol * abs(guess))
+            if not isinstance(found, tuple):
+                return found
+            a, b = found
         return float(brentq(f, a, b, xtol=xtol, rtol=rtol))
     seen = {}
 
@@ -213,6 +230,47 @@ def locate(f, a, b, *, xtol, rtol=RTOL, bracket=False, interrupt=()):
         return a, b
     p, q = changes[0]
     return (p, q) if (seen[p] >= 0) == side_a else (q, p)
+
+
+def inverse_interpolation(xs, values):
+    """Where the polynomial through the points ``(values[i], xs[i])`` (``x`` as a
+    function of the value) gives value 0: a root's estimate from samples around it
+    (Neville's scheme); None unless at least two values are given, all finite and
+    strictly monotone (then ``x`` is a function of the value)."""
+    xs, values = [float(x) for x in xs], [float(v) for v in values]
+    steps = np.diff(values)
+    if (len(values) < 2 or not all(map(math.isfinite, values + xs))
+            or not (np.all(steps > 0.0) or np.all(steps < 0.0))):
+        return None
+    p = list(xs)
+    for level in range(1, len(p)):
+        for i in range(len(p) - level):
+            lo, hi = values[i], values[i + level]
+            p[i] = (hi * p[i] - lo * p[i + 1]) / (hi - lo)
+    return p[0]
+
+
+def _near_guess(f, a, b, guess, tol):
+    """:func:`locate`'s first steps from ``guess``: the root (float) where ``f`` changes
+    sign between ``guess`` and the point ``tol`` beyond it toward the sign change, else
+    the bracket ``(a, b)`` narrowed by those evaluations (a tuple)."""
+    fa, fg = f(a), f(guess)
+    if fg == 0.0:
+        return float(guess)
+    if not (math.isfinite(fa) and math.isfinite(fg)):
+        return a, b
+    toward_b = (fg > 0.0) == (fa > 0.0)
+    probe = min(guess + tol, b) if toward_b else max(guess - tol, a)
+    fp = f(probe)
+    if fp == 0.0:
+        return float(probe)
+    if math.isfinite(fp) and (fp > 0.0) != (fg > 0.0):
+        # The secant point of the two, within their interval (at most tol wide).
+        x = guess - fg * (probe - guess) / (fp - fg)
+        return float(min(max(x, min(guess, probe)), max(guess, probe)))
+    if not math.isfinite(fp):
+        return (guess, b) if toward_b else (a, guess)
+    return (probe, b) if toward_b else (a, probe)
 
 
 def widen(f, center, width, lo, hi, *, factor, tries, largest=math.inf):

@@ -208,7 +208,7 @@ def _where(sol, inequality):
     return (None, None) if at is None else (float(at), "leading" if at > 0 else "trailing")
 
 
-def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
+def locate_events(at, xs, sols, *, xtol, only_validity_changes=False, guesses=None):
     """Every sign change of a margin between neighbouring samples
     (:func:`~thermocontact.numerics.continuation.locate`: Brent's method).
 
@@ -224,6 +224,9 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
     only_validity_changes : bool
         Keep, per interval, only the first event, and only where the samples'
         validity differs (a figure's boundaries).
+    guesses : callable, optional
+        ``guesses(a, b, margin)``: a first point for Brent's method on ``(a, b)``
+        (:func:`~thermocontact.numerics.continuation.locate`'s ``guess``), or None.
 
     Returns
     -------
@@ -257,7 +260,8 @@ def locate_events(at, xs, sols, *, xtol, only_validity_changes=False):
                 seen[x] = (sol, m[k])
                 return m[k]
             try:
-                root = locate(f, min(a, b), max(a, b), xtol=xtol(a, b))
+                root = locate(f, min(a, b), max(a, b), xtol=xtol(a, b),
+                              guess=None if guesses is None else guesses(a, b, k))
             except (ValueError, RuntimeError):
                 continue
             found.append((abs(root - a), root, k, seen))

@@ -29,11 +29,12 @@ import numpy as np
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.resumable import run_chunks
-from ..numerics.continuation import locate, widen
+from ..numerics.continuation import inverse_interpolation, locate, widen
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.axes import MAX_AXIS_POINTS, Axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
-from .boundaries import ALONG, SPELLINGS, check_problem, closure, locate_events, model_for
+from .boundaries import (ALONG, SPELLINGS, check_problem, closure, locate_events, model_for,
+                         validity_margins)
 
 __all__ = ["Axis", "MAX_AXIS_POINTS", "MapSpec", "compute_map", "evaluate_chunk", "parse_axis",
            "prepare_dataset"]
@@ -259,7 +260,7 @@ def _events(fixed, name, values, sols, method, tol):
     """Changes of validity between neighbouring solved points
     (:func:`~.boundaries.locate_events`)."""
     events = []
-    for a, b, sa, sb in zip(values[:-1], values[1:], sols[:-1], sols[1:]):
+    for i, (a, b, sa, sb) in enumerate(zip(values[:-1], values[1:], sols[:-1], sols[1:])):
         if sa is None or sb is None or sa.valid == sb.valid:
             continue
         n = max(sa.n, sb.n)
@@ -279,9 +280,23 @@ def _events(fixed, name, values, sols, method, tol):
         # Brent's method starts from the ends without solving there again: at(x) is
         # what they are (a line's points depend on nothing but their own x and n).
         known = {a: ends[0], b: ends[1]}
+        # Brent's first point: the margin's zero interpolated through the ends and the
+        # samples beyond them solved at the same n (about h^4 off: within the
+        # tolerance on a smooth margin, which then takes two solves instead of three
+        # or four).
+        around = [(values[j], s) for j, s in ((i - 1, sols[i - 1] if i else None),
+                                              (i, ends[0]), (i + 1, ends[1]),
+                                              (i + 2, sols[i + 2] if i + 2 < len(sols)
+                                               else None))
+                  if s is not None and s.n == n]
+
+        def guesses(p, q, k, around=around):
+            return inverse_interpolation([x for x, _ in around],
+                                         [validity_margins(s)[k] for _, s in around])
         found = locate_events(lambda x: known[x] if x in known else at(x), [a, b], ends,
                               only_validity_changes=True,
-                              xtol=lambda p, q: BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300))
+                              xtol=lambda p, q: BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300),
+                              guesses=guesses)
         events += [e.to_dict() for e in found]
     return events
 
