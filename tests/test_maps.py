@@ -4,11 +4,14 @@ process, on a process pool and on a Dask cluster, and the boundary located on ea
 import concurrent.futures as cf
 from concurrent.futures.process import BrokenProcessPool
 import json
+import math
 import os
 import re
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 import xarray as xr
 
 from thermocontact import solve
@@ -510,3 +513,50 @@ def test_a_line_s_events_from_a_first_guess_are_brent_s(monkeypatch):
             assert {k: v for k, v in e.items() if k not in ("at", "position")} == \
                    {k: v for k, v in f.items() if k not in ("at", "position")}
             assert abs(e["at"] - f["at"]) <= maps.BOUNDARY_RTOL * abs(f["at"])
+
+
+def _same_record(a, b):
+    """Equal JSON records, types included, NaN equal to NaN."""
+    assert type(a) is type(b)
+    if isinstance(a, dict):
+        assert list(a) == list(b)
+        for k in a:
+            _same_record(a[k], b[k])
+    elif isinstance(a, list):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            _same_record(x, y)
+    elif isinstance(a, float) and a != a:
+        assert b != b
+    else:
+        assert a == b and (not isinstance(a, float) or math.copysign(1, a) == math.copysign(1, b))
+
+
+_JSON_SCALARS = (st.none() | st.booleans() | st.integers() | st.text()
+                 | st.floats(allow_nan=True, allow_infinity=True))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.recursive(_JSON_SCALARS | st.tuples(_JSON_SCALARS),
+                    lambda inner: st.lists(inner, max_size=5)
+                    | st.dictionaries(st.text(max_size=5) | st.integers(), inner, max_size=5),
+                    max_leaves=30))
+def test_a_record_as_stored_is_its_json_round_trip(record):
+    """as_stored (a chunk's result without a store) is json.loads(json.dumps(record)),
+    types, signs of zero and NaN included: the record itself where it is JSON's own
+    types, else the round trip (tuples, integer keys)."""
+    from thermocontact.execution.resumable import as_stored
+
+    _same_record(as_stored(record), json.loads(json.dumps(record)))
+
+
+def test_a_grid_line_s_record_is_stored_as_it_is():
+    """A map line's record is made of JSON's own types: kept as it is, no round trip."""
+    from thermocontact.execution.resumable import as_stored
+    from thermocontact.studies.maps import evaluate_chunk
+
+    spec = MapSpec(parse_axis("--x", "fhpe:0:0.8:12"), parse_axis("--y", "pe:2:3:2"),
+                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    record = evaluate_chunk(spec.tasks()[0])
+    assert as_stored(record) is record
+    _same_record(record, json.loads(json.dumps(record)))
