@@ -35,8 +35,10 @@ def test_passes_where_the_branch_is_regular():
 
 import math
 
-from thermocontact.numerics.continuation import (REJECT, STOP, inverse_interpolation, locate,
-                                                 march, secant, sign_changes, subdivide, widen)
+from thermocontact.numerics.continuation import (GUESS_AGREEMENT, REJECT, STOP,
+                                                 interpolated_root, inverse_interpolation,
+                                                 locate, march, secant, sign_changes,
+                                                 subdivide, widen)
 
 
 def test_march_halves_rejected_steps_and_grows_accepted_ones():
@@ -125,12 +127,17 @@ def test_a_first_guess_gives_the_root_brent_gives(offset):
 
 
 def test_a_guess_that_cannot_help_is_left_to_brent():
-    """A guess outside the bracket, one where f is not finite, and one exactly at the
-    root: the root, to the tolerance, each time."""
+    """A guess outside the bracket, one where f is not finite, one exactly at the root,
+    one whose probe is clipped at the bracket's end, ones a few tolerances off (the
+    bracket narrowed, then Brent's method): the root, to the tolerance, each time; and
+    a root at an end of the bracket is that end, as Brent's method alone returns it."""
     def f(x):
-        return math.nan if 0.49 < x < 0.51 else 0.6 - x
-    for guess in (-1.0, 0.5, 2.0, 0.6):
+        return math.nan if 0.49 < x < 0.51 else math.tanh(0.6 - x)
+    for guess in (-1.0, 0.5, 2.0, 0.6, 0.7, 1.0 - 1e-13, 0.6 + 5e-12, 0.6 - 5e-12):
         assert abs(locate(f, 0.0, 1.0, xtol=1e-12, guess=guess) - 0.6) <= 1e-12 + 1e-15
+    for guess in (0.3, 0.5, 0.9):
+        assert locate(lambda x: -x, 0.0, 1.0, xtol=1e-9, guess=guess) == 0.0
+        assert locate(lambda x: 1.0 - x, 0.0, 1.0, xtol=1e-9, guess=guess) == 1.0
 
 
 def test_inverse_interpolation_converges_at_fourth_order():
@@ -149,6 +156,25 @@ def test_inverse_interpolation_converges_at_fourth_order():
     assert inverse_interpolation([0.0, 1.0, 2.0], [-1.0, 1.0, 0.5]) is None
     assert inverse_interpolation([0.0, 1.0], [-1.0, math.nan]) is None
     assert inverse_interpolation([0.0], [-1.0]) is None
+    with pytest.raises(ValueError, match="same length"):
+        inverse_interpolation([0.0, 1.0], [-1.0, 0.5, 1.0])
+
+
+def test_an_interpolated_root_is_given_where_its_quadratics_agree():
+    """interpolated_root: the cubic where both quadratics through three of its four
+    samples agree with it within GUESS_AGREEMENT tolerances (then it is within the
+    tolerance: exp(x) - 2 sampled 0.004 apart); None where they do not (0.1 apart),
+    and for fewer than four samples."""
+    root = math.log(2)
+    for h, tol, expected in ((0.004, 1e-9, True), (0.1, 1e-9, False)):
+        xs = list(root + h * np.array([-1.6, -0.6, 0.4, 1.4]))
+        guess = interpolated_root(xs, [math.exp(x) - 2.0 for x in xs], tol)
+        assert (guess is not None) == expected
+        if expected:
+            assert abs(guess - root) <= tol
+    xs = [0.6, 0.7, 0.8]
+    assert interpolated_root(xs, [math.exp(x) - 2.0 for x in xs], 1.0) is None
+    assert GUESS_AGREEMENT > 1
 
 
 def test_locate_returns_the_bracket_reached_when_the_margin_cannot_be_evaluated():

@@ -29,7 +29,7 @@ import numpy as np
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..execution.resumable import run_chunks
-from ..numerics.continuation import inverse_interpolation, locate, widen
+from ..numerics.continuation import interpolated_root, locate, widen
 from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.axes import MAX_AXIS_POINTS, Axis
 from ..problem.validation import (InputError, check_choice, check_finite, check_positive)
@@ -281,22 +281,22 @@ def _events(fixed, name, values, sols, method, tol):
         # what they are (a line's points depend on nothing but their own x and n).
         known = {a: ends[0], b: ends[1]}
         # Brent's first point: the margin's zero interpolated through the ends and the
-        # samples beyond them solved at the same n (about h^4 off: within the
-        # tolerance on a smooth margin, which then takes two solves instead of three
-        # or four).
+        # samples beyond them solved at the same n (about h^4 off), where it is likely
+        # within the tolerance (then two solves instead of three or four).
         around = [(values[j], s) for j, s in ((i - 1, sols[i - 1] if i else None),
                                               (i, ends[0]), (i + 1, ends[1]),
                                               (i + 2, sols[i + 2] if i + 2 < len(sols)
                                                else None))
                   if s is not None and s.n == n]
 
+        def xtol(p, q):
+            return BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300)
+
         def guesses(p, q, k, around=around):
-            return inverse_interpolation([x for x, _ in around],
-                                         [validity_margins(s)[k] for _, s in around])
+            return interpolated_root([x for x, _ in around],
+                                     [validity_margins(s)[k] for _, s in around], xtol(p, q))
         found = locate_events(lambda x: known[x] if x in known else at(x), [a, b], ends,
-                              only_validity_changes=True,
-                              xtol=lambda p, q: BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300),
-                              guesses=guesses)
+                              only_validity_changes=True, xtol=xtol, guesses=guesses)
         events += [e.to_dict() for e in found]
     return events
 
