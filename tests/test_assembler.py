@@ -487,3 +487,32 @@ def test_the_bound_raises_no_warning_the_estimate_does_not():
                           (wide, np.concatenate([np.full(8, -1.7e308), np.full(8, 1.7e308),
                                                  [0.0]]))):
             _same_stacks(solve_stack(system, F, rcond="bound"), solve_stack(system, F))
+
+
+def test_the_rows_of_kernels_of_the_points_alone_are_kept(monkeypatch):
+    """EdgeGraded's Cauchy and sign rows depend on the points alone: a second assembly
+    at another Pe (a map's next line) takes them from the row cache, the same to the
+    last bit as formed afresh and read-only; from KEPT_MOMENTS_N they are formed each
+    time (no 4-16 MB pairs kept at large n)."""
+    from thermocontact.discretisation import representations
+    from thermocontact.numerics import moment_engine
+    from thermocontact.numerics.cache import clear_caches
+
+    clear_caches()
+    Model(0.7, 10.0).blocks(16)
+    calls = []
+    moments = moment_engine.moments
+    monkeypatch.setattr(moment_engine, "moments",
+                        lambda kernel, *a, **k: calls.append(k) or moments(kernel, *a, **k))
+    Model(2.3, 10.0).blocks(16)
+    assert calls and all(k.get("scale") != 1.0 for k in calls)  # only the Pe kernels
+    rep = EdgeGraded(16)
+    (s, tau), _ = rep.collocation_points()
+    kept = rep.cauchy(s, tau), rep.sign(s, tau)
+    clear_caches()
+    fresh = rep.cauchy(s, tau), rep.sign(s, tau)
+    for a, b in zip(kept, fresh):
+        for x, y in zip(a, b):
+            assert np.array_equal(x, y) and not x.flags.writeable
+    monkeypatch.setattr(representations, "KEPT_MOMENTS_N", 16)
+    assert rep.cauchy(s, tau)[0].flags.writeable

@@ -53,6 +53,16 @@ __all__ = ["Chebyshev", "ChebyshevSampled", "EdgeGraded", "NodeRule", "Represent
 #: Row operators that depend only on a representation and a set of points (the
 #: validity checks and the temperatures evaluate the same points again and again).
 ROWS = BoundedCache("row operators", 128 * 2**20)
+#: :class:`EdgeGraded` keeps its Cauchy and sign rows below this ``n`` (at 512 and more
+#: they are 4-16 MB a pair, and the assemblies of large ``n`` release their memory).
+KEPT_MOMENTS_N = 512
+
+
+def _read_only(arrays):
+    """``arrays`` (a tuple), each made read-only: shared from a cache."""
+    for a in arrays:
+        a.flags.writeable = False
+    return arrays
 
 
 @dataclass(frozen=True)
@@ -459,13 +469,28 @@ class EdgeGraded(Representation):
         return graded.cosine_value(coefficients, graded.nodes(finer.n))  # (m, finer.n)
 
     def cauchy(self, s, aux=None):
-        b, q = graded.moments(lambda u: 1.0 / u, np.asarray(s, dtype=float), self.n,
-                              scale=1.0, cauchy=True, tau=aux, cmap=self._cmap)
-        to_cos = self.to_cos
-        return b @ to_cos, q @ to_cos
+        s = np.asarray(s, dtype=float)
+
+        def build():
+            b, q = graded.moments(lambda u: 1.0 / u, s, self.n, scale=1.0, cauchy=True,
+                                  tau=aux, cmap=self._cmap)
+            return b @ self.to_cos, q @ self.to_cos
+        return self._kept("cauchy", s, aux, build)
 
     def sign(self, s, aux=None):
-        return self.integrate(np.sign, s, scale=1.0, aux=aux)
+        s = np.asarray(s, dtype=float)
+        return self._kept("sign", s, aux,
+                          lambda: self.integrate(np.sign, s, scale=1.0, aux=aux))
+
+    def _kept(self, name, s, aux, build):
+        """The row operators of a kernel that depends on the points alone (``1/u``,
+        ``sgn u``), read-only, kept in the row-operator cache below
+        :data:`KEPT_MOMENTS_N`: a map's lines assemble them at the same points for every
+        ``Pe`` (a fifth of an assembly's time)."""
+        if self.n >= KEPT_MOMENTS_N:
+            return build()
+        key = (name, s.tobytes(), None if aux is None else np.asarray(aux, float).tobytes())
+        return self.rows(key, lambda: _read_only(build()))
 
     def phi_at(self, phi, s):
         return graded.cosine_value(self.to_cos @ phi, graded.tau_of(s))
