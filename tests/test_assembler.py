@@ -493,7 +493,7 @@ def test_the_rows_of_kernels_of_the_points_alone_are_kept(monkeypatch):
     """EdgeGraded's Cauchy and sign rows depend on the points alone: a second assembly
     at another Pe (a map's next line) takes them from the row cache, the same to the
     last bit as formed afresh and read-only; from KEPT_MOMENTS_N they are formed each
-    time (no 4-16 MB pairs kept at large n)."""
+    time (no pairs of megabytes kept beside a large solve)."""
     from thermocontact.discretisation import representations
     from thermocontact.numerics import moment_engine
     from thermocontact.numerics.cache import clear_caches

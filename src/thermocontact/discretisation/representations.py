@@ -53,9 +53,10 @@ __all__ = ["Chebyshev", "ChebyshevSampled", "EdgeGraded", "NodeRule", "Represent
 #: Row operators that depend only on a representation and a set of points (the
 #: validity checks and the temperatures evaluate the same points again and again).
 ROWS = BoundedCache("row operators", 128 * 2**20)
-#: :class:`EdgeGraded` keeps its Cauchy and sign rows below this ``n`` (at 512 and more
-#: they are 4-16 MB a pair, and the assemblies of large ``n`` release their memory).
-KEPT_MOMENTS_N = 512
+#: :class:`EdgeGraded` keeps its Cauchy and sign rows below this ``n`` (a map's lines
+#: reach 128 at most; at 256 the three pairs of an assembly would hold 6 MB beside the
+#: solve at 1024 whose levels are 256 and 512, which is to stay below 200 MB).
+KEPT_MOMENTS_N = 256
 
 
 def _read_only(arrays):
