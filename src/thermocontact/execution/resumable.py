@@ -15,7 +15,7 @@ import threading
 from ..io.chunks import ChunkStore
 from .executors import run, runs_elsewhere
 
-__all__ = ["run_chunks"]
+__all__ = ["as_stored", "run_chunks"]
 
 
 #: The name of :func:`run_chunks`' thread for the caller's preparation.

@@ -68,14 +68,24 @@ RCOND_MIN = 1e-12
 ASSEMBLIES = BoundedCache("assemblies", 512 * 2**20)
 
 
+def _row_scales(A, axis=1):
+    """The reciprocals of the largest magnitudes of ``A``'s rows, reduced over ``axis``
+    (1 for a matrix; 1 of a stack of transposed matrices), as ``max(max a, -min a)``:
+    no copy of ``A``; a zero row gets ``1/tiny``."""
+    return 1.0 / np.maximum(np.maximum(A.max(axis=axis), -A.min(axis=axis)),
+                            np.finfo(float).tiny)
+
+
+# What ``rcond`` of solve_stack and Model.solve_many may be.
+_RCOND_CHOICES = ("estimate", "bound")
+
+
 def solve_equilibrated(A, b, what="the linear system"):
     """``x`` with ``A x = b`` and the reciprocal condition number, rows equilibrated
     first (the heat equation's rows next to an edge grow like n^3 in the graded
     representation, which would mask the condition number); ``A`` and ``b`` are
     overwritten (``A`` by its factors, in place when it is Fortran-ordered)."""
-    # max |a| of each row as max(max a, -min a): no copy of A.
-    scale = 1.0 / np.maximum(np.maximum(A.max(axis=1), -A.min(axis=1)),
-                             np.finfo(float).tiny)
+    scale = _row_scales(A)
     A *= scale[:, None]
     b *= scale
     lu, rcond = factorise(A, what, overwrite=True)
@@ -155,7 +165,7 @@ def solve_stack(system: ContactSetSystem, F, what="the contact set's linear syst
     elsewhere it is estimated as above.  The solutions ``x`` and the systems refused are
     the same.
     """
-    check_choice("rcond", rcond, ("estimate", "bound"))
+    check_choice("rcond", rcond, _RCOND_CHOICES)
     F = np.atleast_1d(np.asarray(F, dtype=float))
     out = []
     anchors = condition_bounds(system.A0, system.A1, F) if rcond == "bound" else None
@@ -306,8 +316,7 @@ def _anchor(A0, A1, F0):
         return None
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         A = A0 + F0 * A1 if A1 is not None else A0.copy()
-        d0 = 1.0 / np.maximum(np.maximum(A.max(axis=1), -A.min(axis=1)),
-                              np.finfo(float).tiny)
+        d0 = _row_scales(A)
         A *= d0[:, None]
         if not np.all(np.isfinite(A)):
             return None
@@ -348,9 +357,8 @@ def _solve_chunk(A0t, A1t, b, F, what, S, work, anchors=None):
         else:
             np.multiply(A1t[None], F[:, None, None], out=S)
             S += A0t[None]
-        # Rows of A_i are columns of S[i]: max |a| of each as in solve_equilibrated.
-        scale = 1.0 / np.maximum(np.maximum(S.max(axis=1), -S.min(axis=1)),
-                                 np.finfo(float).tiny)
+        # Rows of A_i are columns of S[i]: scaled as in solve_equilibrated.
+        scale = _row_scales(S, axis=1)
         S *= scale[:, None, :]
         B = b[None, :] * scale
         # Rows of S[i] are columns of A_i: the 1-norm is the largest of their sums.
@@ -901,7 +909,7 @@ class Model:
         """
         closure = check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
                                     temperatures=temperatures)
-        check_choice("rcond", rcond, ("estimate", "bound"))
+        check_choice("rcond", rcond, _RCOND_CHOICES)
         closures = None
         if closure == "temperatures":
             # One closure (a Temperatures or a tuple (Theta, L/Delta)) or a list of them.

@@ -259,6 +259,9 @@ def evaluate_chunk(task: dict) -> dict:
 def _events(fixed, name, values, sols, method, tol):
     """Changes of validity between neighbouring solved points
     (:func:`~.boundaries.locate_events`)."""
+    def xtol(p, q):
+        return BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300)
+
     events = []
     for i, (a, b, sa, sb) in enumerate(zip(values[:-1], values[1:], sols[:-1], sols[1:])):
         if sa is None or sb is None or sa.valid == sb.valid:
@@ -283,14 +286,9 @@ def _events(fixed, name, values, sols, method, tol):
         # Brent's first point: the margin's zero interpolated through the ends and the
         # samples beyond them solved at the same n (about h^4 off), where it is likely
         # within the tolerance (then two solves instead of three or four).
-        around = [(values[j], s) for j, s in ((i - 1, sols[i - 1] if i else None),
-                                              (i, ends[0]), (i + 1, ends[1]),
-                                              (i + 2, sols[i + 2] if i + 2 < len(sols)
-                                               else None))
-                  if s is not None and s.n == n]
-
-        def xtol(p, q):
-            return BOUNDARY_RTOL * max(abs(p), abs(q), 1e-300)
+        samples = {i - 1: sols[i - 1] if i > 0 else None, i: ends[0], i + 1: ends[1],
+                   i + 2: sols[i + 2] if i + 2 < len(sols) else None}
+        around = [(values[j], s) for j, s in samples.items() if s is not None and s.n == n]
 
         def guesses(p, q, k, around=around):
             return interpolated_root([x for x, _ in around],
