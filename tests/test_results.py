@@ -346,3 +346,52 @@ def test_build_is_the_constructor(sol):
         Validity.build(**{k: x for k, x in v.items() if k != "valid"})
     with pytest.raises(TypeError):
         Validity.build(**v, loads=1.0)
+
+
+def test_replace_carries_the_fields_only():
+    """A result whose dict also holds something derived (a cached property) is
+    replaced with its fields only, as the dataclass replace makes it; one without
+    such entries keeps its dict's fields exactly."""
+    import dataclasses as dc
+    import functools
+
+    from thermocontact.io.results import Result
+
+    @dc.dataclass(frozen=True, eq=False, repr=False)
+    class Cached(Result):
+        a: float
+        b: float = 2.0
+
+        @functools.cached_property
+        def total(self):
+            return self.a + self.b
+
+    c = Cached(1.0)
+    assert c.total == 3.0 and "total" in vars(c)
+    changed = c.replace(a=5.0)
+    assert vars(changed) == {"a": 5.0, "b": 2.0} and changed.total == 7.0
+    assert vars(Cached(1.0).replace(b=4.0)) == {"a": 1.0, "b": 4.0}
+
+
+def test_build_each_is_build_per_row(sol):
+    """Result.build_each gives per row what build gives, defaults included; a name
+    missing or unknown goes to the constructor's own error, a repeated one is the
+    last value's (as in a dict)."""
+    import dataclasses
+
+    from thermocontact.analysis.validity import Validity
+
+    v = {f.name: getattr(sol.validity, f.name) for f in dataclasses.fields(sol.validity)
+         if f.default is dataclasses.MISSING}
+    rows = [tuple(v.values()), tuple(v.values())]
+    built = Validity.build_each(v.keys(), rows)
+    assert built == [Validity.build(**v)] * 2 and built[0] is not built[1]
+    full = {f.name: getattr(sol.validity, f.name) for f in dataclasses.fields(sol.validity)}
+    assert Validity.build_each(full, [tuple(full.values())]) == [sol.validity]
+    assert Validity.build_each(v, []) == []
+    with pytest.raises(TypeError):
+        Validity.build_each([k for k in v if k != "valid"], [tuple(v.values())[1:]])
+    with pytest.raises(TypeError):
+        Validity.build_each([*v, "loads"], [(*v.values(), 1.0)])
+    flipped = Validity.build_each([*v, "valid"], [(*v.values(), not v["valid"])])
+    assert flipped == [Validity.build(**{**v, "valid": not v["valid"]})]

@@ -682,4 +682,4 @@ def _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish):
               "edge_layer_log_widths": list(map(tuple, log_widths.tolist())),
               "edge_margins": list(map(tuple, edge_margins.tolist())),
               "strictly_valid": strict.tolist()}
-    return [Validity.build(**dict(zip(fields, row))) for row in zip(*fields.values())]
+    return Validity.build_each(fields, zip(*fields.values()))

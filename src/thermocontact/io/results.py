@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import MISSING, fields, replace
+from operator import itemgetter
 
 import numpy as np
 
@@ -96,8 +97,9 @@ _PLANS: dict = {}
 
 def _plan(cls):
     """``(field names in order, the same as a set, the fields without a default, the
-    defaults)``; None where the class checks its fields (``__post_init__``) or a
-    default is made by a factory: the constructor then."""
+    defaults, a getter of the fields' values from an instance's dict in order)``; None
+    where the class checks its fields (``__post_init__``) or a default is made by a
+    factory: the constructor then."""
     try:
         return _PLANS[cls]
     except KeyError:
@@ -108,9 +110,18 @@ def _plan(cls):
             or any(f.default_factory is not MISSING for f in fs)):
         defaults = {f.name: f.default for f in fs if f.default is not MISSING}
         names = tuple(f.name for f in fs)
-        plan = names, frozenset(names), frozenset(names) - defaults.keys(), defaults
+        getter = itemgetter(*names) if len(names) > 1 else (lambda d, n=names[0]: (d[n],))
+        plan = names, frozenset(names), frozenset(names) - defaults.keys(), defaults, getter
     _PLANS[cls] = plan
     return plan
+
+
+def _made(cls, values: dict):
+    """An instance of ``cls`` whose fields are ``values`` (a dict of its own, complete
+    and checked), without the constructor."""
+    new = object.__new__(cls)
+    object.__setattr__(new, "__dict__", values)
+    return new
 
 
 class Result:
@@ -162,11 +173,21 @@ class Result:
         # A field missing or unknown: the constructor's own error.
         if plan is None or not plan[2] <= values.keys() <= plan[1]:
             return cls(**values)
-        new = object.__new__(cls)
-        fields_ = new.__dict__
-        fields_.update(plan[3])
-        fields_.update(values)
-        return new
+        # (values: the call's own dict, in the fields' order after the defaults', as
+        # the constructor's would be but for that order.)
+        return _made(cls, {**plan[3], **values} if len(values) < len(plan[0]) else values)
+
+    @classmethod
+    def build_each(cls, names, rows) -> list:
+        """``[cls.build(**dict(zip(names, row))) for row in rows]``, the names checked
+        once (a grid line's results of one kind, each row one result's values)."""
+        names = tuple(names)
+        plan = _plan(cls)
+        if plan is None or not plan[2] <= set(names) <= plan[1] or len(set(names)) < len(names):
+            return [cls(**dict(zip(names, row))) for row in rows]
+        if len(names) < len(plan[0]):
+            return [_made(cls, {**plan[3], **dict(zip(names, row))}) for row in rows]
+        return [_made(cls, dict(zip(names, row))) for row in rows]
 
     def replace(self, **changes):
         """A copy with some fields changed: :func:`dataclasses.replace`, or for a result
@@ -182,8 +203,13 @@ class Result:
             raise TypeError(f"{cls.__name__} has no field {name!r}")
         if plan is None:  # a default made by a factory: the constructor
             return replace(self, **changes)
-        # The fields only (nothing derived from them is carried over).
-        return cls.build(**{**{name: self.__dict__[name] for name in plan[0]}, **changes})
+        # The fields only (nothing derived from them is carried over): the instance's
+        # dict where it holds nothing else (every field is in it).
+        values = self.__dict__.copy()
+        if len(values) != len(plan[0]):
+            values = dict(zip(plan[0], plan[4](values)))
+        values.update(changes)
+        return _made(cls, values)
 
 
 def dataset_attrs(record: dict, skip=()) -> dict:
