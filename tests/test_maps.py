@@ -311,6 +311,22 @@ def test_run_yields_every_task_once():
         list(run(abs, [1], workers="many"))
 
 
+def _worker_state(_):
+    import gc
+
+    from threadpoolctl import threadpool_info
+
+    return gc.get_freeze_count(), [i["num_threads"] for i in threadpool_info()
+                                   if i["user_api"] == "blas"]
+
+
+def test_pool_workers_run_on_one_blas_thread_with_their_start_frozen():
+    """A local pool's workers use one BLAS thread each and keep the objects they start
+    with out of the garbage collector's reach (gc.freeze)."""
+    for _, (frozen, threads) in run(_worker_state, [0, 1], workers=2):
+        assert frozen > 1000 and set(threads) <= {1}
+
+
 def test_the_callers_preparation_runs_beside_workers_elsewhere_only():
     """run_chunks' ``meanwhile`` runs once, in a thread of this process, while workers
     elsewhere compute (never in a run in this process, where it would only compete);
