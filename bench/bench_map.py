@@ -16,7 +16,8 @@ size of the map's systems at its most frequent ``n`` (``2n + 2`` unknowns), in t
 process, once before the map and once after it (the machine's speed drifts: the
 ratio is taken to their mean); it prints the times and the ratio, in wall time and
 in CPU time (the workers' and this process's: on a shared machine the less
-disturbed measure).
+disturbed measure); then a quarter of the LU solves pinned to each core in turn, to
+show how far the cores' speeds differ during the run.
 """
 
 from __future__ import annotations
@@ -148,6 +149,31 @@ def against_lu(count=200):
     print(f"CPU time: map {cpu_map:.1f} s, LU solves {cpu_lu:.2f} s; ratio "
           f"{cpu_map / cpu_lu:.1f}")
     print(f"load average before {load:.2f}, after {os.getloadavg()[0]:.2f} (2 cores)")
+    cores = per_core_lu(2 * n + 2, count * count // 4)
+    if cores:
+        print("a quarter of the LU solves pinned to each core in turn: "
+              + ", ".join(f"core {c} {t:.2f} s" for c, t in cores.items())
+              + f" (the slowest {max(cores.values()) / min(cores.values()) - 1:.0%} slower: "
+              "the map runs on every core, the reference on one)")
+
+
+def per_core_lu(size, count):
+    """``{core: seconds}`` of ``count`` LU solves in this process pinned to each core
+    it may use in turn (empty where affinity cannot be set): on a shared machine the
+    cores' speeds can differ for minutes at a time."""
+    import os
+
+    if not hasattr(os, "sched_setaffinity"):
+        return {}
+    allowed = sorted(os.sched_getaffinity(0))
+    out = {}
+    try:
+        for core in allowed:
+            os.sched_setaffinity(0, {core})
+            out[core] = lu_time(size, count)
+    finally:
+        os.sched_setaffinity(0, allowed)
+    return out if len(out) > 1 else {}
 
 
 if __name__ == "__main__":
