@@ -330,33 +330,7 @@ def test_kernel_called_once_per_block():
     finally:
         graded.KERNEL_ENTRIES = old
     assert len(calls) > 4
-    # Every call a block of whole columns within the bound (a side's too).
-    assert all(r == s.size and (r * c <= 64 or c == 1) for r, c in calls)
     for a, b in zip(once, apart):
-        assert np.array_equal(a, b)
-
-
-def test_a_kernel_with_rows_of_its_own_keeps_them_in_blocks():
-    """A kernel whose rows carry parameters of their own (the gap's drop kernel: each
-    point's distance past the edge) gets the same numbers evaluated a few columns at a
-    time as whole."""
-    from thermocontact.physics.green_functions import cylinder_displacement_drop
-
-    s = 1.0 + np.geomspace(1e-6, 10.0, 12)
-    h = 3.0 * (s - 1.0)[:, None]
-
-    def kernel(u):
-        assert u.shape[0] == s.size  # whole columns: each row its own h
-        return cylinder_displacement_drop(3.0 * u - h, h)
-
-    whole = graded.moments(kernel, s, 16, scale=3.0)
-    old = graded.KERNEL_ENTRIES
-    try:
-        graded.KERNEL_ENTRIES = 40
-        blocks = graded.moments(kernel, s, 16, scale=3.0)
-    finally:
-        graded.KERNEL_ENTRIES = old
-    for a, b in zip(whole, blocks):
         assert np.array_equal(a, b)
 
 

@@ -448,10 +448,8 @@ GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
 BLOCK_ENTRIES = 2**19
-#: Entries of a kernel's values evaluated at once (columns of a block): 128 kB, so
-#: that the temporaries of a Bessel kernel stay within a core's 1 MB cache (a quarter
-#: of the misses beyond it on a map's line, for as many instructions).
-KERNEL_ENTRIES = 2**14
+#: Entries of the far field's kernel values evaluated at once (columns of a block).
+KERNEL_ENTRIES = 2**16
 #: Fewest rows in a block: the validity checks' kernels carry their points' own
 #: distances as arrays of up to a few hundred rows.
 MIN_BLOCK = 256
@@ -498,33 +496,25 @@ def _kernel_values(kernel, far, near):
     the rows).  A kernel whose values depend on the array it is given says so
     (``elementwise = False``: the transient kernels' quadrature takes its depth per
     block of points) and is called on each part apart; so is every kernel on a large
-    far field, and an elementwise one on a large side, a few columns at a time
-    (:func:`_in_columns`)."""
-    elementwise = getattr(kernel, "elementwise", True)
-    if elementwise and far.size + sum(u.size for u in near) <= KERNEL_ENTRIES:
+    far field, a few of its columns at a time, so that a kernel's temporaries (ten or
+    more arrays of the block's size for the Bessel kernels) stay small."""
+    if (getattr(kernel, "elementwise", True)
+            and far.size + sum(u.size for u in near) <= KERNEL_ENTRIES):
         values = kernel(np.concatenate([far, *near], axis=1))
         edges = np.cumsum([far.shape[1]] + [u.shape[1] for u in near])
         kf, *rest = np.split(values, edges[:-1], axis=1)
         return kf, rest
-    return (_in_columns(kernel, far),
-            [_in_columns(kernel, u) if elementwise else kernel(u) for u in near])
-
-
-def _in_columns(kernel, u):
-    """``kernel(u)`` of an array of rows, a block of at most :data:`KERNEL_ENTRIES`
-    entries (whole columns) at a time, so that a kernel's temporaries (ten or more
-    arrays of the block's size for the Bessel kernels) stay in the core's own cache;
-    each row keeps its own parameters."""
-    if u.size <= KERNEL_ENTRIES:
-        return kernel(u)
-    step = max(1, KERNEL_ENTRIES // u.shape[0])
-    out = None
-    for c in range(0, u.shape[1], step):
-        part = kernel(np.ascontiguousarray(u[:, c:c + step]))
-        if out is None:  # real or complex, as the kernel's values are
-            out = np.empty(u.shape, dtype=part.dtype)
-        out[:, c:c + step] = part
-    return out
+    if far.size <= KERNEL_ENTRIES:
+        kf = kernel(far)
+    else:
+        step = max(1, KERNEL_ENTRIES // far.shape[0])
+        kf = None
+        for c in range(0, far.shape[1], step):
+            part = kernel(np.ascontiguousarray(far[:, c:c + step]))
+            if kf is None:  # real or complex, as the kernel's values are
+                kf = np.empty(far.shape, dtype=part.dtype)
+            kf[:, c:c + step] = part
+    return kf, [kernel(u) for u in near]
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
