@@ -371,6 +371,13 @@ def test_replace_carries_the_fields_only():
     changed = c.replace(a=5.0)
     assert vars(changed) == {"a": 5.0, "b": 2.0} and changed.total == 7.0
     assert vars(Cached(1.0).replace(b=4.0)) == {"a": 1.0, "b": 4.0}
+    # As many entries as fields but not the fields: copied field by field (a field
+    # missing is the copy's own error, as it always was).
+    odd = Cached(1.0)
+    assert odd.total == 3.0
+    object.__getattribute__(odd, "__dict__").pop("b")
+    with pytest.raises(KeyError):
+        odd.replace(a=5.0)
 
 
 def test_build_each_is_build_per_row(sol):
@@ -395,3 +402,11 @@ def test_build_each_is_build_per_row(sol):
         Validity.build_each([*v, "loads"], [(*v.values(), 1.0)])
     flipped = Validity.build_each([*v, "valid"], [(*v.values(), not v["valid"])])
     assert flipped == [Validity.build(**{**v, "valid": not v["valid"]})]
+    # A row shorter than the names is build's: a missing field refused, a missing
+    # default filled in.
+    with pytest.raises(TypeError):
+        Validity.build_each(v, [tuple(v.values())[:-1]])
+    last = list(full)[-1]
+    short = Validity.build_each(full, [tuple(full.values())[:-1]])[0]
+    assert short == Validity.build(**{k: x for k, x in full.items() if k != last})
+    assert short.replace(valid=True).valid is True

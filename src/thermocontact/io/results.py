@@ -185,9 +185,14 @@ class Result:
         plan = _plan(cls)
         if plan is None or not plan[2] <= set(names) <= plan[1] or len(set(names)) < len(names):
             return [cls(**dict(zip(names, row))) for row in rows]
-        if len(names) < len(plan[0]):
-            return [_made(cls, {**plan[3], **dict(zip(names, row))}) for row in rows]
-        return [_made(cls, dict(zip(names, row))) for row in rows]
+        # A row of another length than the names: build's own way (a missing field's
+        # error, a default filled in).
+        k = len(names)
+        if k < len(plan[0]):
+            return [_made(cls, {**plan[3], **dict(zip(names, row))}) if len(row) == k
+                    else cls.build(**dict(zip(names, row))) for row in rows]
+        return [_made(cls, dict(zip(names, row))) if len(row) == k
+                else cls.build(**dict(zip(names, row))) for row in rows]
 
     def replace(self, **changes):
         """A copy with some fields changed: :func:`dataclasses.replace`, or for a result
@@ -206,7 +211,7 @@ class Result:
         # The fields only (nothing derived from them is carried over): the instance's
         # dict where it holds nothing else (every field is in it).
         values = self.__dict__.copy()
-        if len(values) != len(plan[0]):
+        if values.keys() != plan[1]:
             values = dict(zip(plan[0], plan[4](values)))
         values.update(changes)
         return _made(cls, values)
