@@ -209,7 +209,7 @@ class Result:
         if plan is None:  # a default made by a factory: the constructor
             return replace(self, **changes)
         # The fields only (nothing derived from them is carried over): the instance's
-        # dict where it holds nothing else (every field is in it).
+        # dict where it holds exactly the fields.
         values = self.__dict__.copy()
         if values.keys() != plan[1]:
             values = dict(zip(plan[0], plan[4](values)))
