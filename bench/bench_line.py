@@ -6,6 +6,10 @@ across, K2/K1 = 10, lambda = 1, tolerance 1e-6), spread over the map, solved in 
 process with one BLAS thread after a first line that warms the tables; prints the CPU
 time per line.  A benchmark, not a test: it asserts nothing.
 
+``python bench/bench_line.py --gc [LINES]`` (default 30) times the garbage collector's
+share of the lines, as a pool's worker runs them (its start frozen, ``gc.freeze``) and
+with nothing frozen: the processor time of its collections per line, and of the lines.
+
 ``python bench/bench_line.py --instructions [LINES]`` (default 3) counts the machine
 instructions of those lines under valgrind's callgrind tool (when installed),
 collected only inside the lines' loop.  On a shared machine, whose speed here drifts by
@@ -65,10 +69,54 @@ def instructions(lines):
     return int(found.group(1)) / lines
 
 
+def collections(lines):
+    """``(collector's ms per line, line's ms)`` with the start frozen, then without."""
+    import gc
+
+    from threadpoolctl import threadpool_limits
+
+    from thermocontact.numerics.cache import clear_caches
+    from thermocontact.studies.maps import evaluate_chunk
+
+    spent = [0.0, 0.0]
+
+    def timer(phase, info):
+        if phase == "start":
+            spent[1] = time.process_time()
+        else:
+            spent[0] += time.process_time() - spent[1]
+    first, chosen = tasks(lines)
+    out = []
+    gc.callbacks.append(timer)
+    try:
+        with threadpool_limits(1):
+            for frozen in (True, False):
+                clear_caches()
+                if frozen:
+                    gc.freeze()  # as the pool's worker initialiser does
+                evaluate_chunk(first)
+                spent[0] = 0.0
+                t0 = time.process_time()
+                for task in chosen:
+                    evaluate_chunk(task)
+                out.append((1e3 * spent[0] / len(chosen),
+                            1e3 * (time.process_time() - t0) / len(chosen)))
+                gc.unfreeze()
+    finally:
+        gc.callbacks.remove(timer)
+    return out
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     if args[:1] == ["--in-valgrind"]:
         run(int(args[1]))
+    elif args[:1] == ["--gc"]:
+        lines = int(args[1]) if len(args) > 1 else 30
+        for label, (collector, line) in zip(("start frozen", "nothing frozen"),
+                                            collections(lines)):
+            print(f"{label}: collector {collector:.2f} ms of {line:.1f} ms CPU per line "
+                  f"({lines} lines)")
     elif args[:1] == ["--instructions"]:
         lines = int(args[1]) if len(args) > 1 else 3
         print(f"{instructions(lines) / 1e9:.4f} G instructions per line ({lines} lines)")

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import MISSING, fields, replace
-from operator import itemgetter
 
 import numpy as np
 
@@ -97,9 +96,8 @@ _PLANS: dict = {}
 
 def _plan(cls):
     """``(field names in order, the same as a set, the fields without a default, the
-    defaults, a getter of the fields' values from an instance's dict in order)``; None
-    where the class checks its fields (``__post_init__``) or a default is made by a
-    factory: the constructor then."""
+    defaults)``; None where the class checks its fields (``__post_init__``) or a
+    default is made by a factory: the constructor then."""
     try:
         return _PLANS[cls]
     except KeyError:
@@ -110,15 +108,16 @@ def _plan(cls):
             or any(f.default_factory is not MISSING for f in fs)):
         defaults = {f.name: f.default for f in fs if f.default is not MISSING}
         names = tuple(f.name for f in fs)
-        getter = itemgetter(*names) if len(names) > 1 else (lambda d, n=names[0]: (d[n],))
-        plan = names, frozenset(names), frozenset(names) - defaults.keys(), defaults, getter
+        plan = names, frozenset(names), frozenset(names) - defaults.keys(), defaults
     _PLANS[cls] = plan
     return plan
 
 
-def _made(cls, values: dict):
-    """An instance of ``cls`` whose fields are ``values`` (a dict of its own, complete
-    and checked), without the constructor."""
+def _made(cls, plan, values: dict):
+    """An instance of ``cls`` whose fields are ``values`` (a dict of its own, its names
+    checked against ``plan``), the defaults filled in, without the constructor."""
+    if len(values) < len(plan[0]):
+        values = {**plan[3], **values}
     new = object.__new__(cls)
     object.__setattr__(new, "__dict__", values)
     return new
@@ -173,9 +172,7 @@ class Result:
         # A field missing or unknown: the constructor's own error.
         if plan is None or not plan[2] <= values.keys() <= plan[1]:
             return cls(**values)
-        # (values: the call's own dict, in the fields' order after the defaults', as
-        # the constructor's would be but for that order.)
-        return _made(cls, {**plan[3], **values} if len(values) < len(plan[0]) else values)
+        return _made(cls, plan, values)  # (the call's own dict)
 
     @classmethod
     def build_each(cls, names, rows) -> list:
@@ -187,11 +184,7 @@ class Result:
             return [cls(**dict(zip(names, row))) for row in rows]
         # A row of another length than the names: build's own way (a missing field's
         # error, a default filled in).
-        k = len(names)
-        if k < len(plan[0]):
-            return [_made(cls, {**plan[3], **dict(zip(names, row))}) if len(row) == k
-                    else cls.build(**dict(zip(names, row))) for row in rows]
-        return [_made(cls, dict(zip(names, row))) if len(row) == k
+        return [_made(cls, plan, dict(zip(names, row))) if len(row) == len(names)
                 else cls.build(**dict(zip(names, row))) for row in rows]
 
     def replace(self, **changes):
@@ -212,9 +205,9 @@ class Result:
         # dict where it holds exactly the fields.
         values = self.__dict__.copy()
         if values.keys() != plan[1]:
-            values = dict(zip(plan[0], plan[4](values)))
+            values = {name: values[name] for name in plan[0]}
         values.update(changes)
-        return _made(cls, values)
+        return _made(cls, plan, values)
 
 
 def dataset_attrs(record: dict, skip=()) -> dict:
