@@ -9,19 +9,23 @@ LocalCluster's start is timed separately.  The last column compares the cost of 
 grid point with that of one plain ``solve`` (fresh assembly, closed-form polish)
 at a point of the grid.
 
-``python bench/bench_map.py --against-lu [COUNT]`` (default 200) times the same
-COUNT x COUNT map on a process pool of 2 workers and, in the same run, COUNT^2 LU
-solves (``scipy.linalg.lu_factor`` and ``lu_solve``, one system at a time) of the
+``python bench/bench_map.py --against-lu [COUNT [REPEATS]]`` (defaults 200 and 3) times
+the same COUNT x COUNT map on a process pool of 2 workers and, in the same run, COUNT^2
+LU solves (``scipy.linalg.lu_factor`` and ``lu_solve``, one system at a time) of the
 size of the map's systems at its most frequent ``n`` (``2n + 2`` unknowns), in this
-process, once before the map and once after it (the machine's speed drifts: the
-ratio is taken to their mean); it prints the times and the ratio, in wall time and
-in CPU time (the workers' and this process's: on a shared machine the less
-disturbed measure); then a quarter of the LU solves pinned to each core in turn, to
-show how far the cores' speeds differ during the run.
+process: REPEATS maps, each in a fresh process of its own, between REPEATS + 1 LU loops
+(the machine's speed drifts: each map's ratio is taken to the mean of the loops on
+either side of it).  It prints each map's times and ratio, in wall time and in CPU time
+(the workers' and the map's own process's: on a shared machine the less disturbed
+measure), and the median ratio, the run's measure (one repeat disturbed by the host
+does not make it); the maps must be identical (a digest of every variable and
+attribute), or no ratio is given.  Then a quarter of the LU solves pinned to each core
+in turn, to show how far the cores' speeds differ during the run.
 """
 
 from __future__ import annotations
 
+import subprocess
 import sys
 import time
 
@@ -105,9 +109,73 @@ def lu_time(size, count):
     return time.perf_counter() - t0
 
 
-def against_lu(count=200):
-    """The map on 2 workers against ``count**2`` LU solves of its systems' size."""
+def against_lu(count=200, repeats=3):
+    """The map on 2 workers against ``count**2`` LU solves of its systems' size,
+    ``repeats`` times: LU, map, LU, map, ..., LU, each map's ratio taken to the mean of
+    the LU loops on either side of it; the median ratio is the run's."""
     import os
+
+    load = os.getloadavg()[0]
+    # The size of the map's systems at its most frequent n, 32 (checked below).
+    size = 66
+    lu = [_timed(lu_time, size, count * count)]
+    maps, digests = [], set()
+    for _ in range(repeats):
+        # Each map in a process of its own, as the first map of a run would be (the
+        # modules of this package imported; xarray's first dataset not yet made).
+        out = subprocess.run([sys.executable, __file__, "--one-map", str(count)],
+                             capture_output=True, text=True, check=True).stdout.split()
+        wall, cpu, n, share, digest = float(out[0]), float(out[1]), int(out[2]), \
+            float(out[3]), out[4]
+        maps.append((wall, cpu))
+        digests.add(digest)
+        if 2 * n + 2 != size:
+            print(f"the map's most frequent n is {n}, not 32: the LU solves are of the wrong "
+                  "size; no ratio")
+            return
+        lu.append(_timed(lu_time, size, count * count))
+    if len(digests) > 1:
+        print("the repeats' maps differ: no ratio")
+        return
+    print(f"{count} x {count} map on 2 workers against {count * count} LU solves of {size} "
+          f"unknowns (n = {n}, {100 * share:.0f} % of the points) in one process; "
+          "each map between two LU loops, its ratio taken to their mean:")
+    ratios, cpu_ratios = [], []
+    for r, (wall, cpu) in enumerate(maps):
+        t_lu = 0.5 * (lu[r][0] + lu[r + 1][0])
+        cpu_lu = 0.5 * (lu[r][1] + lu[r + 1][1])
+        ratios.append(wall / t_lu)
+        cpu_ratios.append(cpu / cpu_lu)
+        print(f"  map {wall:5.1f} s (CPU {cpu:5.1f} s), LU {lu[r][0]:.2f} s before, "
+              f"{lu[r + 1][0]:.2f} s after: ratio {ratios[-1]:.1f} (CPU ratio "
+              f"{cpu_ratios[-1]:.1f})")
+    # On a machine shared with other work a single run's wall times depend on the load;
+    # the median of the repeats does much less (and the CPU times less still: a ratio
+    # of at most 6 in wall time on 2 busy workers is one of at most 12 in CPU time).
+    print(f"median ratio {np.median(ratios):.1f} (CPU {np.median(cpu_ratios):.1f}); the maps "
+          f"are identical; load average before {load:.2f}, after {os.getloadavg()[0]:.2f} "
+          "(2 cores)")
+    cores = per_core_lu(size, count * count // 4)
+    if cores:
+        print("a quarter of the LU solves pinned to each core in turn: "
+              + ", ".join(f"core {c} {t:.2f} s" for c, t in cores.items())
+              + f" (the slowest {max(cores.values()) / min(cores.values()) - 1:.0%} slower: "
+              "the map runs on every core, the reference on one)")
+
+
+def _timed(func, *args):
+    """``(wall seconds, CPU seconds of this process)`` of ``func(*args)``, which returns
+    its own wall time."""
+    c0 = time.process_time()
+    wall = func(*args)
+    return wall, time.process_time() - c0
+
+
+def one_map(count):
+    """Print the wall and CPU seconds of the map on 2 workers (the workers', ended and
+    waited for, and this process's), its most frequent ``n`` and that ``n``'s share of
+    the points, and a digest of the whole dataset."""
+    import hashlib
     import resource
 
     from thermocontact.studies.maps import MapSpec, compute_map, parse_axis
@@ -115,46 +183,21 @@ def against_lu(count=200):
     spec = MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
                    parse_axis("--y", f"pe:0.5:100:{count}:log"),
                    {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
-    load = os.getloadavg()[0]
-    # The size of the map's systems at its most frequent n, 32 (checked below).
-    size = 66
-    c0 = time.process_time()
-    t_before = lu_time(size, count * count)
-    cpu_before = time.process_time() - c0
-    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     c0, t0 = time.process_time(), time.perf_counter()
     ds = compute_map(spec, workers=2)
-    t_map = time.perf_counter() - t0
-    # CPU seconds of the map: the workers' (ended and waited for) and this process's.
+    wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu_map = (time.process_time() - c0 + after.ru_utime + after.ru_stime
-               - children.ru_utime - children.ru_stime)
+    cpu = (time.process_time() - c0 + after.ru_utime + after.ru_stime
+           - before.ru_utime - before.ru_stime)
     ns = ds.n.values[ds.n.values > 0]
     n = int(np.bincount(ns).argmax())
-    c0 = time.process_time()
-    t_after = lu_time(2 * n + 2, count * count)
-    cpu_after = time.process_time() - c0
-    if 2 * n + 2 != size:
-        print(f"(the map's most frequent n is {n}, not 32: the solves before it do not count)")
-        t_before, cpu_before = t_after, cpu_after
-    cpu_lu = 0.5 * (cpu_before + cpu_after)
-    t_lu = 0.5 * (t_before + t_after)
-    print(f"{count} x {count} map on 2 workers: {t_map:.1f} s; {count * count} LU solves of "
-          f"{2 * n + 2} unknowns (n = {n}, {100 * np.mean(ns == n):.0f} % of the points) in "
-          f"one process: {t_before:.2f} s before the map, {t_after:.2f} s after; ratio "
-          f"{t_map / t_lu:.1f} (to their mean)")
-    # On a machine shared with other work the wall times depend on the load; the CPU
-    # times much less (a ratio of at most 6 in wall time on 2 workers is one of at
-    # most 12 in CPU time, with both workers busy throughout).
-    print(f"CPU time: map {cpu_map:.1f} s, LU solves {cpu_lu:.2f} s; ratio "
-          f"{cpu_map / cpu_lu:.1f}")
-    print(f"load average before {load:.2f}, after {os.getloadavg()[0]:.2f} (2 cores)")
-    cores = per_core_lu(2 * n + 2, count * count // 4)
-    if cores:
-        print("a quarter of the LU solves pinned to each core in turn: "
-              + ", ".join(f"core {c} {t:.2f} s" for c, t in cores.items())
-              + f" (the slowest {max(cores.values()) / min(cores.values()) - 1:.0%} slower: "
-              "the map runs on every core, the reference on one)")
+    digest = hashlib.sha256()
+    for name in sorted(ds.variables):
+        digest.update(name.encode())
+        digest.update(np.ascontiguousarray(ds[name].values).tobytes())
+    digest.update(repr(sorted(ds.attrs.items())).encode())
+    print(wall, cpu, n, np.mean(ns == n), digest.hexdigest())
 
 
 def per_core_lu(size, count):
@@ -180,6 +223,8 @@ def per_core_lu(size, count):
 
 if __name__ == "__main__":
     if len(sys.argv) > 1 and sys.argv[1] == "--against-lu":
-        against_lu(int(sys.argv[2]) if len(sys.argv) > 2 else 200)
+        against_lu(*(int(a) for a in sys.argv[2:4]))
+    elif len(sys.argv) > 1 and sys.argv[1] == "--one-map":
+        one_map(int(sys.argv[2]))
     else:
         main(int(sys.argv[1]) if len(sys.argv) > 1 else 100)
