@@ -295,6 +295,32 @@ def test_a_command_help_loads_only_its_own_command():
     assert _under(rec["modules"], ("shutil", "dataclasses")) == []
 
 
+def test_a_process_that_computes_nothing_freezes_its_objects_at_exit(monkeypatch, capsys):
+    """A help text or an unknown command, as this process's own command line, registers
+    gc.freeze to run at exit (its last collections then skip every object), once; work,
+    and a caller's own argv, leave the exit as it is."""
+    import atexit
+    import gc
+
+    registered = []
+    monkeypatch.setattr(atexit, "register", lambda f, *a, **k: registered.append(f))
+    monkeypatch.setattr(atexit, "unregister",
+                        lambda f: registered.remove(f) if f in registered else None)
+    for args, rc in ((["solve", "--help"], 0), (["--help"], 0), (["solve", "-h"], 0),
+                     (["no-such-command"], 2), (["solve", "--help"], 0)):
+        monkeypatch.setattr(sys, "argv", ["thermocontact", *args])
+        assert main() == rc
+    assert registered == [gc.freeze]
+    registered.clear()
+    assert main(["solve", "--help"]) == 0
+    capsys.readouterr()
+    monkeypatch.setattr(sys, "argv", ["thermocontact", "solve", "--pe", "5", "--fhpe", "0.2",
+                                      "--K2-over-K1", "10", "--lam", "1", "--json"])
+    assert main() == 0
+    assert json.loads(capsys.readouterr().out)["valid"] in (True, False)
+    assert registered == []
+
+
 @pytest.mark.parametrize("columns", [None, "30", "60", "100", "abc", "-5", "0"])
 def test_the_help_width_is_the_one_click_finds(columns, monkeypatch):
     """help_width (given to click so that it does not import shutil) is click's own

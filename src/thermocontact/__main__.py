@@ -20,7 +20,7 @@ def main(argv=None) -> int:
     try:
         from .cli import main as cli_main
 
-        return cli_main(args)
+        return cli_main(argv)
     except KeyboardInterrupt:
         sys.stderr.write("error: interrupted\n")
         return 130
