@@ -181,6 +181,10 @@ def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
         with distributed.Client(cluster) as client:
             ds = compute_map(small_spec(), workers=client)
         xr.testing.assert_identical(ds, reference)
+        # A worker's address is refused, naming what answered there.
+        worker = next(iter(cluster.workers.values())).address
+        with pytest.raises(InputError, match="is not a Dask scheduler .a (Nanny|Worker) "):
+            connect(worker, timeout=5.0)
         out = tmp_path / "d.nc"
         rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
                    "--out", str(out), "--scheduler", cluster.scheduler_address])
@@ -231,6 +235,60 @@ def test_no_scheduler_at_the_address(family, host):
                                          f"answer"):
         connect(f"tcp://{host}:{port}", timeout=5.0)
     assert time.perf_counter() - t0 < 2.5
+
+
+@pytest.fixture
+def listener():
+    """``listener(reply)``: the address of a loopback port that accepts connections and
+    sends ``reply`` (bytes) on each, or nothing at all (None), and keeps them open."""
+    import socket
+    import threading
+
+    servers, held = [], []
+
+    def start(reply):
+        server = socket.socket()
+        server.bind(("127.0.0.1", 0))
+        server.listen(8)
+        servers.append(server)
+
+        def serve():
+            while True:
+                try:
+                    conn, _ = server.accept()
+                except OSError:  # closed at the test's end
+                    return
+                held.append(conn)
+                if reply is not None:
+                    conn.sendall(reply)
+
+        threading.Thread(target=serve, daemon=True).start()
+        return f"tcp://127.0.0.1:{server.getsockname()[1]}"
+
+    yield start
+    for sock in servers + held:
+        sock.close()
+
+
+def test_a_peer_that_is_not_a_scheduler(listener, capsys):
+    """A port that accepts and says nothing, or answers in another protocol, is refused
+    in one line within the timeout: no client waiting without end, no traceback of a
+    half-made client's close."""
+    pytest.importorskip("distributed")
+    import time
+
+    silent = listener(None)
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=f"scheduler {silent} did not answer as a Dask "
+                                         "scheduler .no answer in Dask's protocol within 1.5 s"):
+        connect(silent, timeout=1.5)
+    assert time.perf_counter() - t0 < 4.0
+    web = listener(b"HTTP/1.0 400 Bad Request\r\n\r\n" * 64)
+    rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
+               "--out", "never.nc", "--scheduler", web])
+    err = capsys.readouterr().err
+    assert rc == 2 and err == (f"error: scheduler {web} did not answer as a Dask scheduler "
+                               "(an answer not in Dask's protocol)\n")
 
 
 def test_every_output_path_checked_before_any_work(tmp_path, capsys, monkeypatch):

@@ -152,11 +152,53 @@ def connect(address, timeout=10.0):
     except OSError as exc:
         raise InputError(f"scheduler {address} did not answer "
                          f"({exc.strerror or type(exc).__name__})") from None
+    # Then Dask's own handshake and an identity request, within the timeout: a Client
+    # waits without end on a peer that accepts and says nothing, and one that fails
+    # leaves a half-made Client whose close waits 20 s more and prints a traceback.
+    kind = _identity(address, timeout)
+    if kind != "Scheduler":
+        raise InputError(f"scheduler {address} is not a Dask scheduler (a {kind} answered "
+                         "there)")
     try:
         return Client(address, timeout=timeout, set_as_default=False)
     except Exception as exc:  # noqa: BLE001 - any failure to connect is one line
         raise InputError(f"scheduler {address} did not answer within {timeout:g} s "
                          f"({type(exc).__name__})") from None
+
+
+def _identity(address, timeout) -> str:
+    """The ``type`` of the reply to Dask's ``identity`` request at ``address``
+    (``"Scheduler"``, ``"Worker"``, ``"Nanny"``), within ``timeout`` seconds.
+
+    Raises
+    ------
+    InputError
+        No reply in Dask's protocol within ``timeout`` seconds.
+    """
+    import asyncio
+
+    from distributed.comm import connect as open_comm
+
+    async def ask():
+        comm = await open_comm(address, timeout=timeout)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    why = f"no answer in Dask's protocol within {timeout:g} s"
+    try:
+        reply = asyncio.run(asyncio.wait_for(ask(), timeout))
+    except asyncio.TimeoutError:
+        reply = None
+    except Exception:  # noqa: BLE001 - whatever the peer sent, one line
+        # (bytes of another protocol read as a frame's length: MemoryError, ValueError)
+        why = "an answer not in Dask's protocol"
+        reply = None
+    if not (isinstance(reply, dict) and isinstance(reply.get("type"), str)):
+        raise InputError(f"scheduler {address} did not answer as a Dask scheduler ({why})")
+    return reply["type"]
 
 
 def _is_dask_client(obj) -> bool:
