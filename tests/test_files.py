@@ -255,3 +255,33 @@ def test_no_noise_after_refusal_or_with_no_branch(tmp_path, capsys):
                                20.0, 0.35, 0.5)
         contact_figure(PhysicalContact(prob, (), None, "none", None), str(tmp_path / "c.png"))
     assert (tmp_path / "c.png").stat().st_size > 1000
+
+
+def test_special_files_refused_and_links_written_through(tmp_path, capsys, no_solve):
+    """A FIFO or a device where the file goes is refused in one line (the file renamed
+    over it would replace it: /dev/null made a regular file), before any work and by the
+    writer itself; a symbolic link stays a link, the file it names is written."""
+    import stat
+
+    from thermocontact.io.files import WriteError, check_output_file
+
+    fifo = tmp_path / "f.csv"
+    os.mkfifo(fifo)
+    for option, path in (("--csv", str(fifo)), ("--csv", os.devnull), ("--plot", os.devnull)):
+        msg = _error(capsys, CONTACT + [option, path])
+        assert msg.startswith(f"error: {option} must be a regular file, got {path!r} (a "), msg
+    with pytest.raises(WriteError, match=r"could not write .*f\.csv \(it is a FIFO, not a file\)"):
+        with atomic_write(fifo) as fh:
+            fh.write("a")
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode) and stat.S_ISCHR(os.stat(os.devnull).st_mode)
+
+    target = tmp_path / "data" / "t.csv"
+    target.parent.mkdir()
+    target.write_text("old")
+    link = tmp_path / "l.csv"
+    link.symlink_to(target)
+    assert check_output_file("--csv", str(link)) == str(link)
+    with atomic_write(link) as fh:
+        fh.write("new")
+    assert link.is_symlink() and target.read_text() == "new"
+    assert sorted(os.listdir(target.parent)) == ["t.csv"]

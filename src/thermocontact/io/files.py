@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
+import stat
 import tempfile
 
 from ..problem.validation import InputError
@@ -42,6 +43,29 @@ class WriteError(InputError):
         super().__init__(message, parameters=parameters)
 
 
+def _destination(path: str) -> str:
+    """Where writing ``path`` lands: the file a symbolic link names (so that the link
+    stays a link, as writing through it would leave it), else ``path``."""
+    return os.path.realpath(path) if os.path.islink(path) else path
+
+
+def _special(path: str) -> str | None:
+    """What ``path`` is when it exists and is neither a regular file nor a folder
+    (``"a device"``, ``"a FIFO"``, ``"a socket"``), following symbolic links; else None.
+    A file renamed over it would replace it: ``/dev/null`` would become a file."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:  # absent, or a dangling link: a file is made there
+        return None
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return None
+    if stat.S_ISFIFO(mode):
+        return "a FIFO"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "a device"
+
+
 def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
@@ -66,8 +90,17 @@ def atomic_path(path, folder=False):
     str
         The temporary path (same extension as ``path``); on an exception (or an
         interrupt) it is removed and ``path`` is left as it was.
+
+    Raises
+    ------
+    WriteError
+        The system's refusal, or ``path`` is a device, FIFO or socket.  A symbolic
+        link is kept: the file it names is replaced.
     """
-    path = os.fspath(path)
+    shown = os.fspath(path)
+    path = _destination(shown)
+    if _special(path):
+        raise WriteError(f"could not write {shown} (it is {_special(path)}, not a file)")
     parent = os.path.dirname(os.path.abspath(path))
     suffix = "-" + os.path.basename(path)[:64]
     try:
@@ -79,7 +112,7 @@ def atomic_path(path, folder=False):
         # Ordinary permissions, not the temporary's private ones.
         os.chmod(tmp, (0o777 if folder else 0o666) & ~_umask())
     except OSError as exc:
-        raise WriteError(path, exc) from None
+        raise WriteError(shown, exc) from None
     try:
         yield tmp
         if folder and os.path.isdir(path):
@@ -92,7 +125,7 @@ def atomic_path(path, folder=False):
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
         if isinstance(exc, OSError):
-            raise WriteError(path, exc) from None
+            raise WriteError(shown, exc) from None
         raise
 
 
@@ -159,19 +192,25 @@ def check_output_file(option: str, path, suffixes=None) -> str:
     Raises
     ------
     InputError
-        Empty, a folder, in a missing or read-only folder or under a file, a name
-        too long, or an extension not in ``suffixes``.
+        Empty, a folder, a device, FIFO or socket (which the file renamed over it
+        would replace), in a missing or read-only folder or under a file, a name
+        too long, or an extension not in ``suffixes``.  A symbolic link is checked,
+        and later written, as the file it names.
     """
     path = os.fspath(path) if path is not None else ""
     _check_name(option, path)
     if os.path.isdir(path):
         raise InputError(f"{option} must be a file, got the folder {path!r}")
+    if _special(path):
+        raise InputError(f"{option} must be a regular file, got {path!r} ({_special(path)})")
     if suffixes is not None:
         ext = os.path.splitext(path)[1].lower()
         if ext not in suffixes:
             raise InputError(f"{option} must end in one of {', '.join(suffixes)}, got {path!r}")
-    _check_folder(option, os.path.dirname(path), path)
-    if os.path.exists(path) and not os.access(path, os.W_OK):
+    # Written through a symbolic link: the checks are of the file it names.
+    target = _destination(path)
+    _check_folder(option, os.path.dirname(target), path)
+    if os.path.exists(target) and not os.access(target, os.W_OK):
         raise InputError(f"{option} must be a writable file, got {path!r}")
     return path
 
