@@ -208,6 +208,27 @@ def test_boundary_refuses_a_value_for_the_parameter_followed(capsys, along, extr
         in err[0], err
 
 
+@pytest.mark.parametrize("along, flag, value, ends", [
+    ("speed", "--speed", "5", ("1", "20")),
+    ("load", "--load", "2e4", ("1e4", "1e5")),
+    ("radius", "--radius", "0.01", ("0.005", "0.02")),
+    ("friction", "--friction", "0.3", ("0.1", "0.5")),
+])
+def test_physical_path_refuses_a_value_for_the_parameter_followed(capsys, along, flag, value,
+                                                                  ends):
+    """As a dimensionless path: the value given for the parameter followed is refused in
+    one line, not silently replaced by the path's."""
+    given = {"--radius": "0.01", "--load": "2e4", "--speed": "2", "--friction": "0.3"}
+    args = ["boundary", "--along", along, "--from", ends[0], "--to", ends[1], "--cylinder",
+            "steel", "--half-plane", "copper", "--lam", "1"]
+    for option, v in given.items():
+        args += [option, value if option == flag else v]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"{flag} must not be given: it is the parameter followed" \
+        in err[0], err
+
+
 def test_physical_path_refuses_a_method(capsys):
     """A physical path solves with the default method: --method is refused, not ignored."""
     assert main(["boundary", "--along", "load", "--from", "1e4", "--to", "1e5", "--cylinder",

@@ -424,6 +424,11 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
         if name != along and physical[name] is None:
             raise InputError(f"{name} must be given (it is not the parameter followed)",
                              parameters=(name,))
+    # (Along the temperature difference the bulk temperatures are given: the
+    # cylinder's is kept.)
+    if physical.get(along) is not None:
+        raise InputError(f"{along} must not be given: it is the parameter followed",
+                         parameters=(along,))
     if (lam is None) == (physical["bulk_temperatures"] is None):
         raise InputError("give exactly one of lam and bulk_temperatures",
                          parameters=("lam", "bulk_temperatures"))
