@@ -229,6 +229,21 @@ def test_physical_path_refuses_a_value_for_the_parameter_followed(capsys, along,
         in err[0], err
 
 
+@pytest.mark.parametrize("along, ends, extra, flag, got", [
+    ("sigma", ("0", "2e6"), ["--fhpe", "0.2"], "--sigma", "2000000.0"),
+    ("lam", ("-1", "2e6"), ["--fhpe", "0.2"], "--lam", "2000000.0"),
+    ("lam", ("-3e6", "1"), ["--fhpe", "0.2"], "--lam", "-3000000.0"),
+    ("fhpe", ("0", "1"), ["--sigma", "-1e7"], "--sigma", "-10000000.0"),
+])
+def test_a_path_beyond_the_closures_range_is_refused(capsys, along, ends, extra, flag, got):
+    """A heat partition or offset beyond what solve accepts, at a path's end or fixed, is
+    refused in one line: not reported as the place where solutions stop existing."""
+    assert main(["boundary", "--along", along, "--from", ends[0], "--to", ends[1], "--pe", "5",
+                 "--K2-over-K1", "10", *extra]) == 2
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"error: {flag} must be in [-1e+06, 1e+06], got {got}"]
+
+
 def test_physical_path_refuses_a_method(capsys):
     """A physical path solves with the default method: --method is refused, not ignored."""
     assert main(["boundary", "--along", "load", "--from", "1e4", "--to", "1e5", "--cylinder",

@@ -47,6 +47,7 @@ __all__ = [
     "DEFAULT_METHOD",
     "DEFAULT_TOL",
     "LIMIT",
+    "check_closure_range",
     "Model",
     "RCOND_MIN",
     "check_n",
@@ -548,6 +549,14 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
     return out
 
 
+def check_closure_range(lam=None, sigma_over_delta=None):
+    """``(lam, sigma_over_delta)``, each checked to lie in ``[-LIMIT, LIMIT]`` where given
+    (None stays None)."""
+    return (None if lam is None else check_range("lam", lam, -LIMIT, LIMIT),
+            None if sigma_over_delta is None
+            else check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT))
+
+
 def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conductance,
                   systems: dict):
     """The checked closure ``(lam, sigma, temperatures)`` and its assembled system
@@ -559,12 +568,10 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
         key = next(k for k in systems if k == closure)
         return key, systems[key]
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
-    if lam is not None:
-        lam = check_range("lam", lam, -LIMIT, LIMIT)
-    elif temperatures is not None:
+    lam, sigma_over_delta = check_closure_range(lam, sigma_over_delta)
+    if temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
-    else:
-        sigma_over_delta = check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT)
+    elif sigma_over_delta is not None:
         if par.fhpe == 0.0:
             raise InputError(
                 "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "

@@ -32,7 +32,7 @@ from ..problem.closure import Temperatures
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError, check_choice, check_finite, check_integer
 from ..solvers.refinement import refine
-from ..solvers.single_patch import DEFAULT_TOL, Model
+from ..solvers.single_patch import DEFAULT_TOL, Model, check_closure_range
 
 __all__ = ["ALONG", "Event", "Path", "SPELLINGS", "NO_SOLUTION", "check_problem", "closure",
            "estimate_events", "follow", "locate_events", "model_for", "trace", "validity_margins"]
@@ -167,8 +167,10 @@ def model_for(kw: dict, method=DEFAULT_METHOD, tol=DEFAULT_TOL, n=None) -> Model
 
 def check_problem(kw: dict, method=DEFAULT_METHOD) -> None:
     """Refuse, in one error, inputs ``kw`` (those of ``solve``) that are out of range or
-    that ``method`` cannot represent (the Dundurs term's exponents)."""
+    that ``method`` cannot represent (the Dundurs term's exponents), the heat partition
+    or offset included."""
     METHODS[method].check(model_for(kw, method).parameters_at(kw.get("fhpe", 0.0)))
+    check_closure_range(kw.get("lam"), kw.get("sigma_over_delta"))
 
 
 def closure(kw: dict) -> dict:
