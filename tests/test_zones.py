@@ -445,6 +445,29 @@ def test_a_partition_outside_minus_one_to_one_refused_at_once(lam):
     assert time.perf_counter() - t0 < 1.0
 
 
+def test_a_contact_set_far_past_what_the_steps_resolve_ends_within_its_budget(monkeypatch):
+    """fHPe_l = 1e6 (the single zone fails near 5; the continuation's steps, fractions
+    of the path, never resolve it): the evaluations of the defects, both resolutions
+    together, stop at the budget, "not converged" with where the zone got to, and the
+    progress is told even though no step is accepted."""
+    from thermocontact import contact_set
+    from thermocontact.studies import contact_sets
+
+    evaluations = []
+    defects = ZoneModel.defects
+    monkeypatch.setattr(ZoneModel, "defects",
+                        lambda self, *a, **k: evaluations.append(1) or defects(self, *a, **k))
+    monkeypatch.setattr(contact_sets, "MAX_EVALUATIONS", 60)
+    told = []
+    res = contact_set(5, 1e6, 10, lam=0, progress=told.append)
+    assert res.status == "not converged" and res.message.startswith(
+        "stopped after 60 evaluations of the contact set's defects, the most allowed")
+    assert len(evaluations) == 60 and res.reached == 0.0 and res.answer is None
+    assert len(told) >= 59 and set(told) == {0.0}
+    # Within the budget the same path to a reachable point is answered as before.
+    assert contact_set(5.43, 0.3, 10, lam=1, n=16).status == "solved"
+
+
 def test_a_continuation_needing_too_many_steps_ends_in_bounded_time(monkeypatch):
     """With a step budget of 3 the path from Hertz's zone to fHPe_l = 0.5 (solved in
     more steps without it: test_zones_command_solves_and_reports) ends short of it, as "not converged", naming where it got to; the

@@ -147,13 +147,16 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
+    # One budget for both resolutions.
+    budget = _Budget(MAX_EVALUATIONS)
+
     def attempt(n_, start=None):
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
                                   k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
                                   beta_f=beta_f, conductance=conductance, n=n_,
-                                  progress=progress, start=start)
+                                  progress=progress, start=start, budget=budget)
     res = attempt(n, start)
-    if res.status == "not converged" and 2 * int(n) <= 256:
+    if res.status == "not converged" and 2 * int(n) <= 256 and budget.left > 0:
         # An under-resolved zone (narrow, or at a high Peclet number) can stall the
         # continuation where a finer one passes.
         again = attempt(2 * int(n))
@@ -169,11 +172,50 @@ MAX_EDGE_MOVE = 0.25
 #: (far past the boundary, at a large distortivity ratio) ends where it got to, so
 #: that every contact set is answered in bounded time.
 MAX_STEPS = 150
+#: Most evaluations of the contact set's defects (an assembly and a linear solve each,
+#: about 25 ms at n = 32 on this project's machine) for one contact set, both
+#: resolutions together: a path whose steps, fractions of it, cannot resolve it (an
+#: fHPe_l of 1e6, where the single zone fails near 5) ends where it got to, in bounded
+#: time.  Following to fHPe_l = 10 takes about 400.
+MAX_EVALUATIONS = 2000
+
+
+class _BudgetSpent(Exception):
+    """The evaluations a contact set is allowed are spent."""
+
+
+class _Budget:
+    """Evaluations left; ``tick()`` after each (the progress of a run whose steps are
+    all refused still moves)."""
+
+    def __init__(self, limit, tick=None):
+        self.limit, self.left, self.tick = int(limit), int(limit), tick
+
+    def draw(self):
+        if self.left <= 0:
+            raise _BudgetSpent
+        self.left -= 1
+        if self.tick is not None:
+            self.tick()
+
+
+class _Budgeted(ZoneModel):
+    """A :class:`ZoneModel` whose every evaluation of the defects (in Newton's method,
+    its Jacobian's differences and the arclength continuation alike) draws on a
+    budget."""
+
+    def __init__(self, budget, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._budget = budget
+
+    def defects(self, *args, **kwargs):
+        self._budget.draw()
+        return super().defects(*args, **kwargs)
 
 
 def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
-                       beta_f=0.0, conductance=None, n=32, progress=None, start=None
-                       ) -> ContactSetResult:
+                       beta_f=0.0, conductance=None, n=32, progress=None, start=None,
+                       budget=MAX_EVALUATIONS) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
     At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there);
@@ -195,16 +237,28 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     (a valid one-zone set at the point is the single patch, section 16; with an
     interface conductance the single patch's edges are a start only, the set being
     that of the conductance).  Otherwise the path is followed as without.
+
+    At most ``budget`` evaluations of the defects are made (:data:`MAX_EVALUATIONS`; a
+    budget of :func:`find_contact_set` is shared by its two resolutions): where they
+    are spent, the answer is "not converged", with the last solution followed and
+    where it was.
     """
     lam = check_range("lam", lam, *PARTITION)
     check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
+    if not isinstance(budget, _Budget):
+        budget = _Budget(budget)
+    # The last solution followed and its t: the answer where the budget is spent.
+    latest = [None, 0.0]
+    if progress is not None and budget.tick is None:
+        budget.tick = lambda: progress(latest[1])
+
     def model_at(t):
         # A conductance may change along the path (a law h = C p^m has a Biot number
         # at the mean Hertz pressure that grows with the load).
         cond = conductance(t) if callable(conductance) else conductance
-        return ZoneModel(K2_over_K1, k2_over_k1=k2_over_k1,
+        return _Budgeted(budget, K2_over_K1, k2_over_k1=k2_over_k1,
                          delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n),
                          conductance=cond)
 
@@ -226,7 +280,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             nonlocal sol, last, failed_at, steps
             steps += 1
             if steps > MAX_STEPS:
-                budget.append(where(t))
+                budget_steps.append(where(t))
                 return STOP
             guess = sol.edges
             if last is not None and last[1].shape == sol.edges.shape:
@@ -246,6 +300,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 return STOP
             last = (t, sol.edges)
             sol = new
+            latest[:] = [sol, trial]
             history.append(dict(where(trial), edges=sol.edges.ravel().tolist(),
                                 valid=bool(sol.valid)))
             if progress is not None:
@@ -292,111 +347,123 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         except (SolveError, InputError, np.linalg.LinAlgError):
             return "failed", None
 
-    if start is not None:
-        try:
-            found = at(np.asarray(start, dtype=float).reshape(1, 2), 1.0, polish=True)
-        except (SolveError, InputError):
-            found = None
-        if found is not None and found.zones == 1 and found.valid:
-            return ContactSetResult("solved", "one zone, by Newton's method from the valid "
-                                    "single patch's edges", found)
+    history, folds, budget_steps = [], [], []
 
-    history, folds, budget = [], [], []
-    sol, t, failed_at = follow(at(np.array([[-1.0, 1.0]]), 0.0), 0.0, 1.0, True)
-    if failed_at is None and t < 1.0:
-        if budget:
+    def _followed():
+        if start is not None:
+            try:
+                found = at(np.asarray(start, dtype=float).reshape(1, 2), 1.0, polish=True)
+            except (SolveError, InputError):
+                found = None
+            if found is not None and found.zones == 1 and found.valid:
+                return ContactSetResult("solved", "one zone, by Newton's method from the valid "
+                                        "single patch's edges", found)
+
+        latest[0] = at(np.array([[-1.0, 1.0]]), 0.0)
+        sol, t, failed_at = follow(latest[0], 0.0, 1.0, True)
+        if failed_at is None and t < 1.0:
+            if budget_steps:
+                return ContactSetResult(
+                    "not converged", f"the single zone was followed to {_point(where(t))} in "
+                    f"{MAX_STEPS} steps, the most allowed, and no further", sol,
+                    history=history, reached=t)
+            if folds:
+                return ContactSetResult(
+                    "no steady solution", f"the single zone's branch folds back at "
+                    f"{_point(folds[-1])}: beyond it, along this path, it has no continuation",
+                    sol, history=history, folds=folds, reached=t)
             return ContactSetResult(
-                "not converged", f"the single zone was followed to {_point(where(t))} in "
-                f"{MAX_STEPS} steps, the most allowed, and no further", sol,
+                "not converged", f"the single zone could not be followed past "
+                f"{_point(where(t))} (Newton's method fails, or jumps, for every step)", sol,
                 history=history, reached=t)
-        if folds:
-            return ContactSetResult(
-                "no steady solution", f"the single zone's branch folds back at "
-                f"{_point(folds[-1])}: beyond it, along this path, it has no continuation",
-                sol, history=history, folds=folds, reached=t)
-        return ContactSetResult(
-            "not converged", f"the single zone could not be followed past "
-            f"{_point(where(t))} (Newton's method fails, or jumps, for every step)", sol,
-            history=history, reached=t)
-    if failed_at is None:
-        final = at(sol.edges, 1.0, polish=True)
-        if final.valid:
-            return ContactSetResult("solved", "one zone, followed from Hertz's", final,
-                                    history=history)
-        failed_at = 1.0
+        if failed_at is None:
+            final = at(sol.edges, 1.0, polish=True)
+            if final.valid:
+                return ContactSetResult("solved", "one zone, followed from Hertz's", final,
+                                        history=history)
+            failed_at = 1.0
 
-    # Locate the event between the last valid t and the first invalid one on the
-    # least margin (continuous where the verdict changes, sections 7-8; >= 0 exactly
-    # where valid), each solve starting from the valid solution nearest the event.
-    solved = {t: sol}
+        # Locate the event between the last valid t and the first invalid one on the
+        # least margin (continuous where the verdict changes, sections 7-8; >= 0 exactly
+        # where valid), each solve starting from the valid solution nearest the event.
+        solved = {t: sol}
 
-    def margin(t_):
-        if t_ not in solved:
-            start = max((x for x in solved if solved[x].valid), default=t)
-            solved[t_] = at(solved[start].edges, t_)
-        return min(solved[t_].validity.margins().values())
-    try:
-        lo, hi = locate(margin, t, failed_at, xtol=EVENT_TOL * 1e-9, rtol=EVENT_TOL,
-                        bracket=True, interrupt=(SolveError,))
-    except ValueError:  # no sign change between the ends: the event at the invalid one
-        lo, hi = t, failed_at
-    lo_sol = solved[lo]
-    bad = at(lo_sol.edges, hi, polish=True)
-    event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
-    # The history passes the event where it was located.
-    for s_ev, t_ev in ((lo_sol, lo), (bad, hi)):
-        history.append(dict(where(t_ev), edges=s_ev.edges.ravel().tolist(),
-                            valid=bool(s_ev.valid)))
-    # The single zone itself at the end (followed on past the event).
-    single, reached, _ = follow(bad, hi, 1.0, False)
-    single = at(single.edges, reached, polish=True)
-    if reached < 1.0:
-        event["single_zone_followed_to"] = where(reached)
-
-    guesses = _suggested_sets(single)
-    (a, b), = single.edges
-    h = 0.5 * (b - a)
-    attempts = []
-    try:
-        if beta_f or conductance is not None:
-            raise SolveError("not tried: the second method has no Dundurs term and perfect "
-                             "thermal contact only")
-        pe, F = path(reached)
-        el = solve_elements(model.parameters(pe, F), lam,
-                            domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
-        guesses.append(("the second method's contact set", el.zones.tolist()))
-        attempts.append({"tried": "second method (400 elements)",
-                         "zones": el.zones.ravel().tolist(), "chatter": el.chatter})
-    except SolveError as exc:
-        attempts.append({"tried": "second method (400 elements)", "result": str(exc)})
-    for name, guess in guesses:
+        def margin(t_):
+            if t_ not in solved:
+                start = max((x for x in solved if solved[x].valid), default=t)
+                solved[t_] = at(solved[start].edges, t_)
+            return min(solved[t_].validity.margins().values())
         try:
-            # A contact set that holds converges in a few steps from these guesses.
-            s2 = at(np.array(guess, dtype=float), reached, polish=True, max_iter=15)
-        except (SolveError, InputError) as exc:
+            lo, hi = locate(margin, t, failed_at, xtol=EVENT_TOL * 1e-9, rtol=EVENT_TOL,
+                            bracket=True, interrupt=(SolveError,))
+        except ValueError:  # no sign change between the ends: the event at the invalid one
+            lo, hi = t, failed_at
+        lo_sol = solved[lo]
+        bad = at(lo_sol.edges, hi, polish=True)
+        event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
+        # The history passes the event where it was located.
+        for s_ev, t_ev in ((lo_sol, lo), (bad, hi)):
+            history.append(dict(where(t_ev), edges=s_ev.edges.ravel().tolist(),
+                                valid=bool(s_ev.valid)))
+        # The single zone itself at the end (followed on past the event).
+        single, reached, _ = follow(bad, hi, 1.0, False)
+        single = at(single.edges, reached, polish=True)
+        if reached < 1.0:
+            event["single_zone_followed_to"] = where(reached)
+
+        guesses = _suggested_sets(single)
+        (a, b), = single.edges
+        h = 0.5 * (b - a)
+        attempts = []
+        try:
+            if beta_f or conductance is not None:
+                raise SolveError("not tried: the second method has no Dundurs term and perfect "
+                                 "thermal contact only")
+            pe, F = path(reached)
+            el = solve_elements(model.parameters(pe, F), lam,
+                                domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
+            guesses.append(("the second method's contact set", el.zones.tolist()))
+            attempts.append({"tried": "second method (400 elements)",
+                             "zones": el.zones.ravel().tolist(), "chatter": el.chatter})
+        except SolveError as exc:
+            attempts.append({"tried": "second method (400 elements)", "result": str(exc)})
+        for name, guess in guesses:
+            try:
+                # A contact set that holds converges in a few steps from these guesses.
+                s2 = at(np.array(guess, dtype=float), reached, polish=True, max_iter=15)
+            except (SolveError, InputError) as exc:
+                attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
+                                 "result": f"no convergence ({exc})"})
+                continue
             attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
-                             "result": f"no convergence ({exc})"})
-            continue
-        attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
-                         "edges": s2.edges.ravel().tolist(),
-                         "loads": s2.loads.tolist(),
-                         "result": s2.validity.reason})
-        if s2.valid:
-            status = "solved" if reached >= 1.0 else "not converged"
-            return ContactSetResult(
-                status, f"{s2.zones} zones ({name}) at {_point(where(reached))}; the single "
-                f"zone fails beyond {_point(where(hi))}", s2, event, attempts, history, folds,
-                reached)
-    end = where(reached)
-    return ContactSetResult(
-        "no steady solution",
-        f"the single zone followed from Hertz's fails beyond fHPe_l = {event['fhpe_hertz']:.6g} "
-        f"(Pe_l = {event['pe_hertz']:.6g}; {event['failure']}), and none of the "
-        f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
-        f"{end['fhpe_hertz']:.6g} (see attempts)"
-        + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
-           "that far, where it is returned"), single, event, attempts, history, folds,
-        reached)
+                             "edges": s2.edges.ravel().tolist(),
+                             "loads": s2.loads.tolist(),
+                             "result": s2.validity.reason})
+            if s2.valid:
+                status = "solved" if reached >= 1.0 else "not converged"
+                return ContactSetResult(
+                    status, f"{s2.zones} zones ({name}) at {_point(where(reached))}; the single "
+                    f"zone fails beyond {_point(where(hi))}", s2, event, attempts, history, folds,
+                    reached)
+        end = where(reached)
+        return ContactSetResult(
+            "no steady solution",
+            f"the single zone followed from Hertz's fails beyond fHPe_l = "
+            f"{event['fhpe_hertz']:.6g} (Pe_l = {event['pe_hertz']:.6g}; {event['failure']}), and none of the "
+            f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
+            f"{end['fhpe_hertz']:.6g} (see attempts)"
+            + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
+               "that far, where it is returned"), single, event, attempts, history, folds,
+            reached)
+
+    try:
+        return _followed()
+    except _BudgetSpent:
+        sol, reached = latest
+        return ContactSetResult(
+            "not converged", f"stopped after {budget.limit} evaluations of the contact "
+            f"set's defects, the most allowed, with the single zone followed to "
+            f"{_point(where(reached))}", sol, history=history, folds=folds, reached=reached)
 
 
 def _suggested_sets(single: ZoneSolution) -> list[tuple[str, list]]:
