@@ -244,6 +244,21 @@ def test_a_path_beyond_the_closures_range_is_refused(capsys, along, ends, extra,
         f"error: {flag} must be in [-1e+06, 1e+06], got {got}"]
 
 
+@pytest.mark.parametrize("args", [
+    ["boundary", "--along", "delta1-over-delta2", "--from", "0", "--to", "1e300", "--pe", "5",
+     "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1"],
+    ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1",
+     "--delta1-over-delta2", "2000"],
+])
+def test_a_distortivity_ratio_beyond_the_materials_is_refused(capsys, args):
+    """delta1/delta2 in [0, 1000] for every contact, as for contact sets: a path to 1e300
+    is refused at once, not sampled over hundreds of decades for minutes."""
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(
+        "error: --delta1-over-delta2 must be in [0, 1000], got "), err
+
+
 def test_physical_path_refuses_a_method(capsys):
     """A physical path solves with the default method: --method is refused, not ignored."""
     assert main(["boundary", "--along", "load", "--from", "1e4", "--to", "1e5", "--cylinder",
