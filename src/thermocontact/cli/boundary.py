@@ -86,8 +86,11 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
         err = ("" if e.error_estimate is None else
                f" (discretisation error estimate {e.error_estimate:.1e})")
         if e.inequality in ("solution_ends", "solution_begins"):
-            what = ("the last solution: none past it" if e.inequality == "solution_ends" else
-                    "the first solution: none before it")
+            # The solver's refusals begin there: no solution, or none well-determined
+            # (a system too ill-conditioned to trust), as solve would say at that point.
+            what = ("the last point solved: the solver refuses past it"
+                    if e.inequality == "solution_ends" else
+                    "the first point solved: the solver refuses before it")
         else:
             what = e.inequality + where
         change = (f"valid {e.valid_before} -> {e.valid_after}" if e.changes_validity else

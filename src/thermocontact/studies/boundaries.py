@@ -71,7 +71,10 @@ class Event(Result):
     inequality : {"load", "pressure", "gap", "edge", "solution_ends", "solution_begins"}
         The inequality whose margin changes sign; ``"solution_ends"``
         (``"solution_begins"``): ``at`` is the last (first) point solved, to ``rtol``,
-        with none just after (before) it along the path, where ``valid`` is False.
+        with none just after (before) it along the path, where ``valid`` is False: the
+        solver refuses there, for want of a solution or of a well-determined one (a
+        system too ill-conditioned to trust, as :meth:`Model.solve
+        <thermocontact.solvers.single_patch.Model.solve>` says at such a point).
     edge : {"leading", "trailing"} or None
         Where it fails (None for the load).
     valid_before, valid_after : bool
