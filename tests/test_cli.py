@@ -405,3 +405,14 @@ def test_group_help_lists_every_command_without_computing():
     for name, short in listed.items():
         whole = cli.get_command(None, name).get_short_help_str(limit=1000)
         assert short and whole.startswith(short.removesuffix("...")), (name, short)
+
+
+def test_a_switch_in_a_refusal_is_named_by_its_flag(capsys):
+    """The library's "dundurs=False" reads as the command line's --no-dundurs, a flag
+    that exists (--dundurs=False is refused: the switch takes no value)."""
+    assert main(["contact", "--cylinder", "steel", "--half-plane", "aluminium-alloy",
+                 "--radius", "450mm", "--load", "200kN/m", "--speed", "10", "--friction",
+                 "0.3", "--lam", "0", "--stability"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["error: stability: the Dundurs term is not modelled; solve with "
+                   "--no-dundurs"], err

@@ -129,7 +129,15 @@ def _flagged(exc, args) -> str:
         return message
     flags = {p.name: next((o for o in p.opts if o.startswith("--")), p.opts[0])
              for p in command.params if isinstance(p, click.Option)}
+    # A switch set in the library's words (dundurs=False) is the switch's own flag
+    # (--no-dundurs).
+    switches = {p.name: (p.opts[0], p.secondary_opts[0]) for p in command.params
+                if isinstance(p, click.Option) and p.is_flag and p.secondary_opts}
     for name in getattr(exc, "parameters", ()):
+        if name in switches:
+            for value, flag in zip(("True", "False"), switches[name]):
+                message = re.sub(rf"(?<![\w-]){re.escape(name)}={value}(?![\w-])", flag,
+                                 message)
         flag = flags.get(name) or (_FLAG_ALIASES.get(name)
                                    if _FLAG_ALIASES.get(name) in flags.values() else None)
         if flag is not None:
