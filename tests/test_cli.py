@@ -416,3 +416,16 @@ def test_a_switch_in_a_refusal_is_named_by_its_flag(capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["error: stability: the Dundurs term is not modelled; solve with "
                    "--no-dundurs"], err
+
+
+def test_a_physical_path_without_its_bodies_says_so(capsys):
+    """--along load with dimensionless inputs and no bodies: the bodies are what is
+    missing (not "--pe belongs to a dimensionless path")."""
+    args = ["boundary", "--along", "load", "--from", "1e5", "--to", "2e5", "--pe", "5",
+            "--K2-over-K1", "10", "--lam", "-1"]
+    assert main(args) == 2
+    assert capsys.readouterr().err == ("error: --cylinder must be given: along load the path "
+                                       "is physical\n")
+    assert main(args + ["--cylinder", "steel"]) == 2
+    assert capsys.readouterr().err == ("error: --half-plane must be given: along load the "
+                                       "path is physical\n")

@@ -416,6 +416,10 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
     if along not in PHYSICAL_ALONG:
         raise InputError(f"along must be one of {sorted(PHYSICAL_ALONG)} with cylinder, "
                          f"got {along!r}", parameters=("along", "cylinder"))
+    for name in ("cylinder", "half_plane"):
+        if physical[name] is None:
+            raise InputError(f"{name} must be given: along {along} the path is physical",
+                             parameters=(name,))
     for name, value in dimensionless.items():
         if value is not None:
             raise InputError(f"{name} belongs to a dimensionless path, not to one with "
