@@ -1,6 +1,7 @@
 """The command line: JSON record, summary, and one-line errors for every bad input."""
 
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -429,3 +430,24 @@ def test_a_physical_path_without_its_bodies_says_so(capsys):
     assert main(args + ["--cylinder", "steel"]) == 2
     assert capsys.readouterr().err == ("error: --half-plane must be given: along load the "
                                        "path is physical\n")
+
+
+@pytest.mark.parametrize("args, refusal", [
+    (["contact", "--cylinder", "steel", "--half-plane", "steel", "--friction", "0.3",
+      "--radius", "450mm", "--load", "200kN/m", "--speed", "10", "--lam", "0", "--steps", "10"],
+     "--steps belongs to --transient"),
+    (["contact", "--cylinder", "steel", "--half-plane", "steel", "--friction", "0.3",
+      "--radius", "450mm", "--load", "200kN/m", "--speed", "10", "--lam", "0", "--elements",
+      "240"], "--elements belongs to --transient"),
+    (["transient", "--pe-hertz", "5", "--fhpe-hertz", "0.5", "--K2-over-K1", "10", "--lam",
+      "0", "--hold", "theta", "--until", "1", "--steps", "10", "--out", "never.nc"],
+     "--hold belongs to --start steady"),
+])
+def test_an_option_with_a_default_given_where_it_means_nothing_is_refused(capsys, args,
+                                                                          refusal):
+    """Given on the command line (even at its default value) where another option makes
+    it meaningless: refused in one line, not ignored."""
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"error: {refusal}"), err
+    assert not os.path.exists("never.nc")

@@ -11,7 +11,7 @@ import click
 
 from .._version import __version__
 from ..problem.validation import InputError
-from .options import (contact_set_options, hertz_unit_options, parse_conductance,
+from .options import (contact_set_options, given_here, hertz_unit_options, parse_conductance,
                       physical_options)
 
 __all__ = ["contact_cmd", "zones_cmd"]
@@ -179,8 +179,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
                                   friction, dundurs, lam, bulk_temperatures, sink_distance,
                                   layer_thickness, speed2, as_json, csv_file, plot_file, zones,
                                   conductance, stability, duration, steps, elements, out)
-    for flag, value in (("--duration", duration), ("--out", out)):
-        if value is not None:
+    for flag, given in (("--duration", duration is not None), ("--out", out is not None),
+                        ("--steps", given_here("steps")), ("--elements", given_here("elements"))):
+        if given:
             raise InputError(f"{flag} belongs to --transient", parameters=("transient",))
 
     # Output paths are checked before the computation, whose result would be lost.

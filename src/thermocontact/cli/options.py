@@ -6,7 +6,8 @@ import click
 
 from ..problem.validation import InputError
 
-__all__ = ["contact_set_options", "parse_conductance", "physical_options", "problem_options"]
+__all__ = ["contact_set_options", "given_here", "parse_conductance", "physical_options",
+           "problem_options"]
 
 
 def problem_options(required: bool):
@@ -137,3 +138,14 @@ def parse_conductance(text, what, physical=False):
 
     p_ref = parse_quantity(parts[2], "Pa", "conductance p_ref") if len(parts) == 3 else None
     return (*values, p_ref)
+
+
+def given_here(name) -> bool:
+    """Whether the option ``name`` was given on this command line, not left at its
+    default (an option with a default that another option makes meaningless is
+    refused where given, not silently ignored)."""
+    from click.core import ParameterSource
+
+    ctx = click.get_current_context(silent=True)
+    source = None if ctx is None else ctx.get_parameter_source(name)
+    return source not in (None, ParameterSource.DEFAULT)

@@ -9,7 +9,7 @@ import os
 import click
 
 from ..problem.validation import InputError
-from .options import hertz_unit_options, parse_conductance
+from .options import given_here, hertz_unit_options, parse_conductance
 
 __all__ = ["run_to_file", "transient_cmd"]
 
@@ -214,6 +214,9 @@ def transient_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delt
     """
     from ..api import transient_spec
 
+    if start != "steady" and given_here("hold"):
+        raise InputError("--hold belongs to --start steady (from Hertz's state the "
+                         "closure given, --lam or --theta, is held)", parameters=("hold",))
     spec = transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, until=until, steps=steps, lam=lam,
                           theta=theta, k2_over_k1=k2_over_k1,
                           delta1_over_delta2=delta1_over_delta2, elements=elements,
