@@ -451,3 +451,22 @@ def test_an_option_with_a_default_given_where_it_means_nothing_is_refused(capsys
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"error: {refusal}"), err
     assert not os.path.exists("never.nc")
+
+
+@pytest.mark.parametrize("args", [
+    ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "--theta", "1e300",
+     "--sink-distance", "3"],
+    ["boundary", "--along", "theta", "--from", "-1e300", "--to", "1", "--pe", "5", "--fhpe",
+     "0.2", "--K2-over-K1", "10", "--sink-distance", "3"],
+    ["map", "--x", "theta:-1e7:1:3", "--y", "pe:1:5:3", "--K2-over-K1", "10", "--fhpe", "0.2",
+     "--sink-distance", "3", "--out", "never.nc"],
+])
+def test_a_far_temperature_group_beyond_its_range_is_refused(capsys, args):
+    """|Theta| <= 1e6 (its heat partition, about Theta/2, within lam's 1e6): beyond, one
+    line before any work, not an overflow warning and a partition of 5e299, nor a
+    path's or map's points reported as refused by the solver."""
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: --theta must be in [-1e+06, 1e+06], "
+                                               "got "), err
+    assert not os.path.exists("never.nc")

@@ -13,15 +13,20 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import check_finite, check_positive, check_range
+from .validation import check_positive, check_range
 
-__all__ = ["SINK_RANGE", "Temperatures", "check_sink_distance", "layer_sink_distance",
+__all__ = ["SINK_RANGE", "THETA_MAX", "Temperatures", "check_sink_distance", "layer_sink_distance",
            "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
 #: from swamping the rows' other terms.
 SINK_RANGE = (1.0, 1e12)
+
+
+#: Largest |Theta|: the heat partition it makes grows as about Theta/2, and |lam| is
+#: bounded by 1e6 (far beyond any physical partition; beyond, the products overflow).
+THETA_MAX = 1e6
 
 
 @dataclass(frozen=True)
@@ -45,7 +50,8 @@ class Temperatures:
     sink_distance: float | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "theta", check_finite("theta", self.theta))
+        object.__setattr__(self, "theta", check_range("theta", self.theta, -THETA_MAX,
+                                                      THETA_MAX))
         if self.sink_distance is not None:
             # Any length for the formula; a user's sink beyond the contact is checked
             # where it is given (check_sink_distance).

@@ -170,10 +170,12 @@ def model_for(kw: dict, method=DEFAULT_METHOD, tol=DEFAULT_TOL, n=None) -> Model
 
 def check_problem(kw: dict, method=DEFAULT_METHOD) -> None:
     """Refuse, in one error, inputs ``kw`` (those of ``solve``) that are out of range or
-    that ``method`` cannot represent (the Dundurs term's exponents), the heat partition
-    or offset included."""
+    that ``method`` cannot represent (the Dundurs term's exponents), the heat partition,
+    offset or far temperatures' group included."""
     METHODS[method].check(model_for(kw, method).parameters_at(kw.get("fhpe", 0.0)))
     check_closure_range(kw.get("lam"), kw.get("sigma_over_delta"))
+    if "theta" in kw:
+        closure(kw)  # the far temperatures' group, checked as made
 
 
 def closure(kw: dict) -> dict:
