@@ -482,3 +482,14 @@ def test_a_continuation_needing_too_many_steps_ends_in_bounded_time(monkeypatch)
     assert 0.0 < res.reached < 1.0
     with pytest.raises(InputError, match=r"delta1_over_delta2 must be in \[0, 1000\]"):
         contact_set(5.43, 0.5, 10, lam=1, delta1_over_delta2=1e6)
+
+
+def test_a_target_beyond_the_range_is_refused_with_its_own_value():
+    """fHPe_l = 1e300 is refused naming 1e300, not the first step's 1.25e299."""
+    from thermocontact import contact_set
+    from thermocontact.problem.validation import InputError
+
+    with pytest.raises(InputError, match=r"fhpe_hertz must be in \[0, 1e\+06\], got 1e\+300"):
+        contact_set(5, 1e300, 10, lam=0)
+    with pytest.raises(InputError, match=r"pe_hertz must be in \[1e-12, 1e\+06\], got 1e\+07"):
+        contact_set(1e7, 0.5, 10, lam=0)

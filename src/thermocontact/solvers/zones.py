@@ -237,6 +237,12 @@ def zone_measures(sol: ZoneSolution) -> tuple:
                  for h, c in zip(sol.half_widths, sol.centres))
 
 
+#: The Peclet number and the coupling of a contact set, in units of the Hertz
+#: half-width: checked at each solve and, for a followed path, at its target.
+PE_HERTZ_RANGE = (1e-12, 1e6)
+FHPE_HERTZ_RANGE = (0.0, 1e6)
+
+
 class ZoneModel:
     """The contact-set problem with the materials' ratios fixed; solve it at any load.
 
@@ -346,8 +352,8 @@ class ZoneModel:
             When Newton's method does not converge (the message says how far it got).
         """
         check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
-        check_range("pe_hertz", pe, 1e-12, 1e6)
-        check_range("fhpe_hertz", fhpe, 0.0, 1e6)
+        check_range("pe_hertz", pe, *PE_HERTZ_RANGE)
+        check_range("fhpe_hertz", fhpe, *FHPE_HERTZ_RANGE)
         if lam is not None:
             lam = check_range("lam", lam, *PARTITION)
             e, x, rcond, err, it = self._newton_edges(edges, pe, fhpe, lam, max_iter)

@@ -20,9 +20,10 @@ from ..analysis.fields import ContactFields, contact_fields
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
 from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, PARTITION, SolveError
-from ..problem.validation import InputError, check_nonnegative, check_positive, check_range
+from ..problem.validation import InputError, check_positive, check_range
 from ..solvers.elements import solve_elements
-from ..solvers.zones import BIOT_RANGE, ZoneModel, ZoneSolution
+from ..solvers.zones import (BIOT_RANGE, FHPE_HERTZ_RANGE, PE_HERTZ_RANGE, ZoneModel,
+                             ZoneSolution)
 
 __all__ = ["ContactSetResult", "PhysicalConductance", "PhysicalContactSet", "find_contact_set",
            "follow_contact_set", "other_starts", "physical_contact_set"]
@@ -137,8 +138,9 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         Newton's method from them finds a valid contact set of one zone, that is
         the answer, and nothing is followed (:func:`follow_contact_set`).
     """
-    pe = check_positive("pe_hertz", pe_hertz)
-    target = check_nonnegative("fhpe_hertz", fhpe_hertz)
+    # The target's own values named (a step toward it would name a fraction of it).
+    pe = check_range("pe_hertz", pe_hertz, *PE_HERTZ_RANGE)
+    target = check_range("fhpe_hertz", fhpe_hertz, *FHPE_HERTZ_RANGE)
     # The cylinder's kernel scale at this Peclet number (the zone model's own check
     # knows no Peclet number yet).
     k = check_positive("k2_over_k1", K2_over_K1 if k2_over_k1 is None else k2_over_k1)
