@@ -491,5 +491,6 @@ def test_a_target_beyond_the_range_is_refused_with_its_own_value():
 
     with pytest.raises(InputError, match=r"fhpe_hertz must be in \[0, 1e\+06\], got 1e\+300"):
         contact_set(5, 1e300, 10, lam=0)
-    with pytest.raises(InputError, match=r"pe_hertz must be in \[1e-12, 1e\+06\], got 10000000.0"):
+    with pytest.raises(InputError,
+                       match=r"pe_hertz must be in \[1e-12, 1e\+06\], got 10000000.0"):
         contact_set(1e7, 0.5, 10, lam=0)
