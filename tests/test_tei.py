@@ -281,10 +281,16 @@ def test_command_json_is_the_record(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("change, flag, fragment", [
-    (["--wavelength", "0"], "--wavelength", "> 0"),
-    (["--wavelength", "-3mm"], "--wavelength", "> 0"),
-    (["--speed", "-1"], "--speed", ">= 0"),
-    (["--friction", "-0.1"], "--friction", ">= 0"),
+    (["--wavelength", "0"], "--wavelength", "must be in [1e-09, 1000], got 0.0"),
+    (["--wavelength", "-3mm"], "--wavelength", "must be in [1e-09, 1000]"),
+    (["--wavelength", "1e-300"], "--wavelength", "must be in [1e-09, 1000], got 1e-300"),
+    (["--wavelength", "1e300", "--speed", "10"], "--wavelength", "must be in [1e-09, 1000]"),
+    (["--speed", "-1"], "--speed", "must be 0 or in [1e-09, 10000], got -1.0"),
+    (["--speed", "1e300"], "--speed", "must be 0 or in [1e-09, 10000]"),
+    (["--speed", "1e-200"], "--speed", "must be 0 or in [1e-09, 10000]"),
+    (["--friction", "-0.1"], "--friction", "must be 0 or in [1e-06, 10], got -0.1"),
+    (["--friction", "1e-300"], "--friction", "must be 0 or in [1e-06, 10]"),
+    (["--friction", "1e300"], "--friction", "must be 0 or in [1e-06, 10]"),
     (["--slider", "E=1e9,nu=0.3,alpha=1e-5,K=0,k=0",
       "--counterface", "E=1e9,nu=0.3,alpha=1e-5,K=0,k=0"], "--slider", "non-conducting"),
 ])
@@ -300,11 +306,11 @@ def test_bad_input_is_refused_in_one_line(capsys, change, flag, fragment):
 
 
 def test_api_refuses_bad_input():
-    with pytest.raises(InputError, match="wavelength must be > 0"):
+    with pytest.raises(InputError, match=r"wavelength must be in \[1e-09, 1000\]"):
         tei("steel", "steel", 0.3, 0.0)
-    with pytest.raises(InputError, match="speed must be >= 0"):
+    with pytest.raises(InputError, match=r"speed must be 0 or in \[1e-09, 10000\]"):
         tei("steel", "steel", 0.3, 0.05, speed="-2 m/s")
-    with pytest.raises(InputError, match="friction must be >= 0"):
+    with pytest.raises(InputError, match=r"friction must be 0 or in \[1e-06, 10\]"):
         tei("steel", "steel", -0.3, 0.05)
     with pytest.raises(InputError, match="both be non-conducting"):
         tei(INSULATOR, INSULATOR, 0.3, 0.05)

@@ -707,12 +707,16 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         definitions ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
         non-conductor; not both.
     friction : float
-        Coulomb coefficient ``f >= 0``.
+        Coulomb coefficient ``f``: 0, or 1e-6 to 10
+        (:data:`~thermocontact.studies.tei.FRICTION_RANGE`).
     wavelength : float or str
-        ``L > 0`` of the perturbation, m or with units (``"50mm"``).
+        ``L`` of the perturbation, 1 nm to 1 km
+        (:data:`~thermocontact.studies.tei.WAVELENGTH_RANGE`), m or with units
+        (``"50mm"``).
     speed : float or str, optional
-        Sliding speed ``V >= 0``, m/s or with units: adds the modes at that speed
-        and the most unstable wavelength.
+        Sliding speed ``V``: 0, or 1e-9 to 1e4 m/s
+        (:data:`~thermocontact.studies.tei.SPEED_RANGE`), m/s or with units: adds the
+        modes at that speed and the most unstable wavelength.
     dundurs : bool, optional
         Keep the Dundurs term ``beta f`` (default), as ``contact`` does.
     materials : str or os.PathLike, optional
@@ -726,8 +730,9 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     Raises
     ------
     InputError
-        A wavelength <= 0, a speed or friction < 0, both bodies non-conducting, an
-        unknown material; the message is one line naming the parameter.
+        A wavelength, speed or friction outside its range, both bodies
+        non-conducting, an unknown material; the message is one line naming the
+        parameter.
     """
     from .studies.tei import analyse
 

@@ -15,12 +15,14 @@ __all__ = ["tei_cmd"]
               help="Material of the sliding half-plane: a name or E=..,nu=..,alpha=..,K=..,k=.. "
                    "(K=0: a non-conductor).")
 @click.option("--counterface", required=True, help="Material of the half-plane it slides over.")
-@click.option("--friction", type=float, required=True, help="Coefficient of friction >= 0.")
+@click.option("--friction", type=float, required=True,
+              help="Coefficient of friction: 0, or 1e-6 to 10.")
 @click.option("--wavelength", required=True,
-              help="Wavelength of the perturbation > 0 (m, or with units: 50mm).")
+              help="Wavelength of the perturbation, 1 nm to 1 km (m, or with units: "
+                   "50mm).")
 @click.option("--speed", default=None,
-              help="Sliding speed >= 0 (m/s, or with units): also the modes at that speed "
-                   "and the most unstable wavelength.")
+              help="Sliding speed: 0, or 1e-9 to 1e4 m/s (m/s, or with units): also the "
+                   "modes at that speed and the most unstable wavelength.")
 @click.option("--dundurs/--no-dundurs", default=True,
               help="Keep (default) or drop the Dundurs term beta f (derivation section 5c).")
 @click.option("--materials", "materials_file", default=None,

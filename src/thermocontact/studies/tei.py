@@ -27,10 +27,11 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..io.results import Result
 from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
-from ..problem.validation import check_nonnegative, check_positive
+from ..problem.validation import InputError, check_finite, check_range
 
-__all__ = ["TEIMode", "TEIResult", "analyse", "critical_speed", "critical_speeds",
-           "growth_rate", "most_unstable_wavelength", "tei_modes"]
+__all__ = ["FRICTION_RANGE", "SPEED_RANGE", "TEIMode", "TEIResult", "WAVELENGTH_RANGE",
+           "analyse", "critical_speed", "critical_speeds", "growth_rate",
+           "most_unstable_wavelength", "tei_modes"]
 
 #: Speeds scanned per factor 2 above the lower bound (H9) before Brent's method.
 _PER_OCTAVE = 4
@@ -38,6 +39,23 @@ _PER_OCTAVE = 4
 #: (H10) decides; where it says unstable, the scan goes on to ``_LAST_FACTOR``.
 _SCAN_FACTOR = 1e6
 _LAST_FACTOR = 1e15
+#: Wavelengths studied, m: a nanometre to a kilometre (beyond, the dimensionless
+#: groups of the dispersion relation overflow or underflow).
+WAVELENGTH_RANGE = (1e-9, 1e3)
+#: Sliding speeds studied besides 0, m/s: below, the growth rates underflow and the
+#: most unstable wavelength is not resolved; above, no machine slides.
+SPEED_RANGE = (1e-9, 1e4)
+#: Coefficients of friction besides 0 (no frictional heat): below, the critical speed
+#: overflows; above, no pair of materials slides.
+FRICTION_RANGE = (1e-6, 10.0)
+
+
+def _zero_or_in(name, value, lo, hi) -> float:
+    value = check_finite(name, value)
+    if value != 0.0 and not lo <= value <= hi:
+        raise InputError(f"{name} must be 0 or in [{lo:g}, {hi:g}], got {value!r}",
+                         parameters=(name,))
+    return value
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -248,11 +266,11 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True)
     slider, counterface : Material
         As for :class:`~thermocontact.physics.tei.SlidingPair`.
     friction : float
-        ``f >= 0``.
+        ``f``: 0 or in :data:`FRICTION_RANGE`.
     wavelength : float
-        ``L > 0``, m.
+        ``L`` in :data:`WAVELENGTH_RANGE`, m.
     speed : float, optional
-        Sliding speed ``V >= 0``, m/s.
+        Sliding speed ``V``: 0 or in :data:`SPEED_RANGE`, m/s.
     dundurs : bool, optional
         Keep the Dundurs term (default).
 
@@ -260,13 +278,14 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True)
     -------
     TEIResult
     """
+    friction = _zero_or_in("friction", friction, *FRICTION_RANGE)
+    wl = check_range("wavelength", wavelength, *WAVELENGTH_RANGE)
     pair = SlidingPair(slider, counterface, friction, dundurs=dundurs)
-    wl = check_positive("wavelength", wavelength)
     m = 2.0 * math.pi / wl
     vc, neutral = critical_speed(pair, m)
     extra = {}
     if speed is not None:
-        v = check_nonnegative("speed", speed)
+        v = _zero_or_in("speed", speed, *SPEED_RANGE)
         mw, rate = (None, None) if vc is None else most_unstable_wavelength(pair, v, m, vc)
         extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
                      most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
