@@ -158,8 +158,14 @@ def test_other_inputs_are_refused(complete, tmp_path, capsys):
     (["--lam", "1", "--start", "steady", "--theta", "0"], ("--theta", "--start")),
     (["--lam", "2"], ("--lam", "[-1, 1]")),
     (["--lam", "1", "--conductance", "1"], ("--conductance",)),
+    # Elements wider than a half-width (Hertz's contact on none: a singular set).
+    (["--lam", "1", "--window=-1e300,1e300"], ("--window", "half-widths wide")),
+    # The contact at an end of the window at once: no step, no heat to report.
+    (["--lam", "1", "--elements", "16", "--window=-1.01,1.01"],
+     ("--window", "through the first step")),
+    (["--lam", "0", "--hold", "lam"], ("--hold", "--start steady")),
 ], ids=["no-closure", "both-closures", "steps", "until", "window", "window-text",
-        "steady-theta", "lam-range", "conductance"])
+        "steady-theta", "lam-range", "conductance", "window-wide", "window-tight", "hold"])
 def test_bad_input_is_one_line(tmp_path, capsys, extra, flags):
     # The given flag replaces the one of ARGS (a flag given twice is refused).
     given = {extra[i] for i in range(0, len(extra), 2)}

@@ -138,6 +138,12 @@ class TransientSpec:
         if not (lo < -1.0 and hi > 1.0):
             raise InputError(f"window must contain the Hertz contact -1 < x < 1, got "
                              f"({lo!r}, {hi!r})", parameters=("window",))
+        if hi - lo > self.elements:
+            # Elements wider than a half-width: Hertz's contact on fewer than two of
+            # them (a window of 1e300 leaves it on none: a singular contact set).
+            raise InputError(f"window must be at most {self.elements} half-widths wide "
+                             f"with {self.elements} elements (each at most one, two across "
+                             f"Hertz's contact), got ({lo!r}, {hi!r})", parameters=("window",))
         if self.start not in ("hertz", "steady"):
             raise InputError(f"start must be 'hertz' or 'steady', got {self.start!r}",
                              parameters=("start",))
@@ -730,6 +736,13 @@ def _run(spec, resume, progress, save, save_every):
                    + ops.flamant @ p - D)
             gap[active] = 0.0
         active = p > 0.0
+        if (active[0] or active[-1]) and n == 1:
+            # Before any step there is no heat to report (a partition of 0/0): the window
+            # is refused, as an input.
+            raise InputError(f"window must hold the contact through the first step, got "
+                             f"{spec.window!r}: the contact reached an end of it at once "
+                             f"(x = {X[0] if active[0] else X[-1]:.4g}); widen it or give "
+                             f"more elements", parameters=("window",))
         if active[0] or active[-1]:
             status = (f"stopped at step {n}: the contact reached the window's end "
                       f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
