@@ -173,6 +173,33 @@ def test_beyn_and_newton_find_known_eigenvalues():
         assert abs(b - r) < 1e-12
 
 
+def test_the_contour_tells_its_progress(monkeypatch):
+    """beyn tells each evaluation of M (the analysis' cost, a second each at n = 12);
+    classify tells them over all its events as one stage."""
+    from thermocontact.studies import event_kinds
+    from thermocontact.studies.boundaries import Event, Path
+
+    told = []
+    beyn(_known_problem([1.5 + 2.0j, 1.5 - 2.0j]), (0.1, 6.0, 4.0), points=16,
+         progress=lambda done, total: told.append((done, total)))
+    assert told == [(j, 8) for j in range(1, 9)]
+
+    events = tuple(Event(at=a, inequality="gap", edge="leading", valid_before=True,
+                         valid_after=False) for a in (0.2, 0.3))
+    path = Path(along="fhpe", fixed={"pe": 1.0, "K2_over_K1": 1.0, "lam": 0.5},
+                x=np.array([0.0, 1.0]), valid=np.array([True, False]), events=events, n=8,
+                method="graded", error_estimate=float("nan"))
+
+    def stand_in(solve_at, n, progress=None, **region):
+        for j in (1, 2, 3):
+            progress(j, 3)
+        return _result([])
+    monkeypatch.setattr(event_kinds, "stability_of", stand_in)
+    stages = []
+    event_kinds.classify(path, progress=lambda *a: stages.append(a))
+    assert stages == [("kinds of events", k, 6) for k in range(1, 7)]
+
+
 def test_stability_refuses_what_it_does_not_model():
     sol = Model(5.0, 10.0, speed_ratio=0.3, n=8).solve_at(8, 0.2, lam=0.0)
     with pytest.raises(InputError, match="speed_ratio"):

@@ -387,7 +387,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
         return path
     from .studies.event_kinds import classify
 
-    return classify(path)
+    return classify(path, progress=progress)
 
 
 def _number(name, value) -> float:
@@ -741,7 +741,8 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32):
+def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,
+              progress=None):
     """Eigenvalues of largest real part of a steady single patch: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
@@ -766,6 +767,8 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
         point of the stationary half-plane's kernels, which the contour avoids).
     points : int, optional
         Points of the contour (even; half of them are computed).
+    progress : callable, optional
+        ``progress(done, total)`` over the contour points computed (a second each).
 
     Returns
     -------
@@ -814,7 +817,7 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
     return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
-                        points=points, rate_unit=rate_unit)
+                        points=points, rate_unit=rate_unit, progress=progress)
 
 
 def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,

@@ -125,8 +125,11 @@ def record_of(result, stability=False) -> dict:
     record = result.to_dict()
     if stability:
         from ..api import stability as eigenvalues
+        from ..execution.progress import ProgressLine
 
-        record["stability"] = eigenvalues(result).to_dict()
+        bar = ProgressLine("stability: contour points", "points")
+        record["stability"] = eigenvalues(result, progress=bar).to_dict()
+        bar.close()
     return record
 
 

@@ -95,7 +95,7 @@ def ellipse(re_min, re_max, im_max, points):
         -a * np.sin(theta) + 1j * im_max * np.cos(theta)
 
 
-def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0):
+def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0, progress=None):
     """Eigenvalues of ``M(b) c = 0`` inside an ellipse by Beyn's method (Beyn 2012,
     algorithm 1).
 
@@ -113,6 +113,8 @@ def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0):
         ``(re_min, re_max, im_max)``.
     points : int
         Contour points (even; ``points/2`` evaluations of ``M``).
+    progress : callable, optional
+        ``progress(done, total)`` after each evaluation of ``M``.
     probes : int
         Columns of ``V``: at least the number of eigenvalues inside.
 
@@ -127,8 +129,10 @@ def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0):
     V = None
     A0 = A1 = 0.0
     size = 0.0
-    for zj, dzj in zip(z, dz):
+    for j, (zj, dzj) in enumerate(zip(z, dz)):
         M = matrix(zj)
+        if progress is not None:
+            progress(j + 1, len(z))
         if V is None:
             V = rng.standard_normal((M.shape[0], min(probes, M.shape[0])))
         X = np.linalg.solve(M, V) * dzj
@@ -178,7 +182,7 @@ def newton(matrix, b0, *, steps=8, tol=1e-10, h=1e-6):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, re_min=0.5, re_max=10.0, im_max=10.0,
-                 points=32, rate_unit=None, polish=True) -> StabilityResult:
+                 points=32, rate_unit=None, polish=True, progress=None) -> StabilityResult:
     """Eigenvalues of largest real part of a steady single patch in an ellipse.
 
     Parameters
@@ -199,6 +203,8 @@ def stability_of(solve_at, *, n=STABILITY_N, re_min=0.5, re_max=10.0, im_max=10.
         ``k2/Delta^2`` in 1/s: the eigenvalues and the region are reported in 1/s.
     polish : bool
         Check each eigenvalue by Newton's method (the second method).
+    progress : callable, optional
+        ``progress(done, total)`` over the contour points (the analysis' cost).
 
     Returns
     -------
@@ -213,7 +219,7 @@ def stability_of(solve_at, *, n=STABILITY_N, re_min=0.5, re_max=10.0, im_max=10.
     points = 2 * check_integer("stability points", points // 2, 4, 256)
     region = (re_min, re_max, im_max)
     lin = linearised(solve_at(n))
-    found, _ = beyn(lin.matrix, region, points=points)
+    found, _ = beyn(lin.matrix, region, points=points, progress=progress)
     found = found[found.imag >= -1e-12 * np.maximum(1.0, np.abs(found))]
     change = None
     if polish and found.size:

@@ -36,7 +36,7 @@ def kind_of(result) -> str:
     return "fold" if abs(lead.imag) <= 1e-9 * max(1.0, abs(lead)) else "hopf"
 
 
-def classify(path: Path, *, n=STABILITY_N, **region) -> Path:
+def classify(path: Path, *, n=STABILITY_N, progress=None, **region) -> Path:
     """``path`` with each event's ``kind`` (and nothing else changed).
 
     Parameters
@@ -45,6 +45,9 @@ def classify(path: Path, *, n=STABILITY_N, **region) -> Path:
         Of a dimensionless problem (:func:`~thermocontact.studies.boundaries.follow`).
     n : int
         Unknowns per function of the stability analysis.
+    progress : callable, optional
+        ``progress(stage, done, total)`` over the events' contour points
+        (:func:`~thermocontact.studies.boundaries.trace`'s form).
     **region
         ``re_min``, ``re_max``, ``im_max``, ``points`` of
         :func:`~thermocontact.solvers.stability.stability_of`.
@@ -62,15 +65,18 @@ def classify(path: Path, *, n=STABILITY_N, **region) -> Path:
         raise InputError("the kinds of events are computed for dimensionless paths only",
                          parameters=("stability",))
     events = []
-    for event in path.events:
+    for i, event in enumerate(path.events):
         # The path's fixed inputs hold one closure, never the parameter followed.
         kw = {**path.fixed, path.along: event.at}
+        told = None if progress is None else (
+            lambda done, total, i=i: progress("kinds of events", i * total + done,
+                                              len(path.events) * total))
         events.append(replace(event, kind=kind_of(stability_at(kw, path.method, n=n,
-                                                               **region))))
+                                                               progress=told, **region))))
     return replace(path, events=tuple(events))
 
 
-def stability_at(kw: dict, method, *, n=STABILITY_N, **region):
+def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, **region):
     """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
     single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
     ``lam``, ``sigma_over_delta`` or the far temperatures ``theta``), eigenvalues in
@@ -79,7 +85,7 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, **region):
 
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], check_validity=False, **closure(kw))
-    return stability_of(solve_at, n=n, **region)
+    return stability_of(solve_at, n=n, progress=progress, **region)
 
 
 def check_map_stability(spec) -> None:
