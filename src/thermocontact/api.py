@@ -165,7 +165,8 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
         With ``zones``: ``h = h0 (p/p_ref)^m``, h0 in W/(m^2 K), ``p_ref`` in Pa
         (default the mean Hertz pressure P/(2 l)).
     progress : callable, optional
-        ``progress(done, total)`` while the half-widths are followed.
+        ``progress(done, total)`` while the half-widths are followed (with ``zones``:
+        the percentage of the path from Hertz's zone, out of 100).
 
     Returns
     -------
@@ -194,7 +195,10 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
     if zones:
         from .studies.contact_sets import physical_contact_set
 
-        return physical_contact_set(problem, conductance=_physical_conductance(conductance))
+        return physical_contact_set(
+            problem, conductance=_physical_conductance(conductance),
+            progress=None if progress is None else (
+                lambda fraction: progress(round(100 * fraction), 100)))
     from .studies.physical_contact import contact as contact_of
 
     return contact_of(problem, tol=tol, progress=progress)

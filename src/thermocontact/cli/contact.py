@@ -205,8 +205,12 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         inputs.update(bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
                       layer_thickness=layer_thickness)
     if zones or conductance is not None:
+        from ..execution.progress import ProgressLine
+
+        bar = ProgressLine("contact: fHPe_l followed", "%")
         found = contact(cylinder, half_plane, zones=zones, conductance=parse_conductance(
-            conductance, "in W/(m^2 K)", physical=True), **inputs)
+            conductance, "in W/(m^2 K)", physical=True), progress=bar, **inputs)
+        bar.close()
         if as_json:
             click.echo(json.dumps(found.to_dict(), allow_nan=False))
             return
