@@ -681,3 +681,18 @@ def test_a_grid_line_s_record_is_stored_as_it_is():
     record = evaluate_chunk(spec.tasks()[0])
     assert as_stored(record) is record
     _same_record(record, json.loads(json.dumps(record)))
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+def test_a_map_written_reads_back_identical_without_warnings(reference, tmp_path, suffix):
+    """NetCDF and Zarr (format 2: format 3 warns of fixed-length strings and
+    consolidated metadata) hold the whole map, status strings and attributes included."""
+    import warnings
+
+    if suffix == ".zarr":
+        pytest.importorskip("zarr")
+    path = tmp_path / f"m{suffix}"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        write_dataset(reference, path)
+    xr.testing.assert_identical(read_dataset(path), reference)

@@ -31,15 +31,24 @@ def _engine():
 
 def write_dataset(ds, path):
     """Write the dataset whole (a temporary name, then renamed): NetCDF for ``.nc``,
-    Zarr for ``.zarr``."""
+    Zarr for ``.zarr`` (Zarr's format 2, which every reader knows: format 3 has no
+    specification yet for fixed-length strings, such as a map's ``status``, nor for
+    consolidated metadata, and Zarr 3 warns of both)."""
     path = os.fspath(path)
     zarr = path.lower().endswith(".zarr")
     with atomic_path(path, folder=zarr) as tmp:
         if zarr:
-            ds.to_zarr(tmp, mode="w")
+            ds.to_zarr(tmp, mode="w", **_zarr_format_2())
         else:
             ds.to_netcdf(tmp, engine=_engine())
     return path
+
+
+def _zarr_format_2() -> dict:
+    """``to_zarr``'s arguments for format 2: none with Zarr 2 (its only format)."""
+    import zarr
+
+    return {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
 
 
 def read_dataset(path):
