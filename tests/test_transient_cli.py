@@ -164,8 +164,11 @@ def test_other_inputs_are_refused(complete, tmp_path, capsys):
     (["--lam", "1", "--elements", "16", "--window=-1.01,1.01"],
      ("--window", "through the first step")),
     (["--lam", "0", "--hold", "lam"], ("--hold", "--start steady")),
+    # Steps whose squares underflow (a division by zero, warned).
+    (["--lam", "1", "--until", "1e-300"], ("--until", "[1e-12, inf]")),
 ], ids=["no-closure", "both-closures", "steps", "until", "window", "window-text",
-        "steady-theta", "lam-range", "conductance", "window-wide", "window-tight", "hold"])
+        "steady-theta", "lam-range", "conductance", "window-wide", "window-tight", "hold",
+        "until-tiny"])
 def test_bad_input_is_one_line(tmp_path, capsys, extra, flags):
     # The given flag replaces the one of ARGS (a flag given twice is refused).
     given = {extra[i] for i in range(0, len(extra), 2)}

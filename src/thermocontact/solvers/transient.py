@@ -47,6 +47,9 @@ MAX_STEP_ELEMENTS = 3_000_000
 #: nothing of the convected heat and its tables' panels (a quarter of a pulse's width
 #: each) grow without bound.
 MAX_SHIFT = 100.0
+#: Shortest run, l^2/kappa2: a millionth of a millionth of the time heat takes to
+#: cross the contact (shorter steps underflow their squares: 1e-300 divided by zero).
+UNTIL_MIN = 1e-12
 #: Fewest elements a zone should span for its pressure to be carried (below, a run's
 #: ``resolution`` says so).
 RESOLVED_ELEMENTS = 8
@@ -76,7 +79,7 @@ class TransientSpec:
         The closure: exactly one with ``start = "hertz"``; with ``start = "steady"``
         ``lam`` picks the steady state and ``hold`` says what is then held.
     until : float
-        Duration, units ``l^2/kappa2``.
+        Duration, units ``l^2/kappa2``, at least :data:`UNTIL_MIN`.
     steps : int
         Number of time steps (``dt = until/steps``).
     elements : int
@@ -115,7 +118,7 @@ class TransientSpec:
             raise InputError(f"fhpe_hertz must be >= 0, got {self.fhpe_hertz!r}",
                              parameters=("fhpe_hertz",))
         check_range("delta1_over_delta2", self.delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
-        check_positive("until", self.until)
+        check_range("until", self.until, UNTIL_MIN, float("inf"))
         if not (isinstance(self.steps, (int, np.integer)) and 1 <= self.steps <= 100_000):
             raise InputError(f"steps must be an integer in [1, 100000], got {self.steps!r}",
                              parameters=("steps",))
