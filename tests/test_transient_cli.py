@@ -226,7 +226,13 @@ def test_contact_transient_maps_the_physical_problem(tmp_path, capsys):
     (["--no-dundurs", "--out", "{tmp}/c.nc", "--zones"], ("--zones",)),
     (["--no-dundurs"], ("--out",)),
     (["--no-dundurs", "--out", "{tmp}/c.nc", "--duration", "-1s"], ("--duration",)),
-], ids=["dundurs", "speed2", "zones", "no-out", "duration"])
+    # In seconds, as given (not the dimensionless run's until in l^2/kappa2).
+    (["--no-dundurs", "--out", "{tmp}/c.nc", "--duration", "1e300s"],
+     ("--duration/--steps must be at most", " s at this speed", "--steps")),
+    (["--no-dundurs", "--out", "{tmp}/c.nc", "--duration", "1e-30s"],
+     ("--duration must be at least", "got 1e-30 s")),
+], ids=["dundurs", "speed2", "zones", "no-out", "duration", "duration-long",
+        "duration-short"])
 def test_contact_transient_refusals(tmp_path, capsys, extra, flags):
     args = [a for a in CONTACT if a not in ("--duration", "1ms")] if "--duration" in extra \
         else CONTACT
