@@ -239,7 +239,9 @@ def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
 
     seen = []
 
-    def stand_in(sol):
+    def stand_in(sol, progress):
+        # The command shows the contour's progress (a second a point).
+        progress(1, 1)
         seen.append(sol)
         return StabilityResult(eigenvalues=np.array([0.5 + 1.0j, 0.5 - 1.0j]), stable=False,
                                error_estimate=2e-3, newton_change=1e-9,
