@@ -248,16 +248,34 @@ def test_a_path_beyond_the_closures_range_is_refused(capsys, along, ends, extra,
 @pytest.mark.parametrize("args", [
     ["boundary", "--along", "delta1-over-delta2", "--from", "0", "--to", "1e300", "--pe", "5",
      "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1"],
-    ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1",
-     "--delta1-over-delta2", "2000"],
+    ["map", "--x", "delta1-over-delta2:0:2e6:3", "--y", "pe:1:5:3", "--fhpe", "0.2",
+     "--K2-over-K1", "10", "--lam", "-1", "--out", "never.nc"],
 ])
-def test_a_distortivity_ratio_beyond_the_materials_is_refused(capsys, args):
-    """delta1/delta2 in [0, 1000] for every contact, as for contact sets: a path to 1e300
-    is refused at once, not sampled over hundreds of decades for minutes."""
+def test_a_dimensionless_distortivity_ratio_beyond_its_limit_is_refused(capsys, args,
+                                                                      tmp_path, monkeypatch):
+    """delta1/delta2 up to 1e6 at a path's ends and a map's corners, as lam: a path to
+    1e300 is refused at once, not sampled over hundreds of decades for minutes."""
+    monkeypatch.chdir(tmp_path)
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(
-        "error: --delta1-over-delta2 must be in [0, 1000], got "), err
+        "error: --delta1-over-delta2 must be in [0, 1e+06], got "), err
+    assert not (tmp_path / "never.nc").exists()
+
+
+def test_physical_inputs_beyond_the_dimensionless_limits_still_solve():
+    """The limits above bound what a user gives; what physical inputs make is not
+    bounded by them: a polymer cylinder on steel (delta1/delta2 about 2700) and a slow,
+    light contact between bulk temperatures 100 K apart (Theta about 1.3e6)."""
+    from thermocontact import contact
+
+    polymer = contact("E=3e9,nu=0.4,alpha=1.2e-4,K=0.25,k=1.2e-7", "steel", radius=0.01,
+                      load=1e3, speed=0.1, friction=0.3, lam=1)
+    assert polymer.primary is not None and polymer.primary.valid
+    slow = contact("steel", "copper", radius=0.01, load=1e3, speed="1mm/s", friction=0.1,
+                   bulk_temperatures=("20C", "120C"), sink_distance="10mm")
+    assert slow.primary is not None and slow.primary.valid
+    assert abs(slow.primary.lam) > 1e4
 
 
 def test_physical_path_refuses_a_method(capsys):

@@ -24,8 +24,8 @@ def problem_options(required: bool):
         click.option("--k2-over-k1", "k2_over_k1", type=float, default=None,
                      help="Diffusivity ratio k2/k1 > 0 [default: K2/K1]."),
         click.option("--delta1-over-delta2", type=float, default=None,
-                     help="Distortivity ratio delta1/delta2 in [0, 1000] (the materials "
-                          "known span 550) [default: 1; dimensionless problems only]."),
+                     help="Distortivity ratio delta1/delta2 >= 0 (up to 1e6 on paths and "
+                          "maps) [default: 1; dimensionless problems only]."),
         click.option("--speed-ratio", "speed_ratio", type=float, default=0.0,
                      show_default=True,
                      help="v2/v1: the half-plane's surface speed through the contact over the "

@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import check_positive, check_range
+from .validation import check_finite, check_positive, check_range
 
-__all__ = ["SINK_RANGE", "THETA_MAX", "Temperatures", "check_sink_distance", "layer_sink_distance",
+__all__ = ["SINK_RANGE", "THETA_MAX", "Temperatures", "check_theta", "check_sink_distance", "layer_sink_distance",
            "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
@@ -24,9 +24,15 @@ __all__ = ["SINK_RANGE", "THETA_MAX", "Temperatures", "check_sink_distance", "la
 SINK_RANGE = (1.0, 1e12)
 
 
-#: Largest |Theta|: the heat partition it makes grows as about Theta/2, and |lam| is
-#: bounded by 1e6 (far beyond any physical partition; beyond, the products overflow).
+#: Largest |Theta| given as an input (solve, a dimensionless path's ends, a map's
+#: corners): 1e6, as lam's bound; beyond, the products overflow (1e300 made a
+#: partition of 5e299).  A Theta derived from physical inputs is not bounded by it.
 THETA_MAX = 1e6
+
+
+def check_theta(theta) -> float:
+    """``theta`` given as an input: finite, ``|theta| <= THETA_MAX``."""
+    return check_range("theta", theta, -THETA_MAX, THETA_MAX)
 
 
 @dataclass(frozen=True)
@@ -50,8 +56,9 @@ class Temperatures:
     sink_distance: float | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "theta", check_range("theta", self.theta, -THETA_MAX,
-                                                      THETA_MAX))
+        # Any finite value: a group derived from physical inputs (a slow, light contact
+        # with a sink) may exceed what a user is allowed to give (check_theta).
+        object.__setattr__(self, "theta", check_finite("theta", self.theta))
         if self.sink_distance is not None:
             # Any length for the formula; a user's sink beyond the contact is checked
             # where it is given (check_sink_distance).

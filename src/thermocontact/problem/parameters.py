@@ -7,9 +7,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ConvergenceWarning, SolveError
-from .validation import InputError, check_finite, check_nonnegative, check_positive, check_range
+from .validation import InputError, check_finite, check_nonnegative, check_positive
 
-__all__ = ["ConvergenceWarning", "DISTORTIVITY_RATIO_MAX", "PARTITION", "Parameters", "SolveError"]
+__all__ = ["ConvergenceWarning", "DISTORTIVITY_RATIO_LIMIT", "DISTORTIVITY_RATIO_MAX",
+           "PARTITION", "Parameters", "SolveError"]
 
 
 #: Range of c = Pe k2/k1.  Above C_MAX the cylinder's kernels are narrower than any
@@ -29,13 +30,17 @@ B_MAX = 20.0
 #: continuation of the closure, smooth through +-1, which the paper's Fig. 5 uses),
 #: contact sets of several zones take the physical interval only.
 PARTITION = (-1.0, 1.0)
-#: Largest distortivity ratio delta1/delta2 of any contact (the single patch's, a
-#: contact set's, a transient one's).  The materials in the library span 550 (copper
-#: against an organic brake block); the cylinder's distortion, ~ delta1 Q1 + delta2 Q2,
-#: grows with the ratio as fHPe_l does, so that beyond 1e3 a path from Hertz's zone
-#: crosses ever more of its branch, and a path of the single patch to 1e300 samples
-#: hundreds of decades that no material reaches.
+#: Largest distortivity ratio delta1/delta2 of a contact set (``zones``) and of a
+#: transient contact.  The materials in the library span 550 (copper against an
+#: organic brake block); the cylinder's distortion, ~ delta1 Q1 + delta2 Q2, grows with
+#: the ratio as fHPe_l does, so that beyond 1e3 a path from Hertz's zone crosses ever
+#: more of its branch.  (The single patch takes any ratio its materials make: a polymer
+#: cylinder on steel makes thousands; a dimensionless path or map, up to
+#: :data:`DISTORTIVITY_RATIO_LIMIT`.)
 DISTORTIVITY_RATIO_MAX = 1e3
+#: Largest delta1/delta2 given as a dimensionless input (a path's ends, a map's
+#: corners), as lam's 1e6: a path to 1e300 sampled hundreds of decades for minutes.
+DISTORTIVITY_RATIO_LIMIT = 1e6
 
 
 @dataclass(frozen=True)
@@ -55,8 +60,8 @@ class Parameters:
         Diffusivity ratio, > 0; defaults to ``K2_over_K1`` (equal volumetric heat
         capacities, the paper's choice for all its results).
     delta1_over_delta2 : float, optional
-        Distortivity ratio ``delta1/delta2`` in ``[0, DISTORTIVITY_RATIO_MAX]`` (1000);
-        0 is a cylinder that does not distort.  Default 1.
+        Distortivity ratio ``delta1/delta2 >= 0``; 0 is a cylinder that does not
+        distort.  Default 1.
     speed_ratio : float, optional
         ``R = v2/v1``: the half-plane's surface speed through the contact over the
         cylinder's, positive in the same direction (derivation section 5b); 0, the
@@ -98,8 +103,7 @@ class Parameters:
         object.__setattr__(
             self,
             "delta1_over_delta2",
-            check_range("delta1_over_delta2", self.delta1_over_delta2, 0.0,
-                        DISTORTIVITY_RATIO_MAX),
+            check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
         )
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
         c2 = abs(self.speed_ratio) * self.pe

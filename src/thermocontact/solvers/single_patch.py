@@ -36,7 +36,7 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, Conta
                                      check_temperatures, contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.moment_engine import GEOMETRY
-from ..problem.closure import Temperatures, check_sink_distance
+from ..problem.closure import Temperatures, check_sink_distance, check_theta
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
                                   check_positive, check_range)
@@ -1118,7 +1118,8 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
         raise InputError("sink_distance is given with theta only (the temperature closure)",
                          parameters=("sink_distance", "theta"))
     temperatures = None if theta is None else Temperatures(
-        theta, None if sink_distance is None else check_sink_distance(sink_distance))
+        check_theta(theta),
+        None if sink_distance is None else check_sink_distance(sink_distance))
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,

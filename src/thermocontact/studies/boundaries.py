@@ -28,9 +28,10 @@ import numpy as np
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult, Result
 from ..numerics.continuation import locate, subdivide, widen
-from ..problem.closure import Temperatures
-from ..problem.parameters import SolveError
-from ..problem.validation import InputError, check_choice, check_finite, check_integer
+from ..problem.closure import Temperatures, check_theta
+from ..problem.parameters import DISTORTIVITY_RATIO_LIMIT, SolveError
+from ..problem.validation import (InputError, check_choice, check_finite, check_integer,
+                                  check_range)
 from ..solvers.refinement import refine
 from ..solvers.single_patch import DEFAULT_TOL, Model, check_closure_range
 
@@ -174,8 +175,11 @@ def check_problem(kw: dict, method=DEFAULT_METHOD) -> None:
     offset or far temperatures' group included."""
     METHODS[method].check(model_for(kw, method).parameters_at(kw.get("fhpe", 0.0)))
     check_closure_range(kw.get("lam"), kw.get("sigma_over_delta"))
+    if "delta1_over_delta2" in kw:
+        check_range("delta1_over_delta2", kw["delta1_over_delta2"], 0.0,
+                    DISTORTIVITY_RATIO_LIMIT)
     if "theta" in kw:
-        closure(kw)  # the far temperatures' group, checked as made
+        check_theta(kw["theta"])
 
 
 def closure(kw: dict) -> dict:
