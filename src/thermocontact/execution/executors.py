@@ -176,26 +176,38 @@ def _identity(address, timeout) -> str:
         No reply in Dask's protocol within ``timeout`` seconds.
     """
     import asyncio
+    import concurrent.futures
 
     from distributed.comm import connect as open_comm
+    from distributed.security import Security
+
+    # The connection arguments a Client would use (TLS from dask's configuration).
+    args = Security().get_connection_args("client")
 
     async def ask():
-        comm = await open_comm(address, timeout=timeout)
+        comm = await open_comm(address, timeout=timeout, **args)
         try:
             await comm.write({"op": "identity", "reply": True})
             return await comm.read()
         finally:
             comm.abort()
 
+    def probe():
+        # A loop of its own, in a thread of its own: the caller's may be running
+        # (a notebook).
+        return asyncio.run(asyncio.wait_for(ask(), timeout))
+
     why = f"no answer in Dask's protocol within {timeout:g} s"
-    try:
-        reply = asyncio.run(asyncio.wait_for(ask(), timeout))
-    except asyncio.TimeoutError:
-        reply = None
-    except Exception:  # noqa: BLE001 - whatever the peer sent, one line
-        # (bytes of another protocol read as a frame's length: MemoryError, ValueError)
-        why = "an answer not in Dask's protocol"
-        reply = None
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        try:
+            reply = pool.submit(probe).result()
+        except asyncio.TimeoutError:
+            reply = None
+        except Exception as exc:  # noqa: BLE001 - whatever the peer sent, one line
+            # (bytes of another protocol read as a frame's length: MemoryError,
+            # ValueError; a connection closed or reset: OSError)
+            why = f"an answer not in Dask's protocol: {type(exc).__name__}"
+            reply = None
     if not (isinstance(reply, dict) and isinstance(reply.get("type"), str)):
         raise InputError(f"scheduler {address} did not answer as a Dask scheduler ({why})")
     return reply["type"]
