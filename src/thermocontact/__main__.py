@@ -20,7 +20,7 @@ def main(argv=None) -> int:
     try:
         from .cli import main as cli_main
 
-        return cli_main(argv)
+        return cli_main(None if argv is None else args)
     except KeyboardInterrupt:
         sys.stderr.write("error: interrupted\n")
         return 130

@@ -149,16 +149,19 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
-    # One budget for both resolutions.
-    budget = _Budget(MAX_EVALUATIONS)
+    budgets = []
 
     def attempt(n_, start=None):
+        # Each resolution its own budget: the finer one is not starved by the first.
+        budgets.append(_Budget(MAX_EVALUATIONS))
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
                                   k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
                                   beta_f=beta_f, conductance=conductance, n=n_,
-                                  progress=progress, start=start, budget=budget)
+                                  progress=progress, start=start, budget=budgets[-1])
     res = attempt(n, start)
-    if res.status == "not converged" and 2 * int(n) <= 256 and budget.left > 0:
+    # (A first attempt that spent its budget is not tried again: the path is one its
+    # steps cannot resolve, at any n.)
+    if res.status == "not converged" and 2 * int(n) <= 256 and budgets[0].left > 0:
         # An under-resolved zone (narrow, or at a high Peclet number) can stall the
         # continuation where a finer one passes.
         again = attempt(2 * int(n))
@@ -240,10 +243,10 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     interface conductance the single patch's edges are a start only, the set being
     that of the conductance).  Otherwise the path is followed as without.
 
-    At most ``budget`` evaluations of the defects are made (:data:`MAX_EVALUATIONS`; a
-    budget of :func:`find_contact_set` is shared by its two resolutions): where they
-    are spent, the answer is "not converged", with the last solution followed and
-    where it was.
+    At most ``budget`` evaluations of the defects are made (:data:`MAX_EVALUATIONS`,
+    for each resolution of :func:`find_contact_set`): where they are spent, the answer
+    is "not converged", with the last solution followed and where it was, and the
+    event and the contact sets tried if they were found.
     """
     lam = check_range("lam", lam, *PARTITION)
     check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
@@ -253,7 +256,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         budget = _Budget(budget)
     # The last solution followed and its t: the answer where the budget is spent.
     latest = [None, 0.0]
-    if progress is not None and budget.tick is None:
+    if progress is not None:
         budget.tick = lambda: progress(latest[1])
 
     def model_at(t):
@@ -320,6 +323,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 except SolveError:
                     return None
                 last = None
+                latest[:] = [sol, float(z[-1])]
                 return float(z[-1])
             if outcome == "fold":
                 folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
@@ -350,6 +354,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             return "failed", None
 
     history, folds, budget_steps = [], [], []
+    # The event and the contact sets tried, once found: kept where the budget ends.
+    located = {"event": None, "attempts": []}
 
     def _followed():
         if start is not None:
@@ -403,6 +409,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         lo_sol = solved[lo]
         bad = at(lo_sol.edges, hi, polish=True)
         event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
+        located["event"] = event
         # The history passes the event where it was located.
         for s_ev, t_ev in ((lo_sol, lo), (bad, hi)):
             history.append(dict(where(t_ev), edges=s_ev.edges.ravel().tolist(),
@@ -416,7 +423,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         guesses = _suggested_sets(single)
         (a, b), = single.edges
         h = 0.5 * (b - a)
-        attempts = []
+        attempts = located["attempts"]
         try:
             if beta_f or conductance is not None:
                 raise SolveError("not tried: the second method has no Dundurs term and perfect "
@@ -451,9 +458,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         return ContactSetResult(
             "no steady solution",
             f"the single zone followed from Hertz's fails beyond fHPe_l = "
-            f"{event['fhpe_hertz']:.6g} (Pe_l = {event['pe_hertz']:.6g}; {event['failure']}), and none of the "
-            f"{len(guesses)} other contact sets tried is valid at fHPe_l = "
-            f"{end['fhpe_hertz']:.6g} (see attempts)"
+            f"{event['fhpe_hertz']:.6g} (Pe_l = {event['pe_hertz']:.6g}; "
+            f"{event['failure']}), and none of the {len(guesses)} other contact sets tried "
+            f"is valid at fHPe_l = {end['fhpe_hertz']:.6g} (see attempts)"
             + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
                "that far, where it is returned"), single, event, attempts, history, folds,
             reached)
@@ -465,7 +472,8 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
         return ContactSetResult(
             "not converged", f"stopped after {budget.limit} evaluations of the contact "
             f"set's defects, the most allowed, with the single zone followed to "
-            f"{_point(where(reached))}", sol, history=history, folds=folds, reached=reached)
+            f"{_point(where(reached))}", sol, located["event"], located["attempts"],
+            history=history, folds=folds, reached=reached)
 
 
 def _suggested_sets(single: ZoneSolution) -> list[tuple[str, list]]:
