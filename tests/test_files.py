@@ -2,6 +2,7 @@
 that leave only complete files, and repeated or ignored options refused."""
 
 import os
+import pathlib
 
 import pytest
 
@@ -264,6 +265,7 @@ def test_special_files_refused_and_links_written_through(tmp_path, capsys, no_so
     import stat
 
     from thermocontact.io.files import WriteError, check_output_file
+    from thermocontact.problem.validation import InputError
 
     fifo = tmp_path / "f.csv"
     os.mkfifo(fifo)
@@ -285,3 +287,31 @@ def test_special_files_refused_and_links_written_through(tmp_path, capsys, no_so
         fh.write("new")
     assert link.is_symlink() and target.read_text() == "new"
     assert sorted(os.listdir(target.parent)) == ["t.csv"]
+    # A relative link too; a loop of links is refused.
+    rel = tmp_path / "data" / "r.csv"
+    rel.symlink_to("t.csv")
+    with atomic_write(rel) as fh:
+        fh.write("again")
+    assert rel.is_symlink() and target.read_text() == "again"
+    loop = tmp_path / "loop.csv"
+    loop.symlink_to(loop)
+    with pytest.raises(InputError, match="--csv must not be a loop of symbolic links"):
+        check_output_file("--csv", str(loop))
+
+
+def test_a_folder_written_over_a_link_leaves_the_tree_it_names(tmp_path):
+    """A Zarr store's folder is written where it is: a link to a folder is not followed,
+    and the tree it names is not removed."""
+    from thermocontact.io.files import WriteError, atomic_path
+
+    tree = tmp_path / "kept"
+    tree.mkdir()
+    (tree / "a.txt").write_text("x")
+    link = tmp_path / "m.zarr"
+    link.symlink_to(tree)
+    try:
+        with atomic_path(link, folder=True) as tmp:
+            (pathlib.Path(tmp) / "b.txt").write_text("y")
+    except WriteError:
+        pass  # refused: the link is not a folder to replace
+    assert (tree / "a.txt").read_text() == "x"

@@ -11,6 +11,7 @@ before the computation whose result would otherwise be lost.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import shutil
 import stat
@@ -95,10 +96,13 @@ def atomic_path(path, folder=False):
     ------
     WriteError
         The system's refusal, or ``path`` is a device, FIFO or socket.  A symbolic
-        link is kept: the file it names is replaced.
+        link to a file is kept: the file it names is replaced (a folder is replaced
+        where it is).
     """
     shown = os.fspath(path)
-    path = _destination(shown)
+    # A file is written through a link; a folder (a Zarr store) is not: the tree a link
+    # names is not removed to replace it.
+    path = shown if folder else _destination(shown)
     if _special(path):
         raise WriteError(f"could not write {shown} (it is {_special(path)}, not a file)")
     parent = os.path.dirname(os.path.abspath(path))
@@ -207,7 +211,15 @@ def check_output_file(option: str, path, suffixes=None) -> str:
         ext = os.path.splitext(path)[1].lower()
         if ext not in suffixes:
             raise InputError(f"{option} must end in one of {', '.join(suffixes)}, got {path!r}")
-    # Written through a symbolic link: the checks are of the file it names.
+    # Written through a symbolic link: the checks are of the file it names (a loop of
+    # links names none).
+    if os.path.islink(path):
+        try:
+            os.stat(path)
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise InputError(f"{option} must not be a loop of symbolic links, got "
+                                 f"{path!r}") from None
     target = _destination(path)
     _check_folder(option, os.path.dirname(target), path)
     if os.path.exists(target) and not os.access(target, os.W_OK):
