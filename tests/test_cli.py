@@ -462,9 +462,11 @@ def test_a_physical_path_without_its_bodies_says_so(capsys):
      "--hold belongs to --start steady"),
 ])
 def test_an_option_with_a_default_given_where_it_means_nothing_is_refused(capsys, args,
-                                                                          refusal):
+                                                                          refusal, tmp_path,
+                                                                          monkeypatch):
     """Given on the command line (even at its default value) where another option makes
     it meaningless: refused in one line, not ignored."""
+    monkeypatch.chdir(tmp_path)
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"error: {refusal}"), err
@@ -479,10 +481,12 @@ def test_an_option_with_a_default_given_where_it_means_nothing_is_refused(capsys
     ["map", "--x", "theta:-1e7:1:3", "--y", "pe:1:5:3", "--K2-over-K1", "10", "--fhpe", "0.2",
      "--sink-distance", "3", "--out", "never.nc"],
 ])
-def test_a_far_temperature_group_beyond_its_range_is_refused(capsys, args):
-    """|Theta| <= 1e6 (its heat partition, about Theta/2, within lam's 1e6): beyond, one
-    line before any work, not an overflow warning and a partition of 5e299, nor a
-    path's or map's points reported as refused by the solver."""
+def test_a_far_temperature_group_beyond_its_range_is_refused(capsys, args, tmp_path,
+                                                             monkeypatch):
+    """|Theta| <= 1e6 as given: beyond, one line before any work, not an overflow
+    warning and a partition of 5e299, nor a path's or map's points reported as refused
+    by the solver."""
+    monkeypatch.chdir(tmp_path)
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error: --theta must be in [-1e+06, 1e+06], "

@@ -278,7 +278,7 @@ def listener():
         sock.close()
 
 
-def test_a_peer_that_is_not_a_scheduler(listener, capsys):
+def test_a_peer_that_is_not_a_scheduler(listener, capsys, tmp_path, monkeypatch):
     """A port that accepts and says nothing, or answers in another protocol, is refused
     in one line within the timeout: no client waiting without end, no traceback of a
     half-made client's close."""
@@ -292,6 +292,7 @@ def test_a_peer_that_is_not_a_scheduler(listener, capsys):
         connect(silent, timeout=1.5)
     assert time.perf_counter() - t0 < 4.0
     web = listener(b"HTTP/1.0 400 Bad Request\r\n\r\n" * 64)
+    monkeypatch.chdir(tmp_path)
     rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
                "--out", "never.nc", "--scheduler", web])
     err = capsys.readouterr().err
