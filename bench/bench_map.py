@@ -115,6 +115,8 @@ def against_lu(count=200, repeats=3):
     the LU loops on either side of it; the median ratio is the run's."""
     import os
 
+    if repeats < 1:
+        sys.exit(f"bench_map.py: REPEATS must be at least 1, got {repeats}")
     load = os.getloadavg()[0]
     # The size of the map's systems at its most frequent n, 32 (checked below).
     size = 66
@@ -123,8 +125,11 @@ def against_lu(count=200, repeats=3):
     for _ in range(repeats):
         # Each map in a process of its own, as the first map of a run would be (the
         # modules of this package imported; xarray's first dataset not yet made).
-        out = subprocess.run([sys.executable, __file__, "--one-map", str(count)],
-                             capture_output=True, text=True, check=True).stdout.split()
+        done = subprocess.run([sys.executable, __file__, "--one-map", str(count)],
+                              capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"bench_map.py: the map's process failed:\n{done.stderr}")
+        out = done.stdout.split()
         wall, cpu, n, share, digest = float(out[0]), float(out[1]), int(out[2]), \
             float(out[3]), out[4]
         maps.append((wall, cpu))
