@@ -1031,18 +1031,18 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     time_unit = ell ** 2 / problem.half_plane.k
     duration = check_positive("duration", _quantity("duration", duration, "s"))
     groups = problem.ray_parameters()
-    from .solvers.transient import MAX_SHIFT, UNTIL_MIN
+    from .solvers.transient import MAX_SHIFT, UNTIL_MIN, longest_step
 
     # The duration's bounds in seconds, as the dimensionless run would refuse them.
     if duration < UNTIL_MIN * time_unit:
         raise InputError(f"duration must be at least {UNTIL_MIN * time_unit:.4g} s here "
                          f"(1e-12 of l^2/kappa2), got {duration:.4g} s",
                          parameters=("duration",))
-    longest_step = MAX_SHIFT / (2.0 * problem.pe_hertz) * time_unit
-    if isinstance(steps, int) and steps > 0 and duration / steps > longest_step:
-        raise InputError(f"duration/steps must be at most {longest_step:.4g} s at this "
+    longest = longest_step(problem.pe_hertz) * time_unit
+    if isinstance(steps, int) and steps > 0 and duration / steps > longest:
+        raise InputError(f"duration/steps must be at most {longest:.4g} s at this "
                          f"speed: the cylinder's surface would move "
-                         f"{MAX_SHIFT * duration / steps / longest_step:.4g} half-widths in "
+                         f"{MAX_SHIFT * duration / steps / longest:.4g} half-widths in "
                          f"one step (at most {MAX_SHIFT:g}); give more steps",
                          parameters=("duration", "steps"))
     spec = transient_spec(problem.pe_hertz, problem.fhpe(ell), groups["K2_over_K1"],

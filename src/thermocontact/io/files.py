@@ -103,8 +103,9 @@ def atomic_path(path, folder=False):
     # A file is written through a link; a folder (a Zarr store) is not: the tree a link
     # names is not removed to replace it.
     path = shown if folder else _destination(shown)
-    if _special(path):
-        raise WriteError(f"could not write {shown} (it is {_special(path)}, not a file)")
+    special = _special(path)
+    if special:
+        raise WriteError(f"could not write {shown} (it is {special}, not a file)")
     parent = os.path.dirname(os.path.abspath(path))
     suffix = "-" + os.path.basename(path)[:64]
     try:
@@ -205,8 +206,9 @@ def check_output_file(option: str, path, suffixes=None) -> str:
     _check_name(option, path)
     if os.path.isdir(path):
         raise InputError(f"{option} must be a file, got the folder {path!r}")
-    if _special(path):
-        raise InputError(f"{option} must be a regular file, got {path!r} ({_special(path)})")
+    special = _special(path)
+    if special:
+        raise InputError(f"{option} must be a regular file, got {path!r} ({special})")
     if suffixes is not None:
         ext = os.path.splitext(path)[1].lower()
         if ext not in suffixes:

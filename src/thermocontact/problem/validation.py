@@ -20,6 +20,7 @@ __all__ = [
     "check_nonnegative",
     "check_positive",
     "check_range",
+    "check_zero_or_range",
 ]
 
 
@@ -91,6 +92,16 @@ def check_range(name: str, value, low: float, high: float, *, open_low=False,
     allowed = f"in {'(' if open_low else '['}{low:g}, {high:g}{')' if open_high else ']'}"
     x = _real(name, value, allowed)
     if (x < low or x > high or (open_low and x == low) or (open_high and x == high)):
+        _fail(name, allowed, value)
+    return x
+
+
+def check_zero_or_range(name: str, value, low: float, high: float) -> float:
+    """``value`` as a float, 0 or in ``[low, high]`` (0 the case apart: no friction, no
+    sliding)."""
+    allowed = f"0 or in [{low:g}, {high:g}]"
+    x = _real(name, value, allowed)
+    if x != 0.0 and not low <= x <= high:
         _fail(name, allowed, value)
     return x
 

@@ -38,7 +38,7 @@ from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_positive, check_range
 from .elements import contact_runs, solve_elements, solve_on_set
 
-__all__ = ["TransientRun", "TransientSpec", "run_transient", "zones_of"]
+__all__ = ["TransientRun", "TransientSpec", "longest_step", "run_transient", "zones_of"]
 
 #: Most steps x elements of a run: its history (the inputs' and outputs' transforms, in
 #: complex spatial modes) and its fields stay within a few hundred MB.
@@ -64,6 +64,12 @@ _MAX_SET_ITERATIONS = 400
 _COUPLED_ITERATIONS = 12
 #: Passes of Bi = Bi0 (2p)^m on a set's own pressure (m > 0).
 _BI_PASSES = 20
+
+
+def longest_step(pe_hertz) -> float:
+    """The longest time step at ``Pe_l``, l^2/kappa2: the cylinder's surface moves
+    :data:`MAX_SHIFT` half-widths in it."""
+    return MAX_SHIFT / (2.0 * pe_hertz)
 
 
 @dataclass(frozen=True)
@@ -131,7 +137,7 @@ class TransientSpec:
                              parameters=("steps", "elements"))
         shift = 2.0 * self.pe_hertz * self.until / self.steps
         if shift > MAX_SHIFT:
-            raise InputError(f"until/steps must be at most {MAX_SHIFT / (2 * self.pe_hertz):.4g} "
+            raise InputError(f"until/steps must be at most {longest_step(self.pe_hertz):.4g} "
                              f"l^2/kappa2 at this Pe_l: the cylinder's surface would move "
                              f"{shift:.4g} half-widths in one step (at most {MAX_SHIFT:g}); give "
                              f"more steps", parameters=("until", "steps"))

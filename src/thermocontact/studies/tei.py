@@ -27,7 +27,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..io.results import Result
 from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
-from ..problem.validation import InputError, check_finite, check_range
+from ..problem.validation import check_range, check_zero_or_range
 
 __all__ = ["FRICTION_RANGE", "SPEED_RANGE", "TEIMode", "TEIResult", "WAVELENGTH_RANGE",
            "analyse", "critical_speed", "critical_speeds", "growth_rate",
@@ -49,13 +49,6 @@ SPEED_RANGE = (1e-9, 1e4)
 #: overflows; above, no pair of materials slides.
 FRICTION_RANGE = (1e-6, 10.0)
 
-
-def _zero_or_in(name, value, lo, hi) -> float:
-    value = check_finite(name, value)
-    if value != 0.0 and not lo <= value <= hi:
-        raise InputError(f"{name} must be 0 or in [{lo:g}, {hi:g}], got {value!r}",
-                         parameters=(name,))
-    return value
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -278,14 +271,14 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True)
     -------
     TEIResult
     """
-    friction = _zero_or_in("friction", friction, *FRICTION_RANGE)
+    friction = check_zero_or_range("friction", friction, *FRICTION_RANGE)
     wl = check_range("wavelength", wavelength, *WAVELENGTH_RANGE)
     pair = SlidingPair(slider, counterface, friction, dundurs=dundurs)
     m = 2.0 * math.pi / wl
     vc, neutral = critical_speed(pair, m)
     extra = {}
     if speed is not None:
-        v = _zero_or_in("speed", speed, *SPEED_RANGE)
+        v = check_zero_or_range("speed", speed, *SPEED_RANGE)
         mw, rate = (None, None) if vc is None else most_unstable_wavelength(pair, v, m, vc)
         extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
                      most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
