@@ -174,26 +174,44 @@ def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, c
 
 
 def test_interrupt_while_importing_prints_no_traceback():
-    """SIGINT 0.1-0.3 s after start (NumPy and SciPy loading, or the first solve) ends
-    the installed command with status 130 and one line, never a traceback."""
-    import pathlib
+    """SIGINT while NumPy loads, while SciPy loads, or in the first solve ends the
+    command with status 130 and one line, never a traceback.  The signal is sent at
+    each of these known points (an import hook, or the solve, says so and waits), not
+    after a delay."""
     import signal
     import subprocess
     import sys
-    import time
 
-    script = pathlib.Path(sys.executable).with_name("thermocontact")
-    for delay in (0.1, 0.3):
-        proc = subprocess.Popen([str(script), "solve", "--pe", "5", "--fhpe", "0.2",
-                                 "--K2-over-K1", "10", "--lam", "-1"],
+    driver = (
+        "import os, sys, time\n"
+        "point = sys.argv.pop(1)\n"
+        "def wait():\n"
+        "    os.write(1, b'here\\n')\n"
+        "    time.sleep(600)\n"
+        "class Announce:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        "        if name == point:\n"
+        "            wait()\n"
+        "if point == 'solve':\n"
+        "    import thermocontact.api as api\n"
+        "    api.solve = lambda *args, **kwargs: wait()\n"
+        "else:\n"
+        "    sys.meta_path.insert(0, Announce())\n"
+        "from thermocontact.__main__ import main\n"
+        "sys.exit(main(sys.argv[1:]))\n")
+    for point in ("numpy", "scipy", "solve"):
+        proc = subprocess.Popen([sys.executable, "-c", driver, point, "solve", "--pe", "5",
+                                 "--fhpe", "0.2", "--K2-over-K1", "10", "--lam", "-1"],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        time.sleep(delay)
-        proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=60)
-        if proc.returncode == 0:  # finished before the signal: nothing to check
-            continue
-        assert proc.returncode == 130 and "Traceback" not in err, err
-        assert len(err.strip().splitlines()) == 1
+        try:
+            assert proc.stdout.readline() == "here\n", point
+            proc.send_signal(signal.SIGINT)
+            _, err = proc.communicate(timeout=120)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+        assert proc.returncode == 130 and "Traceback" not in err, (point, err)
+        assert len(err.strip().splitlines()) == 1, (point, err)
 
 
 def test_picture_drawn_beside_equals_picture_drawn_here(tmp_path, capsys, monkeypatch):
@@ -213,22 +231,37 @@ def test_picture_drawn_beside_equals_picture_drawn_here(tmp_path, capsys, monkey
 
 def test_interrupted_contact_picture_leaves_no_process(tmp_path):
     """SIGINT while `contact --plot` solves (its picture process importing Matplotlib):
-    status 130, one line, and no process of its group left behind."""
-    import pathlib
+    status 130, one line, and no process of its group left behind.  The signal is sent
+    at a known point, not after a delay: the solve is replaced by one that says so and
+    waits."""
     import signal
     import subprocess
     import sys
     import time
 
-    script = pathlib.Path(sys.executable).with_name("thermocontact")
-    proc = subprocess.Popen([str(script)] + CONTACT + ["--plot", str(tmp_path / "c.png")],
+    driver = (
+        "import os, sys, time\n"
+        "import thermocontact.api as api\n"
+        "def solving(*args, **kwargs):\n"
+        "    os.write(1, b'solving\\n')\n"
+        "    time.sleep(600)\n"
+        "api.contact = solving\n"
+        "from thermocontact.__main__ import main\n"
+        "sys.exit(main(sys.argv[1:]))\n")
+    proc = subprocess.Popen([sys.executable, "-c", driver] + CONTACT
+                            + ["--plot", str(tmp_path / "c.png")],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    time.sleep(0.6)
-    os.killpg(proc.pid, signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
+    try:
+        assert proc.stdout.readline() == "solving\n"
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
     assert proc.returncode == 130 and len(err.strip().splitlines()) == 1, err
-    for _ in range(50):
+    # The group's last process gone: polled, each look a tenth of a second apart.
+    for _ in range(600):
         try:
             os.killpg(proc.pid, 0)
         except ProcessLookupError:
@@ -236,6 +269,44 @@ def test_interrupted_contact_picture_leaves_no_process(tmp_path):
         time.sleep(0.1)
     else:
         raise AssertionError("a process of the interrupted command is still running")
+
+
+def test_interrupt_while_workers_start_is_no_traceback_of_theirs():
+    """Ctrl-C sent to the whole process group while a picture process or pool workers
+    start (before their initialiser runs) is held in the children until they are ready,
+    then dropped there: the parent alone is interrupted, and nothing of the children's
+    start-up is printed.  The signal is sent inside the window, at a known point."""
+    import subprocess
+    import sys
+
+    driver = (
+        "import os, signal, sys\n"
+        "from thermocontact.execution import executors as ex\n"
+        "import concurrent.futures as cf, multiprocessing\n"
+        "kind = sys.argv[1]\n"
+        "if kind == 'side':\n"
+        "    pool = cf.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context('fork'),\n"
+        "                                  initializer=ex._import_quietly, initargs=(['math'],))\n"
+        "else:\n"
+        "    pool = cf.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context('fork'),\n"
+        "                                  initializer=ex._single_thread)\n"
+        "def start_and_interrupt():\n"
+        "    futures = [pool.submit(abs, -1)]\n"
+        "    os.killpg(0, signal.SIGINT)\n"
+        "    return futures\n"
+        "try:\n"
+        "    futures = ex._interrupts_held(start_and_interrupt)\n"
+        "    sys.stdout.write('not interrupted\\n')\n"
+        "except KeyboardInterrupt:\n"
+        "    sys.stdout.write('interrupted\\n')\n"
+        "    sys.stdout.write(str(pool.submit(abs, -2).result()) + '\\n')\n"
+        "pool.shutdown()\n")
+    for kind in ("side", "pool"):
+        proc = subprocess.run([sys.executable, "-c", driver, kind], capture_output=True,
+                              text=True, timeout=120, start_new_session=True)
+        # The parent interrupted once, its children alive and working, nothing printed.
+        assert proc.returncode == 0 and proc.stdout == "interrupted\n2\n", (kind, proc)
+        assert proc.stderr == "", (kind, proc.stderr)
 
 
 def test_no_noise_after_refusal_or_with_no_branch(tmp_path, capsys):

@@ -6,7 +6,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from conftest import references
+from conftest import assert_ulps, references
 from thermocontact import solve
 from thermocontact.numerics import moment_engine as graded
 from thermocontact.numerics.moments import chebyshev_lagrange
@@ -131,7 +131,9 @@ def test_cauchy_moments_are_principal_values():
     asymmetric."""
     ref = references()["graded_cauchy"]
     s = np.array(ref["s"])
-    assert np.array_equal(graded.tau_of(s), np.array(ref["tau_s"]))
+    # The reference was made at these points (on another CPU: its arccos may differ in
+    # the last bits).
+    assert_ulps(graded.tau_of(s), np.array(ref["tau_s"]), ulps=8, scale="each")
     b, _ = graded.moments(lambda u: 1.0 / u, s, 10, scale=1.0, cauchy=True)
     index = {v: k for k, v in enumerate(ref["s"])}
     for sk, j, value in ref["values"]:
@@ -207,7 +209,7 @@ def test_a_coarse_series_is_held_by_a_finer_one_and_checked_there():
         here = graded.cosine_value(coarse.to_cos @ values, tau)
         there = graded.cosine_value(fine.to_cos @ held[0], tau)
         assert np.max(np.abs(there - here)) < 1e-14 * np.max(np.abs(values)) * 10
-        assert np.array_equal(held[1], coarse.prolong(2 * values[None, :], fine)[0])
+        assert_ulps(held[1], coarse.prolong(2 * values[None, :], fine)[0])  # row alone
     assert coarse.prolong(values[None, :], EdgeGraded(8)) is None
     assert coarse.prolong(values[None, :], EdgeGraded(24, alpha=0.4)) is None
     assert coarse.prolong(values[None, :], Chebyshev(24)) is None
@@ -271,9 +273,10 @@ def test_points_beyond_an_edge_skip_the_side_they_have_not():
 @pytest.mark.parametrize("n", [16, 64])
 def test_points_beyond_an_edge_move_the_edge_geometry(monkeypatch, n):
     """Points beyond an edge share that edge's tau_s: their geometry is the edge
-    point's, built once and moved by s - clip(s).  Their moments equal, bit for bit,
-    those of a geometry built for them alone, on both sides and for a kernel that
-    carries each point's own parameter (the gap's)."""
+    point's, built once and moved by s - clip(s).  Their moments equal those of a
+    geometry built for them alone, to a few ulps of the largest (the same formulas in
+    other arrays: conftest.assert_ulps), on both sides and for a kernel that carries
+    each point's own parameter (the gap's)."""
     built = []
     init = graded._Geometry.__init__
 
@@ -306,7 +309,7 @@ def test_points_beyond_an_edge_move_the_edge_geometry(monkeypatch, n):
     alone = run()
     assert len(built) == 2 + 2 * len(sides)
     for a, b in zip(moved, alone):
-        assert np.array_equal(a, b)
+        assert_ulps(a, b)
 
 
 def test_kernel_called_once_per_block():
@@ -331,7 +334,7 @@ def test_kernel_called_once_per_block():
         graded.KERNEL_ENTRIES = old
     assert len(calls) > 4
     for a, b in zip(once, apart):
-        assert np.array_equal(a, b)
+        assert_ulps(a, b)
 
 
 def test_a_blockwise_kernel_is_called_on_each_part_apart():
@@ -356,7 +359,7 @@ def test_a_blockwise_kernel_is_called_on_each_part_apart():
     once = graded.moments(lambda u: cylinder_temperature_gradient_regular(u, 7.0), s, 16,
                           scale=7.0, logarithmic=True)
     for a, b in zip(apart, once):
-        assert np.array_equal(a, b)
+        assert_ulps(a, b)
     cyl, half = (kernels for kernels, _ in linearised(
         Model(1.0, 1.0, n=8).solve_at(8, 0.3, lam=-1.0))._kernels(0.5 + 0.5j)[:2])
     for body in (cyl, half):

@@ -84,3 +84,27 @@ def test_map_outlines_where_a_contact_set_holds():
     plot_map(xr.Dataset({**base, **everywhere}, coords=coords), ax=ax)
     assert "a valid contact set exists at every point" in ax.get_legend_handles_labels()[1]
     plt.close("all")
+
+
+def test_contact_picture_text_fits_in_the_figure(tmp_path, monkeypatch):
+    """The picture of `contact --plot` keeps its labels, title and legend inside the
+    figure, for a branch with lambda given and one with lambda from bulk temperatures
+    (the longest title)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    import thermocontact as tc
+    from thermocontact.plotting import curves
+
+    drawn = []
+    monkeypatch.setattr(curves, "save_figure", lambda fig, path, written=None: drawn.append(fig))
+    kw = dict(cylinder="copper", half_plane="steel", radius="50mm", load="5kN/m", speed=10,
+              friction=0.3)
+    for closure in ({"lam": 0}, {"bulk_temperatures": "60C,40C", "sink_distance": "5mm"}):
+        curves.contact_figure(tc.contact(**kw, **closure), str(tmp_path / "c.png"))
+    for fig in drawn:
+        renderer = FigureCanvasAgg(fig).get_renderer()
+        fig.draw(renderer)
+        # Everything drawn (tick labels, axis labels, title, legend), in inches.
+        ink, page = fig.get_tightbbox(renderer), fig.bbox_inches
+        assert (ink.x0 >= page.x0 and ink.x1 <= page.x1 and ink.y0 >= page.y0
+                and ink.y1 <= page.y1), (ink, page)

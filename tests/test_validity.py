@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from conftest import assert_ulps
 from thermocontact import solve
 from thermocontact.discretisation.representations import EdgeGraded
 from thermocontact.physics.green_functions import cylinder_slope
 
 HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz
-
 
 # The brute-force integrands below are called a few hundred thousand times each: their
 # series and the graded map T(tau) = tau - sin(2 tau)/2 are summed on scalars (the same
@@ -22,20 +22,16 @@ def _cosine_series(a):
     j = np.arange(len(a))
     return lambda tau: float(np.cos(j * tau) @ a)
 
-
 def _stretch(tau):
     return tau - 0.5 * math.sin(2.0 * tau)
 
-
 def _stretch_derivative(tau):
     return 2.0 * math.sin(tau) ** 2
-
 
 def hertz_gap(s):
     """Exact Hertz gap in units of Delta^2/R: (|s| sqrt(s^2 - 1) - arccosh|s|)/2."""
     a = np.abs(s)
     return 0.5 * (a * np.sqrt(a * a - 1) - np.arccosh(a))
-
 
 def test_hertz_gap_exact():
     """fHPe = 0: gap equals the closed-form Hertz gap on both sides to 1e-13 relative to
@@ -51,7 +47,6 @@ def test_hertz_gap_exact():
     # g/(|s|-1)^1.5 -> 2 sqrt2/3 at the edge; the grid starts at 1e-8 (next term O(1e-8)).
     assert abs(v.gap_margin - HERTZ_EDGE) < 1e-6
 
-
 def _half_plane_slope(par, t):
     """The half-plane's kernel of (D14) at t - r, |t| >= 1: sgn/2 when it is stationary,
     sgn(c2) N(c2 u) H(c2 u) of (D14b) when it moves (pointwise, no moments)."""
@@ -60,7 +55,6 @@ def _half_plane_slope(par, t):
         return lambda r: 0.5 * np.sign(t)
     return lambda r: np.sign(c2) * (cylinder_slope(c2 * (t - r)) if c2 * (t - r) != 0.0
                                     else 0.5)
-
 
 def brute_force_slope_mismatch_chebyshev(sol, t):
     """G(t) for |t| >= 1 by adaptive quadrature of the terms of (D14) in
@@ -77,13 +71,11 @@ def brute_force_slope_mismatch_chebyshev(sol, t):
     b = t_series_coefficients(sol.psi)
     ja, jb = np.arange(1, a.size + 1), np.arange(b.size)
     opts = dict(limit=200, epsabs=1e-13, epsrel=1e-12)
-
     def over_theta(f):
         def g(th):
             phi = float(np.sin(ja * th) @ a) / math.sin(th)
             return f(math.cos(th), th, phi, float(np.cos(jb * th) @ b))
         return quad(g, 0.0, np.pi, **opts)[0]
-
     nh = lambda r: d * cylinder_slope(c * (t - r))  # noqa: E731
     hp = _half_plane_slope(par, t)
     if abs(t) == 1.0:
@@ -96,7 +88,6 @@ def brute_force_slope_mismatch_chebyshev(sol, t):
                     * (nh(r) - hp(r)))
     L, sig = sol.load_ratio, sol.sigma_over_delta
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
-
 
 def brute_force_slope_mismatch(sol, t):
     """G(t) for |t| >= 1 by adaptive quadrature of the contact equation's terms (D14).
@@ -111,7 +102,6 @@ def brute_force_slope_mismatch(sol, t):
         return brute_force_slope_mismatch_chebyshev(sol, t)
     phi_of, psi_of = (_cosine_series(basis.to_cos @ v) for v in (sol.phi, sol.psi))
     alpha = basis.alpha
-
     def w_sin(tt):  # w(cos T) sin T, w = (1 - r)^alpha (1 + r)^(1 - alpha)
         return (1 - math.cos(tt)) ** alpha * (1 + math.cos(tt)) ** (1 - alpha) * math.sin(tt)
 
@@ -127,7 +117,6 @@ def brute_force_slope_mismatch(sol, t):
 
     def p_dr(r, tt, tau):
         return phi_of(tau) * w_sin(tt) * _stretch_derivative(tau)
-
     def q_dr(r, tt, tau):
         return psi_of(tau) * _stretch_derivative(tau)
 
@@ -152,10 +141,8 @@ def brute_force_slope_mismatch(sol, t):
     L, sig = sol.load_ratio, sol.sigma_over_delta
     return cauchy - F * (kp + kq) - 2 / np.pi * L * (sig + t)
 
-
 def brute_force_gap(sol, s):
     """Gap by quadrature of G - G(edge) from the edge to s (derivation D20-D21).
-
     G - G(edge) grows like (|t| - 1)^exponent from the edge (1/2, or the Dundurs
     term's): with |t| = 1 + w^2 the integrand 2 w (G - G(edge)) vanishes like
     w^(1 + 2 exponent) and QUADPACK certifies its accuracy.
@@ -167,13 +154,11 @@ def brute_force_gap(sol, s):
              0.0, np.sqrt(abs(s) - 1.0), epsabs=1e-13, epsrel=1e-12)[0]
     return -side * np.pi / (2 * L) * j
 
-
 GAP_CASES = [
     (dict(pe=5, fhpe=0.3, K2_over_K1=10, k2_over_k1=1, lam=-1), -2.5),
     (dict(pe=5, fhpe=0.3, K2_over_K1=10, k2_over_k1=1, lam=-1), 1.05),
     (dict(pe=2, fhpe=0.2, K2_over_K1=3, k2_over_k1=0.5, delta1_over_delta2=2.0, lam=0.5), 4.0),
 ]
-
 
 #: A half-plane moving through the contact (section 5b), each direction on each side:
 #: its kernel acts on the side its material reaches first and vanishes on the other.
@@ -190,7 +175,6 @@ MOVING_GAP_CASES = [
     (dict(pe=5, fhpe=0.3, K2_over_K1=10, k2_over_k1=1, beta_f=-1.0, lam=-1), -1.4),
 ]
 
-
 @pytest.mark.parametrize("case,s,method", [c + ("product",) for c in GAP_CASES]
                          + [c + ("graded",) for c in GAP_CASES[:2] + MOVING_GAP_CASES])
 def test_gap_closed_form_matches_quadrature(case, s, method):
@@ -200,7 +184,6 @@ def test_gap_closed_form_matches_quadrature(case, s, method):
     sol = solve(n=24, method=method, **case)
     ref = brute_force_gap(sol, s)
     assert abs(sol.gap_at(s)[0] - ref) < 1e-9 * max(1.0, abs(ref))
-
 
 @pytest.mark.parametrize("lam", [-1.0, 0.5])
 def test_edge_gap_follows_edge_pressure(lam):
@@ -214,7 +197,6 @@ def test_edge_gap_follows_edge_pressure(lam):
         phi_edge = sol.representation.phi_at(sol.phi, edge)
         expected = np.pi / (2 * sol.load_ratio) * HERTZ_EDGE * phi_edge
         assert abs(margin / expected - 1) < 1e-3
-
 
 def test_edge_log_term_makes_contact_invalid():
     """Heat into a non-distorting cylinder at its leading edge (lam = 1,
@@ -242,12 +224,10 @@ def test_edge_log_term_makes_contact_invalid():
     assert v.gap_margin < 0 and 1.0 < v.gap_margin_at < 1.01
     assert v.edge_margins[1] < 0 and v.edge_layer_widths[1] > 1e-6
 
-
 def test_equal_distortivities_have_no_edge_log_term():
     """delta1 = delta2: the step kernels' jumps cancel at the edges, k = 0 exactly."""
     sol = solve(5, 0.3, 10, k2_over_k1=1, lam=1, n=64)
     assert sol.validity.edge_log_coefficients == (0.0, 0.0)
-
 
 def test_interpenetration_away_from_edges_detected():
     """lam = 4, delta1/delta2 = 5, fHPe = 0.3: compressive everywhere, but the bodies
@@ -260,13 +240,11 @@ def test_interpenetration_away_from_edges_detected():
     assert 2.0 < v.min_gap_at < 2.5
     assert sol.gap_at(v.min_gap_at)[0] == pytest.approx(v.min_gap, rel=1e-13)
 
-
 def test_negative_load_is_invalid():
     """Past the limiting contact width (fHPe = 1 here) P_H/P < 0: not valid."""
     sol = solve(5, 1.0, 10, k2_over_k1=1, lam=-1, n=32)
     assert sol.load_ratio < 0
     assert not sol.validity.positive_load and not sol.valid
-
 
 def test_boundary_is_the_zero_of_the_exact_gap_margin():
     """The Fig. 4 boundary (Pe = 5, K2/K1 = 10, lam = 1, along fHPe), located by the
@@ -290,7 +268,6 @@ def test_boundary_is_the_zero_of_the_exact_gap_margin():
     tt = np.geomspace(1e-4, 1e-1, 20001)
     assert abs(np.min(sol.gap_at(1.0 + tt) / tt**1.5)) < 1e-8
 
-
 def test_edge_layer_width_and_thresholded_verdict():
     """A cylinder 2.65 % more distortive than cast iron (delta1/delta2 = 1.0265) has
     positive edge coefficients at both edges: strictly invalid, but its tensile layers
@@ -299,7 +276,6 @@ def test_edge_layer_width_and_thresholded_verdict():
     has slope k per unit ln(1 - s): checked on delta1/delta2 = 2 between 1 - s = 1e-5
     and 1e-7 to 1 % (observed 0.3 % at n = 128)."""
     from thermocontact.analysis.validity import EDGE_LAYER_TOLERANCE
-
     sol = solve(5, 0.05, 0.97, k2_over_k1=1.046, delta1_over_delta2=1.0265, lam=-1)
     v = sol.validity
     assert min(v.edge_log_coefficients) > 0 and v.valid and not v.strictly_valid
@@ -314,14 +290,12 @@ def test_edge_layer_width_and_thresholded_verdict():
     assert abs(sol.validity.edge_margins[1] - bracket[1] * np.sqrt(1.0)
                - k * np.log(EDGE_LAYER_TOLERANCE / 1e-6)) < 1e-3
 
-
 @pytest.mark.parametrize("fhpe, lam", [(0.3, -1.0), (0.66, 1.0), (0.4, 3.0)])
 def test_margins_are_the_minima_of_the_closed_forms(fhpe, lam):
     """The reported gap and pressure margins (least samples polished on a 17-point
     Chebyshev interpolant) equal Brent's bounded minimisation of the closed forms
     themselves to 1e-12 (observed below 1e-14)."""
     from scipy.optimize import minimize_scalar
-
     sol = solve(5, fhpe, 10, lam=lam, n=64)
     v = sol.validity
     assert sol.load_ratio > 0
@@ -337,7 +311,6 @@ def test_margins_are_the_minima_of_the_closed_forms(fhpe, lam):
                           options={"xatol": 1e-12})
     assert v.pressure_margin <= res.fun + 1e-12
 
-
 def test_sampled_margins_equal_the_polished_ones():
     """Margins read off local interpolants of their samples (polish=False, maps) equal
     the closed-form polish to 1e-6 (observed 6.4e-8 for the gap, 1e-14 for the pressure,
@@ -345,7 +318,6 @@ def test_sampled_margins_equal_the_polished_ones():
     zero they are polished on the closed forms, so the verdict is the closed form's."""
     from thermocontact import Model
     from thermocontact.analysis.validity import POLISH_BAND
-
     worst = [0.0, 0.0]
     for pe, K in ((0.5, 1.0), (5.0, 10.0), (50.0, 100.0)):
         model = Model(pe, K)
@@ -364,7 +336,6 @@ def test_sampled_margins_equal_the_polished_ones():
                     if abs(getattr(b.validity, m)) <= POLISH_BAND:
                         assert getattr(b.validity, m) == getattr(a.validity, m)
     assert worst[0] < 1e-6 and worst[1] < 1e-6, worst
-
 
 def test_overlap_layer_outside_an_edge_is_judged_beyond_the_tolerated_width():
     """Steel on cast iron, lam = 1 (Pe = 46.35, fHPe = 2.79; k > 0 at the leading edge):
@@ -400,11 +371,11 @@ def test_overlap_layer_outside_an_edge_is_judged_beyond_the_tolerated_width():
     sampled = model.solve_at(128, kw["fhpe"], lam=1.0, polish=False).validity
     assert abs(sampled.gap_margin - margins[1]) < 1e-7
 
-
 def test_a_line_without_heat_forms_no_thermal_kernels():
     """The gaps of solutions all at fHPe = 0 skip the moving bodies' kernels (every
-    thermal term is F times them): the same numbers, to the last bit, as the same
-    solutions evaluated beside a heated one, whose kernels are then formed."""
+    thermal term is F times them): the same numbers as the same solutions evaluated
+    beside a heated one, whose kernels are then formed, to a few ulps (products of
+    another shape: conftest.assert_ulps)."""
     from thermocontact import Model
     from thermocontact.analysis.validity import gaps
 
@@ -420,9 +391,8 @@ def test_a_line_without_heat_forms_no_thermal_kernels():
                     column(lambda x: x.load_ratio), column(lambda x: x.sigma_over_delta),
                     column(lambda x: x.lam), s)
     alone, beside = of([cold]), of([cold, hot])
-    assert np.array_equal(alone[0][0], beside[0][0])
-    assert np.array_equal(alone[1][0], beside[1][0])
-
+    assert_ulps(alone[0][0], beside[0][0])
+    assert_ulps(alone[1][0], beside[1][0])
 
 def test_fewer_pressure_samples_move_the_margin_by_rounding_only(monkeypatch):
     """The pressure margin from pressure_samples(n) samples (513 up to n = 32, 32 a
@@ -454,12 +424,12 @@ def test_fewer_pressure_samples_move_the_margin_by_rounding_only(monkeypatch):
         worst = max(worst, abs(dense.pressure_margin - sol.validity.pressure_margin))
     assert len(cases) > 50 and worst < 1e-11, worst
 
-
 def test_edge_brackets_of_many_solutions_are_each_as_alone():
     """The edge margins, layers and their log widths of many solutions, formed per edge
-    for all at once, equal bit for bit (signs of zero and NaN included) the same
-    formulas applied to each solution and edge alone (D22, D22b), for both exponents'
-    kinds and with and without the Dundurs term's factor."""
+    for all at once, equal the same formulas applied to each solution and edge alone
+    (D22, D22b) to two ulps of each value (NaN where NaN, the signs of zero, and the
+    layers' verdicts exactly), for both exponents' kinds and with and without the
+    Dundurs term's factor."""
     from thermocontact.analysis.validity import (_EDGE_DEPTH, EDGE_LAYER_TOLERANCE,
                                                  _edge_brackets, _expm1_over)
 
@@ -481,7 +451,6 @@ def test_edge_brackets_of_many_solutions_are_each_as_alone():
                 else:
                     margins[j, i] = max(tolerated if kt else a, 0.0)
         return margins, widths, layer
-
     rng = np.random.default_rng(5)
     for alpha in (0.5, 0.3, 0.7):
         for t in (1.0, 0.83):
@@ -492,6 +461,9 @@ def test_edge_brackets_of_many_solutions_are_each_as_alone():
             with np.errstate(all="ignore"):
                 expected = alone(p, k, exponents, t)
             for got, want in zip(_edge_brackets(p, k, exponents, t), expected):
-                assert np.array_equal(got, want, equal_nan=True)
                 if got.dtype.kind == "f":
-                    assert np.array_equal(np.signbit(got), np.signbit(want))
+                    assert_ulps(got, want, ulps=2, scale="each", equal_nan=True)
+                    zero = (got == 0.0) & (want == 0.0)
+                    assert np.array_equal(np.signbit(got[zero]), np.signbit(want[zero]))
+                else:
+                    assert np.array_equal(got, want)

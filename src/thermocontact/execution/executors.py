@@ -21,6 +21,7 @@ import concurrent.futures as cf
 import multiprocessing
 import os
 import re
+from functools import partial
 
 from ..problem.validation import InputError, check_integer
 
@@ -58,16 +59,48 @@ def _start_method() -> str:
     return "forkserver" if "forkserver" in methods else "spawn"
 
 
-def _single_thread():
-    """Worker initialiser: one BLAS thread (the workers are the parallelism), and the
-    objects the worker starts with (a forked worker's: its parent's modules) frozen out
-    of the garbage collector's reach, so that its full collections walk only what its
-    tasks made (a grid line's collections take half the time) and leave the pages it
-    shares with its parent unwritten."""
+def _interrupts_held(call, *args):
+    """``call(*args)`` with Ctrl-C (SIGINT) held back in this thread, for a call that may
+    start worker processes: a child starts with the signal held, so that an interrupt
+    while it starts is not a traceback of its start-up (:func:`_admit_interrupts` lets it
+    through once the child is ready); this process receives a held interrupt when the
+    call returns."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return call(*args)
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        return call(*args)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def _admit_interrupts(ignore):
+    """In a child started by :func:`_interrupts_held`: drop an interrupt that arrived
+    while it started (its parent, which held the signal too, receives its own), then
+    ignore Ctrl-C (``ignore``: the parent stops the child) or take it as before."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return
+    before = signal.signal(signal.SIGINT, signal.SIG_IGN)  # discards a pending one
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    if not ignore:
+        signal.signal(signal.SIGINT, before)
+
+
+def _single_thread(ignore_interrupts=False):
+    """Worker initialiser: Ctrl-C admitted (:func:`_admit_interrupts`), one BLAS thread
+    (the workers are the parallelism), and the objects the worker starts with (a forked
+    worker's: its parent's modules) frozen out of the garbage collector's reach, so that
+    its full collections walk only what its tasks made (a grid line's collections take
+    half the time) and leave the pages it shares with its parent unwritten."""
     import gc
 
     from threadpoolctl import threadpool_limits
 
+    _admit_interrupts(ignore_interrupts)
     threadpool_limits(1)
     gc.freeze()
 
@@ -75,10 +108,8 @@ def _single_thread():
 def _import_quietly(modules):
     """Side-process start: ignore Ctrl-C (the parent stops the process), import ``modules``."""
     import importlib
-    import signal
 
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _single_thread()
+    _single_thread(ignore_interrupts=True)
     for name in modules:
         importlib.import_module(name)
 
@@ -97,7 +128,7 @@ def side_process(*modules):
     ctx = multiprocessing.get_context(_start_method())
     pool = cf.ProcessPoolExecutor(1, mp_context=ctx, initializer=_import_quietly,
                                   initargs=(modules,))
-    pool.submit(int)  # starts the process, and so its imports
+    _interrupts_held(pool.submit, int)  # starts the process, and so its imports
     return pool
 
 
@@ -275,8 +306,9 @@ def _run(func, tasks, workers):
         ctx = multiprocessing.get_context(_start_method())
         with cf.ProcessPoolExecutor(n, mp_context=ctx, initializer=_single_thread) as pool:
             try:
-                yield from _as_completed(pool.submit, cf.wait, cf.FIRST_COMPLETED, func,
-                                         tasks, n)
+                # A submit may start a worker: interrupts held meanwhile.
+                yield from _as_completed(partial(_interrupts_held, pool.submit), cf.wait,
+                                         cf.FIRST_COMPLETED, func, tasks, n)
             except BaseException:
                 pool.shutdown(wait=False, cancel_futures=True)
                 raise

@@ -199,7 +199,7 @@ def plot_branch(branch, problem, axes=None, label=None):
     ax2.plot(s, branch.temperature_cylinder, color=line.get_color())
     # Plain-text labels: mathtext's parser would double the picture's cost.
     ax1.set_ylabel("pressure / Hertz peak p₀")
-    ax2.set_ylabel("surface temperature rise, K\n(cylinder = half-plane in contact)")
+    ax2.set_ylabel("surface temperature rise, K\n(both surfaces, in contact)")
     ax2.set_xlabel("(x − offset)/Δ of each branch "
                    "(cylinder surface moves toward -x)")
     return ax1, ax2
@@ -220,14 +220,15 @@ def contact_figure(res, path):
                      transform=axes[0].transAxes)
     for ax in axes:
         ax.grid(alpha=0.3)
+    closure = (f"lambda = {prob.lam:g}" if prob.lam is not None else
+               f"lambda = {res.primary.lam:.4g} from the bulk temperatures "
+               f"{prob.bulk_temperatures[0]:.5g} K, {prob.bulk_temperatures[1]:.5g} K"
+               if res.primary is not None else "bulk temperatures given")
     fig.suptitle(f"{prob.cylinder.name} on {prob.half_plane.name}: R = {prob.radius:g} m, "
-                 f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}, "
-                 + (f"lambda = {prob.lam:g}" if prob.lam is not None else
-                    f"lambda = {res.primary.lam:.4g} (bulk temperatures "
-                    f"{prob.bulk_temperatures[0]:.5g} K, {prob.bulk_temperatures[1]:.5g} K)"
-                    if res.primary is not None else "bulk temperatures given")
-                 + f"\nHertz: half-width {prob.hertz_half_width:.3g} m, "
+                 f"P = {prob.load:.3g} N/m, v = {prob.speed:g} m/s, f = {prob.friction:g}"
+                 f"\n{closure}; Hertz: half-width {prob.hertz_half_width:.3g} m, "
                  f"p0 = {prob.hertz_peak_pressure:.3g} Pa", fontsize=8)
-    # Fixed margins: tight_layout would draw the figure once more to measure it.
-    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.9, hspace=0.08)
+    # Fixed margins, wide enough for the two-line labels (tested): tight_layout would
+    # draw the figure once more to measure it.
+    fig.subplots_adjust(left=0.15, right=0.97, bottom=0.08, top=0.9, hspace=0.08)
     save_figure(fig, path)
