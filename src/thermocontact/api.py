@@ -683,7 +683,7 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
 
     if stability and not isinstance(spec, MapSpec):
         raise InputError("stability: maps of dimensionless parameters only (for a physical "
-                         "contact, contact --stability)", parameters=("stability",))
+                         "contact, stability() of the contact)", parameters=("stability",))
     if stability:
         check_map_stability(spec)
     if isinstance(spec, MapSpec):

@@ -15,8 +15,7 @@ from importlib import import_module
 import click
 
 from .._version import __version__
-from ..problem.errors import SolveError
-from ..problem.validation import InputError
+from ..problem.errors import Error, InputError
 
 __all__ = ["cli", "main"]
 
@@ -197,7 +196,7 @@ def main(argv=None) -> int:
     except click.ClickException as exc:
         click.echo(f"error: {exc.format_message()}", err=True)
         return 2
-    except (InputError, SolveError) as exc:
+    except Error as exc:  # every error of the package, in one line naming the flags
         click.echo(f"error: {_flagged(exc, args)}", err=True)
         return 2
     except click.exceptions.Abort:

@@ -23,6 +23,7 @@ import os
 import re
 from functools import partial
 
+from ..problem.errors import ExecutionError
 from ..problem.validation import InputError, check_integer
 
 __all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "runs_elsewhere",
@@ -32,11 +33,6 @@ __all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "
 IN_FLIGHT = 2
 #: Most local worker processes.
 MAX_WORKERS = 1024
-
-
-class ExecutionError(RuntimeError):
-    """The executor failed (a worker died, the scheduler was lost): the finished
-    tasks are kept, the rest can be run again."""
 
 
 def cpu_count() -> int:

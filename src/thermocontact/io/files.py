@@ -17,6 +17,7 @@ import shutil
 import stat
 import tempfile
 
+from ..problem.errors import FileError
 from ..problem.validation import InputError
 
 __all__ = ["WriteError", "atomic_path", "atomic_write", "check_output_dir", "check_output_file"]
@@ -25,7 +26,7 @@ __all__ = ["WriteError", "atomic_path", "atomic_write", "check_output_dir", "che
 NAME_MAX = 255
 
 
-class WriteError(InputError):
+class WriteError(FileError):
     """A file could not be written (a full disk, a folder in the way, a place where
     nothing can be created): one line naming the file and the system's reason.
 

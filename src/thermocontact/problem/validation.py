@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 import operator
 
+from .errors import InputError
+
 __all__ = [
     "InputError",
     "check_choice",
@@ -22,30 +24,6 @@ __all__ = [
     "check_range",
     "check_zero_or_range",
 ]
-
-
-class InputError(ValueError):
-    """A parameter outside its allowed range; the message names both.
-
-    Parameters
-    ----------
-    message : str
-        One line, naming the parameters as the Python API spells them.
-    parameters : tuple of str
-        The parameters the message names, so that a front end (the command line)
-        can name them as its users spell them (``K2_over_K1`` as ``--K2-over-K1``).
-    """
-
-    def __init__(self, message, *, parameters=()):
-        super().__init__(message)
-        self.parameters = tuple(parameters)
-
-    def __reduce__(self):  # the parameters survive a trip to a worker process
-        return (_input_error, (type(self), str(self), self.parameters))
-
-
-def _input_error(cls, message, parameters):
-    return cls(message, parameters=parameters)
 
 
 def _fail(name: str, allowed: str, value):

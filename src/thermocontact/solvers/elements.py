@@ -27,6 +27,7 @@ import numpy as np
 
 from ..discretisation.element_operators import steady_element_operators
 from ..io.results import FieldResult
+from ..problem.errors import NotConvergedError
 from ..problem.parameters import Parameters, SolveError
 
 __all__ = ["ElementSolution", "contact_runs", "solve_elements", "solve_on_set"]
@@ -158,10 +159,10 @@ def solve_elements(par: Parameters, lam, *, profile=None, domain=(-2.5, 2.5), el
                     p, q, gap = solve_set(state)
                     if np.all(p[state] >= 0.0):
                         return ElementSolution(X, h, p, q, gap, state.copy(), it, toggled.size)
-            raise SolveError(f"the active set cycles after {it} iterations: no settled "
+            raise NotConvergedError(f"the active set cycles after {it} iterations: no settled "
                              f"contact set on {elements} elements")
         active = new
-    raise SolveError(f"the active set did not settle in {max_iter} iterations")
+    raise NotConvergedError(f"the active set did not settle in {max_iter} iterations")
 
 
 def solve_on_set(Gp, Gq, Tp, Tq, g_known, t_known, h, active, *, load=1.0, lam=None,

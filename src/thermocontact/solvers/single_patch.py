@@ -37,6 +37,7 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, Conta
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import Temperatures, check_sink_distance, check_theta
+from ..problem.errors import NotConvergedError
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
                                   check_positive, check_range)
@@ -481,7 +482,7 @@ def solve_contact_system(system: ContactSetSystem, F: float, rep, half, conducta
         step = alpha * np.linalg.norm(dx)
         r, A, p, bi = trial
         norm = np.linalg.norm(r)
-    raise SolveError(f"the interface conductance's pressure did not settle in "
+    raise NotConvergedError(f"the interface conductance's pressure did not settle in "
                      f"{MAX_PICARD} Newton steps")
 
 

@@ -34,6 +34,7 @@ from ..discretisation.element_operators import steady_element_operators
 from ..discretisation.history import transient_element_operators
 from ..io.results import Result, dataset_attrs
 from ..numerics.online_convolution import OnlineConvolution
+from ..problem.errors import NotConvergedError
 from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
 from ..problem.validation import InputError, check_finite, check_positive, check_range
 from .elements import contact_runs, solve_elements, solve_on_set
@@ -503,7 +504,7 @@ def _settle(seen, it, tol):
                                           axis=1) <= 2.5)
     calm = [v for v in seen.values() if np.all(v[0][v[5]] >= -tol)]
     if not near or not calm:
-        raise SolveError("the active set cycles: no settled contact set at this step")
+        raise NotConvergedError("the active set cycles: no settled contact set at this step")
     p, q, gap, D, C, _ = min(calm, key=lambda v: -np.min(np.where(v[5], 0.0, v[2])))
     return p, q, gap, D, C, it, int(toggled.size)
 
@@ -543,11 +544,11 @@ def _contact(flamant, g_known, h, active, load, tol):
         new, one_at_a_time, cycled = _next_set(active, p, gap, tension, overlap, seen,
                                                one_at_a_time)
         if cycled:
-            raise SolveError("the active set cycles: no settled contact set at this step")
+            raise NotConvergedError("the active set cycles: no settled contact set at this step")
         if not new.any():
             raise SolveError("every element left contact")
         active = new
-    raise SolveError(f"the active set did not settle in {_MAX_SET_ITERATIONS} solves")
+    raise NotConvergedError(f"the active set did not settle in {_MAX_SET_ITERATIONS} solves")
 
 
 def _partition(ops, p, t_known, h, active, closure, resistance):

@@ -36,6 +36,7 @@ from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
                                      contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
+from ..problem.errors import NotConvergedError
 from ..problem.parameters import PARTITION, Parameters, SolveError
 from ..problem.validation import InputError, check_exactly_one, check_range
 from .refinement import N_RANGE, refine
@@ -418,7 +419,7 @@ class ZoneModel:
             if err < DEFECT_TOL:
                 break
             if it == max_iter:
-                raise SolveError(f"the edges did not converge in {max_iter} Newton steps "
+                raise NotConvergedError(f"the edges did not converge in {max_iter} Newton steps "
                                  f"(largest defect {err:.2e})")
             J = self.jacobian(e, pe, fhpe, lam, d)
             try:
@@ -467,5 +468,5 @@ class ZoneModel:
                 raise SolveError("the half-width's Newton step is singular")
             # Keep the zone: it shrinks by at most half a step.
             half = max(half - d / slope, 0.5 * half)
-        raise SolveError(f"the half-width did not converge in {max_iter} Newton steps "
+        raise NotConvergedError(f"the half-width did not converge in {max_iter} Newton steps "
                          f"(defect {err:.2e})")

@@ -707,8 +707,8 @@ def physical_contact_set(problem, *, conductance=None, n=32,
         from the zones' heat fluxes, slopes, strains) and whether the theory applies.
     """
     if problem.speed2:
-        raise InputError("--zones needs a stationary half-plane (speed2 = 0), got speed2 = "
-                         f"{problem.speed2:g} m/s")
+        raise InputError("zones needs a stationary half-plane (speed2 = 0), got speed2 = "
+                         f"{problem.speed2:g} m/s", parameters=("zones", "speed2"))
     ell = problem.hertz_half_width
     groups = problem.ray_parameters()
     conductance = None if conductance is None else _physical(conductance)
