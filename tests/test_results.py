@@ -251,7 +251,10 @@ def test_solve_json_is_the_record(results):
     judged = sol.replace(applicability=applicability(sol, 0.01))
     rec = _cli_json(args + ["--delta-over-r", "0.01"])
     assert rec == judged.to_dict() and "applicable" in rec
-    assert list(rec)[: len(sol.to_dict())] == list(sol.to_dict())  # its entries end it
+    # Its entries end the record, before the units (which every record ends with).
+    keys, plain_keys = list(rec), list(sol.to_dict())
+    assert keys[-1] == plain_keys[-1] == "units"
+    assert keys[: len(plain_keys) - 1] == plain_keys[:-1]
 
 
 def test_boundary_json_is_the_record(results):

@@ -69,7 +69,7 @@ def contact_summary(res) -> str:
             lines.append("    theory applicable: yes")
         else:
             lines.append("    theory NOT applicable: " + "; ".join(b.applicability.reasons))
-    if res.message:
+    if not res.success:  # why there is no valid, converged branch
         lines.append(f"  {res.message}")
     return "\n".join(lines)
 

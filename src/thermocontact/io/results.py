@@ -14,17 +14,24 @@ repr are the ones used.  It then
   always succeeds;
 * where it holds fields over one coordinate (:class:`FieldResult`), has
   :meth:`~FieldResult.to_dataset`, an :class:`xarray.Dataset` of those fields with the
-  record's scalars as attributes.
+  record's scalars as attributes;
+* where it is the answer of a call (an *outcome*: it declares :attr:`Result.STATUSES`),
+  has ``status``, one of the documented words of its kind, ``message``, one line on
+  how it ended, and ``success``, in the manner of scipy's ``OptimizeResult``; all
+  three are in its record;
+* declares the units of its quantities in :attr:`Result.UNITS`: one mapping in its
+  record (``"units"``) and the CF ``units`` attribute of each variable of its dataset.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import MISSING, fields, replace
+from typing import ClassVar
 
 import numpy as np
 
-__all__ = ["FieldResult", "Result", "dataset_attrs", "plain", "same"]
+__all__ = ["FieldResult", "Result", "dataset_attrs", "plain", "same", "with_units"]
 
 
 def plain(value):
@@ -134,6 +141,26 @@ class Result:
 
     __slots__ = ()
 
+    #: The statuses a result of this kind may end with, each with its meaning; None for
+    #: a part of a result (a validity, an event, a mode), which has none of its own.
+    STATUSES: ClassVar[dict | None] = None
+    #: The statuses that are a success (:attr:`success`).
+    SUCCESS: ClassVar[frozenset] = frozenset()
+    #: The unit of each quantity of the record and the dataset, SI or the reduced unit
+    #: of a dimensionless result (``"1"``: a pure number).
+    UNITS: ClassVar[dict] = {}
+
+    @property
+    def success(self) -> bool:
+        """Whether the call that made this result succeeded: its status is one of
+        :attr:`SUCCESS`."""
+        return self.status in self.SUCCESS
+
+    def _units(self) -> dict:
+        """The unit of each quantity: :attr:`UNITS` (a result whose units depend on its
+        inputs gives its own)."""
+        return dict(self.UNITS)
+
     def __eq__(self, other):
         if type(other) is not type(self):
             return NotImplemented
@@ -157,11 +184,19 @@ class Result:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
     def to_dict(self) -> dict:
-        """The JSON record: plain Python types, non-finite numbers as None.
+        """The JSON record: plain Python types, non-finite numbers as None; an outcome's
+        ``status``, ``message`` and ``success``, and the ``units`` of its quantities.
 
         ``json.dumps(result.to_dict(), allow_nan=False)`` always succeeds.
         """
-        return plain(self._record())
+        record = self._record()
+        if self.STATUSES is not None:
+            record = {**record, "status": self.status, "message": self.message,
+                      "success": self.success}
+        units = self._units()
+        if units:
+            record["units"] = units
+        return plain(record)
 
     @classmethod
     def build(cls, **values):
@@ -255,5 +290,15 @@ class FieldResult(Result):
             if (f.name != name and isinstance(value, np.ndarray) and value.ndim == 1
                     and value.shape == coord.shape):
                 variables[f.name] = (name, value)
-        return xr.Dataset(variables, coords={name: (name, coord)},
-                          attrs=dataset_attrs(self.to_dict(), skip=(name, *variables)))
+        ds = xr.Dataset(variables, coords={name: (name, coord)},
+                        attrs=dataset_attrs(self.to_dict(), skip=(name, *variables)))
+        return with_units(ds, self._units())
+
+
+def with_units(ds, units: dict):
+    """``ds`` with the CF ``units`` attribute of each of its variables and coordinates
+    named in ``units`` (kept where one is set already)."""
+    for key in list(ds.variables):
+        if key in units and "units" not in ds[key].attrs:
+            ds[key].attrs["units"] = units[key]
+    return ds

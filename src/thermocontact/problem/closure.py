@@ -13,15 +13,33 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .errors import InputError
 from .validation import check_finite, check_positive, check_range
 
-__all__ = ["SINK_RANGE", "THETA_MAX", "Temperatures", "check_theta", "check_sink_distance", "layer_sink_distance",
+__all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures", "HeatPartition",
+           "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX", "Temperatures",
+           "check_closure_range", "check_sink_distance", "check_theta", "closure_of", "layer_sink_distance",
            "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
 #: from swamping the rows' other terms.
 SINK_RANGE = (1.0, 1e12)
+
+
+#: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset
+#: (the paper's Fig. 5 follows lam beyond +-1 as a formal continuation; a hot body
+#: makes |lam| > 1 between bulk temperatures).
+CLOSURE_LIMIT = 1e6
+
+
+def check_closure_range(lam=None, sigma_over_delta=None):
+    """``(lam, sigma_over_delta)``, each checked to lie in ``[-CLOSURE_LIMIT,
+    CLOSURE_LIMIT]`` where given (None stays None)."""
+    return (None if lam is None else check_range("lam", lam, -CLOSURE_LIMIT, CLOSURE_LIMIT),
+            None if sigma_over_delta is None
+            else check_range("sigma_over_delta", sigma_over_delta, -CLOSURE_LIMIT,
+                             CLOSURE_LIMIT))
 
 
 #: Largest |Theta| given as an input (solve, a dimensionless path's ends, a map's
@@ -105,3 +123,169 @@ def layer_sink_distance(thickness: float) -> float:
     base (D40): its line source's surface temperature ``(Q/(pi K)) ln coth(pi |x|/(4h))``
     is the sink law's ``(Q/(pi K)) ln(L/|x|)`` to ``O((x/h)^2)``."""
     return 4.0 * thickness / math.pi
+
+
+# The closure as a value: what fixes the heat partition of a contact, one type for every
+# call (``closure=``).  The dimensionless calls take HeatPartition, Offset or
+# FarTemperatures; the physical calls HeatPartition or BulkTemperatures.
+
+
+@dataclass(frozen=True)
+class HeatPartition:
+    """The heat partition given: ``lam = (Q1 - Q2)/(Q1 + Q2)`` (derivation section 6).
+
+    ``lam`` in [-1, 1] when both bodies take a share of the frictional heat; beyond it
+    (to 1e6) one body gives heat through the contact, as a hot body does (the bulk
+    temperatures then make |lam| > 1).
+    """
+
+    lam: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "lam", check_closure_range(lam=self.lam)[0])
+
+
+@dataclass(frozen=True)
+class Offset:
+    """The contact's offset given, ``sigma/Delta`` (its centre from the cylinder's
+    initial point of contact, in half-widths, positive toward the leading edge);
+    ``lam`` is then an output (the paper's closure, derivation section 6)."""
+
+    sigma_over_delta: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "sigma_over_delta",
+                           check_closure_range(sigma_over_delta=self.sigma_over_delta)[1])
+
+
+@dataclass(frozen=True)
+class FarTemperatures:
+    """The far temperatures in dimensionless form (derivation section 17, (D39)):
+    ``lam`` an output.
+
+    Attributes
+    ----------
+    theta : float
+        ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)``, ``|Theta| <= 1e6``.
+    sink_distance_over_delta : float or None
+        A stationary half-plane's sink distance ``L`` in half-widths (> 1: beyond the
+        contact); None for a half-plane moving through the contact.
+    """
+
+    theta: float
+    sink_distance_over_delta: float | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "theta", check_theta(self.theta))
+        if self.sink_distance_over_delta is not None:
+            object.__setattr__(self, "sink_distance_over_delta",
+                               check_sink_distance(self.sink_distance_over_delta,
+                                                   "sink_distance_over_delta"))
+
+    def temperatures(self) -> Temperatures:
+        """The solver's form (lengths in half-widths)."""
+        return Temperatures(self.theta, self.sink_distance_over_delta)
+
+
+@dataclass(frozen=True)
+class BulkTemperatures:
+    """The bodies' temperatures far from the contact, in physical units (derivation
+    section 17): ``lam`` an output.
+
+    Parameters
+    ----------
+    cylinder, half_plane : float or str
+        The cylinder's incoming temperature and the half-plane's far one (its incoming
+        temperature when it moves, its sink's when stationary): K, or a string with
+        units (``"150C"``, ``"300K"``, ``"100F"``).
+    sink_distance : float or str, optional
+        A stationary half-plane's distance from the contact at which it is at its
+        temperature, m (``"30mm"``).
+    layer_thickness : float or str, optional
+        Or the thickness of a layer on a sink at that temperature, m (``L = 4h/pi``,
+        (D40)).
+    """
+
+    cylinder: float
+    half_plane: float
+    sink_distance: float | None = None
+    layer_thickness: float | None = None
+
+    def __post_init__(self):
+        from .units import parse_quantity, parse_temperature
+
+        for name in ("cylinder", "half_plane"):
+            object.__setattr__(self, name,
+                               parse_temperature(getattr(self, name), f"bulk temperature "
+                                                 f"{name}"))
+        given = [k for k in ("sink_distance", "layer_thickness") if getattr(self, k) is not None]
+        if len(given) > 1:
+            raise InputError("give at most one of sink_distance and layer_thickness",
+                             parameters=tuple(given))
+        for name in given:
+            object.__setattr__(self, name, check_positive(
+                name, parse_quantity(getattr(self, name), "m", name)))
+
+    @property
+    def temperatures(self) -> tuple:
+        """``(T1, T2)``, K."""
+        return (self.cylinder, self.half_plane)
+
+
+
+#: The closures of the calls in dimensionless and in physical units.
+DIMENSIONLESS_CLOSURES = (HeatPartition, Offset, FarTemperatures)
+PHYSICAL_CLOSURES = (HeatPartition, BulkTemperatures)
+
+
+def closure_of(closure=None, *, kinds=DIMENSIONLESS_CLOSURES, required=True, **spelled):
+    """The closure of a call: ``closure``, or the one keyword spelling given.
+
+    Parameters
+    ----------
+    closure : HeatPartition, Offset, FarTemperatures or BulkTemperatures, optional
+        The closure as a value.
+    kinds : tuple of type
+        The kinds this call accepts.
+    required : bool
+        Whether a closure must be given (False: a path or map that follows one).
+    **spelled
+        The call's closure keywords: ``lam``, ``sigma_over_delta`` (each the same as
+        its closure type), and the keyword spellings that the closure types replace,
+        already turned into a closure by the caller (:func:`deprecated_closure`);
+        None where not given.
+
+    Returns
+    -------
+    closure or None
+
+    Raises
+    ------
+    InputError
+        More than one closure given, none where one is required, or one of another
+        kind than the call takes.
+    """
+    given = [] if closure is None else [("closure", closure)]
+    for name, value in spelled.items():
+        if value is None:
+            continue
+        if name == "lam" and not isinstance(value, HeatPartition):
+            value = HeatPartition(value)
+        elif name == "sigma_over_delta" and not isinstance(value, Offset):
+            value = Offset(value)
+        given.append((name, value))
+    names = [name for name, _ in given]
+    accepted = " or ".join(k.__name__ for k in kinds)
+    if len(given) > 1:
+        raise InputError(f"give one closure ({accepted}), got {' and '.join(names)}",
+                         parameters=tuple(names))
+    if not given:
+        if required:
+            raise InputError(f"closure must be given: {accepted} (or lam="
+                             + (", sigma_over_delta=" if Offset in kinds else "") + ")",
+                             parameters=("closure", "lam"))
+        return None
+    name, value = given[0]
+    if not isinstance(value, kinds):
+        raise InputError(f"{name} must be {accepted}, got {value!r}", parameters=(name,))
+    return value

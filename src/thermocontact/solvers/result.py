@@ -10,7 +10,7 @@ import numpy as np
 from .._version import __version__
 from ..analysis.applicability import Applicability
 from ..analysis.validity import Validity, gap
-from ..io.results import FieldResult, dataset_attrs
+from ..io.results import FieldResult, dataset_attrs, with_units
 from ..problem.parameters import Parameters
 
 __all__ = ["ContactSolution"]
@@ -100,6 +100,21 @@ class ContactSolution(FieldResult):
     temperatures: object = None
     lam_error: float | None = None
 
+    STATUSES = {
+        "converged": "the error estimate is within its target (tol)",
+        "not converged": "the error estimate exceeds its target at the largest n tried",
+        "unreliable estimate": "the method's error estimate is no bound (the paper's "
+                               "scheme): not claimed converged",
+        "no estimate": "one level only (n < 8 given): no error estimate"}
+    SUCCESS = frozenset({"converged"})
+    # Lengths in half-widths Delta, pressures normalised to unit load (P/Delta), heat
+    # fluxes in units of the frictional heat f v P/Delta, gaps in Delta^2/R; the
+    # record's other numbers are pure.
+    UNITS = {"s": "Delta", "flux_s": "Delta", "pressure": "P/Delta",
+             "flux_difference": "f v P/Delta", "flux_cylinder": "f v P/Delta",
+             "flux_half_plane": "f v P/Delta", "min_gap": "Delta^2/R",
+             "sink_distance": "Delta"}
+
     # Status, in the manner of scipy's OptimizeResult.
     @property
     def converged(self) -> bool | None:
@@ -121,7 +136,7 @@ class ContactSolution(FieldResult):
 
     @property
     def success(self) -> bool:
-        """Converged and valid."""
+        """Converged (:attr:`SUCCESS`) and valid."""
         return bool(self.converged) and self.validity is not None and self.validity.valid
 
     @property
@@ -226,7 +241,8 @@ class ContactSolution(FieldResult):
 
     def _record(self) -> dict:
         """The record of :meth:`to_dict`, the CLI's ``--json``: scalars, validity margins,
-        profiles, then the applicability's entries when it was judged.
+        profiles, then the applicability's entries when it was judged (and the units,
+        :attr:`UNITS`, which end every record).
 
         Pressure profile ``s``/``pressure`` is normalised to unit integral (Hertz:
         ``(2/pi) sqrt(1 - s^2)``); gaps are in units of ``Delta^2/R``; positions in
@@ -249,6 +265,7 @@ class ContactSolution(FieldResult):
             "method": self.method,
             "status": self.status,
             "message": self.message,
+            "success": self.success,
         }
         if self.validity is not None:
             rec.update(self.validity.to_dict())
@@ -292,7 +309,7 @@ class ContactSolution(FieldResult):
         profiles = ("s", "pressure", "flux_s", "flux_difference", "flux_cylinder",
                     "flux_half_plane")
         attrs = dataset_attrs(self.to_dict(), skip=profiles)
-        return xr.Dataset(
+        return with_units(xr.Dataset(
             {
                 "pressure": ("s", self.pressure, {"long_name": "contact pressure",
                                                   "units": "P/Delta"}),
@@ -308,4 +325,4 @@ class ContactSolution(FieldResult):
             coords={"s": ("s", self.s, {"long_name": "(x - sigma)/Delta"}),
                     "flux_s": ("flux_s", self.flux_s, {"long_name": "(x - sigma)/Delta"})},
             attrs=attrs,
-        )
+        ), self._units())

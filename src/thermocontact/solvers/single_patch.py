@@ -37,6 +37,7 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, Conta
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import Temperatures, check_sink_distance, check_theta
+from ..problem.closure import CLOSURE_LIMIT, check_closure_range
 from ..problem.errors import NotConvergedError
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
@@ -62,7 +63,7 @@ __all__ = [
 log = logging.getLogger("thermocontact")
 
 #: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
-LIMIT = 1e6
+LIMIT = CLOSURE_LIMIT
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
 RCOND_MIN = 1e-12
 
@@ -548,14 +549,6 @@ def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_d
     if isinstance(out, Exception):
         raise out
     return out
-
-
-def check_closure_range(lam=None, sigma_over_delta=None):
-    """``(lam, sigma_over_delta)``, each checked to lie in ``[-LIMIT, LIMIT]`` where given
-    (None stays None)."""
-    return (None if lam is None else check_range("lam", lam, -LIMIT, LIMIT),
-            None if sigma_over_delta is None
-            else check_range("sigma_over_delta", sigma_over_delta, -LIMIT, LIMIT))
 
 
 def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conductance,

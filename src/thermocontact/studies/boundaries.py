@@ -33,7 +33,8 @@ from ..problem.parameters import DISTORTIVITY_RATIO_LIMIT, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_integer,
                                   check_range)
 from ..solvers.refinement import refine
-from ..solvers.single_patch import DEFAULT_TOL, Model, check_closure_range
+from ..problem.closure import check_closure_range
+from ..solvers.single_patch import DEFAULT_TOL, Model
 
 __all__ = ["ALONG", "Event", "Path", "SPELLINGS", "NO_SOLUTION", "check_problem", "closure",
            "estimate_events", "follow", "locate_events", "model_for", "trace", "validity_margins"]
@@ -135,10 +136,22 @@ class Path(FieldResult):
     method: str
     error_estimate: float
     event_n: int | None = None
+    status: str = "solved"
+    message: str = ""
+
+    STATUSES = {
+        "solved": "the path followed from start to stop, its events located; the error "
+                  "estimate of its n within the target",
+        "not converged": "the error estimate of the largest n tried is beyond the target",
+        "no estimate": "no error estimate (nothing solved at two levels)",
+        "no solution": "no point of the path has a solution"}
+    SUCCESS = frozenset({"solved"})
+    # The samples and the events' positions are the parameter followed, in its own
+    # unit (SI on a physical path, "1" on a dimensionless one: the record's "along").
 
     def _summary(self) -> str:
         return (f"along={self.along!r}, from {self.x[0]:g} to {self.x[-1]:g}, "
-                f"events={[e.inequality for e in self.events]}, method={self.method!r}, "
+                f"events={[e.inequality for e in self.events]}, status={self.status!r}, "
                 f"n={self.n}, event_n={self.event_n}")
 
     def _record(self) -> dict:
@@ -613,5 +626,19 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     events = sorted([*events, *existence], key=lambda e: e.at, reverse=stop < start)
     xs_arr = np.array(xs)
     valid = np.array([bool(sols[x] is not None and sols[x].valid) for x in xs])
+    status, message = _path_status(sols, events, est, tol if auto else None, n)
     return Path(along, fixed, xs_arr, valid, tuple(events), n, method,
-                float(est) if est is not None else float("nan"), event_n)
+                float(est) if est is not None else float("nan"), event_n, status, message)
+
+
+def _path_status(sols, events, est, tol, n):
+    """The status and message of a path (:attr:`Path.STATUSES`)."""
+    found = f"{len(events)} event{'s' * (len(events) != 1)} located"
+    if all(v is None for v in sols.values()):
+        return "no solution", "no point of the path has a solution"
+    if est is None:
+        return "no estimate", f"{found}; no error estimate at n = {n}"
+    if tol is None or est <= tol:
+        return "solved", (f"{found}; error estimate {est:.1e}"
+                          + ("" if tol is None else f" <= target {tol:.0e}") + f" at n = {n}")
+    return "not converged", f"{found}; error estimate {est:.1e} > target {tol:.0e} at n = {n}"

@@ -24,6 +24,7 @@ import numpy as np
 from .._version import __version__
 from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import contact_fields
+from ..io.results import Result
 from ..problem.parameters import SolveError
 from ..problem.physical import FHPE_MIN, MAX_WIDTH, PhysicalProblem
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
@@ -53,17 +54,24 @@ def problem_ray(problem: PhysicalProblem) -> Ray:
     return Ray(**problem.ray_parameters())
 
 
-def _same(a, b) -> bool:
-    """Value equality of two results' fields: arrays element by element (NaN equal to
-    NaN), everything else by ``==``."""
-    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
-        return (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)
-                and np.array_equal(a, b, equal_nan=True))
-    return bool(a == b)
+#: The units of a physical contact's quantities (SI; temperatures are rises above the
+#: cylinder's incoming surface temperature, except the absolute peak temperatures).
+SI_UNITS = {
+    "half_width": "m", "offset": "m", "a": "m", "b": "m", "x": "m",
+    "peak_pressure": "Pa", "mean_pressure": "Pa", "pressure": "Pa",
+    "flash_temperature": "K", "flash_temperature_half_plane": "K",
+    "temperature_cylinder": "K", "temperature_half_plane": "K",
+    "temperature_mismatch": "K", "half_plane_incoming_temperature": "K",
+    "peak_temperatures": "K", "flash_temperatures": "K", "bulk_temperatures": "K",
+    "heat_cylinder": "W/m", "heat_half_plane": "W/m",
+    "hertz_half_width": "m", "hertz_peak_pressure": "Pa", "largest_valid_load": "N/m",
+    "radius": "m", "load": "N/m", "speed": "m/s", "speed2": "m/s",
+    "sink_distance": "m", "layer_thickness": "m",
+    "half_width_min": "m", "half_width_max": "m"}
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Branch:
+class Branch(Result):
     """One half-width that carries the load, with its physical fields.
 
     Positions ``x`` are measured from the cylinder's initial point of contact,
@@ -154,7 +162,9 @@ class Branch:
         """Whether the theory applies (:mod:`thermocontact.analysis.applicability`)."""
         return bool(self.applicability is not None and self.applicability.applicable)
 
-    def to_dict(self) -> dict:
+    UNITS = SI_UNITS
+
+    def _record(self) -> dict:
         """The branch's JSON record (SI units; without the distributions)."""
         v = self.solution.validity
         return {
@@ -179,23 +189,18 @@ class Branch:
                 "under_limits": list(self.under_limits)}),
         }
 
-    def __eq__(self, other):
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(_same(getattr(self, f.name), getattr(other, f.name))
-                   for f in dataclasses.fields(self))
+    def _units(self) -> dict:
+        return {}  # the contact's record carries them once
 
-    __hash__ = None
-
-    def __repr__(self):
-        return (f"Branch(half_width={self.half_width:.6g} m, offset={self.offset:.6g} m, "
+    def _summary(self) -> str:
+        return (f"half_width={self.half_width:.6g} m, offset={self.offset:.6g} m, "
                 f"peak_pressure={self.peak_pressure:.6g} Pa, flash_temperature="
                 f"{self.flash_temperature:.6g} K, valid={self.valid}, "
-                f"applicable={self.applicable})")
+                f"applicable={self.applicable}")
 
 
-@dataclass(frozen=True, repr=False)
-class PhysicalContact:
+@dataclass(frozen=True, eq=False, repr=False)
+class PhysicalContact(Result):
     """All solution branches of one physical problem.
 
     Attributes
@@ -207,7 +212,7 @@ class PhysicalContact:
         The first valid branch from small half-widths (the one reached by loading
         from zero), else the first branch.
     message : str
-        Why there is no valid branch, when there is none.
+        How the search ended: the valid branch found, or why there is none.
     largest_valid_load : float or None
         When no branch is valid: the largest load over the scanned half-widths
         whose solution is valid, N/m (None if there is none; ``inf`` when valid
@@ -224,7 +229,34 @@ class PhysicalContact:
     largest_valid_load: float | None
     searched: tuple | None = None
 
-    def to_dict(self) -> dict:
+    STATUSES = {
+        "solved": "a valid branch carries the load, its error estimate within its target",
+        "not converged": "a valid branch carries the load, its error estimate beyond its "
+                         "target",
+        "invalid": "every half-width that carries the load violates a contact inequality: "
+                   "no single-patch contact exists",
+        "no solution": "no half-width carries the load"}
+    SUCCESS = frozenset({"solved"})
+    UNITS = SI_UNITS
+
+    @property
+    def status(self) -> str:
+        """One of :attr:`STATUSES`."""
+        if not self.branches:
+            return "no solution"
+        if not self.primary.valid:
+            return "invalid"
+        return "solved" if self.primary.converged else "not converged"
+
+    def _summary(self) -> str:
+        p = self.problem
+        prim = self.primary
+        return (f"{p.cylinder.name} on {p.half_plane.name}, load={p.load:.6g} N/m, "
+                f"status={self.status!r}, branches={len(self.branches)}"
+                + ("" if prim is None else f", half_width={prim.half_width:.6g} m, "
+                   f"valid={prim.valid}, applicable={prim.applicable}"))
+
+    def _record(self) -> dict:
         """The JSON record of the contact (SI units): the primary branch's numbers at
         the top level, every branch under ``branches``, the inputs."""
         prob = self.problem
@@ -259,26 +291,15 @@ class PhysicalContact:
                     "layer_thickness": prob.layer_thickness}),
             },
             "beta_f": prob.beta_f,
-            "units": "SI: m, Pa, N/m, m/s, K (temperature rises above the cylinder's "
-                     "incoming surface temperature), W/m",
             "version": __version__,
         })
         if prob.bulk_temperatures is not None:
             rec.update({key: (prim.to_dict()[key] if prim is not None else None) for key in (
                 "lam_error", "peak_temperatures", "flash_temperatures", "under_limits")})
             rec["theta"] = prob.theta
-            rec["units"] = rec["units"].replace(
-                "temperature rises above the cylinder's incoming surface temperature",
-                "temperature rises above the cylinder's incoming surface temperature; "
-                "peak_temperatures absolute")
         if rec["largest_valid_load"] is not None and not np.isfinite(rec["largest_valid_load"]):
             rec["largest_valid_load"] = "unbounded"
         return rec
-
-    def __repr__(self):
-        p = self.problem
-        return (f"PhysicalContact({p.cylinder.name} on {p.half_plane.name}, load={p.load:.6g} "
-                f"N/m, branches={len(self.branches)}, primary={self.primary!r})")
 
 
 def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
@@ -380,12 +401,19 @@ def contact(problem: PhysicalProblem, tol=1e-6, progress=None) -> PhysicalContac
     elif not valid:
         message = ("every solution violates a contact inequality (tensile pressure, "
                    "interpenetration or negative load): no single-patch contact exists")
+    if valid:
+        k = branches.index(primary) + 1
+        message = (f"a valid single patch carries the load (branch {k} of {len(branches)}, "
+                   f"half-width {primary.half_width:.4g} m)")
+        if not primary.converged:
+            message += (f"; its error estimate {primary.error_estimate:.1e} is beyond the "
+                        f"target {tol:.0e}")
     if message and largest is not None and np.isfinite(largest):
         message += f"; the largest load with a valid solution is {largest:.4g} N/m"
     searched = None
     if scan is not None:
         searched = (float(lo), float(hi), float(prob.fhpe(lo)), float(prob.fhpe(hi)))
-        if message:
+        if message and not valid:
             message += (f" (half-widths searched: {searched[0]:.3g} to {searched[1]:.3g} m, "
                         f"fHPe {searched[2]:.3g} to {searched[3]:.3g})")
     return PhysicalContact(prob, branches, primary, message, largest, searched)
