@@ -68,7 +68,7 @@ ALLOWED = {
     "io": {"_version", "problem"},
     "execution": {"problem", "io"},
     "physics": {"problem", "io"},
-    "numerics": set(),
+    "numerics": {"problem"},
     "discretisation": {"problem", "physics", "numerics"},
     "analysis": {"problem", "io", "physics", "numerics", "discretisation"},
     "solvers": {"_version", "problem", "io", "numerics", "discretisation", "analysis"},

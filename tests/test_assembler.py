@@ -199,7 +199,7 @@ def test_one_matrix_at_F_and_its_factors_in_place():
     from scipy.linalg import lu_factor, lu_solve
 
     from thermocontact.discretisation.system import contact_set_system
-    from thermocontact.solvers.single_patch import factorise, solve_equilibrated
+    from thermocontact.numerics.dense import factorise, solve_equilibrated
 
     rep = EdgeGraded(16)
     par = Parameters(5.0, 0.2, 10.0)
@@ -231,7 +231,7 @@ def test_a_stack_of_systems_is_each_system_solved_alone(closure, monkeypatch):
     matrix non-finite is refused at that F only."""
     from thermocontact.discretisation.system import contact_set_system
     from thermocontact.problem.parameters import SolveError
-    from thermocontact.solvers.single_patch import solve_equilibrated, solve_stack
+    from thermocontact.numerics.dense import solve_equilibrated, solve_stack
 
     rep = EdgeGraded(16)
     par = Parameters(5.0, 0.2, 10.0)
@@ -240,7 +240,7 @@ def test_a_stack_of_systems_is_each_system_solved_alone(closure, monkeypatch):
     found = solve_stack(system, F, "the linear system")
     # Formed a few matrices at a time: 40 F in chunks of 3 give what one chunk gives.
     many = np.concatenate([np.linspace(0.0, 0.8, 39), [np.inf]])
-    monkeypatch.setattr("thermocontact.solvers.single_patch.STACK_ENTRIES", 3 * system.A0.size)
+    monkeypatch.setattr("thermocontact.numerics.dense.STACK_ENTRIES", 3 * system.A0.size)
     chunked = solve_stack(system, many, "the linear system")
     monkeypatch.undo()
     for a, b in zip(solve_stack(system, many, "the linear system"), chunked):
@@ -310,7 +310,7 @@ def test_a_stack_solves_as_the_plain_path_on_the_blas_threads(n):
     it: at n = 32 (66 unknowns) and n = 128 (258), with BLAS on its own threads, the
     stack gives each F the plain path's solution (_same_solution)."""
     from thermocontact.discretisation.system import contact_set_system
-    from thermocontact.solvers.single_patch import GESV_ENTRIES, solve_equilibrated, solve_stack
+    from thermocontact.numerics.dense import GESV_ENTRIES, solve_equilibrated, solve_stack
 
     system = contact_set_system(Parameters(5.0, 0.2, 10.0), np.array([[-1.0, 1.0]]),
                                 EdgeGraded(n), "projection", lam=-1.0)
@@ -357,20 +357,20 @@ def test_a_line_s_condition_is_proven_from_a_few_anchors(pe, monkeypatch):
     reciprocal condition number, is within a factor 20 of it, and the solutions are
     those of the estimate's path (_same_solution)."""
     from thermocontact.discretisation.system import contact_set_system
-    from thermocontact.solvers import single_patch
+    from thermocontact.numerics import dense
 
     F = np.linspace(0.0, 0.8, 200)
     for n in (8, 16, 32):
         system = contact_set_system(Parameters(pe, 0.2, 10.0), np.array([[-1.0, 1.0]]),
                                     EdgeGraded(n), "projection", lam=1.0)
-        estimated = single_patch.solve_stack(system, F)
+        estimated = dense.solve_stack(system, F)
         calls = []
-        monkeypatch.setattr(single_patch, "dgecon", lambda *a, **k: calls.append(a))
-        bounded = single_patch.solve_stack(system, F, rcond="bound")
+        monkeypatch.setattr(dense, "dgecon", lambda *a, **k: calls.append(a))
+        bounded = dense.solve_stack(system, F, rcond="bound")
         monkeypatch.undo()
         assert calls == []
         _same_stacks(bounded, estimated)
-        anchors = single_patch.condition_bounds(system.A0, system.A1, F)
+        anchors = dense.condition_bounds(system.A0, system.A1, F)
         assert anchors.F0.size <= 3
         for f, (_, bound) in zip(F, bounded):
             true = _true_rcond(system.A0 + f * system.A1)
@@ -384,7 +384,7 @@ def test_a_stack_through_a_singular_matrix_is_refused_as_without_the_bound():
     from types import SimpleNamespace
 
     from thermocontact.problem.parameters import SolveError
-    from thermocontact.solvers.single_patch import CERTIFIED_RCOND, solve_stack
+    from thermocontact.numerics.dense import CERTIFIED_RCOND, solve_stack
 
     rng = np.random.default_rng(1)
     M = rng.standard_normal((6, 6)) + 6 * np.eye(6)
@@ -413,7 +413,7 @@ def test_condition_bounds_never_exceed_the_true_condition():
     d(F) move along F and their ratio to the anchor's matters; every fourth pencil nearly
     singular at F = 0): every bound given is at most the true reciprocal condition
     number, and many are given, where the row scales have moved by more than 2."""
-    from thermocontact.solvers.single_patch import condition_bounds
+    from thermocontact.numerics.dense import condition_bounds
 
     rng = np.random.default_rng(2)
     given = moved = 0
@@ -448,7 +448,7 @@ def test_a_matrix_singular_as_formed_is_not_proven():
     from types import SimpleNamespace
 
     from thermocontact.problem.parameters import SolveError
-    from thermocontact.solvers.single_patch import (CERTIFIED_RCOND, condition_bounds,
+    from thermocontact.numerics.dense import (CERTIFIED_RCOND, condition_bounds,
                                                     solve_stack)
 
     p, q, pp, qq = 812547733.3023335, 948606900.4847877, 812547734.3023335, 948606902.4847877
@@ -475,7 +475,7 @@ def test_an_exact_zero_pivot_is_refused_whatever_the_bound(monkeypatch):
     from types import SimpleNamespace
 
     from thermocontact.problem.parameters import SolveError
-    from thermocontact.solvers.single_patch import ConditionBounds, solve_stack
+    from thermocontact.numerics.dense import ConditionBounds, solve_stack
 
     system = SimpleNamespace(A0=np.eye(3), A1=-np.diag([1.0, 0.0, 0.0]), b=np.ones(3))
     F = np.linspace(0.0, 2.0, 41)  # through F = 1, where A(F) has a zero row
@@ -493,7 +493,7 @@ def test_the_bound_raises_no_warning_the_estimate_does_not():
     import warnings
     from types import SimpleNamespace
 
-    from thermocontact.solvers.single_patch import solve_stack
+    from thermocontact.numerics.dense import solve_stack
 
     rng = np.random.default_rng(0)
     A0 = rng.standard_normal((4, 4)) + 4 * np.eye(4)

@@ -548,7 +548,7 @@ def test_a_line_with_proven_condition_is_the_same_line():
 
     from thermocontact import Model
     from thermocontact.problem.parameters import ConvergenceWarning
-    from thermocontact.solvers.single_patch import CERTIFIED_RCOND
+    from thermocontact.numerics.dense import CERTIFIED_RCOND
 
     m = Model(0.7, 1.0, delta1_over_delta2=0.3, tol=1e-6)
     fhpe = np.linspace(0.0, 1.5, 100)  # enough points at n = 32 for anchors

@@ -194,7 +194,7 @@ class BulkTemperatures:
 
     Parameters
     ----------
-    cylinder, half_plane : float or str
+    T1, T2 : float or str
         The cylinder's incoming temperature and the half-plane's far one (its incoming
         temperature when it moves, its sink's when stationary): K, or a string with
         units (``"150C"``, ``"300K"``, ``"100F"``).
@@ -206,18 +206,16 @@ class BulkTemperatures:
         (D40)).
     """
 
-    cylinder: float
-    half_plane: float
+    T1: float
+    T2: float
     sink_distance: float | None = None
     layer_thickness: float | None = None
 
     def __post_init__(self):
         from .units import parse_quantity, parse_temperature
 
-        for name in ("cylinder", "half_plane"):
-            object.__setattr__(self, name,
-                               parse_temperature(getattr(self, name), f"bulk temperature "
-                                                 f"{name}"))
+        for name in ("T1", "T2"):
+            object.__setattr__(self, name, parse_temperature(getattr(self, name), name))
         given = [k for k in ("sink_distance", "layer_thickness") if getattr(self, k) is not None]
         if len(given) > 1:
             raise InputError("give at most one of sink_distance and layer_thickness",
@@ -229,7 +227,7 @@ class BulkTemperatures:
     @property
     def temperatures(self) -> tuple:
         """``(T1, T2)``, K."""
-        return (self.cylinder, self.half_plane)
+        return (self.T1, self.T2)
 
 
 

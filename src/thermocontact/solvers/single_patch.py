@@ -22,26 +22,23 @@ equation by the temperature equation (D33).
 from __future__ import annotations
 
 import logging
-import math
 import warnings
-from collections import deque
-from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetri, dgetrs
 
 from ..analysis.validity import assess, assess_many
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, ContactSetSystem,
+from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance,
                                      check_temperatures, contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
+from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
-from ..problem.closure import Temperatures, check_sink_distance, check_theta
-from ..problem.closure import CLOSURE_LIMIT, check_closure_range
-from ..problem.errors import NotConvergedError
+from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range,
+                               check_sink_distance, check_theta)
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
-                                  check_positive, check_range)
+                                  check_positive)
+from .contact_system import solve_contact_system
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
 
@@ -49,14 +46,9 @@ __all__ = [
     "DEFAULT_METHOD",
     "DEFAULT_TOL",
     "LIMIT",
-    "check_closure_range",
     "Model",
-    "RCOND_MIN",
     "check_n",
-    "factorise",
     "solve",
-    "solve_contact_system",
-    "solve_equilibrated",
     "solve_system",
 ]
 
@@ -64,427 +56,9 @@ log = logging.getLogger("thermocontact")
 
 #: Bound on |lam| and |sigma/Delta|: far beyond any physical heat partition or offset.
 LIMIT = CLOSURE_LIMIT
-#: Systems whose reciprocal 1-norm condition number is below this are refused.
-RCOND_MIN = 1e-12
 
 #: Assemblies by method, parameters and n, for every Model of this process.
 ASSEMBLIES = BoundedCache("assemblies", 512 * 2**20)
-
-
-def _row_scales(A, axis=1):
-    """The reciprocals of the largest magnitudes of ``A``'s rows, reduced over ``axis``
-    (1 for a matrix; 1 of a stack of transposed matrices), as ``max(max a, -min a)``:
-    no copy of ``A``; a zero row gets ``1/tiny``."""
-    return 1.0 / np.maximum(np.maximum(A.max(axis=axis), -A.min(axis=axis)),
-                            np.finfo(float).tiny)
-
-
-# What ``rcond`` of solve_stack and Model.solve_many may be.
-_RCOND_CHOICES = ("estimate", "bound")
-
-
-def solve_equilibrated(A, b, what="the linear system"):
-    """``x`` with ``A x = b`` and the reciprocal condition number, rows equilibrated
-    first (the heat equation's rows next to an edge grow like n^3 in the graded
-    representation, which would mask the condition number); ``A`` and ``b`` are
-    overwritten (``A`` by its factors, in place when it is Fortran-ordered)."""
-    scale = _row_scales(A)
-    A *= scale[:, None]
-    b *= scale
-    lu, rcond = factorise(A, what, overwrite=True)
-    x, _ = dgetrs(*lu, b)
-    return x, rcond
-
-
-def factorise(A, what="the linear system", overwrite=False):
-    """LU factors of ``A`` (as :func:`scipy.linalg.lu_factor` returns them) and its
-    reciprocal condition number (1-norm); a singular or ill-conditioned ``A`` (below
-    :data:`RCOND_MIN`) raises :class:`SolveError`.
-
-    LAPACK's ``getrf`` and ``gecon`` are called directly: the same factors as
-    ``lu_factor``'s, without its checks' cost, which a grid line pays per point.
-    ``overwrite``: ``A`` may be overwritten by the factors.
-    """
-    A = np.asarray(A, dtype=float)
-    if not np.all(np.isfinite(A)):
-        raise _not_finite(what)
-    # The 1-norm a block of columns at a time: no copy of A (34 MB at n = 1024).
-    step = max(1, 2**18 // max(1, A.shape[0]))
-    norm = max((np.abs(A[:, i:i + step]).sum(axis=0).max()
-                for i in range(0, A.shape[1], step)), default=0.0)
-    lu, piv, info = dgetrf(A, overwrite_a=overwrite)
-    if info < 0:
-        raise SolveError(f"{what} could not be factorised (illegal value in argument "
-                         f"{-info} of the LU factorisation)")
-    rcond, info = dgecon(lu, norm, norm="1")
-    if info != 0 or not np.isfinite(rcond) or rcond < RCOND_MIN:
-        raise _ill_conditioned(what, rcond)
-    return (lu, piv), float(rcond)
-
-
-def _not_finite(what):
-    return SolveError(f"{what} could not be factorised (array must not contain infs or NaNs)")
-
-
-def _not_finite_solution(what):
-    return SolveError(f"{what}: the linear solve produced non-finite values")
-
-
-def _ill_conditioned(what, rcond):
-    return SolveError(f"{what} is singular or ill-conditioned (reciprocal condition "
-                      f"number {rcond:.1e} < {RCOND_MIN:.0e}); these parameters have no "
-                      f"well-determined solution")
-
-
-#: Newton steps of the interface conductance's dependence on the pressure.
-MAX_PICARD = 50
-
-
-def _solve_linear(system: ContactSetSystem, F: float, biot=None, scale=None, A=None,
-                  b=None, what="the contact set's linear system"):
-    A = system.matrix(F, biot, scale) if A is None else A.copy(order="F")
-    b = system.b.copy() if b is None else b.copy()
-    x, rcond = solve_equilibrated(A, b, what)
-    if not np.all(np.isfinite(x)):
-        raise _not_finite_solution(what)
-    return x, float(rcond)
-
-
-def solve_stack(system: ContactSetSystem, F, what="the contact set's linear system",
-                rcond="estimate") -> list:
-    """:func:`solve_contact_system` of a system without conductance or shared blocks at
-    each of several ``F``: per ``F``, ``(x, rcond)`` or the :class:`SolveError`.
-
-    The matrices ``A0 + F A1`` are formed and their rows equilibrated as one stack,
-    each entry by the same operations as :meth:`ContactSetSystem.matrix` and
-    :func:`solve_equilibrated` apply to it alone; each is then factorised, its
-    condition estimated and solved by LAPACK (``getrf``, ``gecon``, ``getrs``), as
-    alone.  What is saved is the per-solve work around the linear algebra.
-
-    ``rcond="bound"``: a matrix is not refused where :func:`condition_bounds` proves
-    its reciprocal condition number at least :data:`CERTIFIED_RCOND` and its LU has no
-    exact zero pivot (then LAPACK's estimate, not below the true number up to rounding,
-    would not have refused it either), and its ``rcond`` is that proven lower bound;
-    elsewhere it is estimated as above.  The solutions ``x`` and the systems refused are
-    the same.
-    """
-    check_choice("rcond", rcond, _RCOND_CHOICES)
-    F = np.atleast_1d(np.asarray(F, dtype=float))
-    out = []
-    anchors = condition_bounds(system.A0, system.A1, F) if rcond == "bound" else None
-    # A few matrices at a time, so that a chunk's stack stays in the cache from its
-    # forming to its factorisation (the arithmetic is per matrix either way), in a
-    # buffer that every chunk reuses; their |entries| for the 1-norms a block of rows
-    # at a time (no second matrix of 34 MB at n = 1024).
-    k = system.A0.shape[0]
-    step = max(1, min(F.size, STACK_ENTRIES // system.A0.size))
-    stack = np.empty((step, k, k))
-    work = np.empty((step, min(k, max(1, STACK_ENTRIES // (step * k))), k))
-    # The transposed matrices once, contiguous, so that every chunk reads them in order;
-    # a large one (a chunk of one matrix) through its view, without a copy (34 MB each
-    # at n = 1024).
-    def transposed(A):
-        if A is None:
-            return None
-        return np.ascontiguousarray(A.T) if A.size <= STACK_ENTRIES else A.T
-    A0t, A1t = transposed(system.A0), transposed(system.A1)
-    for i in range(0, F.size, step):
-        chunk = F[i:i + step]
-        out += _solve_chunk(A0t, A1t, system.b, chunk, what, stack[:chunk.size],
-                            work[:chunk.size],
-                            None if anchors is None else anchors.part(i, i + step))
-    return out
-
-
-#: Matrix entries formed at once by :func:`solve_stack` (1 MB).
-STACK_ENTRIES = 2**17
-#: Matrices of fewer entries are solved by LAPACK's ``gesv`` (``getrf`` then ``getrs``
-#: in one call): OpenBLAS factorises them on one thread whatever its threads, as
-#: ``getrf`` alone does; larger ones by ``getrf`` and ``getrs`` apart, so that ``getrf``
-#: may use the threads the Python API leaves it (the same factors as before).
-GESV_ENTRIES = 10_000
-#: A matrix whose reciprocal condition number :func:`condition_bounds` proves at least
-#: this (a thousand times :data:`RCOND_MIN`) is not refused, without LAPACK's estimate.
-CERTIFIED_RCOND = 1e3 * RCOND_MIN
-#: Points of a stack per anchor of :func:`condition_bounds` at least, and per unknown
-#: of its systems at least half a point: an anchor (an inverse and a product) costs
-#: about what LAPACK's estimates of ``k / 4`` matrices of ``k`` unknowns cost.
-POINTS_PER_ANCHOR = 8
-#: Anchors of :func:`condition_bounds` per stack at most.
-MAX_ANCHORS = 16
-#: An anchor of :func:`condition_bounds` covers ``|F - F0| ||C||_1 <= COVERED`` (< 1).
-COVERED = 0.9
-#: Bound on the relative rounding of a formed, equilibrated entry (``F A1``, ``+ A0``,
-#: ``* d``: three roundings of at most 2^-53 each), with room to spare.
-FORMING_ROUNDING = 8 * 2.0**-53
-
-
-@dataclass(frozen=True)
-class ConditionBounds:
-    """Anchors of a stack ``A(F) = A0 + F A1`` (:func:`condition_bounds`): per ``F``
-    the index of the anchor that bounds its condition (-1: none); per anchor its
-    ``F0``, row scales ``d0`` (shape ``(anchors, k)``), the bound ``inverse_norm`` on
-    ``||A~0^-1||_1`` and ``growth`` on ``||C||_1``, and ``magnitudes``: the 1-norms of
-    ``diag(d0) |A0|`` and ``diag(d0) |A1|`` (shape ``(anchors, 2)``)."""
-
-    which: np.ndarray
-    F0: np.ndarray
-    d0: np.ndarray
-    inverse_norm: np.ndarray
-    growth: np.ndarray
-    magnitudes: np.ndarray
-
-    def part(self, start, stop) -> ConditionBounds:
-        """The anchors of the stack's matrices ``start:stop``."""
-        return replace(self, which=self.which[start:stop])
-
-    def rcond_bounds(self, F, scale, norms) -> np.ndarray:
-        """Lower bounds of the reciprocal 1-norm condition numbers of the equilibrated
-        matrices ``diag(scale) A(F)`` as formed in floating point (``norms``: their
-        1-norms), NaN where no anchor bounds them (derivation (D6b.2), (D6b.3))."""
-        out = np.full(F.size, np.nan)
-        ok = self.which >= 0
-        if ok.any():
-            a = self.which[ok]
-            with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-                ratio = self.d0[a] / scale[ok]
-                # (D6b.2): the exact matrix's inverse, bounded.
-                beta = (self.inverse_norm[a] * ratio.max(axis=1)
-                        / (1.0 - np.abs(F[ok] - self.F0[a]) * self.growth[a]))
-                # (D6b.3): the formed matrix differs from it by its entries' rounding.
-                eta = (FORMING_ROUNDING / ratio.min(axis=1)
-                       * (self.magnitudes[a, 0] + np.abs(F[ok]) * self.magnitudes[a, 1]))
-                lost = beta * eta
-                out[ok] = np.where(lost < 0.5, (1.0 - lost) / (norms[ok] * beta), np.nan)
-        return out
-
-
-def condition_bounds(A0, A1, F) -> ConditionBounds:
-    """Anchors that bound the condition of every matrix of a stack ``A(F) = A0 + F A1``,
-    each row equilibrated (``d(F)``: the reciprocals of the rows' largest magnitudes,
-    as :func:`solve_equilibrated` scales them).
-
-    At an anchor ``F0``, with ``A~0 = diag(d0) A(F0)`` and ``C = A~0^-1 diag(d0) A1``,
-    ``diag(d) A(F) = diag(d / d0) A~0 (I + (F - F0) C)`` (D6b.1), so that for
-    ``|F - F0| ||C||_1 < 1``::
-
-        ||(diag(d) A(F))^-1||_1 <= ||A~0^-1||_1 max_i(d0_i / d_i) / (1 - |F - F0| ||C||_1)
-
-    (D6b.2), and the matrix as formed in floating point is within its entries'
-    rounding of it (D6b.3; derivation section 6b).  An anchor at the middle of the
-    ``F`` range covers ``|F - F0| <= COVERED / ||C||_1`` (a bound within a factor
-    ``1 - COVERED`` of the anchor's), and the ranges left on either side get one at
-    their middles in turn (breadth first); at most one per :data:`POINTS_PER_ANCHOR`
-    matrices or per ``k / 2`` matrices of ``k`` unknowns, whichever is fewer, and
-    :data:`MAX_ANCHORS` in all (the rest are left to LAPACK's estimate).
-    """
-    F = np.asarray(F, dtype=float)
-    k = A0.shape[0]
-    which = np.full(F.size, -1)
-    order = np.flatnonzero(np.isfinite(F))
-    order = order[np.argsort(F[order], kind="stable")]
-    fs = F[order]
-    found = []
-    tries = min(MAX_ANCHORS, F.size // max(POINTS_PER_ANCHOR, k // 2))
-    spans = deque([(0, fs.size)] if fs.size and tries else [])  # sorted F's [i, j) to bound
-    # F near the largest floats: spans and reaches that overflow are inf, as meant.
-    with np.errstate(over="ignore", invalid="ignore"):
-        while spans and tries > 0:
-            tries -= 1
-            i, j = spans.popleft()
-            F0 = fs[i] + 0.5 * (fs[j - 1] - fs[i]) if fs[j - 1] - fs[i] < math.inf else fs[i]
-            anchor = _anchor(A0, A1, F0)
-            # Singular there: the two sides in turn, without the F equal to F0.
-            r = 0.0 if anchor is None else COVERED / anchor[2] if anchor[2] > 0 else math.inf
-            lo = int(np.searchsorted(fs, F0 - r, side="left"))
-            hi = int(np.searchsorted(fs, F0 + r, side="right"))
-            if anchor is not None:
-                which[order[lo:hi]] = len(found)
-                found.append((F0, *anchor))
-            spans += [s for s in ((i, lo), (hi, j)) if s[0] < s[1]]
-    if not found:
-        return ConditionBounds(which, np.empty(0), np.empty((0, k)), np.empty(0), np.empty(0),
-                               np.empty((0, 2)))
-    F0s, d0s, inverse_norms, growths, magnitudes = zip(*found)
-    return ConditionBounds(which, np.array(F0s), np.array(d0s), np.array(inverse_norms),
-                           np.array(growths), np.array(magnitudes))
-
-
-def _anchor(A0, A1, F0):
-    """``(d0, ||A~0^-1||_1, ||C||_1, (||d0 |A0|||_1, ||d0 |A1|||_1))`` of
-    :func:`condition_bounds` at ``F0``, the norms bounded for the rounding of ``A~0``
-    as formed (D6b.3); None where ``A~0`` is singular, not finite or too ill-conditioned
-    for that bound."""
-    if not math.isfinite(F0):
-        return None
-    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-        A = A0 + F0 * A1 if A1 is not None else A0.copy()
-        d0 = _row_scales(A)
-        A *= d0[:, None]
-        if not np.all(np.isfinite(A)):
-            return None
-        norm = np.abs(A).sum(axis=0).max()
-        lu, piv, info = dgetrf(A, overwrite_a=True)
-        if info != 0:
-            return None
-        inverse, info = dgetri(lu, piv, overwrite_lu=True)
-        if info != 0:
-            return None
-        B = np.zeros_like(A0) if A1 is None else d0[:, None] * A1
-        magnitudes = (float(np.abs(d0[:, None] * A0).sum(axis=0).max()),
-                      float(np.abs(B).sum(axis=0).max()))
-        computed = np.abs(inverse).sum(axis=0).max()
-        # An anchor that could prove nothing: and its inverse's own rounding (about
-        # k 1e-16 / rcond relative) stays far below the factor CERTIFIED_RCOND spares.
-        if not 1.0 / (norm * computed) >= CERTIFIED_RCOND:
-            return None
-        # A~0 exact differs from the one inverted by eta0 in norm at most: its inverse's
-        # norm and C's, bounded (D6b.3).
-        eta0 = FORMING_ROUNDING * (magnitudes[0] + abs(F0) * magnitudes[1])
-        if not computed * eta0 < 0.5:
-            return None
-        inverse_norm = computed / (1.0 - computed * eta0)
-        growth = (np.abs(inverse @ B).sum(axis=0).max()
-                  + computed * inverse_norm * eta0 * magnitudes[1])
-    if not (math.isfinite(inverse_norm) and math.isfinite(growth)):
-        return None
-    return d0, float(inverse_norm), float(growth), magnitudes
-
-
-def _solve_chunk(A0t, A1t, b, F, what, S, work, anchors=None):
-    # Each A_i is stored transposed (S[i] = A_i^T), so that S[i].T is in LAPACK's order.
-    # A non-finite F makes its matrix non-finite: refused below, at that F only.
-    with np.errstate(invalid="ignore", over="ignore"):
-        if A1t is None:
-            S[...] = A0t[None]
-        else:
-            np.multiply(A1t[None], F[:, None, None], out=S)
-            S += A0t[None]
-        # Rows of A_i are columns of S[i]: scaled as in solve_equilibrated.
-        scale = _row_scales(S, axis=1)
-        S *= scale[:, None, :]
-        B = b[None, :] * scale
-        # Rows of S[i] are columns of A_i: the 1-norm is the largest of their sums.
-        sums = np.empty(S.shape[:2])
-        rows = work.shape[1]
-        for r in range(0, S.shape[1], rows):
-            part = S[:, r:r + rows]
-            sums[:, r:r + rows] = np.abs(part, out=work[:, :part.shape[1]]).sum(axis=2)
-        norms = sums.max(axis=1)
-    # Each equilibrated row is at most 1 in magnitude, so a norm is finite exactly when
-    # the whole matrix is (an inf or a NaN makes its row's scale and so the row NaN).
-    finite = np.isfinite(norms)
-    proven = (np.full(F.size, np.nan) if anchors is None
-              else anchors.rcond_bounds(F, scale, norms))
-    # gesv's factors are getrf's where OpenBLAS factorises on one thread whatever its
-    # threads (fewer than GESV_ENTRIES entries); above, getrf may use several, gesv not.
-    small = S.shape[1] * S.shape[2] < GESV_ENTRIES
-    out, solved = [], []
-    for i in range(F.size):
-        if not finite[i]:
-            out.append(_not_finite(what))
-            continue
-        if small:
-            # getrf and getrs in one call (gesv), one call fewer per point; a system
-            # then refused by its condition costs one solve.
-            lu, piv, x, singular = dgesv(S[i].T, B[i], overwrite_a=True)
-        else:
-            lu, piv, singular = dgetrf(S[i].T, overwrite_a=True)
-        # An exact zero pivot is refused by the estimate (0), as without the bound.
-        if proven[i] >= CERTIFIED_RCOND and singular == 0:
-            rcond = float(proven[i])
-        else:
-            rcond, info = dgecon(lu, norms[i], norm="1")
-            rcond = float(rcond)
-            if info != 0 or not math.isfinite(rcond) or rcond < RCOND_MIN:
-                out.append(_ill_conditioned(what, rcond))
-                continue
-        if not small:
-            x, _ = dgetrs(lu, piv, B[i])
-        out.append((x, rcond))
-        solved.append(i)
-    if solved:
-        # Non-finite solutions, all checked at once.
-        ok = np.isfinite(np.concatenate([out[i][0] for i in solved]))
-        for i in np.asarray(solved)[~ok.reshape(len(solved), -1).all(axis=1)]:
-            out[i] = _not_finite_solution(what)
-    return out
-
-
-def solve_contact_system(system: ContactSetSystem, F: float, rep, half, conductance=None,
-                         what="the contact set's linear system"):
-    """``x`` and the reciprocal condition number of an assembled contact set at
-    ``F`` (:func:`~thermocontact.discretisation.system.contact_set_system`).
-
-    With an interface conductance (section 15) whose Biot numbers follow the
-    pressure (``m != 0``), Newton's method on the whole linear system with that
-    dependence in its Jacobian, from the load spread over the zones as Hertz's shape
-    (plain repetition with the last pressure oscillates once the heat couples
-    strongly).
-
-    Parameters
-    ----------
-    system : ContactSetSystem
-    F : float
-        ``fHPe`` in the system's length unit.
-    rep : Representation
-    half : array_like
-        The zones' half-widths in the system's length unit.
-    conductance : Conductance, optional
-        Required when the system was assembled with one.
-    what : str
-        The system's name in messages.
-
-    Raises
-    ------
-    SolveError
-        A singular system, or the conductance's pressure unsettled after
-        :data:`MAX_PICARD` Newton steps.
-    """
-    if not system.local:
-        return _solve_linear(system, F, what=what)
-    m, n = system.zones, system.n
-    # The first pressure: the load spread over the zones as Hertz's shape.
-    rows = [rep.pressure_rows(sh, ah) for sh, ah in system.points]
-    pressure = [(2.0 / (np.pi * np.sum(half))) * rep.pressure_weight(sh)
-                for sh, _ in system.points]
-    cond = conductance
-    biot = [cond.biot(p) for p in pressure]
-    scale = system.theta_scale(biot)
-    x, rcond = _solve_linear(system, F, biot, scale, what=what)
-    if cond.exponent == 0.0:
-        return x, rcond
-
-    def residual(x):
-        phi = x[:m * n].reshape(m, n)
-        p = [r @ f for r, f in zip(rows, phi)]
-        bi = [cond.biot(q) for q in p]
-        A = system.matrix(F, bi, scale)
-        return A @ x - system.b, A, p, bi
-    r, A, p, bi = residual(x)
-    norm = np.linalg.norm(r)
-    step = np.inf
-    for _ in range(MAX_PICARD):
-        # Converged when the residual is at rounding level or the step is.
-        if (norm <= 1e-11 * max(1.0, np.linalg.norm(system.b))
-                or step <= 1e-13 * np.linalg.norm(x)):
-            if not np.isfinite(x).all():
-                raise _not_finite_solution(what)
-            return x, rcond
-        J = A + system.conductance_jacobian(x, bi, [cond.dbiot(q) for q in p], rows, scale)
-        dx, rcond = _solve_linear(system, F, A=J, b=-r, what=what)
-        alpha = 1.0
-        while True:
-            trial = residual(x + alpha * dx)
-            if np.linalg.norm(trial[0]) < norm or alpha < 1e-4:
-                break
-            alpha *= 0.5
-        x = x + alpha * dx
-        step = alpha * np.linalg.norm(dx)
-        r, A, p, bi = trial
-        norm = np.linalg.norm(r)
-    raise NotConvergedError(f"the interface conductance's pressure did not settle in "
-                     f"{MAX_PICARD} Newton steps")
 
 
 #: The single patch in its own scaling: one zone from -1 to 1 (section 16).
@@ -910,7 +484,7 @@ class Model:
         """
         closure = check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
                                     temperatures=temperatures)
-        check_choice("rcond", rcond, _RCOND_CHOICES)
+        check_choice("rcond", rcond, RCOND_CHOICES)
         closures = None
         if closure == "temperatures":
             # One closure (a Temperatures or a tuple (Theta, L/Delta)) or a list of them.

@@ -40,7 +40,7 @@ from ..problem.errors import NotConvergedError
 from ..problem.parameters import PARTITION, Parameters, SolveError
 from ..problem.validation import InputError, check_exactly_one, check_range
 from .refinement import N_RANGE, refine
-from .single_patch import solve_contact_system
+from .contact_system import solve_contact_system
 
 __all__ = ["BIOT_RANGE", "CYLINDER", "Conductance", "ZoneModel", "ZoneSolution",
            "zone_parameters", "zone_system"]
@@ -300,7 +300,7 @@ class ZoneModel:
         with ``lam`` given, ``(nu,)`` with ``sigma_over_delta`` (section 16).
 
         With a pressure-dependent conductance the Biot numbers follow the pressure
-        (section 15, :func:`~thermocontact.solvers.single_patch.solve_contact_system`).
+        (section 15, :func:`~thermocontact.solvers.contact_system.solve_contact_system`).
         """
         system = self.system(edges, pe, fhpe, lam, sigma_over_delta=sigma_over_delta)
         half = 0.5 * np.diff(_edges(edges), axis=1)[:, 0]
