@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from .discretisation.methods import DEFAULT_METHOD
 from .problem.axes import Axis
-from .problem.closure import check_sink_distance
+from .problem.closure import check_sink_distance, temperature_closure
 from .problem.validation import InputError, check_positive
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
@@ -146,7 +146,7 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
         (its incoming one when it moves, its sink's when stationary), K or with units
         (``"150C,40C"``, ``(423.15, 313.15)``).  ``lam`` is then an output with its
         error, and each body's absolute peak temperature is judged against its
-        material's limit (derivation section 17).  Single patch only.
+        material's limit (derivation section 17); with ``zones``, the contact set's.
     sink_distance : float or str, optional
         With ``bulk_temperatures`` and a stationary half-plane: the distance from the
         contact at which the half-plane is at its temperature, m (``"30mm"``), larger
@@ -186,9 +186,6 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
                                 speed2, dundurs, materials, bulk_temperatures, sink_distance,
                                 layer_thickness)
     tol = check_positive("tol", tol)
-    if zones and bulk_temperatures is not None:
-        raise InputError("bulk_temperatures close the single patch only (derivation section "
-                         "17); give lam with zones", parameters=("bulk_temperatures", "zones"))
     if conductance is not None and not zones:
         raise InputError("conductance needs zones (the single patch assumes perfect "
                          "thermal contact)", parameters=("conductance", "zones"))
@@ -204,8 +201,9 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
     return contact_of(problem, tol=tol, progress=progress)
 
 
-def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
-                delta1_over_delta2=1.0, conductance=None, n=32, progress=None):
+def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
+                delta1_over_delta2=1.0, conductance=None, n=32, progress=None,
+                sigma_over_delta=None, theta=None, sink_distance=None):
     """The contact set at one load: one zone or several, or why there is none.
 
     ``thermocontact zones`` from Python (derivation section 14).  Lengths are in
@@ -221,7 +219,19 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     K2_over_K1 : float
         Conductivity ratio > 0.
     lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2).
+        Heat partition (Q1 - Q2)/(Q1 + Q2), ``|lam| <= 1e6`` as for
+        :func:`thermocontact.solve` (beyond [-1, 1] a formal continuation: one body
+        gives heat to the contact, as a hot body does between unequal far
+        temperatures).
+    sigma_over_delta : float, optional
+        Or the offset ``centre/half-width`` of one zone (section 16; ``fhpe_hertz > 0``).
+    theta : float, optional
+        Or the far temperatures' group ``Theta = pi K2 (T2 - T1)/(f v P)`` (D39;
+        section 17), with ``sink_distance``: ``lam`` is then an output.  Exactly one
+        of ``lam``, ``sigma_over_delta`` and ``theta``.
+    sink_distance : float, optional
+        With ``theta``: ``L/l > 1``, the distance of the half-plane's sink at ``T2`` in
+        units of ``l`` (D38).
     k2_over_k1 : float, optional
         Diffusivity ratio > 0 (default ``K2_over_K1``).
     delta1_over_delta2 : float
@@ -233,7 +243,8 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     n : int
         Unknowns per function per zone, 8 to 256.
     progress : callable, optional
-        ``progress(fraction)`` as the continuation advances.
+        ``progress(fraction)`` as the continuation advances (each evaluation of the
+        defects tells it: a run bounded by its budget of evaluations).
 
     Returns
     -------
@@ -250,7 +261,10 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     """
     from .studies.contact_sets import find_contact_set
 
-    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam,
+                            sigma_over_delta=sigma_over_delta,
+                            temperatures=temperature_closure(theta, sink_distance),
+                            k2_over_k1=k2_over_k1,
                             delta1_over_delta2=delta1_over_delta2, n=n,
                             conductance=None if conductance is None else tuple(conductance),
                             progress=progress)

@@ -357,10 +357,13 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     one more unknown, and (D31b) is not needed.  With the heat partition given, each
     zone's right side gains ``(2/pi)(mu_j + nu_j s)``; with the offset given (one
     zone only) ``(2/pi) nu (sigma + s)`` and no partition row (section 16).  With
-    the far temperatures given (one zone only) the partition row becomes the
-    temperature row (D41): the mean over ``n`` points of the surfaces' temperature
-    difference (D33) with each body's far temperature, or with a conductance its
-    constant, equal to ``Theta`` (section 17).
+    the far temperatures given the partition row becomes the temperature row (D41):
+    the mean over ``n`` points of zone 0 of the surfaces' temperature difference
+    (D33), every zone's sources summed, with each body's far temperature, or with a
+    conductance its constant, equal to ``Theta`` (section 17).  Perfect thermal
+    contact makes that difference one constant over every zone (the heat rows hold
+    it on each zone, the returns (D31b) carry it across each gap), so zone 0's
+    points stand for all.
 
     Parameters
     ----------
@@ -375,8 +378,8 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     lam, sigma_over_delta : float
         The heat partition, or (one zone) the offset ``centre/half``.
     temperatures : Temperatures
-        Or (one zone) the far temperatures, the sink distance in the unit of
-        ``edges`` (section 17).  Exactly one of the three.
+        Or the far temperatures, the sink distance in the unit of ``edges``
+        (section 17).  Exactly one of the three.
     profile : numpy.polynomial.Polynomial, optional
         The initial gap in units of ``l^2/R`` against ``X``; None: none (the single
         patch in its own scaling, whose ``X^2/2`` is carried by the defects).
@@ -391,17 +394,17 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     Raises
     ------
     InputError
-        The offset or the temperatures given with more than one zone; a sink
-        distance with a moving half-plane, or none with a stationary one.
+        The offset given with more than one zone; a sink distance with a moving
+        half-plane, or none with a stationary one.
     """
     m, n = len(edges), rep.n
     if sum(c is not None for c in (lam, sigma_over_delta, temperatures)) != 1:
         raise InputError("give exactly one of lam, sigma_over_delta and temperatures",
                          parameters=("lam", "sigma_over_delta", "temperatures"))
-    for name, given in (("sigma_over_delta", sigma_over_delta), ("temperatures", temperatures)):
-        if given is not None and m != 1:
-            raise InputError(f"{name} closes a single zone only (sections 16, 17), got "
-                             f"{m} zones; give lam instead", parameters=(name,))
+    if sigma_over_delta is not None and m != 1:
+        raise InputError(f"sigma_over_delta closes a single zone only (section 16), got "
+                         f"{m} zones; give lam or temperatures instead",
+                         parameters=("sigma_over_delta",))
     if temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
     centre = 0.5 * (edges[:, 0] + edges[:, 1])

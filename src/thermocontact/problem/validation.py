@@ -18,6 +18,7 @@ __all__ = [
     "check_finite",
     "check_integer",
     "check_nonnegative",
+    "check_offset_coupling",
     "check_positive",
     "check_range",
     "check_zero_or_range",
@@ -136,3 +137,15 @@ def check_exactly_one(**named) -> str:
     if len(given) != 1:
         raise InputError(f"give exactly one of {' and '.join(named)}", parameters=tuple(named))
     return given[0]
+
+
+def check_offset_coupling(fhpe, fhpe_name: str = "fhpe") -> None:
+    """The offset closes a contact only with thermal coupling (``fhpe > 0``): without,
+    the contact is Hertzian, a bounded solution needs ``sigma_over_delta = 0`` and then
+    ``lam`` is undetermined."""
+    if fhpe == 0.0:
+        raise InputError(
+            f"sigma_over_delta cannot be imposed when {fhpe_name} = 0: without thermal "
+            f"coupling the contact is Hertzian, a bounded solution needs "
+            f"sigma_over_delta = 0 and then lam is undetermined; give lam instead",
+            parameters=("sigma_over_delta", fhpe_name))

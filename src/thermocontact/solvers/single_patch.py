@@ -36,10 +36,10 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance, Conta
                                      check_temperatures, contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.moment_engine import GEOMETRY
-from ..problem.closure import Temperatures, check_sink_distance, check_theta
+from ..problem.closure import Temperatures, temperature_closure
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
-                                  check_positive, check_range)
+                                  check_offset_coupling, check_positive, check_range)
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
 
@@ -572,12 +572,7 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
     if temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
     elif sigma_over_delta is not None:
-        if par.fhpe == 0.0:
-            raise InputError(
-                "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
-                "coupling the contact is Hertzian, a bounded solution needs "
-                "sigma_over_delta = 0 and then lam is undetermined; give lam instead"
-            )
+        check_offset_coupling(par.fhpe)
     # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
     key = (lam, sigma_over_delta, temperatures)
     if key not in systems:
@@ -1114,12 +1109,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     1.0
     """
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, theta=theta)
-    if sink_distance is not None and theta is None:
-        raise InputError("sink_distance is given with theta only (the temperature closure)",
-                         parameters=("sink_distance", "theta"))
-    temperatures = None if theta is None else Temperatures(
-        check_theta(theta),
-        None if sink_distance is None else check_sink_distance(sink_distance))
+    temperatures = temperature_closure(theta, sink_distance)
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
