@@ -27,7 +27,8 @@ from __future__ import annotations
 from .discretisation.methods import DEFAULT_METHOD
 from .problem.axes import Axis
 from .problem.closure import check_sink_distance, temperature_closure
-from .problem.validation import InputError, check_positive
+from .problem.validation import (InputError, check_flag, check_integer, check_nonnegative,
+                                  check_positive, check_sink_given)
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
@@ -69,7 +70,7 @@ def _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam, 
     return PhysicalProblem(cyl, half, _quantity("radius", radius, "m"),
                            _quantity("load", load, "N/m"), _quantity("speed", speed, "m/s"),
                            friction, lam, _quantity("speed2", speed2, "m/s"),
-                           dundurs=bool(dundurs),
+                           dundurs=check_flag("dundurs", dundurs),
                            bulk_temperatures=_temperatures(bulk_temperatures),
                            sink_distance=_quantity("sink_distance", sink_distance, "m"),
                            layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
@@ -186,6 +187,7 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
                                 speed2, dundurs, materials, bulk_temperatures, sink_distance,
                                 layer_thickness)
     tol = check_positive("tol", tol)
+    zones = check_flag("zones", zones)
     if conductance is not None and not zones:
         raise InputError("conductance needs zones (the single patch assumes perfect "
                          "thermal contact)", parameters=("conductance", "zones"))
@@ -399,6 +401,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if len(closures) != 1:
         raise InputError("give exactly one of lam and sigma (or theta), or follow one of them",
                          parameters=("lam", "sigma", "theta"))
+    _check_sink(fixed, closures[0], (name,))
     path = follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
     if not stability:
@@ -465,7 +468,8 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
     prob = _physical_problem(physical["cylinder"], physical["half_plane"], values["radius"],
                              values["load"], speed, values["friction"], lam,
                              speed2=speed * speed_ratio,
-                             dundurs=physical["dundurs"] is not False,
+                             dundurs=(True if physical["dundurs"] is None
+                                      else physical["dundurs"]),
                              materials=physical["materials"],
                              bulk_temperatures=physical["bulk_temperatures"],
                              sink_distance=sink, layer_thickness=physical["layer_thickness"])
@@ -630,6 +634,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                  "sink_distance": None if dimensionless_sink is None else
                  check_sink_distance(_number("sink_distance", dimensionless_sink))}
         _refuse_axis_values((x, y), fixed, NAMES)
+        _check_sink(fixed, "theta" if fixed.get("theta") is not None else None,
+                    tuple(NAMES.get(getattr(a, "name", None)) for a in (x, y)))
         return MapSpec(x, y, fixed, method=DEFAULT_METHOD if method is None else method,
                        tol=tol, delta_over_r=delta_over_r)
     from .studies.operating_maps import OperatingSpec
@@ -653,12 +659,26 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
     _refuse_axis_values((x, y), fixed)
     return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
-                         tol=check_positive("tol", tol), dundurs=dundurs is not False,
-                         speed_ratio=speed_ratio or 0.0, zones=bool(zones),
+                         tol=check_positive("tol", tol),
+                         dundurs=True if dundurs is None else check_flag("dundurs", dundurs),
+                         speed_ratio=speed_ratio or 0.0, zones=check_flag("zones", zones),
                          conductance=_physical_conductance(conductance),
                          bulk_temperatures=_temperatures(bulk_temperatures),
                          sink_distance=_quantity("sink_distance", sink_distance, "m"),
                          layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
+
+
+def _check_sink(fixed, closure, varied):
+    """A dimensionless path's or map's far temperatures (``closure`` ``"theta"``, given
+    or ``varied``) with their sink where the half-plane is stationary and none where
+    it moves, before any point is solved (``speed_ratio`` varied: each point says)."""
+    if "theta" in varied:
+        closure = "theta"
+    if fixed.get("sink_distance") is not None and closure != "theta":
+        raise InputError("sink_distance is given with theta only (the temperature closure)",
+                         parameters=("sink_distance", "theta"))
+    if closure == "theta" and "speed_ratio" not in varied:
+        check_sink_given(fixed.get("sink_distance"), not fixed.get("speed_ratio"))
 
 
 def _refuse_axis_values(axes, given, names=None):
@@ -756,7 +776,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
 
     s, c = _materials(slider, counterface, materials)
     return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
-                   speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
+                   speed=_quantity("speed", speed, "m/s"), dundurs=check_flag("dundurs", dundurs))
 
 
 def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,
@@ -853,49 +873,52 @@ def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, 
     """
     from .solvers.transient import TransientSpec
 
-    try:
-        lo, hi = window
-        window = (float(lo), float(hi))
-    except (TypeError, ValueError):
-        raise InputError(f"window must be two numbers lo < -1 and hi > 1, got {window!r}",
-                         parameters=("window",)) from None
+    # Every input checked and converted by the specification itself.
     return TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
                          until=until, steps=steps, k2_over_k1=k2_over_k1,
                          delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
                          elements=elements, window=window, start=start, hold=hold,
-                         perturb=perturb,
-                         conductance=None if conductance is None else tuple(conductance))
+                         perturb=perturb, conductance=conductance)
 
 
-def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0):
+def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0,
+                      preparing=None):
     """The transient run that a :func:`transient_spec` (or :func:`contact_transient_spec`)
     describes.
 
     Parameters
     ----------
     spec : TransientSpec
-    resume : TransientRun, optional
+    resume : TransientRun, xarray.Dataset or path, optional
         A partial run of the same ``spec`` (``status == "partial"``, e.g. read back
-        by :func:`read_transient`): its steps are taken as they are and the run goes
-        on from its last; the steps computed are the same as without the interruption.
+        by :func:`read_transient`, or its dataset or file): its steps are taken as
+        they are and the run goes on from its last; the steps computed are the same
+        as without the interruption.
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
     save : callable, optional
         ``save(partial_run)`` at most every ``save_every`` seconds of computing.
     save_every : float
         Seconds.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made, before any step (the
+        lag tables a step of lag at a time: minutes for 100 000 steps or 4000
+        elements).
 
     Returns
     -------
     TransientRun
     """
-    from .solvers.transient import TransientSpec, run_transient
+    from .solvers.transient import TransientRun, TransientSpec, read_run, run_transient
 
     if not isinstance(spec, TransientSpec):
         raise InputError(f"spec must be a transient run's specification (transient_spec), "
                          f"got {spec!r}", parameters=("spec",))
+    if resume is not None and not isinstance(resume, TransientRun):
+        resume = read_run(resume, "resume")
+    save_every = check_nonnegative("save_every", save_every)
     return run_transient(spec, resume=resume, progress=progress, save=save,
-                         save_every=save_every)
+                         save_every=save_every, preparing=preparing)
 
 
 def read_transient(ds):
@@ -903,19 +926,20 @@ def read_transient(ds):
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A transient run's dataset (its file read back): its attributes are the
+    ds : xarray.Dataset or path
+        A transient run's dataset, or its file (``.nc``): its attributes are the
         inputs, ``status`` and ``seconds``; any others (those of
-        :func:`contact_transient`) are left out.
+        :func:`contact_transient`) are left out.  Anything else, or a file that is
+        missing or not a run's, is refused (:class:`InputError` naming ``ds``).
 
     Returns
     -------
     TransientRun
         Equal to the run that wrote the dataset.
     """
-    from .solvers.transient import TransientRun
+    from .solvers.transient import read_run
 
-    return TransientRun.from_dataset(ds)
+    return read_run(ds)
 
 
 def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
@@ -1045,15 +1069,16 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     time_unit = ell ** 2 / problem.half_plane.k
     duration = check_positive("duration", _quantity("duration", duration, "s"))
     groups = problem.ray_parameters()
-    from .solvers.transient import MAX_SHIFT, UNTIL_MIN, longest_step
+    from .solvers.transient import MAX_SHIFT, STEPS_RANGE, UNTIL_MIN, longest_step
 
+    steps = check_integer("steps", steps, *STEPS_RANGE)
     # The duration's bounds in seconds, as the dimensionless run would refuse them.
     if duration < UNTIL_MIN * time_unit:
         raise InputError(f"duration must be at least {UNTIL_MIN * time_unit:.4g} s here "
                          f"(1e-12 of l^2/kappa2), got {duration:.4g} s",
                          parameters=("duration",))
     longest = longest_step(problem.pe_hertz) * time_unit
-    if isinstance(steps, int) and steps > 0 and duration / steps > longest:
+    if duration / steps > longest:
         raise InputError(f"duration/steps must be at most {longest:.4g} s at this "
                          f"speed: the cylinder's surface would move "
                          f"{MAX_SHIFT * duration / steps / longest:.4g} half-widths in "

@@ -39,7 +39,7 @@ from dataclasses import replace
 from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
-from ..problem.validation import InputError, check_range
+from ..problem.validation import InputError, check_range, check_sink_given
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
 from .representations import (Representation, projection_columns, projection_nodes,
                               range_projections)
@@ -568,14 +568,7 @@ def check_temperatures(par: Parameters, temperatures) -> Temperatures:
     temperature is absolute, section 17)."""
     if not isinstance(temperatures, Temperatures):
         temperatures = Temperatures(*temperatures)
-    moving = par.half_plane_scale != 0.0
-    if moving and temperatures.sink_distance is not None:
-        raise InputError("sink_distance applies to a stationary half-plane only: a moving "
-                         "half-plane's far temperature is its incoming one",
-                         parameters=("sink_distance",))
-    if not moving and temperatures.sink_distance is None:
-        raise InputError("a stationary half-plane needs sink_distance (> 1, in half-widths) "
-                         "with the temperatures", parameters=("sink_distance",))
+    check_sink_given(temperatures.sink_distance, par.half_plane_scale == 0.0)
     return temperatures
 
 
