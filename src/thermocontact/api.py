@@ -24,11 +24,12 @@ command                            call
 
 from __future__ import annotations
 
-from .discretisation.methods import DEFAULT_METHOD
+from .discretisation.methods import DEFAULT_METHOD, METHODS
 from .problem.axes import Axis
 from .problem.closure import check_sink_distance, temperature_closure
-from .problem.validation import (InputError, check_flag, check_integer, check_nonnegative,
-                                  check_positive, check_sink_given)
+from .problem.validation import (InputError, check_callable, check_choice, check_flag,
+                                 check_integer, check_nonnegative, check_pair, check_positive,
+                                 check_sink_given)
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
@@ -188,6 +189,7 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
                                 layer_thickness)
     tol = check_positive("tol", tol)
     zones = check_flag("zones", zones)
+    check_callable("progress", progress)
     if conductance is not None and not zones:
         raise InputError("conductance needs zones (the single patch assumes perfect "
                          "thermal contact)", parameters=("conductance", "zones"))
@@ -263,12 +265,15 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
     """
     from .studies.contact_sets import find_contact_set
 
+    check_callable("progress", progress)
     return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam,
                             sigma_over_delta=sigma_over_delta,
                             temperatures=temperature_closure(theta, sink_distance),
                             k2_over_k1=k2_over_k1,
-                            delta1_over_delta2=delta1_over_delta2, n=n,
-                            conductance=None if conductance is None else tuple(conductance),
+                            delta1_over_delta2=delta1_over_delta2,
+                            n=check_integer("n", n, 8, 256),
+                            conductance=None if conductance is None else check_pair(
+                                "conductance", conductance, "(Bi0, m), two numbers"),
                             progress=progress)
 
 
@@ -352,25 +357,33 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     [0.6654, 0.702]
     """
     tol = check_positive("tol", tol)
+    check_callable("progress", progress)
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
                 "materials": materials, "bulk_temperatures": bulk_temperatures,
                 "sink_distance": sink_distance, "layer_thickness": layer_thickness}
-    along_name = along.replace("-", "_") if isinstance(along, str) else along
+    from .studies.boundaries import SPELLINGS
+
+    if not isinstance(along, str):
+        raise InputError(f"along must be one of {sorted(SPELLINGS) + sorted(PHYSICAL_ALONG)}"
+                         f", got {along!r}", parameters=("along",))
+    along_name = along.replace("-", "_")
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": beta_f or None, "sigma": sigma, "method": method,
+                         "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
+                         "method": method,
                          "theta": theta}
         if stability:
             raise InputError("the kinds of events (stability) are computed for "
                              "dimensionless paths only", parameters=("stability",))
-        return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
+        return _physical_path(along_name, start, stop, physical, lam,
+                              _zero_absent("speed_ratio", speed_ratio) or 0.0,
                               dimensionless, tol, n, progress)
-    from .studies.boundaries import SPELLINGS, follow
+    from .studies.boundaries import follow
     from .studies.maps import NAMES
 
-    method = DEFAULT_METHOD if method is None else method
+    method = DEFAULT_METHOD if method is None else check_choice("method", method, METHODS)
     # A dimensionless path's sink distance is L/Delta, with theta (section 17).
     dimensionless_sink = None
     if theta is not None or along_name == "theta":
@@ -385,8 +398,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     name = NAMES[along_name]
     given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
              "delta1_over_delta2": delta1_over_delta2,
-             "speed_ratio": speed_ratio or None,  # 0, the default, is left out
-             "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma,
+             # 0, the default, is left out
+             "speed_ratio": _zero_absent("speed_ratio", speed_ratio),
+             "beta_f": _zero_absent("beta_f", beta_f), "lam": lam, "sigma_over_delta": sigma,
              "theta": theta, "sink_distance": None if dimensionless_sink is None else
              check_sink_distance(_number("sink_distance", dimensionless_sink))}
     if given[name] is not None:
@@ -409,6 +423,14 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     from .studies.event_kinds import classify
 
     return classify(path, progress=progress)
+
+
+def _zero_absent(name, value):
+    """A parameter whose default 0 means "not given" (``speed_ratio``, ``beta_f``): None
+    for None or 0, else the number checked."""
+    if value is None:
+        return None
+    return _number(name, value) or None
 
 
 def _number(name, value) -> float:
@@ -609,7 +631,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     """
     dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                      "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                     "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r,
+                     "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
+                     "delta_over_r": delta_over_r,
                      "theta": theta}
     # With theta (a dimensionless map) the sink distance is L/Delta (section 17).
     dimensionless_sink = None
@@ -629,7 +652,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                                  f"half_plane too", parameters=(name, "cylinder", "half_plane"))
         fixed = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
                  "delta1_over_delta2": delta1_over_delta2,
-                 "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
+                 "speed_ratio": _zero_absent("speed_ratio", speed_ratio),
+                 "beta_f": _zero_absent("beta_f", beta_f),
                  "lam": lam, "sigma_over_delta": sigma, "theta": theta,
                  "sink_distance": None if dimensionless_sink is None else
                  check_sink_distance(_number("sink_distance", dimensionless_sink))}
@@ -661,7 +685,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
                          tol=check_positive("tol", tol),
                          dundurs=True if dundurs is None else check_flag("dundurs", dundurs),
-                         speed_ratio=speed_ratio or 0.0, zones=check_flag("zones", zones),
+                         speed_ratio=_zero_absent("speed_ratio", speed_ratio) or 0.0,
+                         zones=check_flag("zones", zones),
                          conductance=_physical_conductance(conductance),
                          bulk_temperatures=_temperatures(bulk_temperatures),
                          sink_distance=_quantity("sink_distance", sink_distance, "m"),
@@ -672,12 +697,12 @@ def _check_sink(fixed, closure, varied):
     """A dimensionless path's or map's far temperatures (``closure`` ``"theta"``, given
     or ``varied``) with their sink where the half-plane is stationary and none where
     it moves, before any point is solved (``speed_ratio`` varied: each point says)."""
+    # (A sink distance without theta is a physical input, refused as such.)
     if "theta" in varied:
         closure = "theta"
-    if fixed.get("sink_distance") is not None and closure != "theta":
-        raise InputError("sink_distance is given with theta only (the temperature closure)",
-                         parameters=("sink_distance", "theta"))
-    if closure == "theta" and "speed_ratio" not in varied:
+    others = [k for k in ("lam", "sigma_over_delta") if fixed.get(k) is not None or k in varied]
+    # (A closure given twice is refused as such, where the closures are counted.)
+    if closure == "theta" and not others and "speed_ratio" not in varied:
         check_sink_given(fixed.get("sink_distance"), not fixed.get("speed_ratio"))
 
 
@@ -715,6 +740,11 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
     from .studies.maps import compute_map as dimensionless
     from .studies.operating_maps import OperatingSpec, compute_operating_map
 
+    check_callable("progress", progress)
+    if not isinstance(spec, (MapSpec, OperatingSpec)):
+        raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
+                         parameters=("spec",))
+
     if stability and not isinstance(spec, MapSpec):
         raise InputError("stability: maps of dimensionless parameters only (for a physical "
                          "contact, contact --stability)", parameters=("stability",))
@@ -724,11 +754,8 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
         ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
                            command=command)
         return map_stability(ds, spec) if stability else ds
-    if isinstance(spec, OperatingSpec):
-        return compute_operating_map(spec, workers=workers, progress=progress,
-                                     command=command, store_path=store)
-    raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
-                     parameters=("spec",))
+    return compute_operating_map(spec, workers=workers, progress=progress, command=command,
+                                 store_path=store)
 
 
 def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None):
@@ -916,6 +943,8 @@ def compute_transient(spec, *, resume=None, progress=None, save=None, save_every
                          f"got {spec!r}", parameters=("spec",))
     if resume is not None and not isinstance(resume, TransientRun):
         resume = read_run(resume, "resume")
+    for name, value in (("progress", progress), ("save", save), ("preparing", preparing)):
+        check_callable(name, value)
     save_every = check_nonnegative("save_every", save_every)
     return run_transient(spec, resume=resume, progress=progress, save=save,
                          save_every=save_every, preparing=preparing)

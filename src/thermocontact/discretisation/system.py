@@ -39,7 +39,7 @@ from dataclasses import replace
 from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
-from ..problem.validation import InputError, check_range, check_sink_given
+from ..problem.validation import InputError, check_pair, check_range, check_sink_given
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
 from .representations import (Representation, projection_columns, projection_nodes,
                               range_projections)
@@ -75,6 +75,13 @@ class Conductance:
         object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
                                                       *BIOT_RANGE))
         object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
+
+    @classmethod
+    def of(cls, value):
+        """``value`` (None, a Conductance or ``(Bi0, m)``) as a Conductance or None."""
+        if value is None or isinstance(value, cls):
+            return value
+        return cls(*check_pair("conductance", value, "(Bi0, m), two numbers"))
 
     def biot(self, pressure):
         """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""

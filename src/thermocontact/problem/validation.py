@@ -13,12 +13,14 @@ import operator
 
 __all__ = [
     "InputError",
+    "check_callable",
     "check_choice",
     "check_exactly_one",
     "check_finite",
     "check_flag",
     "check_integer",
     "check_nonnegative",
+    "check_numbers",
     "check_offset_coupling",
     "check_pair",
     "check_positive",
@@ -187,3 +189,24 @@ def check_flag(name: str, value) -> bool:
                                    and kind.__name__ in ("bool", "bool_")):
         return bool(value)
     _fail(name, "True or False", value)
+
+
+def check_callable(name: str, value):
+    """``value`` if it is None or can be called (a progress or a save): refused before
+    any work, not where the work first reports."""
+    if value is not None and not callable(value):
+        _fail(name, "None or a callable", value)
+    return value
+
+
+def check_numbers(name: str, value) -> list[float]:
+    """``value``, a number or a flat sequence of them, as a list of finite floats."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        return [check_finite(name, value)]
+    try:
+        items = list(value)
+    except TypeError:
+        _fail(name, "a number or a sequence of numbers", value)
+    if not items:
+        _fail(name, "a number or a sequence of numbers", value)
+    return [check_finite(name, v) for v in items]

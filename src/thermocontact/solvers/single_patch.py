@@ -38,7 +38,8 @@ from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import Temperatures, temperature_closure
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
-from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
+from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
+                                  check_finite, check_flag, check_integer, check_numbers,
                                   check_offset_coupling, check_positive, check_range)
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
@@ -746,7 +747,7 @@ class Model:
                  tol=DEFAULT_TOL, conductance=None):
         self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
                                      speed_ratio, beta_f)
-        self.conductance = None if conductance is None else Conductance(*conductance)
+        self.conductance = Conductance.of(conductance)
         self.method = check_method(method)
         self.n = None if n is None else check_n(n)
         self.tol = check_positive("tol", tol)
@@ -859,9 +860,14 @@ class Model:
             estimate misses ``tol`` with ``n`` chosen automatically also issues a
             :class:`ConvergenceWarning`.
         """
-        sol = self.solve_many([fhpe], lam=None if lam is None else [lam],
-                              sigma_over_delta=(None if sigma_over_delta is None
-                                                else [sigma_over_delta]),
+        # One point: each input one number (solve_many takes sequences).
+        fhpe = check_finite("fhpe", fhpe)
+        check_flag("check_convergence", check_convergence)
+        check_callable("progress", progress)
+        sol = self.solve_many([fhpe], lam=None if lam is None else [check_finite("lam", lam)],
+                              sigma_over_delta=(None if sigma_over_delta is None else
+                                                [check_finite("sigma_over_delta",
+                                                              sigma_over_delta)]),
                               temperatures=temperatures, progress=progress, polish=polish,
                               _stacklevel=_stacklevel + 1)[0]
         if isinstance(sol, Exception):
@@ -921,10 +927,13 @@ class Model:
             given = {"fhpe": fhpe}
         else:
             given = {"fhpe": fhpe, closure: lam if closure == "lam" else sigma_over_delta}
-        count = max([np.size(v) for v in given.values()]
-                    + ([len(closures)] if closures else []))
-        given = {k: [float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (count,))]
-                 for k, v in given.items()}
+        given = {k: check_numbers(k, v) for k, v in given.items()}
+        count = max([len(v) for v in given.values()] + ([len(closures)] if closures else []))
+        for k, v in given.items():
+            if len(v) not in (1, count):
+                raise InputError(f"{k} must be one value or {count} (one per point), got "
+                                 f"{len(v)}", parameters=(k,))
+        given = {k: v * count if len(v) == 1 else v for k, v in given.items()}
         if closures is not None:
             given["temperatures"] = closures * count if len(closures) == 1 else closures
         # lam is an output of the offset and of the temperatures, but its error is

@@ -288,7 +288,7 @@ class ZoneModel:
                  speed_ratio=0.0):
         self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
                                speed_ratio, beta_f)
-        self.conductance = None if conductance is None else Conductance(*conductance)
+        self.conductance = Conductance.of(conductance)
         if method not in METHODS or not METHODS[method].edge_exponents:
             raise InputError(f"method must be 'graded' or 'graded-collocation' for contact "
                              f"sets, got {method!r}")
