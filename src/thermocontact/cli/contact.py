@@ -11,8 +11,8 @@ import click
 
 from .._version import __version__
 from ..problem.validation import InputError
-from .options import (contact_set_options, given_here, hertz_unit_options, parse_conductance,
-                      physical_options)
+from .options import (contact_set_options, given_here, hertz_unit_options, one_closure,
+                      parse_conductance, physical_options)
 
 __all__ = ["contact_cmd", "zones_cmd"]
 
@@ -109,9 +109,7 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 
     # Shown once the command has run 2 s: the share of the path to fHPe_l followed.
     bar = ProgressLine("zones: fHPe_l followed", "%")
-    if sum(c is not None for c in (lam, sigma, theta)) != 1:
-        raise InputError("give exactly one of lam and sigma (or theta, the far temperatures)",
-                         parameters=("lam", "sigma", "theta"))
+    one_closure(lam, sigma, theta)
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
                       theta=theta, sink_distance=sink_distance, k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,

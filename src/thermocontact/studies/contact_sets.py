@@ -27,7 +27,6 @@ from ..analysis.fields import ContactFields, contact_fields
 from ..discretisation.system import check_temperatures
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.closure import Temperatures
 from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveError
 from ..problem.validation import InputError, check_exactly_one, check_positive, check_range
 from ..solvers.elements import solve_elements
