@@ -30,12 +30,15 @@ HOT = ["--cylinder", "copper", "--half-plane", "steel", "--radius", "10mm", "--l
     ({"delta1_over_delta2": 0.5}, {"temperatures": (-2.0, 3.0)}),
     # A moving half-plane: Theta alone (its far temperature is its incoming one).
     ({"speed_ratio": -0.5}, {"temperatures": (0.3, None)}),
+    # An interface conductance: its constant closed by the temperatures (D41).
+    ({"conductance": (3.0, 0.0)}, {"temperatures": (0.5, 10.0)}),
 ])
 def test_one_zone_is_the_single_patch_under_every_closure(model, closure):
     """One zone in units of the Hertz half-width l is the single patch at
     Pe = Pe_l Delta, fHPe = fHPe_l Delta with the same closure (the sink distance L/l
-    becoming L/Delta): P_H/P = Delta^2, sigma/Delta, lam and the validity to 1e-8
-    (the same blocks: measured 1e-15)."""
+    becoming L/Delta, a conductance's Biot number h0 l/K2 becoming h0 Delta/K2):
+    P_H/P = Delta^2, sigma/Delta, lam and the validity to 1e-8 (the same blocks:
+    measured 1e-15)."""
     pe_l, f_l = 5.0, 0.1
     sol = ZoneModel(10.0, n=32, **model).solve([[-1.0, 1.0]], pe_l, f_l, **closure)
     L, sigma = sol.single_patch()
@@ -43,6 +46,8 @@ def test_one_zone_is_the_single_patch_under_every_closure(model, closure):
     if "temperatures" in closure:
         theta, sink = closure["temperatures"]
         closure = {"temperatures": (theta, None if sink is None else sink / D)}
+    if "conductance" in model:
+        model = dict(model, conductance=(model["conductance"][0] * D, 0.0))
     core = Model(pe_l * D, 10.0, n=32, **model).solve_at(32, f_l * D, **closure)
     assert abs(L - core.load_ratio) < 1e-8
     assert abs(sigma - core.sigma_over_delta) < 1e-8
