@@ -145,7 +145,7 @@ CALLS = {
     "transient_spec": (tc.transient_spec, RUN, TRANSIENT),
     "TransientSpec": (tc.TransientSpec, RUN, TRANSIENT),
     "transient": (tc.transient, RUN, {**TRANSIENT, "progress": "callable", "save": "callable",
-                                      "resume": "object"}),
+                                      "preparing": "callable", "resume": "object"}),
     "compute_transient": (lambda **kw: tc.compute_transient(**kw), dict(spec=_spec()),
                           {"spec": "object", "resume": "object", "progress": "callable",
                            "save": "callable", "save_every": "number",
@@ -160,7 +160,8 @@ CALLS = {
         tc.contact_transient, dict(PHYSICAL, lam=-1, dundurs=False, duration="1ms",
                                    steps=5, elements=16),
         {**QUANTITIES, "duration": "number", "steps": "count", "elements": "count",
-         "window": "pair", "dundurs": "switch", "progress": "callable"}),
+         "window": "pair", "dundurs": "switch", "progress": "callable",
+         "preparing": "callable"}),
 }
 
 

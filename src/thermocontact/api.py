@@ -974,7 +974,7 @@ def read_transient(ds):
 def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
               k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
               start="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
-              resume=None, save=None):
+              resume=None, save=None, preparing=None):
     """The transient contact from switch-on (or from a steady state), in time.
 
     ``thermocontact transient`` from Python (docs/derivation.md, section 19).  Lengths
@@ -1013,11 +1013,14 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
     conductance : (float, float), optional
         ``(Bi0, m)``: interface conductance ``Bi = Bi0 (2 p)^m`` (section 15).
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
     resume : TransientRun, optional
-        A partial run of the same inputs to continue.
+        A partial run of the same inputs to continue (or its dataset or file).
     save : callable, optional
         ``save(partial_run)`` every 30 s of computing.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made, before any step
+        (:func:`compute_transient`).
 
     Returns
     -------
@@ -1036,7 +1039,8 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
                           delta1_over_delta2=delta1_over_delta2, elements=elements,
                           window=window, start=start, hold=hold, perturb=perturb,
                           conductance=conductance)
-    return compute_transient(spec, resume=resume, progress=progress, save=save)
+    return compute_transient(spec, resume=resume, progress=progress, save=save,
+                             preparing=preparing)
 
 
 def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, friction, lam,
@@ -1129,7 +1133,7 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
 
 def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, lam, duration,
                       steps=1000, elements=240, window=(-3.0, 3.0), speed2=0.0, dundurs=True,
-                      materials=None, progress=None):
+                      materials=None, progress=None, preparing=None):
     """The transient contact of a cylinder on a half-plane in SI units, from switch-on.
 
     ``thermocontact contact ... --transient`` from Python: :func:`contact_transient_spec`
@@ -1141,7 +1145,9 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
     cylinder, half_plane, radius, load, speed, friction, lam, duration, steps, elements, window, speed2, dundurs, materials
         As for :func:`contact_transient_spec`.
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made (:func:`compute_transient`).
 
     Returns
     -------
@@ -1164,6 +1170,6 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
                                          duration=duration, steps=steps, elements=elements,
                                          window=window, speed2=speed2, dundurs=dundurs,
                                          materials=materials)
-    ds = compute_transient(spec, progress=progress).to_dataset()
+    ds = compute_transient(spec, progress=progress, preparing=preparing).to_dataset()
     ds.attrs.update(attrs)
     return ds

@@ -19,10 +19,11 @@ this is the single-patch problem with the half-width fixed by the load
 ``sigma/Delta = centre/Delta``), solved by the same blocks; one zone may instead be
 closed by its offset, the half-width then found by Newton's method.  Every closure of
 the single patch closes a contact set: ``lam`` in the single patch's range (a formal
-continuation beyond [-1, 1] included), the offset (one zone), the far temperatures.  The system is
-assembled by :func:`~thermocontact.discretisation.system.contact_set_system`, the
-single patch's too (derivation section 16), with the moving half-plane, the Dundurs
-term and an interface conductance.
+continuation beyond [-1, 1] included), the offset (one zone), the far temperatures.
+The system is assembled by
+:func:`~thermocontact.discretisation.system.contact_set_system`, the single patch's
+too (derivation section 16), with the moving half-plane, the Dundurs term and an
+interface conductance.
 """
 
 from __future__ import annotations
@@ -36,10 +37,9 @@ from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
-                                     contact_set_system, zone_parameters)
+                                     check_temperatures, contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
-from ..discretisation.system import check_temperatures
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import (InputError, check_exactly_one, check_offset_coupling,
