@@ -53,7 +53,7 @@ def run_row(steps):
     from thermocontact.discretisation import history
     from thermocontact.solvers import transient as solver
 
-    history.lag_tables.cache_clear()
+    history.TABLES.clear()
     tables = _Timed(history.lag_tables)
     operators = _Timed(history.transient_element_operators)
     kept = {}
@@ -71,7 +71,7 @@ def run_row(steps):
         total, cpu = time.perf_counter() - t0, time.process_time() - c0
     finally:
         history.lag_tables, solver.transient_element_operators = saved
-    history.lag_tables.cache_clear()
+    history.TABLES.clear()
     return (total, tables.seconds, operators.seconds - tables.seconds,
             total - operators.seconds, cpu - operators.cpu, run.status, kept["kernels"])
 

@@ -297,8 +297,6 @@ def test_theta_by_hand_and_the_layer_is_its_sink():
     (["--bulk-temperatures", "20C,20C", "--speed2", "1", "--sink-distance", "3mm"],
      "--sink-distance applies to a stationary half-plane only"),
     (["--lam", "1", "--layer-thickness", "3mm"], "not --lam, with --layer-thickness"),
-    (["--bulk-temperatures", "20C,20C", "--sink-distance", "3mm", "--zones"],
-     "--bulk-temperatures close the single patch only"),
 ])
 def test_contact_refuses_bad_closures_in_one_line(capsys, args, message):
     from thermocontact.cli import main

@@ -24,10 +24,12 @@ command                            call
 
 from __future__ import annotations
 
-from .discretisation.methods import DEFAULT_METHOD
+from .discretisation.methods import DEFAULT_METHOD, METHODS
 from .problem.axes import Axis
-from .problem.closure import check_sink_distance
-from .problem.validation import InputError, check_positive
+from .problem.closure import check_sink_distance, temperature_closure
+from .problem.validation import (InputError, check_callable, check_choice, check_flag,
+                                 check_integer, check_nonnegative, check_pair, check_positive,
+                                 check_sink_given)
 from .discretisation.methods import DEFAULT_TOL
 from .solvers.single_patch import Model, solve
 
@@ -69,7 +71,7 @@ def _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam, 
     return PhysicalProblem(cyl, half, _quantity("radius", radius, "m"),
                            _quantity("load", load, "N/m"), _quantity("speed", speed, "m/s"),
                            friction, lam, _quantity("speed2", speed2, "m/s"),
-                           dundurs=bool(dundurs),
+                           dundurs=check_flag("dundurs", dundurs),
                            bulk_temperatures=_temperatures(bulk_temperatures),
                            sink_distance=_quantity("sink_distance", sink_distance, "m"),
                            layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
@@ -146,7 +148,7 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
         (its incoming one when it moves, its sink's when stationary), K or with units
         (``"150C,40C"``, ``(423.15, 313.15)``).  ``lam`` is then an output with its
         error, and each body's absolute peak temperature is judged against its
-        material's limit (derivation section 17).  Single patch only.
+        material's limit (derivation section 17); with ``zones``, the contact set's.
     sink_distance : float or str, optional
         With ``bulk_temperatures`` and a stationary half-plane: the distance from the
         contact at which the half-plane is at its temperature, m (``"30mm"``), larger
@@ -186,9 +188,8 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
                                 speed2, dundurs, materials, bulk_temperatures, sink_distance,
                                 layer_thickness)
     tol = check_positive("tol", tol)
-    if zones and bulk_temperatures is not None:
-        raise InputError("bulk_temperatures close the single patch only (derivation section "
-                         "17); give lam with zones", parameters=("bulk_temperatures", "zones"))
+    zones = check_flag("zones", zones)
+    check_callable("progress", progress)
     if conductance is not None and not zones:
         raise InputError("conductance needs zones (the single patch assumes perfect "
                          "thermal contact)", parameters=("conductance", "zones"))
@@ -204,8 +205,9 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
     return contact_of(problem, tol=tol, progress=progress)
 
 
-def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
-                delta1_over_delta2=1.0, conductance=None, n=32, progress=None):
+def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
+                delta1_over_delta2=1.0, conductance=None, n=32, progress=None,
+                sigma_over_delta=None, theta=None, sink_distance=None):
     """The contact set at one load: one zone or several, or why there is none.
 
     ``thermocontact zones`` from Python (derivation section 14).  Lengths are in
@@ -221,7 +223,19 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     K2_over_K1 : float
         Conductivity ratio > 0.
     lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2).
+        Heat partition (Q1 - Q2)/(Q1 + Q2), ``|lam| <= 1e6`` as for
+        :func:`thermocontact.solve` (beyond [-1, 1] a formal continuation: one body
+        gives heat to the contact, as a hot body does between unequal far
+        temperatures).
+    sigma_over_delta : float, optional
+        Or the offset ``centre/half-width`` of one zone (section 16; ``fhpe_hertz > 0``).
+    theta : float, optional
+        Or the far temperatures' group ``Theta = pi K2 (T2 - T1)/(f v P)`` (D39;
+        section 17), with ``sink_distance``: ``lam`` is then an output.  Exactly one
+        of ``lam``, ``sigma_over_delta`` and ``theta``.
+    sink_distance : float, optional
+        With ``theta``: ``L/l > 1``, the distance of the half-plane's sink at ``T2`` in
+        units of ``l`` (D38).
     k2_over_k1 : float, optional
         Diffusivity ratio > 0 (default ``K2_over_K1``).
     delta1_over_delta2 : float
@@ -233,7 +247,8 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     n : int
         Unknowns per function per zone, 8 to 256.
     progress : callable, optional
-        ``progress(fraction)`` as the continuation advances.
+        ``progress(fraction)`` as the continuation advances (each evaluation of the
+        defects tells it: a run bounded by its budget of evaluations).
 
     Returns
     -------
@@ -250,9 +265,15 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
     """
     from .studies.contact_sets import find_contact_set
 
-    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
-                            delta1_over_delta2=delta1_over_delta2, n=n,
-                            conductance=None if conductance is None else tuple(conductance),
+    check_callable("progress", progress)
+    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam,
+                            sigma_over_delta=sigma_over_delta,
+                            temperatures=temperature_closure(theta, sink_distance),
+                            k2_over_k1=k2_over_k1,
+                            delta1_over_delta2=delta1_over_delta2,
+                            n=check_integer("n", n, 8, 256),
+                            conductance=None if conductance is None else check_pair(
+                                "conductance", conductance, "(Bi0, m), two numbers"),
                             progress=progress)
 
 
@@ -336,25 +357,33 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     [0.6654, 0.702]
     """
     tol = check_positive("tol", tol)
+    check_callable("progress", progress)
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
                 "materials": materials, "bulk_temperatures": bulk_temperatures,
                 "sink_distance": sink_distance, "layer_thickness": layer_thickness}
-    along_name = along.replace("-", "_") if isinstance(along, str) else along
+    from .studies.boundaries import SPELLINGS
+
+    if not isinstance(along, str):
+        raise InputError(f"along must be one of {sorted(SPELLINGS) + sorted(PHYSICAL_ALONG)}"
+                         f", got {along!r}", parameters=("along",))
+    along_name = along.replace("-", "_")
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": beta_f or None, "sigma": sigma, "method": method,
+                         "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
+                         "method": method,
                          "theta": theta}
         if stability:
             raise InputError("the kinds of events (stability) are computed for "
                              "dimensionless paths only", parameters=("stability",))
-        return _physical_path(along_name, start, stop, physical, lam, speed_ratio or 0.0,
+        return _physical_path(along_name, start, stop, physical, lam,
+                              _zero_absent("speed_ratio", speed_ratio) or 0.0,
                               dimensionless, tol, n, progress)
-    from .studies.boundaries import SPELLINGS, follow
+    from .studies.boundaries import follow
     from .studies.maps import NAMES
 
-    method = DEFAULT_METHOD if method is None else method
+    method = DEFAULT_METHOD if method is None else check_choice("method", method, METHODS)
     # A dimensionless path's sink distance is L/Delta, with theta (section 17).
     dimensionless_sink = None
     if theta is not None or along_name == "theta":
@@ -369,8 +398,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     name = NAMES[along_name]
     given = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
              "delta1_over_delta2": delta1_over_delta2,
-             "speed_ratio": speed_ratio or None,  # 0, the default, is left out
-             "beta_f": beta_f or None, "lam": lam, "sigma_over_delta": sigma,
+             # 0, the default, is left out
+             "speed_ratio": _zero_absent("speed_ratio", speed_ratio),
+             "beta_f": _zero_absent("beta_f", beta_f), "lam": lam, "sigma_over_delta": sigma,
              "theta": theta, "sink_distance": None if dimensionless_sink is None else
              check_sink_distance(_number("sink_distance", dimensionless_sink))}
     if given[name] is not None:
@@ -385,6 +415,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if len(closures) != 1:
         raise InputError("give exactly one of lam and sigma (or theta), or follow one of them",
                          parameters=("lam", "sigma", "theta"))
+    _check_sink(fixed, closures[0], (name,))
     path = follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
     if not stability:
@@ -392,6 +423,14 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     from .studies.event_kinds import classify
 
     return classify(path, progress=progress)
+
+
+def _zero_absent(name, value):
+    """A parameter whose default 0 means "not given" (``speed_ratio``, ``beta_f``): None
+    for None or 0, else the number checked."""
+    if value is None:
+        return None
+    return _number(name, value) or None
 
 
 def _number(name, value) -> float:
@@ -451,7 +490,8 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
     prob = _physical_problem(physical["cylinder"], physical["half_plane"], values["radius"],
                              values["load"], speed, values["friction"], lam,
                              speed2=speed * speed_ratio,
-                             dundurs=physical["dundurs"] is not False,
+                             dundurs=(True if physical["dundurs"] is None
+                                      else physical["dundurs"]),
                              materials=physical["materials"],
                              bulk_temperatures=physical["bulk_temperatures"],
                              sink_distance=sink, layer_thickness=physical["layer_thickness"])
@@ -591,7 +631,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     """
     dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                      "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                     "beta_f": beta_f or None, "sigma": sigma, "delta_over_r": delta_over_r,
+                     "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
+                     "delta_over_r": delta_over_r,
                      "theta": theta}
     # With theta (a dimensionless map) the sink distance is L/Delta (section 17).
     dimensionless_sink = None
@@ -611,11 +652,14 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                                  f"half_plane too", parameters=(name, "cylinder", "half_plane"))
         fixed = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1, "k2_over_k1": k2_over_k1,
                  "delta1_over_delta2": delta1_over_delta2,
-                 "speed_ratio": speed_ratio or None, "beta_f": beta_f or None,
+                 "speed_ratio": _zero_absent("speed_ratio", speed_ratio),
+                 "beta_f": _zero_absent("beta_f", beta_f),
                  "lam": lam, "sigma_over_delta": sigma, "theta": theta,
                  "sink_distance": None if dimensionless_sink is None else
                  check_sink_distance(_number("sink_distance", dimensionless_sink))}
         _refuse_axis_values((x, y), fixed, NAMES)
+        _check_sink(fixed, "theta" if fixed.get("theta") is not None else None,
+                    tuple(NAMES.get(getattr(a, "name", None)) for a in (x, y)))
         return MapSpec(x, y, fixed, method=DEFAULT_METHOD if method is None else method,
                        tol=tol, delta_over_r=delta_over_r)
     from .studies.operating_maps import OperatingSpec
@@ -639,12 +683,27 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
     _refuse_axis_values((x, y), fixed)
     return OperatingSpec(cyl, half, friction, lam, x, y, fixed,
-                         tol=check_positive("tol", tol), dundurs=dundurs is not False,
-                         speed_ratio=speed_ratio or 0.0, zones=bool(zones),
+                         tol=check_positive("tol", tol),
+                         dundurs=True if dundurs is None else check_flag("dundurs", dundurs),
+                         speed_ratio=_zero_absent("speed_ratio", speed_ratio) or 0.0,
+                         zones=check_flag("zones", zones),
                          conductance=_physical_conductance(conductance),
                          bulk_temperatures=_temperatures(bulk_temperatures),
                          sink_distance=_quantity("sink_distance", sink_distance, "m"),
                          layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
+
+
+def _check_sink(fixed, closure, varied):
+    """A dimensionless path's or map's far temperatures (``closure`` ``"theta"``, given
+    or ``varied``) with their sink where the half-plane is stationary and none where
+    it moves, before any point is solved (``speed_ratio`` varied: each point says)."""
+    # (A sink distance without theta is a physical input, refused as such.)
+    if "theta" in varied:
+        closure = "theta"
+    others = [k for k in ("lam", "sigma_over_delta") if fixed.get(k) is not None or k in varied]
+    # (A closure given twice is refused as such, where the closures are counted.)
+    if closure == "theta" and not others and "speed_ratio" not in varied:
+        check_sink_given(fixed.get("sink_distance"), not fixed.get("speed_ratio"))
 
 
 def _refuse_axis_values(axes, given, names=None):
@@ -681,6 +740,11 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
     from .studies.maps import compute_map as dimensionless
     from .studies.operating_maps import OperatingSpec, compute_operating_map
 
+    check_callable("progress", progress)
+    if not isinstance(spec, (MapSpec, OperatingSpec)):
+        raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
+                         parameters=("spec",))
+
     if stability and not isinstance(spec, MapSpec):
         raise InputError("stability: maps of dimensionless parameters only (for a physical "
                          "contact, stability() of the contact)", parameters=("stability",))
@@ -690,11 +754,8 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
         ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
                            command=command)
         return map_stability(ds, spec) if stability else ds
-    if isinstance(spec, OperatingSpec):
-        return compute_operating_map(spec, workers=workers, progress=progress,
-                                     command=command, store_path=store)
-    raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
-                     parameters=("spec",))
+    return compute_operating_map(spec, workers=workers, progress=progress, command=command,
+                                 store_path=store)
 
 
 def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None):
@@ -742,7 +803,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
 
     s, c = _materials(slider, counterface, materials)
     return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
-                   speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
+                   speed=_quantity("speed", speed, "m/s"), dundurs=check_flag("dundurs", dundurs))
 
 
 def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,
@@ -839,49 +900,54 @@ def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, 
     """
     from .solvers.transient import TransientSpec
 
-    try:
-        lo, hi = window
-        window = (float(lo), float(hi))
-    except (TypeError, ValueError):
-        raise InputError(f"window must be two numbers lo < -1 and hi > 1, got {window!r}",
-                         parameters=("window",)) from None
+    # Every input checked and converted by the specification itself.
     return TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
                          until=until, steps=steps, k2_over_k1=k2_over_k1,
                          delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
                          elements=elements, window=window, start=start, hold=hold,
-                         perturb=perturb,
-                         conductance=None if conductance is None else tuple(conductance))
+                         perturb=perturb, conductance=conductance)
 
 
-def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0):
+def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0,
+                      preparing=None):
     """The transient run that a :func:`transient_spec` (or :func:`contact_transient_spec`)
     describes.
 
     Parameters
     ----------
     spec : TransientSpec
-    resume : TransientRun, optional
+    resume : TransientRun, xarray.Dataset or path, optional
         A partial run of the same ``spec`` (``status == "partial"``, e.g. read back
-        by :func:`read_transient`): its steps are taken as they are and the run goes
-        on from its last; the steps computed are the same as without the interruption.
+        by :func:`read_transient`, or its dataset or file): its steps are taken as
+        they are and the run goes on from its last; the steps computed are the same
+        as without the interruption.
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
     save : callable, optional
         ``save(partial_run)`` at most every ``save_every`` seconds of computing.
     save_every : float
         Seconds.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made, before any step (the
+        lag tables a step of lag at a time: minutes for 100 000 steps or 4000
+        elements).
 
     Returns
     -------
     TransientRun
     """
-    from .solvers.transient import TransientSpec, run_transient
+    from .solvers.transient import TransientRun, TransientSpec, read_run, run_transient
 
     if not isinstance(spec, TransientSpec):
         raise InputError(f"spec must be a transient run's specification (transient_spec), "
                          f"got {spec!r}", parameters=("spec",))
+    if resume is not None and not isinstance(resume, TransientRun):
+        resume = read_run(resume, "resume")
+    for name, value in (("progress", progress), ("save", save), ("preparing", preparing)):
+        check_callable(name, value)
+    save_every = check_nonnegative("save_every", save_every)
     return run_transient(spec, resume=resume, progress=progress, save=save,
-                         save_every=save_every)
+                         save_every=save_every, preparing=preparing)
 
 
 def read_transient(ds):
@@ -889,25 +955,26 @@ def read_transient(ds):
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A transient run's dataset (its file read back): its attributes are the
+    ds : xarray.Dataset or path
+        A transient run's dataset, or its file (``.nc``): its attributes are the
         inputs, ``status`` and ``seconds``; any others (those of
-        :func:`contact_transient`) are left out.
+        :func:`contact_transient`) are left out.  Anything else, or a file that is
+        missing or not a run's, is refused (:class:`InputError` naming ``ds``).
 
     Returns
     -------
     TransientRun
         Equal to the run that wrote the dataset.
     """
-    from .solvers.transient import TransientRun
+    from .solvers.transient import read_run
 
-    return TransientRun.from_dataset(ds)
+    return read_run(ds)
 
 
 def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
               k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
               start="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
-              resume=None, save=None):
+              resume=None, save=None, preparing=None):
     """The transient contact from switch-on (or from a steady state), in time.
 
     ``thermocontact transient`` from Python (docs/derivation.md, section 19).  Lengths
@@ -946,11 +1013,14 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
     conductance : (float, float), optional
         ``(Bi0, m)``: interface conductance ``Bi = Bi0 (2 p)^m`` (section 15).
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
     resume : TransientRun, optional
-        A partial run of the same inputs to continue.
+        A partial run of the same inputs to continue (or its dataset or file).
     save : callable, optional
         ``save(partial_run)`` every 30 s of computing.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made, before any step
+        (:func:`compute_transient`).
 
     Returns
     -------
@@ -969,7 +1039,8 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
                           delta1_over_delta2=delta1_over_delta2, elements=elements,
                           window=window, start=start, hold=hold, perturb=perturb,
                           conductance=conductance)
-    return compute_transient(spec, resume=resume, progress=progress, save=save)
+    return compute_transient(spec, resume=resume, progress=progress, save=save,
+                             preparing=preparing)
 
 
 def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, friction, lam,
@@ -1031,15 +1102,16 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     time_unit = ell ** 2 / problem.half_plane.k
     duration = check_positive("duration", _quantity("duration", duration, "s"))
     groups = problem.ray_parameters()
-    from .solvers.transient import MAX_SHIFT, UNTIL_MIN, longest_step
+    from .solvers.transient import MAX_SHIFT, STEPS_RANGE, UNTIL_MIN, longest_step
 
+    steps = check_integer("steps", steps, *STEPS_RANGE)
     # The duration's bounds in seconds, as the dimensionless run would refuse them.
     if duration < UNTIL_MIN * time_unit:
         raise InputError(f"duration must be at least {UNTIL_MIN * time_unit:.4g} s here "
                          f"(1e-12 of l^2/kappa2), got {duration:.4g} s",
                          parameters=("duration",))
     longest = longest_step(problem.pe_hertz) * time_unit
-    if isinstance(steps, int) and steps > 0 and duration / steps > longest:
+    if duration / steps > longest:
         raise InputError(f"duration/steps must be at most {longest:.4g} s at this "
                          f"speed: the cylinder's surface would move "
                          f"{MAX_SHIFT * duration / steps / longest:.4g} half-widths in "
@@ -1061,7 +1133,7 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
 
 def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, lam, duration,
                       steps=1000, elements=240, window=(-3.0, 3.0), speed2=0.0, dundurs=True,
-                      materials=None, progress=None):
+                      materials=None, progress=None, preparing=None):
     """The transient contact of a cylinder on a half-plane in SI units, from switch-on.
 
     ``thermocontact contact ... --transient`` from Python: :func:`contact_transient_spec`
@@ -1073,7 +1145,9 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
     cylinder, half_plane, radius, load, speed, friction, lam, duration, steps, elements, window, speed2, dundurs, materials
         As for :func:`contact_transient_spec`.
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step and after each step.
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made (:func:`compute_transient`).
 
     Returns
     -------
@@ -1096,6 +1170,6 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
                                          duration=duration, steps=steps, elements=elements,
                                          window=window, speed2=speed2, dundurs=dundurs,
                                          materials=materials)
-    ds = compute_transient(spec, progress=progress).to_dataset()
+    ds = compute_transient(spec, progress=progress, preparing=preparing).to_dataset()
     ds.attrs.update(attrs)
     return ds

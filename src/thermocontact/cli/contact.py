@@ -11,8 +11,8 @@ import click
 
 from .._version import __version__
 from ..problem.validation import InputError
-from .options import (contact_set_options, given_here, hertz_unit_options, parse_conductance,
-                      physical_options)
+from .options import (contact_set_options, given_here, hertz_unit_options, one_closure,
+                      parse_conductance, physical_options)
 
 __all__ = ["contact_cmd", "zones_cmd"]
 
@@ -76,9 +76,19 @@ def contact_summary(res) -> str:
 
 @click.command("zones")
 @hertz_unit_options
-@click.option("--lam", type=float, required=True,
-              help="Heat partition (Q1 - Q2)/(Q1 + Q2), in [-1, 1]: both bodies take a "
-                   "non-negative share of the heat.")
+@click.option("--lam", type=float, default=None,
+              help="Heat partition (Q1 - Q2)/(Q1 + Q2), |lam| <= 1e6 as for solve (beyond "
+                   "[-1, 1] one body gives heat to the contact); or give --sigma or --theta.")
+@click.option("--sigma", type=float, default=None,
+              help="Or the offset sigma/Delta of one zone (centre over half-width), with "
+                   "--fhpe-hertz > 0: the zone's half-width found by Newton's method.")
+@click.option("--theta", type=float, default=None,
+              help="Or the far temperatures: theta = pi K2 (T2 - T1)/(f v P), T1 the "
+                   "cylinder's incoming temperature, T2 the half-plane's sink's (with "
+                   "--sink-distance); lambda is then an output.")
+@click.option("--sink-distance", "sink_distance", type=float, default=None,
+              help="With --theta: L/l > 1, the distance from the contact at which the "
+                   "half-plane is at T2, in Hertz half-widths.")
 @click.option("--conductance", default=None,
               help="h0:m, an interface conductance h = h0 (p/p_ref)^m with h0 as the Biot "
                    "number h0 l/K2 at the mean Hertz pressure p_ref = P/(2 l), m >= 0 "
@@ -87,7 +97,7 @@ def contact_summary(res) -> str:
               help="Unknowns per function per zone, in [8, 256].")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam,
-              conductance, n, as_json):
+              sigma, theta, sink_distance, conductance, n, as_json):
     """The contact set at one load: one zone or several, or why there is none.
 
     Lengths in units of the Hertz half-width l of the load, from the undeformed
@@ -99,7 +109,9 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 
     # Shown once the command has run 2 s: the share of the path to fHPe_l followed.
     bar = ProgressLine("zones: fHPe_l followed", "%")
-    res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, k2_over_k1=k2_over_k1,
+    one_closure(lam, sigma, theta)
+    res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
+                      theta=theta, sink_distance=sink_distance, k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,
                       conductance=parse_conductance(conductance, "the Biot number h0 l/K2"),
                       progress=lambda fraction: bar(round(100 * fraction), 100))
@@ -110,6 +122,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     lines = [f"status: {res.status}: {res.message}"]
     if res.answer is not None:
         lines.append(f"  valid: {res.answer.valid} ({res.answer.validity.reason})")
+        if lam is None:
+            lines.append(f"  lambda {res.answer.lam:.10g}")
         for k, z in enumerate(res.answer.zone_records(), 1):
             lines.append(f"  zone {k}: {z['a']:.6f} < x/l < {z['b']:.6f}, load "
                          f"{z['load']:.6f} P, peak pressure {z['peak_pressure']:.6f} P/l")
@@ -221,6 +235,10 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
                          f"{z['load']:.6g} N/m, peak pressure {z['peak_pressure']:.6g} Pa")
         if found.fields is not None:
             lines.append(f"  flash temperature {found.fields.flash_temperature:.4g} K")
+            if found.problem.bulk_temperatures is not None:
+                rec = found.to_dict()
+                lines.append(f"  lambda {rec['lam']:.6g} from the bulk temperatures; peak "
+                             f"surface temperature {rec['peak_temperature']:.5g} K")
         lines.append(f"  valid: {found.valid}")
         if found.applicability is not None:
             lines.append("  theory applicable: yes" if found.applicable else

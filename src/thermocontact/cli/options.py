@@ -6,8 +6,8 @@ import click
 
 from ..problem.validation import InputError
 
-__all__ = ["contact_set_options", "given_here", "parse_conductance", "physical_options",
-           "problem_options"]
+__all__ = ["contact_set_options", "given_here", "one_closure", "parse_conductance",
+           "physical_options", "problem_options"]
 
 
 def problem_options(required: bool):
@@ -138,6 +138,13 @@ def parse_conductance(text, what, physical=False):
 
     p_ref = parse_quantity(parts[2], "Pa", "conductance p_ref") if len(parts) == 3 else None
     return (*values, p_ref)
+
+
+def one_closure(lam, sigma, theta):
+    """Exactly one of ``--lam``, ``--sigma`` and ``--theta`` (``solve``, ``zones``)."""
+    if sum(c is not None for c in (lam, sigma, theta)) != 1:
+        raise InputError("give exactly one of lam and sigma (or theta, the far temperatures)",
+                         parameters=("lam", "sigma", "theta"))
 
 
 def given_here(name) -> bool:

@@ -6,8 +6,7 @@ import click
 
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..problem.validation import InputError
-from .options import parse_conductance, problem_options
+from .options import one_closure, parse_conductance, problem_options
 from .progress import RefinementProgress
 
 __all__ = ["solve_cmd"]
@@ -93,9 +92,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     """Solve one case in dimensionless form."""
     from ..api import solve
 
-    if sum(c is not None for c in (lam, sigma, theta)) != 1:
-        raise InputError("give exactly one of lam and sigma (or theta, the far temperatures)",
-                         parameters=("lam", "sigma", "theta"))
+    one_closure(lam, sigma, theta)
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
                 speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,

@@ -137,11 +137,18 @@ def run_to_file(spec, out, plot=None, gif=None, as_json=False, extra=None):
         write_dataset(ds, out)
         return ds
 
+    # Both shown once the command has run 2 s: the operators' making, then the steps.
+    making = ProgressLine("transient: operators", "parts")
     bar = ProgressLine("transient", "steps")
+
+    def stepped(done, total):
+        making.close()
+        bar(done, total)
     try:
-        run = compute_transient(spec, resume=done, progress=bar, save=write,
-                                save_every=SAVE_EVERY)
+        run = compute_transient(spec, resume=done, progress=stepped, save=write,
+                                save_every=SAVE_EVERY, preparing=making)
     except KeyboardInterrupt:
+        making.close()
         bar.close()
         click.echo("interrupted; rerun the same command to resume", err=True)
         raise click.exceptions.Exit(130) from None

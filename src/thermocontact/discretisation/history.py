@@ -21,15 +21,19 @@ diverging constants (R3).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from .element_operators import ElementOperators, flamant_operator
+from ..numerics.cache import BoundedCache
 from ..physics.impulse_responses import element_displacement, element_temperature_sigma
 
-__all__ = ["SpatialConvolution", "TransientOperators", "body_rates", "lag_tables", "toeplitz",
-           "transient_element_operators"]
+__all__ = ["SpatialConvolution", "TABLES", "TransientOperators", "body_rates", "lag_tables",
+           "toeplitz", "transient_element_operators"]
+
+#: The lag tables computed, by their inputs (a run and its resumption share them); the
+#: largest a run makes (3e6 steps x elements) holds about 100 MB per body.
+TABLES = BoundedCache("lag tables", 512 * 2**20)
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 #: Geometric panels of the first step toward ``tau = 0`` (ratio 2): to ``2^-40`` of its
@@ -51,27 +55,38 @@ def _panels(m, dt, h, r, s):
     return np.unique(np.concatenate([[0.0], graded[graded < uniform[0]], uniform]))
 
 
-def _integrate(X, edges, h, r, s):
-    """Temperature and displacement of offsets ``X`` integrated over ``sigma`` panels."""
-    lo, hi = edges[:-1], edges[1:]
-    half = 0.5 * (hi - lo)
-    sig = (0.5 * (hi + lo))[:, None] + half[:, None] * _GL_X[None, :]
-    wts = (half[:, None] * _GL_W[None, :]).ravel()
-    sig = sig.ravel()
-    T = np.empty(X.size)
-    W = np.empty(X.size)
+def _integrate(X, panels, h, r, s):
+    """Temperature and displacement of offsets ``X`` integrated over the ``sigma`` panels
+    of each of several steps (``panels``: their edges, one array per step): arrays of
+    shape ``(X.size, len(panels))``.  The steps' nodes are evaluated together (a long
+    run's steps have a few nodes each, which one at a time would cost Python's overhead
+    per step), each step's sum taken over its own nodes."""
+    sig, wts, starts = [], [], [0]
+    for edges in panels:
+        lo, hi = edges[:-1], edges[1:]
+        half = 0.5 * (hi - lo)
+        starts.append(starts[-1] + _GL_X.size * lo.size)
+        sig.append(((0.5 * (hi + lo))[:, None] + half[:, None] * _GL_X[None, :]).ravel())
+        wts.append((half[:, None] * _GL_W[None, :]).ravel())
+    sig, wts, starts = np.concatenate(sig), np.concatenate(wts), starts[:-1]
+    T = np.empty((X.size, len(panels)))
+    W = np.empty((X.size, len(panels)))
     step = max(1, _BLOCK // sig.size)
     for k in range(0, X.size, step):
         Xb = X[k:k + step, None]
-        T[k:k + step] = element_temperature_sigma(Xb, sig[None, :], h, r, s) @ wts
-        W[k:k + step] = (element_displacement(Xb, (sig * sig)[None, :], h, r, s)
-                         * (2.0 * sig)[None, :]) @ wts
+        T[k:k + step] = np.add.reduceat(element_temperature_sigma(Xb, sig[None, :], h, r, s)
+                                        * wts, starts, axis=1)
+        W[k:k + step] = np.add.reduceat(element_displacement(Xb, (sig * sig)[None, :], h, r, s)
+                                        * (2.0 * sig * wts)[None, :], starts, axis=1)
     return T, W
 
 
-@lru_cache(maxsize=8)
-def lag_tables(elements: int, h: float, dt: float, steps: int, r: float = 1.0, s: float = 0.0):
+def lag_tables(elements: int, h: float, dt: float, steps: int, r: float = 1.0, s: float = 0.0,
+               progress=None):
     """The tables (R7) of one body for offsets ``d = -(N-1) .. N-1`` and lags ``0 .. steps-1``.
+
+    ``progress(done, steps)`` after each lag computed (a long run's tables take
+    minutes: 100 000 steps, or 4000 elements); kept in :data:`TABLES`.
 
     Returns
     -------
@@ -82,11 +97,25 @@ def lag_tables(elements: int, h: float, dt: float, steps: int, r: float = 1.0, s
         places before it (``d = i - j``: the source at smaller x for ``d > 0``, which is
         downstream of the cylinder's surface, moving toward -x).  Read-only (cached).
     """
+    key = (int(elements), float(h), float(dt), int(steps), float(r), float(s))
+    return TABLES.get(key, lambda: _tables(*key, progress))
+
+
+def _tables(elements, h, dt, steps, r, s, progress):
     X = h * np.arange(-(elements - 1), elements, dtype=float)
     T = np.empty((X.size, steps))
     W = np.empty((X.size, steps))
-    for m in range(steps):
-        T[:, m], W[:, m] = _integrate(X, _panels(m, dt, h, r, s), h, r, s)
+    m = 0
+    while m < steps:
+        # Steps together until their nodes times the offsets fill a block (at least one).
+        panels, entries = [], 0
+        while m + len(panels) < steps and (not panels or entries < _BLOCK):
+            panels.append(_panels(m + len(panels), dt, h, r, s))
+            entries += 12 * (panels[-1].size - 1) * X.size
+        T[:, m:m + len(panels)], W[:, m:m + len(panels)] = _integrate(X, panels, h, r, s)
+        m += len(panels)
+        if progress is not None:
+            progress(m, steps)
     T.flags.writeable = False
     W.flags.writeable = False
     return T, W
@@ -145,20 +174,33 @@ class TransientOperators:
     convolution: SpatialConvolution
 
 
-def transient_element_operators(par, X, h, dt, steps) -> TransientOperators:
+def transient_element_operators(par, X, h, dt, steps, progress=None) -> TransientOperators:
     """Operators of ``steps`` steps of ``dt`` on elements of width ``h`` centred at ``X``
-    (a stationary half-plane without the Dundurs term; ``par`` in units of ``l``)."""
+    (a stationary half-plane without the Dundurs term; ``par`` in units of ``l``);
+    ``progress(done, 2 steps + 3)`` over both bodies' lag tables (:func:`lag_tables`),
+    a unit per lag, then a unit for each body's current matrices and one for
+    Flamant's."""
     N = X.size
     F, d, rho = par.fhpe, par.delta1_over_delta2, par.K2_over_K1
     conv = SpatialConvolution(N)
     gaps, thetas, kernels = [], [], []
-    for (r, s), distort, conduct in zip(body_rates(par), (d, 1.0), (rho, 1.0)):
-        T, W = lag_tables(N, float(h), float(dt), int(steps), float(r), float(s))
+    total = 2 * steps + 3
+
+    def told(done):
+        if progress is not None:
+            progress(done, total)
+    for body, ((r, s), distort, conduct) in enumerate(zip(body_rates(par), (d, 1.0),
+                                                          (rho, 1.0))):
+        before = body * (steps + 1)
+        T, W = lag_tables(N, float(h), float(dt), int(steps), float(r), float(s),
+                          lambda done, _, before=before: told(before + done))
         gap = -np.pi * F * distort * W
         theta = conduct * T
         gaps.append(toeplitz(gap[:, 0], N))
         thetas.append(toeplitz(theta[:, 0], N))
         both = np.stack([conv.kernel(gap), conv.kernel(theta)], axis=0)   # (2, modes, steps)
         kernels.append(np.ascontiguousarray(np.transpose(both, (2, 0, 1))[:, :, None, :]))
+        told(before + steps + 1)
     current = ElementOperators(flamant_operator(X, h), gaps[0], gaps[1], thetas[0], thetas[1])
+    told(total)
     return TransientOperators(current, tuple(kernels), conv)

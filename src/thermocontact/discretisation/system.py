@@ -39,7 +39,7 @@ from dataclasses import replace
 from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
-from ..problem.validation import InputError, check_range
+from ..problem.validation import InputError, check_pair, check_range, check_sink_given
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
 from .representations import (Representation, projection_columns, projection_nodes,
                               range_projections)
@@ -75,6 +75,13 @@ class Conductance:
         object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
                                                       *BIOT_RANGE))
         object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
+
+    @classmethod
+    def of(cls, value):
+        """``value`` (None, a Conductance or ``(Bi0, m)``) as a Conductance or None."""
+        if value is None or isinstance(value, cls):
+            return value
+        return cls(*check_pair("conductance", value, "(Bi0, m), two numbers"))
 
     def biot(self, pressure):
         """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""
@@ -357,10 +364,13 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     one more unknown, and (D31b) is not needed.  With the heat partition given, each
     zone's right side gains ``(2/pi)(mu_j + nu_j s)``; with the offset given (one
     zone only) ``(2/pi) nu (sigma + s)`` and no partition row (section 16).  With
-    the far temperatures given (one zone only) the partition row becomes the
-    temperature row (D41): the mean over ``n`` points of the surfaces' temperature
-    difference (D33) with each body's far temperature, or with a conductance its
-    constant, equal to ``Theta`` (section 17).
+    the far temperatures given the partition row becomes the temperature row (D41):
+    the mean over ``n`` points of zone 0 of the surfaces' temperature difference
+    (D33), every zone's sources summed, with each body's far temperature, or with a
+    conductance its constant, equal to ``Theta`` (section 17).  Perfect thermal
+    contact makes that difference one constant over every zone (the heat rows hold
+    it on each zone, the returns (D31b) carry it across each gap), so zone 0's
+    points stand for all.
 
     Parameters
     ----------
@@ -375,8 +385,8 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     lam, sigma_over_delta : float
         The heat partition, or (one zone) the offset ``centre/half``.
     temperatures : Temperatures
-        Or (one zone) the far temperatures, the sink distance in the unit of
-        ``edges`` (section 17).  Exactly one of the three.
+        Or the far temperatures, the sink distance in the unit of ``edges``
+        (section 17).  Exactly one of the three.
     profile : numpy.polynomial.Polynomial, optional
         The initial gap in units of ``l^2/R`` against ``X``; None: none (the single
         patch in its own scaling, whose ``X^2/2`` is carried by the defects).
@@ -391,17 +401,17 @@ def contact_set_system(par: Parameters, edges, rep, scheme: str, *, lam=None,
     Raises
     ------
     InputError
-        The offset or the temperatures given with more than one zone; a sink
-        distance with a moving half-plane, or none with a stationary one.
+        The offset given with more than one zone; a sink distance with a moving
+        half-plane, or none with a stationary one.
     """
     m, n = len(edges), rep.n
     if sum(c is not None for c in (lam, sigma_over_delta, temperatures)) != 1:
         raise InputError("give exactly one of lam, sigma_over_delta and temperatures",
                          parameters=("lam", "sigma_over_delta", "temperatures"))
-    for name, given in (("sigma_over_delta", sigma_over_delta), ("temperatures", temperatures)):
-        if given is not None and m != 1:
-            raise InputError(f"{name} closes a single zone only (sections 16, 17), got "
-                             f"{m} zones; give lam instead", parameters=(name,))
+    if sigma_over_delta is not None and m != 1:
+        raise InputError(f"sigma_over_delta closes a single zone only (section 16), got "
+                         f"{m} zones; give lam or temperatures instead",
+                         parameters=("sigma_over_delta",))
     if temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
     centre = 0.5 * (edges[:, 0] + edges[:, 1])
@@ -565,14 +575,7 @@ def check_temperatures(par: Parameters, temperatures) -> Temperatures:
     temperature is absolute, section 17)."""
     if not isinstance(temperatures, Temperatures):
         temperatures = Temperatures(*temperatures)
-    moving = par.half_plane_scale != 0.0
-    if moving and temperatures.sink_distance is not None:
-        raise InputError("sink_distance applies to a stationary half-plane only: a moving "
-                         "half-plane's far temperature is its incoming one",
-                         parameters=("sink_distance",))
-    if not moving and temperatures.sink_distance is None:
-        raise InputError("a stationary half-plane needs sink_distance (> 1, in half-widths) "
-                         "with the temperatures", parameters=("sink_distance",))
+    check_sink_given(temperatures.sink_distance, par.half_plane_scale == 0.0)
     return temperatures
 
 

@@ -94,6 +94,10 @@ def _single_thread(ignore_interrupts=False):
     half the time) and leave the pages it shares with its parent unwritten."""
     import gc
 
+    # NumPy's and SciPy's BLAS loaded now (a fork server's worker has neither yet), so
+    # that their threads are limited here, before any task.
+    import numpy  # noqa: F401
+    import scipy.linalg  # noqa: F401
     from threadpoolctl import threadpool_limits
 
     _admit_interrupts(ignore_interrupts)

@@ -16,10 +16,10 @@ from dataclasses import dataclass
 from .errors import InputError
 from .validation import check_finite, check_positive, check_range
 
-__all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures", "HeatPartition",
-           "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX", "Temperatures",
-           "check_closure_range", "check_sink_distance", "check_theta", "closure_of", "layer_sink_distance",
-           "temperature_group"]
+__all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures",
+           "HeatPartition", "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX",
+           "Temperatures", "check_closure_range", "check_sink_distance", "check_theta",
+           "closure_of", "layer_sink_distance", "temperature_closure", "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
@@ -100,6 +100,18 @@ def check_sink_distance(value, name="sink_distance") -> float:
     :data:`SINK_RANGE`, beyond the contact (the law holds for a flux inside the
     semicircle of radius ``L``, D38)."""
     return check_range(name, value, *SINK_RANGE, open_low=True)
+
+
+def temperature_closure(theta, sink_distance) -> Temperatures | None:
+    """The far temperatures given as ``theta`` and ``sink_distance`` (``L`` over the
+    problem's unit of length), each checked as an input; None without ``theta``."""
+    if theta is None:
+        if sink_distance is not None:
+            raise InputError("sink_distance is given with theta only (the temperature "
+                             "closure)", parameters=("sink_distance", "theta"))
+        return None
+    return Temperatures(check_theta(theta), None if sink_distance is None
+                        else check_sink_distance(sink_distance))
 
 
 def temperature_group(T1, T2, K2, friction, sliding_speed, load) -> float:

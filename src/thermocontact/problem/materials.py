@@ -315,6 +315,9 @@ def _catalogue(user_file=None):
     materials = dict(builtin_materials)
     aliases = dict(builtin_aliases)
     if user_file is not None:
+        if not isinstance(user_file, (str, os.PathLike)):
+            raise MaterialError(f"materials must be the path of a TOML file, got "
+                                f"{user_file!r}", parameters=("materials",))
         path = Path(os.fspath(user_file))
         where = f"materials file '{path.name}'"
         try:

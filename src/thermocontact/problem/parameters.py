@@ -10,7 +10,7 @@ from .errors import ConvergenceWarning, SolveError
 from .validation import InputError, check_finite, check_nonnegative, check_positive
 
 __all__ = ["ConvergenceWarning", "DISTORTIVITY_RATIO_LIMIT", "DISTORTIVITY_RATIO_MAX",
-           "PARTITION", "Parameters", "SolveError"]
+           "Parameters", "SolveError"]
 
 
 #: Range of c = Pe k2/k1.  Above C_MAX the cylinder's kernels are narrower than any
@@ -23,13 +23,6 @@ C_MIN = 1e-100
 #: Dundurs' constant in magnitude, |beta_D| <= 1/2) and f rarely exceeds 1; at 20 the edge
 #: exponents are 0.984 and 0.016.
 B_MAX = 20.0
-#: The heat partition lam = (Q1 - Q2)/(Q1 + Q2) of a steady contact in which both
-#: bodies take a non-negative share of the frictional heat: |lam| <= 1.  Beyond, one
-#: body would return heat to the interface, which frictional heat alone does not make;
-#: the single patch's paths and maps still accept |lam| up to 1e6 (a formal
-#: continuation of the closure, smooth through +-1, which the paper's Fig. 5 uses),
-#: contact sets of several zones take the physical interval only.
-PARTITION = (-1.0, 1.0)
 #: Largest distortivity ratio delta1/delta2 of a contact set (``zones``) and of a
 #: transient contact.  The materials in the library span 550 (copper against an
 #: organic brake block); the cylinder's distortion, ~ delta1 Q1 + delta2 Q2, grows with

@@ -17,7 +17,7 @@ import numpy as np
 from .closure import Temperatures, layer_sink_distance, temperature_group
 from .materials import Material, dundurs_beta
 from .parameters import Parameters
-from .validation import InputError, check_finite, check_nonnegative, check_positive
+from .validation import InputError, check_finite, check_flag, check_nonnegative, check_positive
 
 __all__ = ["FHPE_MIN", "MAX_WIDTH", "PhysicalProblem", "hertz_half_width", "scan_range"]
 
@@ -128,6 +128,7 @@ class PhysicalProblem:
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
         object.__setattr__(self, "friction", check_nonnegative("friction", self.friction))
         object.__setattr__(self, "speed2", check_finite("speed2", self.speed2))
+        object.__setattr__(self, "dundurs", check_flag("dundurs", self.dundurs))
         self._check_closure()
         # A derived group out of the solver's range is reported with the inputs it
         # comes from, not only as the dimensionless group.

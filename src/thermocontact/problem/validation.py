@@ -15,13 +15,19 @@ from .errors import InputError
 
 __all__ = [
     "InputError",
+    "check_callable",
     "check_choice",
     "check_exactly_one",
     "check_finite",
+    "check_flag",
     "check_integer",
     "check_nonnegative",
+    "check_numbers",
+    "check_offset_coupling",
+    "check_pair",
     "check_positive",
     "check_range",
+    "check_sink_given",
     "check_zero_or_range",
 ]
 
@@ -114,3 +120,71 @@ def check_exactly_one(**named) -> str:
     if len(given) != 1:
         raise InputError(f"give exactly one of {' and '.join(named)}", parameters=tuple(named))
     return given[0]
+
+
+def check_offset_coupling(fhpe, fhpe_name: str = "fhpe") -> None:
+    """The offset closes a contact only with thermal coupling (``fhpe > 0``): without,
+    the contact is Hertzian, a bounded solution needs ``sigma_over_delta = 0`` and then
+    ``lam`` is undetermined."""
+    if fhpe == 0.0:
+        raise InputError(
+            f"sigma_over_delta cannot be imposed when {fhpe_name} = 0: without thermal "
+            f"coupling the contact is Hertzian, a bounded solution needs "
+            f"sigma_over_delta = 0 and then lam is undetermined; give lam instead",
+            parameters=("sigma_over_delta", fhpe_name))
+
+
+def check_sink_given(sink_distance, stationary: bool) -> None:
+    """The far temperatures' sink: given for a stationary half-plane (its logarithm
+    needs a length, D38), not for a moving one (its incoming temperature is absolute,
+    section 17)."""
+    if not stationary and sink_distance is not None:
+        raise InputError("sink_distance applies to a stationary half-plane only: a moving "
+                         "half-plane's far temperature is its incoming one",
+                         parameters=("sink_distance",))
+    if stationary and sink_distance is None:
+        raise InputError("a stationary half-plane needs sink_distance (> 1, in half-widths) "
+                         "with the temperatures", parameters=("sink_distance",))
+
+
+def check_pair(name: str, value, allowed: str = "two numbers") -> tuple[float, float]:
+    """``value`` as two finite floats: a sequence of two numbers (not a string, whose
+    characters are not numbers even when they spell them)."""
+    if isinstance(value, (str, bytes)):
+        _fail(name, allowed, value)
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        _fail(name, allowed, value)
+    return _real(name, a, allowed), _real(name, b, allowed)
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is a boolean (``numpy.bool_`` too): a switch is on or off, never
+    a string or a number that happens to be truthy (``"no"`` is not False)."""
+    kind = type(value)
+    if isinstance(value, bool) or (kind.__module__ == "numpy"
+                                   and kind.__name__ in ("bool", "bool_")):
+        return bool(value)
+    _fail(name, "True or False", value)
+
+
+def check_callable(name: str, value):
+    """``value`` if it is None or can be called (a progress or a save): refused before
+    any work, not where the work first reports."""
+    if value is not None and not callable(value):
+        _fail(name, "None or a callable", value)
+    return value
+
+
+def check_numbers(name: str, value) -> list[float]:
+    """``value``, a number or a flat sequence of them, as a list of finite floats."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        return [check_finite(name, value)]
+    try:
+        items = list(value)
+    except TypeError:
+        _fail(name, "a number or a sequence of numbers", value)
+    if not items:
+        _fail(name, "a number or a sequence of numbers", value)
+    return [check_finite(name, v) for v in items]

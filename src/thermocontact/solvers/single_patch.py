@@ -34,10 +34,11 @@ from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range,
-                               check_sink_distance, check_theta)
+                               temperature_closure)
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
-from ..problem.validation import (InputError, check_choice, check_exactly_one, check_integer,
-                                  check_positive)
+from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
+                                  check_finite, check_flag, check_integer, check_numbers,
+                                  check_offset_coupling, check_positive)
 from .contact_system import solve_contact_system
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
@@ -140,12 +141,7 @@ def _patch_system(par: Parameters, blocks: Blocks, method: str, closure, conduct
     if temperatures is not None:
         temperatures = check_temperatures(par, temperatures)
     elif sigma_over_delta is not None:
-        if par.fhpe == 0.0:
-            raise InputError(
-                "sigma_over_delta cannot be imposed when fhpe = 0: without thermal "
-                "coupling the contact is Hertzian, a bounded solution needs "
-                "sigma_over_delta = 0 and then lam is undetermined; give lam instead"
-            )
+        check_offset_coupling(par.fhpe)
     # The one zone (-1, 1) without initial gap: its defects (mu, nu) are (L sigma, L).
     key = (lam, sigma_over_delta, temperatures)
     if key not in systems:
@@ -319,7 +315,7 @@ class Model:
                  tol=DEFAULT_TOL, conductance=None):
         self.parameters = Parameters(pe, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
                                      speed_ratio, beta_f)
-        self.conductance = None if conductance is None else Conductance(*conductance)
+        self.conductance = Conductance.of(conductance)
         self.method = check_method(method)
         self.n = None if n is None else check_n(n)
         self.tol = check_positive("tol", tol)
@@ -432,9 +428,14 @@ class Model:
             estimate misses ``tol`` with ``n`` chosen automatically also issues a
             :class:`ConvergenceWarning`.
         """
-        sol = self.solve_many([fhpe], lam=None if lam is None else [lam],
-                              sigma_over_delta=(None if sigma_over_delta is None
-                                                else [sigma_over_delta]),
+        # One point: each input one number (solve_many takes sequences).
+        fhpe = check_finite("fhpe", fhpe)
+        check_flag("check_convergence", check_convergence)
+        check_callable("progress", progress)
+        sol = self.solve_many([fhpe], lam=None if lam is None else [check_finite("lam", lam)],
+                              sigma_over_delta=(None if sigma_over_delta is None else
+                                                [check_finite("sigma_over_delta",
+                                                              sigma_over_delta)]),
                               temperatures=temperatures, progress=progress, polish=polish,
                               _stacklevel=_stacklevel + 1)[0]
         if isinstance(sol, Exception):
@@ -494,10 +495,13 @@ class Model:
             given = {"fhpe": fhpe}
         else:
             given = {"fhpe": fhpe, closure: lam if closure == "lam" else sigma_over_delta}
-        count = max([np.size(v) for v in given.values()]
-                    + ([len(closures)] if closures else []))
-        given = {k: [float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (count,))]
-                 for k, v in given.items()}
+        given = {k: check_numbers(k, v) for k, v in given.items()}
+        count = max([len(v) for v in given.values()] + ([len(closures)] if closures else []))
+        for k, v in given.items():
+            if len(v) not in (1, count):
+                raise InputError(f"{k} must be one value or {count} (one per point), got "
+                                 f"{len(v)}", parameters=(k,))
+        given = {k: v * count if len(v) == 1 else v for k, v in given.items()}
         if closures is not None:
             given["temperatures"] = closures * count if len(closures) == 1 else closures
         # lam is an output of the offset and of the temperatures, but its error is
@@ -682,12 +686,7 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     1.0
     """
     check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, theta=theta)
-    if sink_distance is not None and theta is None:
-        raise InputError("sink_distance is given with theta only (the temperature closure)",
-                         parameters=("sink_distance", "theta"))
-    temperatures = None if theta is None else Temperatures(
-        check_theta(theta),
-        None if sink_distance is None else check_sink_distance(sink_distance))
+    temperatures = temperature_closure(theta, sink_distance)
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,

@@ -36,14 +36,19 @@ from ..io.results import Result, dataset_attrs
 from ..numerics.online_convolution import OnlineConvolution
 from ..problem.errors import NotConvergedError
 from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
-from ..problem.validation import InputError, check_finite, check_positive, check_range
+from ..problem.validation import (InputError, check_choice, check_finite, check_integer,
+                                  check_nonnegative, check_pair, check_positive, check_range)
 from .elements import contact_runs, solve_elements, solve_on_set
 
-__all__ = ["TransientRun", "TransientSpec", "longest_step", "run_transient", "zones_of"]
+__all__ = ["TransientRun", "TransientSpec", "longest_step", "read_run", "run_transient",
+           "zones_of"]
 
 #: Most steps x elements of a run: its history (the inputs' and outputs' transforms, in
 #: complex spatial modes) and its fields stay within a few hundred MB.
 MAX_STEP_ELEMENTS = 3_000_000
+#: Time steps and elements of a run.
+STEPS_RANGE = (1, 100_000)
+ELEMENTS_RANGE = (8, 4000)
 #: Most half-widths the cylinder's surface may move in one step: beyond, a step resolves
 #: nothing of the convected heat and its tables' panels (a quarter of a pulse's width
 #: each) grow without bound.
@@ -119,19 +124,20 @@ class TransientSpec:
     conductance: tuple | None = None
 
     def __post_init__(self):
-        check_positive("pe_hertz", self.pe_hertz)
-        check_finite("fhpe_hertz", self.fhpe_hertz)
-        if self.fhpe_hertz < 0:
-            raise InputError(f"fhpe_hertz must be >= 0, got {self.fhpe_hertz!r}",
-                             parameters=("fhpe_hertz",))
-        check_range("delta1_over_delta2", self.delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
-        check_range("until", self.until, UNTIL_MIN, float("inf"))
-        if not (isinstance(self.steps, (int, np.integer)) and 1 <= self.steps <= 100_000):
-            raise InputError(f"steps must be an integer in [1, 100000], got {self.steps!r}",
-                             parameters=("steps",))
-        if not (isinstance(self.elements, (int, np.integer)) and 8 <= self.elements <= 4000):
-            raise InputError(f"elements must be an integer in [8, 4000], got {self.elements!r}",
-                             parameters=("elements",))
+        # Every input converted as it is checked (a number given as a string is that
+        # number; a flag or a string that is no number is refused).
+        def fix(name, value):
+            object.__setattr__(self, name, value)
+        fix("pe_hertz", check_positive("pe_hertz", self.pe_hertz))
+        fix("fhpe_hertz", check_nonnegative("fhpe_hertz", self.fhpe_hertz))
+        fix("K2_over_K1", check_positive("K2_over_K1", self.K2_over_K1))
+        if self.k2_over_k1 is not None:
+            fix("k2_over_k1", check_positive("k2_over_k1", self.k2_over_k1))
+        fix("delta1_over_delta2", check_range("delta1_over_delta2", self.delta1_over_delta2,
+                                              0.0, DISTORTIVITY_RATIO_MAX))
+        fix("until", check_range("until", self.until, UNTIL_MIN, float("inf")))
+        fix("steps", check_integer("steps", self.steps, *STEPS_RANGE))
+        fix("elements", check_integer("elements", self.elements, *ELEMENTS_RANGE))
         if self.steps * self.elements > MAX_STEP_ELEMENTS:
             raise InputError(f"steps x elements must be at most {MAX_STEP_ELEMENTS:.0e} (the "
                              f"history's memory), got {self.steps} x {self.elements}",
@@ -142,9 +148,8 @@ class TransientSpec:
                              f"l^2/kappa2 at this Pe_l: the cylinder's surface would move "
                              f"{shift:.4g} half-widths in one step (at most {MAX_SHIFT:g}); give "
                              f"more steps", parameters=("until", "steps"))
-        lo, hi = self.window
-        check_finite("window", lo)
-        check_finite("window", hi)
+        lo, hi = check_pair("window", self.window, "two numbers lo < -1 and hi > 1")
+        fix("window", (lo, hi))
         if not (lo < -1.0 and hi > 1.0):
             raise InputError(f"window must contain the Hertz contact -1 < x < 1, got "
                              f"({lo!r}, {hi!r})", parameters=("window",))
@@ -154,12 +159,8 @@ class TransientSpec:
             raise InputError(f"window must be at most {self.elements} half-widths wide "
                              f"with {self.elements} elements (each at most one, two across "
                              f"Hertz's contact), got ({lo!r}, {hi!r})", parameters=("window",))
-        if self.start not in ("hertz", "steady"):
-            raise InputError(f"start must be 'hertz' or 'steady', got {self.start!r}",
-                             parameters=("start",))
-        if self.hold not in ("theta", "lam"):
-            raise InputError(f"hold must be 'theta' or 'lam', got {self.hold!r}",
-                             parameters=("hold",))
+        check_choice("start", self.start, ("hertz", "steady"))
+        check_choice("hold", self.hold, ("theta", "lam"))
         if self.start == "hertz" and (self.lam is None) == (self.theta is None):
             raise InputError("give one closure: lam (the heat partition held) or theta (the "
                              "far temperatures held)", parameters=("lam", "theta"))
@@ -167,26 +168,21 @@ class TransientSpec:
             raise InputError("start='steady' takes lam (which steady state) and no theta",
                              parameters=("lam", "theta", "start"))
         if self.lam is not None:
-            check_finite("lam", self.lam)
-            if not -1.0 <= self.lam <= 1.0:
-                raise InputError(f"lam must lie in [-1, 1], got {self.lam!r}",
-                                 parameters=("lam",))
+            fix("lam", check_range("lam", self.lam, -1.0, 1.0))
         if self.theta is not None:
-            check_finite("theta", self.theta)
-        check_finite("perturb", self.perturb)
-        if not -0.5 <= self.perturb <= 0.5:
-            raise InputError(f"perturb must lie in [-0.5, 0.5], got {self.perturb!r}",
-                             parameters=("perturb",))
+            fix("theta", check_finite("theta", self.theta))
+        fix("perturb", check_range("perturb", self.perturb, -0.5, 0.5))
         if self.conductance is not None and self.start == "steady":
             raise InputError("start='steady' takes no conductance: the steady element "
                              "solution is one of perfect thermal contact",
                              parameters=("conductance", "start"))
         if self.conductance is not None:
-            Bi0, m = self.conductance
+            Bi0, m = check_pair("conductance", self.conductance, "(Bi0, m), two numbers")
             check_positive("conductance", Bi0)
             if not 0.0 <= m <= 2.0:
                 raise InputError(f"conductance exponent m must lie in [0, 2], got {m!r}",
                                  parameters=("conductance",))
+            fix("conductance", (Bi0, m))
         self.parameters()
 
     @property
@@ -225,6 +221,11 @@ class TransientRun(Result):
         surface's temperature rise (``f v P/(pi K2)``) at the end of each step.
     lam, approach, temperature_difference : ndarray, shape (T,)
         The heat partition, the rigid approach and ``C = theta1 - theta2`` on contact.
+        From Hertz's start ``lam`` and ``C`` are NaN at ``t = 0``: no heat has been
+        made yet (sliding starts at ``t = 0``), so the partition ``sum q/sum p`` of the
+        heat is 0/0 and the surfaces' temperatures have no difference to report; from
+        the first step on they are the step's.  From a steady start they are that
+        state's.
     status : str
         ``"complete"``, ``"partial"`` (a resumable part), or why the run stopped.
     set_iterations : ndarray of int, shape (T,)
@@ -395,6 +396,39 @@ class TransientRun(Result):
         except KeyError as exc:
             raise InputError(f"the dataset is not a transient run's: it has no {exc}",
                              parameters=("ds",)) from None
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"the dataset is not a transient run's: {exc}",
+                             parameters=("ds",)) from None
+
+
+def read_run(source, name: str = "ds") -> TransientRun:
+    """The run of a dataset that :meth:`TransientRun.to_dataset` wrote, given as the
+    dataset or as its file (``.nc``); anything else, a file that is missing or not a
+    dataset, or a dataset not of a run, is refused naming ``name``."""
+    import os
+
+    import xarray as xr
+
+    if isinstance(source, (str, os.PathLike)):
+        from ..io.datasets import read_dataset
+
+        if not os.path.isfile(source):
+            raise InputError(f"{name} must be a transient run's dataset or its file, got "
+                             f"{os.fspath(source)!r}, which is no file", parameters=(name,))
+        try:
+            source = read_dataset(source)
+        except Exception as exc:  # any reader's failure: not a dataset it knows
+            raise InputError(f"{name}: {os.fspath(source)!r} could not be read as a dataset "
+                             f"({type(exc).__name__}: {exc})".splitlines()[0],
+                             parameters=(name,)) from None
+    if not isinstance(source, xr.Dataset):
+        raise InputError(f"{name} must be a transient run's dataset or its file, got "
+                         f"{source!r}"[:200], parameters=(name,))
+    try:
+        return TransientRun.from_dataset(source)
+    except InputError as exc:
+        raise InputError(str(exc).replace("the dataset", f"{name}", 1),
+                         parameters=(name,)) from None
 
 
 @dataclass
@@ -595,7 +629,7 @@ class _Resistance:
 
 
 def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, progress=None,
-                  save=None, save_every: float = 30.0) -> TransientRun:
+                  save=None, save_every: float = 30.0, preparing=None) -> TransientRun:
     """Run the transient contact (derivation section 19).
 
     Parameters
@@ -605,10 +639,15 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
         A partial run of the same ``spec``: its steps are replayed into the history (no
         solves) and the run goes on from its last.
     progress : callable, optional
-        ``progress(done, total)`` after each step.
+        ``progress(done, total)`` before the first step (``done`` of a resumed run)
+        and after each step.
     save : callable, optional
         ``save(partial_run)`` at most every ``save_every`` seconds, never after the
         last step (the run returned is the whole one).
+    preparing : callable, optional
+        ``preparing(done, total)`` while the operators are made, before any step:
+        over both bodies' lag tables, a step of lag at a time, then the step's own
+        matrices (a long run's or a fine one's take minutes).
 
     Returns
     -------
@@ -626,15 +665,15 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
     # The step's matrices are small: one BLAS thread is faster than several competing
     # for the cores (path (a)'s 1000 steps: 7 s against 214 s on a loaded 2-core machine).
     with threadpool_limits(limits=1, user_api="blas"):
-        return _run(spec, resume, progress, save, save_every)
+        return _run(spec, resume, progress, save, save_every, preparing)
 
 
-def _run(spec, resume, progress, save, save_every):
+def _run(spec, resume, progress, save, save_every, preparing=None):
     t0 = _time.perf_counter()
     par = spec.parameters()
     X, h = spec.grid()
     N = X.size
-    tops = transient_element_operators(par, X, h, spec.dt, spec.steps)
+    tops = transient_element_operators(par, X, h, spec.dt, spec.steps, preparing)
     ops, conv = tops.current, tops.convolution
     histories = [OnlineConvolution(k) for k in tops.kernels]
     g0 = 0.5 * X * X
@@ -711,6 +750,8 @@ def _run(spec, resume, progress, save, save_every):
                             + _time.perf_counter() - t0)
 
     tol = 1e-12
+    if progress is not None:
+        progress(done, spec.steps)
     for n in range(done + 1, spec.steps + 1):
         y1 = conv.backward(histories[0].history(n))
         y2 = conv.backward(histories[1].history(n))

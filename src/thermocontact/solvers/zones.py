@@ -4,10 +4,11 @@ The contact set is a union of intervals ``a_j < X < b_j`` in units of the Hertz
 half-width ``l`` of the actual load (``l^2 = 2 P R A / pi``).  On each zone the
 contact equation (D14; D31 in units of l) and the heat equation (D18) hold with every
 zone's pressure and heat flux acting on it; outside, no heat crosses and the gap is open.  The
-load and the heat partition ``lam`` close the problem, and between neighbouring
-zones the gap and the temperature difference ``T1 - T2`` return to the values they
-have on the zone before (both bodies touch, and perfect thermal contact holds, on
-every zone with one rigid approach and one temperature difference).
+load and the heat partition ``lam`` (or the bodies' far temperatures, section 17) close
+the problem, and between neighbouring zones the gap and the temperature difference
+``T1 - T2`` return to the values they have on the zone before (both bodies touch, and
+perfect thermal contact holds, on every zone with one rigid approach and one
+temperature difference).
 
 For given edges the problem is linear.  Each zone's pressure, bounded at both of
 its edges, satisfies its ``n + 1`` contact rows only if two numbers vanish, the
@@ -16,10 +17,13 @@ side; Newton's method moves the edges until every defect vanishes.  With one zon
 this is the single-patch problem with the half-width fixed by the load
 (``P_H/P = Delta^2``, ``Pe = Pe_l Delta``, ``fHPe = fHPe_l Delta``,
 ``sigma/Delta = centre/Delta``), solved by the same blocks; one zone may instead be
-closed by its offset, the half-width then found by Newton's method.  The system is
-assembled by :func:`~thermocontact.discretisation.system.contact_set_system`, the
-single patch's too (derivation section 16), with the moving half-plane, the Dundurs
-term and an interface conductance.
+closed by its offset, the half-width then found by Newton's method.  Every closure of
+the single patch closes a contact set: ``lam`` in the single patch's range (a formal
+continuation beyond [-1, 1] included), the offset (one zone), the far temperatures.
+The system is assembled by
+:func:`~thermocontact.discretisation.system.contact_set_system`, the single patch's
+too (derivation section 16), with the moving half-plane, the Dundurs term and an
+interface conductance.
 """
 
 from __future__ import annotations
@@ -33,14 +37,16 @@ from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
-                                     contact_set_system, zone_parameters)
+                                     check_temperatures, contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
+from ..problem.closure import Temperatures, check_closure_range
 from ..problem.errors import NotConvergedError
-from ..problem.parameters import PARTITION, Parameters, SolveError
-from ..problem.validation import InputError, check_exactly_one, check_range
-from .refinement import N_RANGE, refine
+from ..problem.parameters import Parameters, SolveError
+from ..problem.validation import (InputError, check_exactly_one, check_offset_coupling,
+                                  check_range)
 from .contact_system import solve_contact_system
+from .refinement import N_RANGE, refine
 
 __all__ = ["BIOT_RANGE", "CYLINDER", "Conductance", "ZoneModel", "ZoneSolution",
            "zone_parameters", "zone_system"]
@@ -70,14 +76,15 @@ ZoneSystem = ContactSetSystem
 
 
 def zone_system(par: Parameters, edges, lam, rep, scheme: str, profile=CYLINDER,
-                conductance=False, *, sigma_over_delta=None) -> ContactSetSystem:
+                conductance=False, *, sigma_over_delta=None,
+                temperatures=None) -> ContactSetSystem:
     """The contact set's equations in units of the Hertz half-width (section 14):
     :func:`~thermocontact.discretisation.system.contact_set_system` with the profile
-    ``profile`` (default the cylinder's ``X^2/2``) and ``lam`` or, for one zone,
-    ``sigma_over_delta``."""
+    ``profile`` (default the cylinder's ``X^2/2``) and ``lam``, the far
+    ``temperatures`` (sink distance ``L/l``) or, for one zone, ``sigma_over_delta``."""
     return contact_set_system(par, _edges(edges), rep, scheme, lam=lam,
-                              sigma_over_delta=sigma_over_delta, profile=profile,
-                              conductance=conductance)
+                              sigma_over_delta=sigma_over_delta, temperatures=temperatures,
+                              profile=profile, conductance=conductance)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -93,6 +100,7 @@ class ZoneSolution(Result):
     parameters : Parameters
         ``pe = Pe_l``, ``fhpe = fHPe_l``.
     lam : float
+        The heat partition: given, or the output of the offset or the temperatures.
     edges : ndarray, shape (m, 2)
         ``(a_j, b_j)`` of each zone, ascending.
     phi, psi : ndarray, shape (m, n)
@@ -108,6 +116,9 @@ class ZoneSolution(Result):
     error_estimate : float or None
         Measured by :meth:`ZoneModel.error_estimate` (``solve(..., estimate=True)``);
         None when not measured.
+    temperatures : Temperatures or None
+        The far temperatures that closed the set (``Theta`` and the sink distance
+        ``L/l``, section 17); None when ``lam`` or the offset did.
     """
 
     parameters: Parameters
@@ -123,6 +134,7 @@ class ZoneSolution(Result):
     validity: ZoneValidity | None = None
     profile: Polynomial = field(default_factory=lambda: CYLINDER)
     error_estimate: float | None = None
+    temperatures: Temperatures | None = None
 
     @property
     def n(self) -> int:
@@ -206,6 +218,9 @@ class ZoneSolution(Result):
             "pe_hertz": p.pe, "fhpe_hertz": p.fhpe, "K2_over_K1": p.K2_over_K1,
             "k2_over_k1": p.k2_over_k1, "delta1_over_delta2": p.delta1_over_delta2,
             "beta_f": p.beta_f, "lam": self.lam, "method": self.method, "n": self.n,
+            **({} if self.temperatures is None else
+               {"theta": self.temperatures.theta,
+                "sink_distance": self.temperatures.sink_distance}),
             **({"speed_ratio": p.speed_ratio} if p.speed_ratio else {}),
             **({"error_estimate": self.error_estimate}
                if self.error_estimate is not None else {}),
@@ -274,7 +289,7 @@ class ZoneModel:
                  speed_ratio=0.0):
         self.base = Parameters(1.0, 0.0, K2_over_K1, k2_over_k1, delta1_over_delta2,
                                speed_ratio, beta_f)
-        self.conductance = None if conductance is None else Conductance(*conductance)
+        self.conductance = Conductance.of(conductance)
         if method not in METHODS or not METHODS[method].edge_exponents:
             raise InputError(f"method must be 'graded' or 'graded-collocation' for contact "
                              f"sets, got {method!r}")
@@ -289,29 +304,35 @@ class ZoneModel:
         m = METHODS[self.method]
         return m.representation(self.n, self.base.edge_exponent)
 
-    def system(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None) -> ContactSetSystem:
+    def system(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None,
+               temperatures=None) -> ContactSetSystem:
         return zone_system(self.parameters(pe, fhpe), edges, lam, self.representation(),
                            METHODS[self.method].scheme, self.profile,
                            conductance=self.conductance is not None,
-                           sigma_over_delta=sigma_over_delta)
+                           sigma_over_delta=sigma_over_delta, temperatures=temperatures)
 
-    def defects(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None):
+    def defects(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None,
+                temperatures=None):
         """The defects and the linear solution at these edges: ``(mu_1, nu_1, ...)``
-        with ``lam`` given, ``(nu,)`` with ``sigma_over_delta`` (section 16).
+        with ``lam`` or ``temperatures`` given, ``(nu,)`` with ``sigma_over_delta``
+        (section 16).
 
         With a pressure-dependent conductance the Biot numbers follow the pressure
         (section 15, :func:`~thermocontact.solvers.contact_system.solve_contact_system`).
         """
-        system = self.system(edges, pe, fhpe, lam, sigma_over_delta=sigma_over_delta)
+        system = self.system(edges, pe, fhpe, lam, sigma_over_delta=sigma_over_delta,
+                             temperatures=temperatures)
         half = 0.5 * np.diff(_edges(edges), axis=1)[:, 0]
         x, rcond = solve_contact_system(system, fhpe, self.representation(), half,
                                         self.conductance)
         return x[system.closure_slice], x, rcond
 
-    def jacobian(self, edges, pe, fhpe, lam, defects=None):
-        """Derivatives of the defects with respect to the edges, by differences."""
+    def jacobian(self, edges, pe, fhpe, lam=None, defects=None, *, temperatures=None):
+        """Derivatives of the defects with respect to the edges, by differences
+        (``lam`` or ``temperatures`` given)."""
         e = _edges(edges).ravel()
-        d0 = self.defects(e, pe, fhpe, lam)[0] if defects is None else defects
+        d0 = (self.defects(e, pe, fhpe, lam, temperatures=temperatures)[0]
+              if defects is None else defects)
         half = np.repeat(0.5 * (e[1::2] - e[0::2]), 2)
         J = np.empty((d0.size, e.size))
         lengths = np.diff(e)
@@ -321,11 +342,13 @@ class ZoneModel:
             h = min(1e-7 * max(half[k], 1e-3), 1e-3 * near)
             ek = e.copy()
             ek[k] += h
-            J[:, k] = (self.defects(ek, pe, fhpe, lam)[0] - d0) / h
+            J[:, k] = (self.defects(ek, pe, fhpe, lam, temperatures=temperatures)[0]
+                       - d0) / h
         return J
 
-    def solve(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None, max_iter=40,
-              check_validity=True, polish=True, estimate=False) -> ZoneSolution:
+    def solve(self, edges, pe, fhpe, lam=None, *, sigma_over_delta=None, temperatures=None,
+              max_iter=40, check_validity=True, polish=True,
+              estimate=False) -> ZoneSolution:
         """Newton's method on the edges from ``edges`` to zero defects.
 
         Parameters
@@ -335,9 +358,14 @@ class ZoneModel:
         pe, fhpe : float
             ``Pe_l > 0`` and ``fHPe_l >= 0``.
         lam, sigma_over_delta : float
-            Exactly one: the heat partition, or (one zone) the offset
+            The heat partition (``|lam| <= 1e6``, as the single patch's: beyond
+            [-1, 1] a formal continuation of the closure), or (one zone) the offset
             ``centre/half-width``, whose zone is ``((sigma - 1) Delta, (sigma + 1) Delta)``
             with ``Delta`` found by Newton's method (section 16).
+        temperatures : Temperatures or (float, float or None)
+            Or the far temperatures ``(Theta, L/l)``, the sink distance in units of
+            ``l`` (a stationary half-plane; None for a moving one): ``lam`` is then
+            an output (section 17).  Exactly one of the three closures.
         max_iter : int, optional
         check_validity, polish : bool, optional
             As :meth:`~thermocontact.solvers.single_patch.Model.solve`.
@@ -352,14 +380,18 @@ class ZoneModel:
         SolveError
             When Newton's method does not converge (the message says how far it got).
         """
-        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta)
+        check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
+                          temperatures=temperatures)
         check_range("pe_hertz", pe, *PE_HERTZ_RANGE)
         check_range("fhpe_hertz", fhpe, *FHPE_HERTZ_RANGE)
-        if lam is not None:
-            lam = check_range("lam", lam, *PARTITION)
-            e, x, rcond, err, it = self._newton_edges(edges, pe, fhpe, lam, max_iter)
+        lam, sigma = check_closure_range(lam, sigma_over_delta)
+        if temperatures is not None:
+            temperatures = check_temperatures(self.base, temperatures)
+        if sigma is None:
+            e, x, rcond, err, it = self._newton_edges(edges, pe, fhpe, lam, max_iter,
+                                                      temperatures)
         else:
-            sigma = check_range("sigma_over_delta", sigma_over_delta, -1e6, 1e6)
+            check_offset_coupling(fhpe, "fhpe_hertz")
             e, x, rcond, err, it = self._newton_half(edges, pe, fhpe, sigma, max_iter)
         par = self.parameters(pe, fhpe)
         m, n = len(e) // 2, self.n
@@ -367,17 +399,17 @@ class ZoneModel:
         phi = x[:m * n].reshape(m, n)
         psi = x[m * n:2 * m * n].reshape(m, n)
         rep = self.representation()
-        if lam is None:
-            half = 0.5 * (edges2[0, 1] - edges2[0, 0])
-            lam = half * float(rep.flux_rule.weights @ psi[0]
-                               + par.eta * (rep.pressure_rule.weights @ phi[0]))
         validity = (assess_zones(par, rep, edges2, phi, psi, self.profile, polish=polish)
                     if check_validity else None)
-        sol = ZoneSolution(par, float(lam), edges2, phi, psi, rep, self.method, err, it,
-                           rcond, validity, self.profile)
+        sol = ZoneSolution(par, 0.0 if lam is None else lam, edges2, phi, psi, rep,
+                           self.method, err, it, rcond, validity, self.profile,
+                           temperatures=temperatures)
+        if lam is None:
+            # The offset's or the temperatures' partition: the zones' shares summed (D19).
+            sol = replace(sol, lam=float(np.sum(sol.heat_partitions)))
         if estimate:
             sol = replace(sol, error_estimate=self.error_estimate(
-                sol, sigma_over_delta=sigma_over_delta, max_iter=max_iter))
+                sol, sigma_over_delta=sigma, max_iter=max_iter))
         return sol
 
     def at_n(self, n) -> "ZoneModel":
@@ -395,14 +427,15 @@ class ZoneModel:
         sizes = [k for k in (sol.n // 4, sol.n // 2) if k >= N_RANGE[0]] + [sol.n]
         if len(sizes) < 2:
             return None
-        lam = None if sigma_over_delta is not None else sol.lam
+        closure = ({"sigma_over_delta": sigma_over_delta} if sigma_over_delta is not None
+                   else {"temperatures": sol.temperatures} if sol.temperatures is not None
+                   else {"lam": sol.lam})
 
         def at(k):
             if k == sol.n:
                 return zone_measures(sol)
             coarse = self.at_n(k).solve(sol.edges, sol.parameters.pe, sol.parameters.fhpe,
-                                        lam, sigma_over_delta=sigma_over_delta,
-                                        max_iter=max_iter, check_validity=False)
+                                        max_iter=max_iter, check_validity=False, **closure)
             if coarse.zones != sol.zones:
                 raise SolveError("the error estimate's coarser solution has another "
                                  "number of zones")
@@ -410,18 +443,18 @@ class ZoneModel:
         _, est = refine(at, sizes, p_max=METHODS[self.method].order_cap)
         return None if est is None else float(est)
 
-    def _newton_edges(self, edges, pe, fhpe, lam, max_iter):
+    def _newton_edges(self, edges, pe, fhpe, lam, max_iter, temperatures=None):
         e = _edges(edges).ravel().copy()
         J = None
         for it in range(max_iter + 1):
-            d, x, rcond = self.defects(e, pe, fhpe, lam)
+            d, x, rcond = self.defects(e, pe, fhpe, lam, temperatures=temperatures)
             err = float(np.max(np.abs(d)))
             if err < DEFECT_TOL:
                 break
             if it == max_iter:
                 raise NotConvergedError(f"the edges did not converge in {max_iter} Newton steps "
                                  f"(largest defect {err:.2e})")
-            J = self.jacobian(e, pe, fhpe, lam, d)
+            J = self.jacobian(e, pe, fhpe, lam, d, temperatures=temperatures)
             try:
                 step = -np.linalg.solve(J, d)
             except np.linalg.LinAlgError:
@@ -448,7 +481,8 @@ class ZoneModel:
         start = _edges(edges)
         if len(start) != 1:
             raise InputError(f"sigma_over_delta closes a single zone only (section 16), "
-                             f"got {len(start)} zones; give lam instead")
+                             f"got {len(start)} zones; give lam instead",
+                             parameters=("sigma_over_delta",))
         half = 0.5 * float(start[0, 1] - start[0, 0])
 
         def at(h):

@@ -7,6 +7,13 @@ that the failure suggests are tried at the target: a zone where the gap closed
 (nucleation), the zone split where the pressure vanished, and the second method's
 contact set (:mod:`thermocontact.solvers.elements`).  The answer is the first
 valid set, or the evidence that none of them is.
+
+Every closure of the single patch closes the contact set: the heat partition ``lam``
+(over the single patch's range, a formal continuation beyond [-1, 1] included) or the
+far temperatures (section 17) held along the path; the offset, which closes one zone
+only and has no Hertzian start (at ``fHPe_l = 0`` it leaves ``lam`` undetermined),
+by Newton's method on the zone's half-width at the point itself.  Time is bounded by
+a budget of evaluations, each one telling the progress.
 """
 
 from __future__ import annotations
@@ -17,11 +24,13 @@ import numpy as np
 
 from ..analysis.applicability import Applicability, physical_applicability
 from ..analysis.fields import ContactFields, contact_fields
+from ..discretisation.system import check_temperatures
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, PARTITION, SolveError
-from ..problem.validation import InputError, check_positive, check_range
+from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveError
+from ..problem.validation import InputError, check_exactly_one, check_positive, check_range
 from ..solvers.elements import solve_elements
+from ..problem.closure import check_closure_range
 from ..solvers.zones import (BIOT_RANGE, FHPE_HERTZ_RANGE, PE_HERTZ_RANGE, ZoneModel,
                              ZoneSolution)
 
@@ -94,6 +103,8 @@ class ContactSetResult(Result):
         if sol is not None:
             rec["n"] = sol.n
             rec["defect"] = sol.defect
+            # Given, or the output of the offset or the far temperatures.
+            rec["lam"] = sol.lam
         elif self.solution is not None:
             rec["last_followed"] = {"t": self.reached,
                                     "zones": self.solution.zone_records(),
@@ -110,9 +121,10 @@ def _first_failure(sol: ZoneSolution) -> str:
     return sol.validity.failures[0] if sol.validity.failures else "valid"
 
 
-def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
+def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
                      delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
-                     progress=None, start=None) -> ContactSetResult:
+                     progress=None, start=None, sigma_over_delta=None,
+                     temperatures=None) -> ContactSetResult:
     """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``),
     followed from Hertz's zone along ``fHPe_l`` at fixed ``Pe_l``.
 
@@ -122,6 +134,15 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         ``Pe_l = v l/(2 k2) > 0`` and ``fHPe_l >= 0``.
     K2_over_K1, k2_over_k1, delta1_over_delta2 : float
     lam : float
+        The heat partition held, ``|lam| <= 1e6`` (as the single patch's).
+    temperatures : Temperatures or (float, float or None), optional
+        Or the far temperatures held, ``(Theta, L/l)`` with the sink distance in units
+        of ``l`` (section 17): ``lam`` is then an output.
+    sigma_over_delta : float, optional
+        Or the offset ``centre/half-width`` of one zone (section 16): no path from
+        Hertz's zone (at ``fHPe_l = 0`` the offset leaves ``lam`` undetermined), but
+        Newton's method on the zone's half-width from Hertz's at the point itself.
+        Exactly one of the three closures.
     beta_f : float, optional
         The Dundurs term (section 5c); the second method is then not tried.
     conductance : (float, float), optional
@@ -138,6 +159,7 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
         Newton's method from them finds a valid contact set of one zone, that is
         the answer, and nothing is followed (:func:`follow_contact_set`).
     """
+    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, temperatures=temperatures)
     # The target's own values named (a step toward it would name a fraction of it).
     pe = check_range("pe_hertz", pe_hertz, *PE_HERTZ_RANGE)
     target = check_range("fhpe_hertz", fhpe_hertz, *FHPE_HERTZ_RANGE)
@@ -149,15 +171,19 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam, k2_over_k1=None,
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
 
+    materials = dict(k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                     beta_f=beta_f, conductance=conductance)
+    if sigma_over_delta is not None:
+        return _offset_contact_set(pe, target, K2_over_K1, sigma_over_delta, n=n,
+                                   progress=progress, **materials)
     budgets = []
 
     def attempt(n_, start=None):
         # Each resolution its own budget: the finer one is not starved by the first.
         budgets.append(_Budget(MAX_EVALUATIONS))
         return follow_contact_set(lambda t: (pe, t * target), K2_over_K1, lam=lam,
-                                  k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                                  beta_f=beta_f, conductance=conductance, n=n_,
-                                  progress=progress, start=start, budget=budgets[-1])
+                                  temperatures=temperatures, n=n_, progress=progress,
+                                  start=start, budget=budgets[-1], **materials)
     res = attempt(n, start)
     # (A first attempt that spent its budget is not tried again: the path is one its
     # steps cannot resolve, at any n.)
@@ -218,13 +244,16 @@ class _Budgeted(ZoneModel):
         return super().defects(*args, **kwargs)
 
 
-def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_delta2=1.0,
-                       beta_f=0.0, conductance=None, n=32, progress=None, start=None,
-                       budget=MAX_EVALUATIONS) -> ContactSetResult:
+def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
+                       delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
+                       progress=None, start=None, budget=MAX_EVALUATIONS,
+                       temperatures=None) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
     At ``t = 0`` the contact is taken to be Hertz's zone (``fHPe_l`` small there);
-    ``conductance`` may be a function of ``t`` returning ``(Bi0, m)``.  Each step
+    ``conductance`` may be a function of ``t`` returning ``(Bi0, m)``.  The closure
+    held along the path: ``lam`` (``|lam| <= 1e6``) or the far ``temperatures``
+    (``(Theta, L/l)``, section 17).  Each step
     starts from the edges extrapolated through the last two solutions; it is halved
     where Newton's method fails or an edge lands farther than
     :data:`MAX_EDGE_MOVE` of the smallest zone's half-width from that prediction (so
@@ -248,7 +277,7 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     is "not converged", with the last solution followed and where it was, and the
     event and the contact sets tried if they were found.
     """
-    lam = check_range("lam", lam, *PARTITION)
+    check_exactly_one(lam=lam, temperatures=temperatures)
     check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
@@ -268,10 +297,16 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                          conductance=cond)
 
     model = model_at(0.0)
+    # The closure held, checked as the solver checks it (lam's range; a sink distance
+    # for a stationary half-plane, none for a moving one).
+    if lam is not None:
+        closure = {"lam": check_closure_range(lam)[0]}
+    else:
+        closure = {"temperatures": check_temperatures(model.base, temperatures)}
 
     def at(edges, t, polish=False, max_iter=40):
         pe, F = path(t)
-        return model_at(t).solve(edges, pe, F, lam, polish=polish, max_iter=max_iter)
+        return model_at(t).solve(edges, pe, F, polish=polish, max_iter=max_iter, **closure)
 
     def follow(sol, t, to, stop_when_invalid):
         # From sol at t toward `to` (steps from an eighth of what remains, halved on
@@ -340,12 +375,13 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
     def around(sol, t, until):
         def residual(z):
             pe, F = path(z[-1])
-            return model_at(z[-1]).defects(z[:-1], pe, F, lam)[0]
+            return model_at(z[-1]).defects(z[:-1], pe, F, **closure)[0]
 
         def jacobian(z, F0):
             pe, F = path(z[-1])
             h = 1e-7 * max(1.0, abs(z[-1]))
-            return np.column_stack([model_at(z[-1]).jacobian(z[:-1], pe, F, lam, F0),
+            return np.column_stack([model_at(z[-1]).jacobian(z[:-1], pe, F, defects=F0,
+                                                             **closure),
                                     (residual(np.append(z[:-1], z[-1] + h)) - F0) / h])
         try:
             return arclength(residual, jacobian, np.append(sol.edges.ravel(), t),
@@ -429,7 +465,9 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
                 raise SolveError("not tried: the second method has no Dundurs term and perfect "
                                  "thermal contact only")
             pe, F = path(reached)
-            el = solve_elements(model.parameters(pe, F), lam,
+            # (With the temperatures, at the single zone's partition: its contact set
+            # is a start for Newton's method, which then holds the temperatures.)
+            el = solve_elements(model.parameters(pe, F), single.lam,
                                 domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
             guesses.append(("the second method's contact set", el.zones.tolist()))
             attempts.append({"tried": "second method (400 elements)",
@@ -474,6 +512,39 @@ def follow_contact_set(path, K2_over_K1, *, lam, k2_over_k1=None, delta1_over_de
             f"set's defects, the most allowed, with the single zone followed to "
             f"{_point(where(reached))}", sol, located["event"], located["attempts"],
             history=history, folds=folds, reached=reached)
+
+
+def _offset_contact_set(pe, fhpe, K2_over_K1, sigma_over_delta, *, n, progress,
+                        **materials) -> ContactSetResult:
+    """The one zone of offset ``sigma_over_delta`` at ``(Pe_l, fHPe_l)``: Newton's
+    method on its half-width from Hertz's (section 16), within the budget of
+    :data:`MAX_EVALUATIONS` evaluations, each telling the progress.  The offset closes
+    one zone only: where that zone is not valid, no contact set holds at this offset
+    (of those Newton's method reaches)."""
+    if not 8 <= int(n) <= 256:
+        raise InputError(f"n must be in [8, 256], got {n!r}", parameters=("n",))
+    sigma = check_closure_range(sigma_over_delta=sigma_over_delta)[1]
+    budget = _Budget(MAX_EVALUATIONS, None if progress is None else lambda: progress(0.0))
+    cond = materials.pop("conductance")
+    model = _Budgeted(budget, K2_over_K1, n=int(n), conductance=cond, **materials)
+    try:
+        sol = model.solve([[sigma - 1.0, sigma + 1.0]], pe, fhpe, sigma_over_delta=sigma)
+    except SolveError as exc:
+        return ContactSetResult("not converged", f"the zone of offset sigma/Delta = "
+                                f"{sigma:g} was not found from Hertz's half-width: {exc}",
+                                None, reached=0.0)
+    except _BudgetSpent:
+        return ContactSetResult("not converged", f"stopped after {budget.limit} evaluations "
+                                f"of the zone's defect, the most allowed", None, reached=0.0)
+    if progress is not None:
+        progress(1.0)
+    where = _point({"pe_hertz": pe, "fhpe_hertz": fhpe})
+    if sol.valid:
+        return ContactSetResult("solved", f"one zone of offset sigma/Delta = {sigma:g} at "
+                                f"{where}, by Newton's method on its half-width", sol)
+    return ContactSetResult(
+        "no steady solution", f"the zone of offset sigma/Delta = {sigma:g} at {where} is "
+        f"not valid ({_first_failure(sol)}); an offset closes one zone only", sol)
 
 
 def _suggested_sets(single: ZoneSolution) -> list[tuple[str, list]]:
@@ -668,6 +739,13 @@ class PhysicalContactSet:
                 "flash_temperature": f.flash_temperature,
                 "temperature_mismatch": (f.temperature_mismatch
                                          if np.isfinite(f.temperature_mismatch) else None)})
+            if self.problem.bulk_temperatures is not None:
+                # lam an output; the surfaces' absolute peak, the cylinder's incoming
+                # temperature plus its flash temperature (section 17).
+                rec.update({"lam": self.result.answer.lam,
+                            "bulk_temperatures": list(self.problem.bulk_temperatures),
+                            "peak_temperature": (self.problem.bulk_temperatures[0]
+                                                 + f.flash_temperature)})
         if app is not None:
             rec.update(app.to_dict())
         return rec
@@ -692,7 +770,8 @@ def physical_contact_set(problem, *, conductance=None, n=32,
     Parameters
     ----------
     problem : PhysicalProblem
-        With a stationary half-plane.
+        With a stationary half-plane; closed by ``lam`` or by the bulk temperatures
+        with a sink (``lam`` then an output, section 17).
     conductance : PhysicalConductance or tuple, optional
         ``(h0, m[, p_ref])``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0``
         in W/(m^2 K), ``p_ref`` in Pa (default: the mean Hertz pressure ``P/(2 l)``).
@@ -713,7 +792,8 @@ def physical_contact_set(problem, *, conductance=None, n=32,
     groups = problem.ray_parameters()
     conductance = None if conductance is None else _physical(conductance)
     res = find_contact_set(problem.pe_hertz, problem.fhpe(ell), groups["K2_over_K1"],
-                           lam=problem.lam, k2_over_k1=groups["k2_over_k1"],
+                           lam=problem.lam, temperatures=problem.temperatures(ell),
+                           k2_over_k1=groups["k2_over_k1"],
                            delta1_over_delta2=groups["delta1_over_delta2"],
                            beta_f=groups["beta_f"], n=n, progress=progress,
                            conductance=None if conductance is None else

@@ -127,10 +127,6 @@ class OperatingSpec:
                                  parameters=("conductance",))
         if self.bulk_temperatures is None:
             check_finite("lam", self.lam)
-        elif self.zones:
-            raise InputError("bulk_temperatures close the single patch only (derivation "
-                             "section 17); give lam with zones",
-                             parameters=("bulk_temperatures", "zones"))
         check_positive("tol", self.tol)
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
         if self.zones and self.speed_ratio:
@@ -354,15 +350,41 @@ def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path
                        starts=None):
     """``zones_*`` fields over the map (:func:`evaluate_contact_sets`), one task per
     line of constant y, kept in ``store_path`` as they finish; ``starts[i][j]``, the
-    edges (m) of a valid single patch at point ``(i, j)`` or None, are tried first."""
+    edges (m) of a valid single patch at point ``(i, j)`` or None, are tried first.
+
+    Returns
+    -------
+    dict
+        The dataset's variables, ``{"zones_<field>": ((y, x), array)}``.
+    """
     per_line = None
     if starts is not None:
         per_line = [{"starts": [None if e is None else tuple(float(v) for v in e)
                                 for e in row]} for row in starts]
-    return line_fields(spec, evaluate_contact_sets, "contact sets", ZONE_FIELDS, workers,
-                       progress, store_path, per_line=per_line,
-                       manifest={"start": "valid single patch" if starts is not None
-                                 else None})
+    found = line_fields(spec, evaluate_contact_sets, "contact sets", ZONE_FIELDS, workers,
+                        progress, store_path, per_line=per_line,
+                        manifest={"start": "valid single patch" if starts is not None
+                                  else None})
+    dims = (spec.y.name, spec.x.name)
+    return {f"zones_{k}": (dims, v.astype(str) if v.dtype.kind in "UO" else v)
+            for k, v in found.items()}
+
+
+def two_parts(progress, lines):
+    """One progress for a map's two parts, its first part's chunks (their count told by
+    its own progress; none when resumed), then ``lines`` lines of contact sets: the
+    two ``progress(done, total)`` callables."""
+    first_total = [0]
+
+    def first(done, total):
+        first_total[0] = total
+        if progress is not None:
+            progress(done, total + lines)
+
+    def second(done, total):
+        if progress is not None:
+            progress(first_total[0] + done, first_total[0] + total)
+    return first, second
 
 
 def line_fields(spec: OperatingSpec, func, part, names, workers=1, progress=None,
@@ -444,19 +466,7 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     pe_h = spec.pe_hertz(load, speed, radius)
     # The single patch's range (PhysicalProblem.scan_range), in Pe over the whole plane.
     pe_lo, pe_hi = scan_range(pe_h.min(), pe_h.max(), spec.fh)
-    # One progress for both parts: the ray's chunks, then the contact sets' lines.
-    lines = spec.y.count if spec.zones else 0
-    ray_total = [0]  # chunks of the ray still to compute (none when resumed)
-
-    def ray_progress(done, total):
-        ray_total[0] = total
-        if progress is not None:
-            progress(done, total + lines)
-
-    def zone_progress(done, total):
-        if progress is not None:
-            progress(ray_total[0] + done, ray_total[0] + total)
-
+    ray_progress, zone_progress = two_parts(progress, spec.y.count if spec.zones else 0)
     ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=ray_progress,
                       store_path=store_path)
     lp = np.log(ray["pe"])
@@ -552,12 +562,10 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     dims = (spec.y.name, spec.x.name)
     zones = {}
     if spec.zones:
-        found = contact_set_fields(spec, workers=workers, progress=zone_progress,
+        zones = contact_set_fields(spec, workers=workers, progress=zone_progress,
                                    store_path=None if store_path is None else
                                    os.path.join(store_path, "contact_sets"),
                                    starts=starts.tolist())
-        zones = {f"zones_{k}": (dims, v.astype(str) if v.dtype.kind in "UO" else v)
-                 for k, v in found.items()}
     ds = xr.Dataset(
         {**{k: (dims, v) for k, v in fields.items()},
          "valid": (dims, valid), "applicable": (dims, applicable),

@@ -20,7 +20,7 @@ import numpy as np
 from .._version import __version__
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
-from .operating_maps import line_fields
+from .operating_maps import contact_set_fields, line_fields, two_parts
 from .physical_contact import contact
 
 __all__ = ["TEMPERATURE_FIELDS", "temperature_map"]
@@ -79,14 +79,30 @@ def temperature_map(spec, workers=1, progress=None, command=None, store_path=Non
     temperatures) as an :class:`xarray.Dataset` in SI units: over the two axes the
     primary branch's :data:`TEMPERATURE_FIELDS` (``lam`` the partition the
     temperatures imply, ``peak_temperature`` both surfaces' greatest absolute
-    temperature, K), the Hertz Peclet number and the closure's group ``theta``."""
+    temperature, K), the Hertz Peclet number and the closure's group ``theta``; with
+    ``spec.zones`` the contact sets' ``zones_*``
+    (:func:`~.operating_maps.evaluate_contact_sets`, the temperatures their closure
+    too), each sought first from the valid primary branch's edges."""
+    import os
+
     import xarray as xr
 
     load, speed, radius = spec.grid()
+    line_progress, zone_progress = two_parts(progress, spec.y.count if spec.zones else 0)
     found = line_fields(spec, evaluate_line, "bulk temperatures", TEMPERATURE_FIELDS, workers,
-                        progress, store_path)
+                        line_progress, store_path)
     dims = (spec.y.name, spec.x.name)
     data = {k: (dims, v.astype(str) if k in WORDS else v) for k, v in found.items()}
+    if spec.zones:
+        valid = found["valid"] == 1
+        starts = np.where(valid, found["offset"] - found["half_width"], np.nan), np.where(
+            valid, found["offset"] + found["half_width"], np.nan)
+        data.update(contact_set_fields(
+            spec, workers=workers, progress=zone_progress,
+            store_path=None if store_path is None else os.path.join(store_path,
+                                                                    "contact_sets"),
+            starts=[[None if not v else (a, b) for v, a, b in zip(*row)]
+                    for row in zip(valid, *starts)]))
     theta = np.vectorize(lambda P, v, R: spec.problem(load=P, speed=v, radius=R).theta)(
         load, speed, radius)
     ds = xr.Dataset({**data, "pe_hertz": (dims, spec.pe_hertz(load, speed, radius)),
