@@ -28,7 +28,7 @@ import numpy as np
 from ..discretisation.element_operators import steady_element_operators
 from ..io.results import FieldResult
 from ..problem.errors import NotConvergedError
-from ..problem.parameters import Parameters, SolveError
+from ..problem.parameters import Parameters
 
 __all__ = ["ElementSolution", "contact_runs", "solve_elements", "solve_on_set"]
 
