@@ -17,6 +17,10 @@ from ._version import __version__
 #: Public name -> module that defines it.
 _EXPORTS = {
     "Axis": ".problem.axes",
+    "BulkTemperatures": ".problem.closure",
+    "FarTemperatures": ".problem.closure",
+    "HeatPartition": ".problem.closure",
+    "Offset": ".problem.closure",
     "boundary": ".api",
     "contact": ".api",
     "compute_map": ".api",

@@ -24,19 +24,36 @@ command                            call
 
 from __future__ import annotations
 
-from .discretisation.methods import DEFAULT_METHOD, METHODS
+from typing import TYPE_CHECKING
+
+from .discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from .problem.axes import Axis
-from .problem.closure import check_sink_distance, temperature_closure
+from .problem.closure import (DIMENSIONLESS_CLOSURES, PHYSICAL_CLOSURES, BulkTemperatures,
+                              FarTemperatures, HeatPartition, Offset, check_sink_distance,
+                              closure_of, temperature_closure)
 from .problem.validation import (InputError, check_callable, check_choice, check_flag,
                                  check_integer, check_nonnegative, check_pair, check_positive,
                                  check_sink_given)
-from .discretisation.methods import DEFAULT_TOL
+from .problem.vocabulary import deprecated_spellings
 from .solvers.single_patch import Model, solve
 
-__all__ = ["Axis", "Model", "boundary", "compute_map", "compute_transient", "contact",
-           "contact_set", "contact_transient", "contact_transient_spec", "map_spec",
-           "operating_map", "parameter_map", "read_transient", "solve", "stability", "tei",
-           "transient", "transient_spec"]
+if TYPE_CHECKING:  # the results' types, named in the calls' annotations
+    import xarray
+
+    from .solvers.stability import StabilityResult
+    from .solvers.transient import TransientRun, TransientSpec
+    from .studies.boundaries import Path
+    from .studies.contact_sets import ContactSetResult
+    from .studies.maps import MapSpec
+    from .studies.operating_maps import OperatingSpec
+    from .studies.physical_contact import PhysicalContact
+    from .studies.tei import TEIResult
+
+__all__ = ["Axis", "BulkTemperatures", "FarTemperatures", "HeatPartition", "Model", "Offset",
+           "boundary", "compute_map", "compute_transient", "contact", "contact_set",
+           "contact_transient", "contact_transient_spec", "map_spec", "operating_map",
+           "parameter_map", "read_transient", "solve", "stability", "tei", "transient",
+           "transient_spec"]
 
 #: Physical parameters a path may follow, and their SI units ("" is dimensionless).
 PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": "",
@@ -62,35 +79,20 @@ def _quantity(name, value, unit):
     return parse_quantity(value, unit, name)
 
 
-def _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam, speed2=0.0,
-                      dundurs=True, materials=None, bulk_temperatures=None,
-                      sink_distance=None, layer_thickness=None):
+def _physical_problem(cylinder, half_plane, radius, load, speed, friction, closure: dict,
+                      speed2=0.0, dundurs=True, materials=None):
+    """The problem in SI units; ``closure``: ``lam``, or ``bulk_temperatures`` with
+    ``sink_distance`` or ``layer_thickness`` (:func:`_physical_closure`)."""
     from .studies.physical_contact import PhysicalProblem
 
     cyl, half = _materials(cylinder, half_plane, materials)
     return PhysicalProblem(cyl, half, _quantity("radius", radius, "m"),
                            _quantity("load", load, "N/m"), _quantity("speed", speed, "m/s"),
-                           friction, lam, _quantity("speed2", speed2, "m/s"),
+                           friction, closure.get("lam"), _quantity("speed2", speed2, "m/s"),
                            dundurs=check_flag("dundurs", dundurs),
-                           bulk_temperatures=_temperatures(bulk_temperatures),
-                           sink_distance=_quantity("sink_distance", sink_distance, "m"),
-                           layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
-
-
-def _temperatures(value):
-    """Two temperatures in K from ``"150C,40C"`` or a pair of numbers (K) or strings."""
-    from .problem.units import parse_temperature
-
-    if value is None:
-        return None
-    parts = value.split(",") if isinstance(value, str) else value
-    try:
-        t1, t2 = parts
-    except (TypeError, ValueError):
-        raise InputError(f"bulk_temperatures must be two temperatures, the cylinder's and "
-                         f"the half-plane's ('150C,40C'), got {value!r}",
-                         parameters=("bulk_temperatures",)) from None
-    return tuple(parse_temperature(t, "bulk_temperatures") for t in (t1, t2))
+                           bulk_temperatures=closure.get("bulk_temperatures"),
+                           sink_distance=closure.get("sink_distance"),
+                           layer_thickness=closure.get("layer_thickness"))
 
 
 def _physical_conductance(conductance):
@@ -112,17 +114,45 @@ def _physical_conductance(conductance):
     return PhysicalConductance(h0, m, p_ref)
 
 
-def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, speed2=0.0,
-            dundurs=True, materials=None, tol=1e-6, zones=False, conductance=None,
-            progress=None, bulk_temperatures=None, sink_distance=None,
-            layer_thickness=None):
+def _contact_set_moved(func):
+    """``contact(..., zones=True[, conductance=...])`` of earlier versions:
+    :func:`contact_set` with the same inputs, and a DeprecationWarning."""
+    import functools
+    import warnings
+
+    @functools.wraps(func)
+    def call(*args, **kwargs):
+        if "zones" not in kwargs and "conductance" not in kwargs:
+            return func(*args, **kwargs)
+        zones = check_flag("zones", kwargs.pop("zones", False))
+        conductance = kwargs.pop("conductance", None)
+        if not zones:
+            if conductance is not None:
+                raise InputError("conductance needs a contact set (contact_set): the single "
+                                 "patch assumes perfect thermal contact",
+                                 parameters=("conductance",))
+            return func(*args, **kwargs)
+        warnings.warn("contact: zones=True (and conductance=): the spelling of versions "
+                      "before 1.0, taken until 1.1; call contact_set(cylinder=...) "
+                      "(CHANGELOG.md)", DeprecationWarning, stacklevel=2)
+        kwargs.pop("tol", None)  # the single patch's target
+        names = ("cylinder", "half_plane")
+        kwargs.update(zip(names, args))
+        return contact_set(conductance=conductance, **kwargs)
+    return call
+
+
+@_contact_set_moved
+@deprecated_spellings(closure="physical")
+def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, closure=None,
+            speed2=0.0, dundurs=True, materials=None, tol=1e-6,
+            progress=None) -> PhysicalContact:
     """The contact of a cylinder on a half-plane from materials, load and speed.
 
-    ``thermocontact contact`` from Python: every half-width that carries the load
-    (the branches of the single patch, the one of least half-width first), with its
-    pressure, temperatures, validity and whether the theory applies; with
-    ``zones=True`` the contact set of one zone or several instead (derivation
-    section 14), optionally with an interface conductance (section 15).
+    ``thermocontact contact`` from Python: every half-width that carries the load as a
+    single contact patch (its branches, the one of least half-width first), with its
+    pressure, temperatures, validity and whether the theory applies.  The contact set
+    of one zone or several is :func:`contact_set`.
 
     Parameters
     ----------
@@ -138,43 +168,30 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
         The cylinder's surface speed through the contact v1 > 0, m/s (``"72km/h"``).
     friction : float
         Coefficient of friction f >= 0.
-    lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2); or give ``bulk_temperatures``.
+    lam : float, optional
+        Heat partition (Q1 - Q2)/(Q1 + Q2): the same as ``closure=HeatPartition(lam)``.
+    closure : HeatPartition or BulkTemperatures
+        What fixes the heat partition (:mod:`thermocontact.problem.closure`):
+        :class:`~thermocontact.HeatPartition`, or the bodies' far temperatures
+        :class:`~thermocontact.BulkTemperatures` (``lam`` then an output with its
+        error, each body's absolute peak temperature judged against its material's
+        limit; derivation section 17).  Exactly one of ``lam`` and ``closure``.
     speed2 : float or str
         The half-plane's surface speed v2, m/s, positive in the cylinder's direction;
         0 (default) is a stationary half-plane.  The heat is made at ``|v1 - v2|``.
-    bulk_temperatures : str or pair, optional
-        Instead of ``lam``: the cylinder's incoming temperature and the half-plane's
-        (its incoming one when it moves, its sink's when stationary), K or with units
-        (``"150C,40C"``, ``(423.15, 313.15)``).  ``lam`` is then an output with its
-        error, and each body's absolute peak temperature is judged against its
-        material's limit (derivation section 17); with ``zones``, the contact set's.
-    sink_distance : float or str, optional
-        With ``bulk_temperatures`` and a stationary half-plane: the distance from the
-        contact at which the half-plane is at its temperature, m (``"30mm"``), larger
-        than the Hertz half-width.
-    layer_thickness : float or str, optional
-        Or the thickness h of a layer on a sink at that temperature (``L = 4h/pi``).
     dundurs : bool
         Keep the Dundurs term ``-(beta f/2) p`` (default; derivation section 5c).
     materials : str or path, optional
         A TOML file adding or overriding materials.
     tol : float
-        Error target of P_H/P per branch (single patch only).
-    zones : bool
-        The contact set at this load instead of the single patch's branches.
-    conductance : (h0, m[, p_ref]) or PhysicalConductance, optional
-        With ``zones``: ``h = h0 (p/p_ref)^m``, h0 in W/(m^2 K), ``p_ref`` in Pa
-        (default the mean Hertz pressure P/(2 l)).
+        Error target of P_H/P per branch.
     progress : callable, optional
-        ``progress(done, total)`` while the half-widths are followed (with ``zones``:
-        the percentage of the path from Hertz's zone, out of 100).
+        ``progress(done, total)`` while the half-widths are followed.
 
     Returns
     -------
     PhysicalContact
-        Or, with ``zones``, the contact set in SI units.  ``to_dict()`` is the JSON
-        of ``thermocontact contact ... --json``.
+        ``to_dict()`` is the JSON of ``thermocontact contact ... --json``.
 
     Examples
     --------
@@ -184,77 +201,99 @@ def contact(cylinder, half_plane, *, radius, load, speed, friction, lam=None, sp
     >>> round(res.primary.half_width * 1e3, 4)  # mm
     0.0776
     """
-    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam,
-                                speed2, dundurs, materials, bulk_temperatures, sink_distance,
-                                layer_thickness)
+    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction,
+                                _physical_closure(closure, lam), speed2, dundurs, materials)
     tol = check_positive("tol", tol)
-    zones = check_flag("zones", zones)
     check_callable("progress", progress)
-    if conductance is not None and not zones:
-        raise InputError("conductance needs zones (the single patch assumes perfect "
-                         "thermal contact)", parameters=("conductance", "zones"))
-    if zones:
-        from .studies.contact_sets import physical_contact_set
-
-        return physical_contact_set(
-            problem, conductance=_physical_conductance(conductance),
-            progress=None if progress is None else (
-                lambda fraction: progress(round(100 * fraction), 100)))
     from .studies.physical_contact import contact as contact_of
 
     return contact_of(problem, tol=tol, progress=progress)
 
 
-def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
-                delta1_over_delta2=1.0, conductance=None, n=32, progress=None,
-                sigma_over_delta=None, theta=None, sink_distance=None):
+def _physical_closure(closure, lam, required=True) -> dict:
+    """The closure of a call in physical units, as the physical problem's keywords
+    (``lam``, or ``bulk_temperatures`` with ``sink_distance`` or ``layer_thickness``)."""
+    found = closure_of(closure, lam=lam, kinds=PHYSICAL_CLOSURES, required=required)
+    return {} if found is None else found.keywords()
+
+
+def _dimensionless_closure(closure, lam, sigma_over_delta, required=True) -> dict:
+    """The closure of a call in dimensionless form, as the solvers' keywords (``lam``,
+    ``sigma_over_delta``, or ``theta`` with ``sink_distance`` in the problem's unit of
+    length)."""
+    found = closure_of(closure, lam=lam, sigma_over_delta=sigma_over_delta,
+                       kinds=DIMENSIONLESS_CLOSURES, required=required)
+    return {} if found is None else found.keywords()
+
+
+def _physical_contact_set(args, kwargs) -> bool:
+    """Whether a call to :func:`contact_set` is in physical units."""
+    return any(kwargs.get(k) is not None for k in ("cylinder", "half_plane"))
+
+
+@deprecated_spellings(closure="either", physical=_physical_contact_set)
+def contact_set(pe_hertz=None, fhpe_hertz=None, K2_over_K1=None, *, lam=None,
+                sigma_over_delta=None, closure=None, k2_over_k1=None,
+                delta1_over_delta2=1.0, cylinder=None, half_plane=None, radius=None,
+                load=None, speed=None, friction=None, speed2=0.0, dundurs=True,
+                materials=None, conductance=None, n=32, progress=None) -> ContactSetResult:
     """The contact set at one load: one zone or several, or why there is none.
 
-    ``thermocontact zones`` from Python (derivation section 14).  Lengths are in
-    units of the Hertz half-width ``l`` of the load, from the undeformed cylinder's
-    lowest point; loads as fractions of P; pressures in P/l.
+    ``thermocontact zones`` (dimensionless) and ``thermocontact contact --zones``
+    (physical) from Python (derivation section 14).  Dimensionless: lengths in units of
+    the Hertz half-width ``l`` of the load, from the undeformed cylinder's lowest point;
+    loads as fractions of P; pressures in P/l.  Physical: the inputs of
+    :func:`contact`, the answer in SI units as well.
 
     Parameters
     ----------
     pe_hertz : float
-        ``Pe_l = v l/(2 k2) > 0``.
+        ``Pe_l = v l/(2 k2) > 0`` (dimensionless).
     fhpe_hertz : float
-        ``fHPe_l = f H Pe_l >= 0``.
+        ``fHPe_l = f H Pe_l >= 0`` (dimensionless).
     K2_over_K1 : float
-        Conductivity ratio > 0.
-    lam : float
-        Heat partition (Q1 - Q2)/(Q1 + Q2), ``|lam| <= 1e6`` as for
-        :func:`thermocontact.solve` (beyond [-1, 1] a formal continuation: one body
-        gives heat to the contact, as a hot body does between unequal far
-        temperatures).
+        Conductivity ratio > 0 (dimensionless).
+    lam : float, optional
+        Heat partition (Q1 - Q2)/(Q1 + Q2), ``|lam| <= 1e6`` as for :func:`solve`
+        (beyond [-1, 1] a formal continuation: one body gives heat to the contact, as a
+        hot body does between unequal far temperatures): ``closure=HeatPartition(lam)``.
     sigma_over_delta : float, optional
-        Or the offset ``centre/half-width`` of one zone (section 16; ``fhpe_hertz > 0``).
-    theta : float, optional
-        Or the far temperatures' group ``Theta = pi K2 (T2 - T1)/(f v P)`` (D39;
-        section 17), with ``sink_distance``: ``lam`` is then an output.  Exactly one
-        of ``lam``, ``sigma_over_delta`` and ``theta``.
-    sink_distance : float, optional
-        With ``theta``: ``L/l > 1``, the distance of the half-plane's sink at ``T2`` in
-        units of ``l`` (D38).
+        Or the offset ``centre/half-width`` of one zone (section 16; ``fhpe_hertz > 0``):
+        ``closure=Offset(sigma_over_delta)`` (dimensionless).
+    closure : HeatPartition, Offset, FarTemperatures or BulkTemperatures
+        What fixes the heat partition (:mod:`thermocontact.problem.closure`):
+        dimensionless, :class:`~thermocontact.FarTemperatures` with its sink distance in
+        units of ``l`` (D38); physical, :class:`~thermocontact.BulkTemperatures`.
+        ``lam`` is then an output.  Exactly one of ``lam``, ``sigma_over_delta`` and
+        ``closure``.
     k2_over_k1 : float, optional
-        Diffusivity ratio > 0 (default ``K2_over_K1``).
+        Diffusivity ratio > 0 (default ``K2_over_K1``; dimensionless).
     delta1_over_delta2 : float
-        Distortivity ratio >= 0.
-    conductance : (float, float), optional
-        ``(Bi0, m)``: ``h = h0 (p/p_ref)^m`` with the Biot number ``Bi0 = h0 l/K2``
-        at the mean Hertz pressure ``p_ref = P/(2 l)`` (section 15); default perfect
-        thermal contact.
+        Distortivity ratio >= 0 (dimensionless).
+    cylinder, half_plane, radius, load, speed, friction, speed2, dundurs, materials
+        The problem in physical units, as for :func:`contact` (a stationary
+        half-plane: ``speed2 = 0``).
+    conductance : tuple, optional
+        An interface conductance ``h = h0 (p/p_ref)^m`` (section 15); default perfect
+        thermal contact.  Dimensionless ``(Bi0, m)``: the Biot number
+        ``Bi0 = h0 l/K2`` at the mean Hertz pressure ``p_ref = P/(2 l)``; physical
+        ``(h0, m[, p_ref])``, ``h0`` in W/(m^2 K), ``p_ref`` in Pa (default the mean
+        Hertz pressure), or a PhysicalConductance.
     n : int
         Unknowns per function per zone, 8 to 256.
     progress : callable, optional
-        ``progress(fraction)`` as the continuation advances (each evaluation of the
-        defects tells it: a run bounded by its budget of evaluations).
+        As the continuation advances (each evaluation of the defects tells it: a run
+        bounded by its budget of evaluations): dimensionless ``progress(fraction)``;
+        physical ``progress(percent, 100)``.
 
     Returns
     -------
     ContactSetResult
         ``status`` (``"solved"``, ``"no steady solution"`` or ``"not converged"``),
         ``message``, ``answer``; ``to_dict()`` is the JSON of ``thermocontact zones``.
+        Physical: a :class:`~thermocontact.PhysicalContactSet`, the same result with
+        the problem, the fields and the applicability in SI units (the JSON of
+        ``thermocontact contact --zones``).
 
     Examples
     --------
@@ -263,34 +302,81 @@ def contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
     >>> res.status, len(res.answer.zone_records())
     ('solved', 1)
     """
+    check_callable("progress", progress)
+    n = check_integer("n", n, 8, 256)
+    physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
+                "load": load, "speed": speed, "friction": friction}
+    if cylinder is not None or half_plane is not None:
+        for name, value in (("pe_hertz", pe_hertz), ("fhpe_hertz", fhpe_hertz),
+                            ("K2_over_K1", K2_over_K1), ("sigma_over_delta", sigma_over_delta),
+                            ("k2_over_k1", k2_over_k1)):
+            if value is not None:
+                raise InputError(f"{name} belongs to a dimensionless contact set, not to one "
+                                 f"with cylinder", parameters=(name, "cylinder"))
+        if delta1_over_delta2 != 1.0:
+            raise InputError("delta1_over_delta2 belongs to a dimensionless contact set: "
+                             "the materials give it", parameters=("delta1_over_delta2",))
+        for name, value in physical.items():
+            if value is None:
+                raise InputError(f"{name} must be given for a contact set in physical units",
+                                 parameters=(name,))
+        from .studies.contact_sets import physical_contact_set
+
+        problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction,
+                                    _physical_closure(closure, lam), speed2, dundurs,
+                                    materials)
+        return physical_contact_set(
+            problem, conductance=_physical_conductance(conductance), n=n,
+            progress=None if progress is None else (
+                lambda fraction: progress(round(100 * fraction), 100)))
+    for name, value in {**physical, "speed2": speed2 or None, "materials": materials,
+                        "dundurs": None if dundurs is True else dundurs}.items():
+        if value is not None:
+            raise InputError(f"{name} belongs to a contact set in physical units: give "
+                             f"cylinder and half_plane too", parameters=(name, "cylinder"))
+    for name, value in (("pe_hertz", pe_hertz), ("fhpe_hertz", fhpe_hertz),
+                        ("K2_over_K1", K2_over_K1)):
+        if value is None:
+            raise InputError(f"{name} must be given (or the problem in physical units: "
+                             f"cylinder, half_plane, ...)", parameters=(name,))
     from .studies.contact_sets import find_contact_set
 
-    check_callable("progress", progress)
-    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam,
-                            sigma_over_delta=sigma_over_delta,
-                            temperatures=temperature_closure(theta, sink_distance),
+    given = _dimensionless_closure(closure, lam, sigma_over_delta)
+    return find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=given.get("lam"),
+                            sigma_over_delta=given.get("sigma_over_delta"),
+                            temperatures=temperature_closure(given.get("theta"),
+                                                             given.get("sink_distance")),
                             k2_over_k1=k2_over_k1,
-                            delta1_over_delta2=delta1_over_delta2,
-                            n=check_integer("n", n, 8, 256),
+                            delta1_over_delta2=delta1_over_delta2, n=n,
                             conductance=None if conductance is None else check_pair(
                                 "conductance", conductance, "(Bi0, m), two numbers"),
                             progress=progress)
 
 
-#: The dimensionless inputs of a path or a map, as spelled in Python.
-_DIMENSIONLESS = ("pe", "fhpe", "K2_over_K1", "k2_over_k1", "delta1_over_delta2",
-                  "speed_ratio", "beta_f", "lam", "sigma")
-_PHYSICAL = ("cylinder", "half_plane", "radius", "load", "speed", "friction", "dundurs",
-             "materials")
+def _physical_path_call(args, kwargs) -> bool:
+    """Whether a call to :func:`boundary` follows a physical path."""
+    along = args[0] if args else kwargs.get("along")
+    return (any(kwargs.get(k) is not None for k in ("cylinder", "half_plane"))
+            or (isinstance(along, str) and along.replace("-", "_") in PHYSICAL_ALONG))
 
 
+def _closure_parts(closure, lam, sigma_over_delta) -> dict:
+    """The closure of a path or map (of any kind, checked where it is used, or none: one
+    of its parts followed) as keywords: ``lam``, ``sigma_over_delta``, ``theta`` and
+    ``sink_distance`` (``L/Delta``), or the bulk temperatures in SI units."""
+    found = closure_of(closure, lam=lam, sigma_over_delta=sigma_over_delta,
+                       kinds=DIMENSIONLESS_CLOSURES + PHYSICAL_CLOSURES, required=False)
+    return {} if found is None else found.keywords()
+
+
+@deprecated_spellings(renamed=(("sigma", "sigma_over_delta"),), closure="either",
+                      physical=_physical_path_call)
 def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
-             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
-             cylinder=None, half_plane=None, radius=None, load=None, speed=None,
-             friction=None, dundurs=None, materials=None, method=None,
-             tol=DEFAULT_TOL, n=None, progress=None, bulk_temperatures=None,
-             sink_distance=None, layer_thickness=None, theta=None,
-             stability=False):
+             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
+             sigma_over_delta=None, closure=None, cylinder=None, half_plane=None,
+             radius=None, load=None, speed=None, friction=None, dundurs=None,
+             materials=None, method=None, tol=DEFAULT_TOL, n=None, progress=None,
+             stability=False) -> Path:
     """Every sign change of a contact inequality's margin along one parameter, and
     where solutions stop or start existing, located to 1e-9 relative.
 
@@ -305,30 +391,26 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     Parameters
     ----------
     along : str
-        Dimensionless: ``"fhpe"``, ``"pe"``, ``"lam"``, ``"sigma"``,
-        ``"K2_over_K1"``, ``"k2_over_k1"``, ``"delta1_over_delta2"``,
-        ``"speed_ratio"``, ``"beta_f"`` (hyphens accepted for underscores);
-        physical: ``"load"`` (N/m), ``"speed"`` (m/s), ``"radius"`` (m),
-        ``"friction"``.
+        Dimensionless: ``"fhpe"``, ``"pe"``, ``"lam"``, ``"sigma_over_delta"``,
+        ``"theta"``, ``"K2_over_K1"``, ``"k2_over_k1"``, ``"delta1_over_delta2"``,
+        ``"speed_ratio"``, ``"beta_f"`` (hyphens accepted for underscores; ``"sigma"``
+        for ``"sigma_over_delta"``, as on the command line); physical: ``"load"``
+        (N/m), ``"speed"`` (m/s), ``"radius"`` (m), ``"friction"``, and with
+        :class:`~thermocontact.BulkTemperatures` ``"temperature_difference"`` (T2 - T1
+        in K, T1 kept) and ``"sink_distance"`` (m) (derivation section 17).
     start, stop : float or str
         The path's ends (physical ones in SI units or with units).
     pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f : float
         The dimensionless problem (:func:`thermocontact.solve`); ``speed_ratio`` also
         with the physical one (the half-plane's surface at that multiple of the
         cylinder's speed).
-    lam, sigma : float
-        The closure: exactly one, unless it is followed (``sigma`` is sigma/Delta;
-        physical paths take ``lam``).
+    lam, sigma_over_delta, closure
+        The closure, exactly one unless it is followed, as for :func:`solve`
+        (dimensionless) or :func:`contact` (physical: ``lam`` or
+        :class:`~thermocontact.BulkTemperatures`).  Following ``theta``:
+        ``closure=FarTemperatures(None, sink_distance_over_delta)`` gives the sink.
     cylinder, half_plane, radius, load, speed, friction, dundurs, materials
         The physical problem, as for :func:`contact`.
-    bulk_temperatures, sink_distance, layer_thickness : optional
-        Instead of ``lam`` for a physical path, as for :func:`contact`; then also
-        ``along="temperature_difference"`` (T2 - T1 in K, T1 kept) and
-        ``along="sink_distance"`` (m) (derivation section 17).
-    theta : float, optional
-        Instead of ``lam`` or ``sigma`` for a dimensionless path (or followed,
-        ``along="theta"``): the far temperatures' group, with ``sink_distance`` as
-        ``L/Delta`` for a stationary half-plane (:func:`thermocontact.solve`).
     method : str, optional
         Discretisation method of a dimensionless path (default ``"graded"``); a
         physical path refuses it.
@@ -358,10 +440,13 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     """
     tol = check_positive("tol", tol)
     check_callable("progress", progress)
+    parts = _closure_parts(closure, lam, sigma_over_delta)
+    lam, sigma, theta = (parts.get(k) for k in ("lam", "sigma_over_delta", "theta"))
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
-                "materials": materials, "bulk_temperatures": bulk_temperatures,
-                "sink_distance": sink_distance, "layer_thickness": layer_thickness}
+                "materials": materials, "bulk_temperatures": parts.get("bulk_temperatures"),
+                "sink_distance": parts.get("sink_distance"),
+                "layer_thickness": parts.get("layer_thickness")}
     from .studies.boundaries import SPELLINGS
 
     if not isinstance(along, str):
@@ -371,9 +456,8 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     if cylinder is not None or half_plane is not None or along_name in PHYSICAL_ALONG:
         dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                          "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                         "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
-                         "method": method,
-                         "theta": theta}
+                         "beta_f": _zero_absent("beta_f", beta_f),
+                         "sigma_over_delta": sigma, "method": method, "theta": theta}
         if stability:
             raise InputError("the kinds of events (stability) are computed for "
                              "dimensionless paths only", parameters=("stability",))
@@ -384,9 +468,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     from .studies.maps import NAMES
 
     method = DEFAULT_METHOD if method is None else check_choice("method", method, METHODS)
-    # A dimensionless path's sink distance is L/Delta, with theta (section 17).
+    # A dimensionless path's sink distance is L/Delta, of its far temperatures (section 17).
     dimensionless_sink = None
-    if theta is not None or along_name == "theta":
+    if isinstance(closure, FarTemperatures):
         dimensionless_sink, physical["sink_distance"] = physical["sink_distance"], None
     for name, value in physical.items():
         if value is not None:
@@ -413,8 +497,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
                              parameters=(k,))
     closures = [k for k in ("lam", "sigma_over_delta", "theta") if k in fixed or k == name]
     if len(closures) != 1:
-        raise InputError("give exactly one of lam and sigma (or theta), or follow one of them",
-                         parameters=("lam", "sigma", "theta"))
+        raise InputError("give one closure (lam, sigma_over_delta or closure), or follow "
+                         "one of lam, sigma_over_delta and theta",
+                         parameters=("lam", "sigma_over_delta", "closure"))
     _check_sink(fixed, closures[0], (name,))
     path = follow(fixed, name, _number("start", start), _number("stop", stop),
                   method=method, tol=tol, n=n, progress=progress)
@@ -477,8 +562,8 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
         raise InputError(f"{along} must not be given: it is the parameter followed",
                          parameters=(along,))
     if (lam is None) == (physical["bulk_temperatures"] is None):
-        raise InputError("give exactly one of lam and bulk_temperatures",
-                         parameters=("lam", "bulk_temperatures"))
+        raise InputError("give one closure: lam or closure=BulkTemperatures(...)",
+                         parameters=("lam", "closure"))
     unit = PHYSICAL_ALONG[along]
     ends = [_quantity(o, v, unit) if unit else _number(o, v)
             for o, v in (("start", start), ("stop", stop))]
@@ -487,22 +572,24 @@ def _physical_path(along, start, stop, physical, lam, speed_ratio, dimensionless
     speed = _quantity("speed", values["speed"], "m/s")
     # Along the sink distance the path's start stands for it.
     sink = ends[0] if along == "sink_distance" else physical["sink_distance"]
+    closure = {"lam": lam} if lam is not None else {
+        "bulk_temperatures": physical["bulk_temperatures"], "sink_distance": sink,
+        "layer_thickness": physical["layer_thickness"]}
     prob = _physical_problem(physical["cylinder"], physical["half_plane"], values["radius"],
-                             values["load"], speed, values["friction"], lam,
+                             values["load"], speed, values["friction"], closure,
                              speed2=speed * speed_ratio,
                              dundurs=(True if physical["dundurs"] is None
                                       else physical["dundurs"]),
-                             materials=physical["materials"],
-                             bulk_temperatures=physical["bulk_temperatures"],
-                             sink_distance=sink, layer_thickness=physical["layer_thickness"])
+                             materials=physical["materials"])
     return follow_along(prob, along, ends[0], ends[1], tol=tol, n=n, progress=progress)
 
 
+@deprecated_spellings(renamed=(("sigma", "sigma_over_delta"),), closure="dimensionless")
 def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                   delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
-                  sigma=None, delta_over_r=None, method=DEFAULT_METHOD, tol=1e-6, workers=1,
-                  store=None, progress=None, command=None, theta=None, sink_distance=None,
-                  stability=False):
+                  sigma_over_delta=None, closure=None, delta_over_r=None,
+                  method=DEFAULT_METHOD, tol=1e-6, workers=1, store=None, progress=None,
+                  command=None, stability=False) -> xarray.Dataset:
     """The single patch over a grid of two dimensionless parameters.
 
     ``thermocontact map`` from Python: every point solved to ``tol``, and where
@@ -512,14 +599,14 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     Parameters
     ----------
     x, y : Axis
-        Over two of ``fhpe``, ``pe``, ``lam``, ``sigma``, ``K2_over_K1``,
+        Over two of ``fhpe``, ``pe``, ``lam``, ``sigma_over_delta``, ``K2_over_K1``,
         ``k2_over_k1``, ``delta1_over_delta2``, ``speed_ratio``, ``beta_f``, ``theta``.
-    pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam, sigma
-        The other inputs, as for :func:`thermocontact.solve` (exactly one closure,
-        ``lam``, ``sigma`` or ``theta``, unless an axis).
-    theta, sink_distance : float, optional
-        The far temperatures' closure, as for :func:`thermocontact.solve`
-        (``sink_distance`` is ``L/Delta``; derivation section 17).
+    pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f : float
+        The other inputs, as for :func:`thermocontact.solve`.
+    lam, sigma_over_delta, closure
+        The closure, as for :func:`thermocontact.solve`: exactly one, unless an axis is
+        one of ``lam``, ``sigma_over_delta`` and ``theta`` (an axis ``theta`` with
+        ``closure=FarTemperatures(None, sink_distance_over_delta)`` for its sink).
     delta_over_r : float, optional
         Half-width over radius: also map whether the theory applies.
     method : str
@@ -555,17 +642,17 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     """
     spec = map_spec(x, y, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
-                    beta_f=beta_f, lam=lam, sigma=sigma, delta_over_r=delta_over_r,
-                    method=method, tol=tol, theta=theta, sink_distance=sink_distance)
+                    beta_f=beta_f, lam=lam, sigma_over_delta=sigma_over_delta,
+                    closure=closure, delta_over_r=delta_over_r, method=method, tol=tol)
     return compute_map(spec, workers=workers, store=store, progress=progress, command=command,
                        stability=stability)
 
 
-def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None, load=None,
-                  speed=None, speed_ratio=0.0, dundurs=True, materials=None, tol=1e-6,
-                  zones=False, conductance=None, workers=1, store=None, progress=None,
-                  command=None, bulk_temperatures=None, sink_distance=None,
-                  layer_thickness=None):
+@deprecated_spellings(closure="physical")
+def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, closure=None,
+                  radius=None, load=None, speed=None, speed_ratio=0.0, dundurs=True,
+                  materials=None, tol=1e-6, zones=False, conductance=None, workers=1,
+                  store=None, progress=None, command=None) -> xarray.Dataset:
     """The contact of one material pair over a grid of load, speed or radius.
 
     ``thermocontact map --cylinder ... --half-plane ...`` from Python.  Load,
@@ -577,13 +664,14 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None
     x, y : Axis
         Two of ``load`` (N/m), ``speed`` (m/s) and ``radius`` (m); ends may carry
         units (``Axis("load", "1kN/m", "1MN/m", 41, log=True)``).
-    cylinder, half_plane, friction, lam, dundurs, materials
+    cylinder, half_plane, friction, dundurs, materials
         As for :func:`contact`.
-    bulk_temperatures, sink_distance, layer_thickness : optional
-        Instead of ``lam``, as for :func:`contact`: ``lam`` then varies over the plane
-        and each point is solved as its own contact (derivation section 17); the
-        dataset holds ``lam``, ``lam_error``, ``peak_temperature`` (absolute, K) and
-        whether each body stays under its material's limit.
+    lam, closure
+        The closure, as for :func:`contact`: with
+        :class:`~thermocontact.BulkTemperatures` ``lam`` varies over the plane and each
+        point is solved as its own contact (derivation section 17); the dataset holds
+        ``lam``, ``lam_error``, ``peak_temperature`` (absolute, K) and whether each body
+        stays under its material's limit.
     radius, load, speed : float or str
         The third of them, the one that is not an axis.
     speed_ratio : float
@@ -603,19 +691,25 @@ def operating_map(x, y, *, cylinder, half_plane, friction, lam=None, radius=None
         As written by ``thermocontact map --cylinder ... --out``.
     """
     spec = map_spec(x, y, cylinder=cylinder, half_plane=half_plane, friction=friction,
-                    lam=lam, radius=radius, load=load, speed=speed, speed_ratio=speed_ratio,
-                    dundurs=dundurs, materials=materials, tol=tol, zones=zones,
-                    conductance=conductance, bulk_temperatures=bulk_temperatures,
-                    sink_distance=sink_distance, layer_thickness=layer_thickness)
+                    lam=lam, closure=closure, radius=radius, load=load, speed=speed,
+                    speed_ratio=speed_ratio, dundurs=dundurs, materials=materials, tol=tol,
+                    zones=zones, conductance=conductance)
     return compute_map(spec, workers=workers, store=store, progress=progress, command=command)
 
 
+def _physical_map_call(args, kwargs) -> bool:
+    """Whether a call to :func:`map_spec` makes an operating map."""
+    return any(kwargs.get(k) is not None for k in ("cylinder", "half_plane"))
+
+
+@deprecated_spellings(renamed=(("sigma", "sigma_over_delta"),), closure="either",
+                      physical=_physical_map_call)
 def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
-             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None, sigma=None,
-             delta_over_r=None, method=None, cylinder=None, half_plane=None,
-             friction=None, radius=None, load=None, speed=None, dundurs=None,
-             materials=None, zones=False, conductance=None, tol=1e-6,
-             bulk_temperatures=None, sink_distance=None, layer_thickness=None, theta=None):
+             delta1_over_delta2=None, speed_ratio=None, beta_f=None, lam=None,
+             sigma_over_delta=None, closure=None, delta_over_r=None, method=None,
+             cylinder=None, half_plane=None, friction=None, radius=None, load=None,
+             speed=None, dundurs=None, materials=None, zones=False, conductance=None,
+             tol=1e-6) -> MapSpec | OperatingSpec:
     """What identifies a map, every input checked, nothing computed.
 
     With ``cylinder`` and ``half_plane``, the
@@ -629,15 +723,17 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     -------
     MapSpec or OperatingSpec
     """
+    parts = _closure_parts(closure, lam, sigma_over_delta)
+    lam, sigma, theta = (parts.get(k) for k in ("lam", "sigma_over_delta", "theta"))
+    bulk_temperatures = parts.get("bulk_temperatures")
+    sink_distance, layer_thickness = parts.get("sink_distance"), parts.get("layer_thickness")
     dimensionless = {"pe": pe, "fhpe": fhpe, "K2_over_K1": K2_over_K1,
                      "k2_over_k1": k2_over_k1, "delta1_over_delta2": delta1_over_delta2,
-                     "beta_f": _zero_absent("beta_f", beta_f), "sigma": sigma,
-                     "delta_over_r": delta_over_r,
-                     "theta": theta}
-    # With theta (a dimensionless map) the sink distance is L/Delta (section 17).
+                     "beta_f": _zero_absent("beta_f", beta_f), "sigma_over_delta": sigma,
+                     "delta_over_r": delta_over_r, "theta": theta}
+    # The far temperatures' sink distance is L/Delta (section 17).
     dimensionless_sink = None
-    if cylinder is None and half_plane is None and (
-            theta is not None or "theta" in (getattr(x, "name", None), getattr(y, "name", None))):
+    if isinstance(closure, FarTemperatures):
         dimensionless_sink, sink_distance = sink_distance, None
     physical = {"radius": radius, "load": load, "speed": speed, "friction": friction,
                 "dundurs": dundurs, "materials": materials, "zones": zones or None,
@@ -676,8 +772,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
         if value is None:
             raise InputError(f"{name} must be given for an operating map", parameters=(name,))
     if (lam is None) == (bulk_temperatures is None):
-        raise InputError("give exactly one of lam and bulk_temperatures for an operating map",
-                         parameters=("lam", "bulk_temperatures"))
+        raise InputError("give one closure for an operating map: lam or "
+                         "closure=BulkTemperatures(...)", parameters=("lam", "closure"))
     cyl, half = _materials(cylinder, half_plane, materials)
     units = {"radius": (radius, "m"), "load": (load, "N/m"), "speed": (speed, "m/s")}
     fixed = {k: _quantity(k, v, u) for k, (v, u) in units.items() if v is not None}
@@ -688,9 +784,8 @@ def map_spec(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
                          speed_ratio=_zero_absent("speed_ratio", speed_ratio) or 0.0,
                          zones=check_flag("zones", zones),
                          conductance=_physical_conductance(conductance),
-                         bulk_temperatures=_temperatures(bulk_temperatures),
-                         sink_distance=_quantity("sink_distance", sink_distance, "m"),
-                         layer_thickness=_quantity("layer_thickness", layer_thickness, "m"))
+                         bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
+                         layer_thickness=layer_thickness)
 
 
 def _check_sink(fixed, closure, varied):
@@ -718,7 +813,7 @@ def _refuse_axis_values(axes, given, names=None):
 
 
 def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
-                stability=False):
+                stability=False) -> xarray.Dataset:
     """The map that a :func:`map_spec` describes, as an :class:`xarray.Dataset`.
 
     :func:`parameter_map` and :func:`operating_map` are this call on their
@@ -758,7 +853,8 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
                                  store_path=store)
 
 
-def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None):
+def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
+        materials=None) -> TEIResult:
     """Thermoelastic instability of two sliding half-planes (``thermocontact tei``).
 
     The critical speed at one wavelength, the neutral mode's migration speed and, at a
@@ -807,7 +903,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
 
 
 def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,
-              progress=None):
+              progress=None) -> StabilityResult:
     """Eigenvalues of largest real part of a steady single patch: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
@@ -885,9 +981,23 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
                         points=points, rate_unit=rate_unit, progress=progress)
 
 
-def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
+def _transient_closure(closure, lam) -> dict:
+    """A transient run's closure as its keywords: ``lam`` or ``theta`` (its far
+    temperatures, both bodies infinite: no sink)."""
+    found = closure_of(closure, lam=lam, kinds=(HeatPartition, FarTemperatures),
+                       required=False)
+    if isinstance(found, FarTemperatures) and found.sink_distance_over_delta is not None:
+        raise InputError("a transient run's far temperatures have no sink (both bodies are "
+                         "infinite): give FarTemperatures(theta) alone",
+                         parameters=("closure",))
+    return {} if found is None else found.keywords()
+
+
+@deprecated_spellings(renamed=(("start", "initial"),), closure="dimensionless")
+def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, closure=None,
                    k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
-                   start="hertz", hold="theta", perturb=0.0, conductance=None):
+                   initial="hertz", hold="theta", perturb=0.0,
+                   conductance=None) -> TransientSpec:
     """The inputs of a transient run, checked (:func:`transient` without the run).
 
     The command line makes the specification first, to compare it with a partial run
@@ -901,15 +1011,16 @@ def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, 
     from .solvers.transient import TransientSpec
 
     # Every input checked and converted by the specification itself.
+    given = _transient_closure(closure, lam)
     return TransientSpec(pe_hertz=pe_hertz, fhpe_hertz=fhpe_hertz, K2_over_K1=K2_over_K1,
                          until=until, steps=steps, k2_over_k1=k2_over_k1,
-                         delta1_over_delta2=delta1_over_delta2, lam=lam, theta=theta,
-                         elements=elements, window=window, start=start, hold=hold,
-                         perturb=perturb, conductance=conductance)
+                         delta1_over_delta2=delta1_over_delta2, lam=given.get("lam"),
+                         theta=given.get("theta"), elements=elements, window=window,
+                         start=initial, hold=hold, perturb=perturb, conductance=conductance)
 
 
 def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0,
-                      preparing=None):
+                      preparing=None) -> TransientRun:
     """The transient run that a :func:`transient_spec` (or :func:`contact_transient_spec`)
     describes.
 
@@ -950,7 +1061,7 @@ def compute_transient(spec, *, resume=None, progress=None, save=None, save_every
                          save_every=save_every, preparing=preparing)
 
 
-def read_transient(ds):
+def read_transient(ds) -> TransientRun:
     """The :class:`~thermocontact.TransientRun` of a dataset that ``to_dataset`` wrote.
 
     Parameters
@@ -971,10 +1082,11 @@ def read_transient(ds):
     return read_run(ds)
 
 
-def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta=None,
+@deprecated_spellings(renamed=(("start", "initial"),), closure="dimensionless")
+def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, closure=None,
               k2_over_k1=None, delta1_over_delta2=1.0, elements=240, window=(-3.0, 3.0),
-              start="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
-              resume=None, save=None, preparing=None):
+              initial="hertz", hold="theta", perturb=0.0, conductance=None, progress=None,
+              resume=None, save=None, preparing=None) -> TransientRun:
     """The transient contact from switch-on (or from a steady state), in time.
 
     ``thermocontact transient`` from Python (docs/derivation.md, section 19).  Lengths
@@ -991,18 +1103,19 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
     steps : int
         Time steps, 1 to 100 000 (``dt = until/steps``; the scheme is first order in
         ``dt``).
-    lam, theta : float, optional
-        The far field: ``lam`` holds the heat partition (in [-1, 1]) and lets the far
-        temperature difference adjust, as the steady model does; ``theta`` holds the
-        far temperatures, ``theta = pi K2 (T2 - T1)/(f v P)`` (section 17), with both
-        bodies infinite.  With ``start="steady"``, ``lam`` names the steady state.
+    lam, closure : optional
+        The far field: ``lam`` (``closure=HeatPartition(lam)``) holds the heat partition
+        (in [-1, 1]) and lets the far temperature difference adjust, as the steady model
+        does; ``closure=FarTemperatures(theta)`` holds the far temperatures,
+        ``theta = pi K2 (T2 - T1)/(f v P)`` (section 17), with both bodies infinite (no
+        sink).  With ``initial="steady"``, ``lam`` names the steady state.
     k2_over_k1, delta1_over_delta2 : float, optional
         Diffusivity ratio (default ``K2_over_K1``) and distortivity ratio (default 1).
     elements : int
         Equal elements on ``window`` (8 to 4000).
     window : (float, float)
         Where contact may occur, units ``l``; must contain ``(-1, 1)``.
-    start : {"hertz", "steady"}
+    initial : {"hertz", "steady"}
         Isothermal bodies under Hertz's pressure, or the steady element solution at
         ``lam`` on the same elements.
     hold : {"theta", "lam"}
@@ -1035,17 +1148,19 @@ def transient(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, theta
     ('complete', 1)
     """
     spec = transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, until=until, steps=steps, lam=lam,
-                          theta=theta, k2_over_k1=k2_over_k1,
+                          closure=closure, k2_over_k1=k2_over_k1,
                           delta1_over_delta2=delta1_over_delta2, elements=elements,
-                          window=window, start=start, hold=hold, perturb=perturb,
+                          window=window, initial=initial, hold=hold, perturb=perturb,
                           conductance=conductance)
     return compute_transient(spec, resume=resume, progress=progress, save=save,
                              preparing=preparing)
 
 
-def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, friction, lam,
-                           duration, steps=1000, elements=240, window=(-3.0, 3.0),
-                           speed2=0.0, dundurs=True, materials=None, bulk_temperatures=None):
+@deprecated_spellings(closure="physical")
+def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, friction, lam=None,
+                           closure=None, duration, steps=1000, elements=240,
+                           window=(-3.0, 3.0), speed2=0.0, dundurs=True,
+                           materials=None) -> tuple:
     """The transient run of a contact in SI units: its specification and units.
 
     The physical problem of :func:`contact` in the units of the transient run
@@ -1058,9 +1173,10 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     ----------
     cylinder, half_plane, radius, load, speed, friction, materials
         As for :func:`contact`.
-    lam : float
-        Heat partition held, in [-1, 1] (the bulk temperatures are not a closure of
-        the transient run: they set a sink the run's infinite half-plane lacks).
+    lam, closure
+        The heat partition held, in [-1, 1]: ``lam`` or ``closure=HeatPartition(lam)``
+        (:class:`~thermocontact.BulkTemperatures` are not a closure of the transient
+        run: they set a sink the run's infinite half-plane lacks).
     duration : float or str
         Time computed, s (or with units, ``"10ms"``).
     steps, elements, window
@@ -1070,8 +1186,6 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     dundurs : bool
         The transient run has no Dundurs term: ``False``, or materials and friction
         whose ``beta f`` is 0.
-    bulk_temperatures
-        Refused (see ``lam``).
 
     Returns
     -------
@@ -1083,18 +1197,16 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
         ``speed_m_per_s``, ``friction``, ``pressure_unit_Pa`` (``P/l``) and
         ``temperature_unit_K`` (``f v P/(pi K2)``).
     """
-    if bulk_temperatures is not None:
-        raise InputError("the transient contact holds lam, not bulk_temperatures (they set a "
+    found = closure_of(closure, lam=lam, kinds=PHYSICAL_CLOSURES)
+    if not isinstance(found, HeatPartition):
+        raise InputError("the transient contact holds lam, not bulk temperatures (they set a "
                          "sink the transient half-plane lacks): give lam",
-                         parameters=("bulk_temperatures", "lam"))
-    if lam is None:
-        raise InputError("the transient contact needs lam, the heat partition held",
-                         parameters=("lam",))
+                         parameters=("closure", "lam"))
     if _quantity("speed2", speed2, "m/s"):
         raise InputError("the transient contact needs a stationary half-plane (speed2 = 0)",
                          parameters=("speed2",))
-    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction, lam,
-                                0.0, dundurs, materials)
+    problem = _physical_problem(cylinder, half_plane, radius, load, speed, friction,
+                                found.keywords(), 0.0, dundurs, materials)
     if problem.beta_f:
         raise InputError("the transient contact has no Dundurs term: give dundurs=False",
                          parameters=("dundurs",))
@@ -1131,9 +1243,10 @@ def contact_transient_spec(cylinder, half_plane, *, radius, load, speed, frictio
     return spec, attrs
 
 
-def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, lam, duration,
-                      steps=1000, elements=240, window=(-3.0, 3.0), speed2=0.0, dundurs=True,
-                      materials=None, progress=None, preparing=None):
+def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, lam=None,
+                      closure=None, duration, steps=1000, elements=240, window=(-3.0, 3.0),
+                      speed2=0.0, dundurs=True, materials=None, progress=None,
+                      preparing=None) -> xarray.Dataset:
     """The transient contact of a cylinder on a half-plane in SI units, from switch-on.
 
     ``thermocontact contact ... --transient`` from Python: :func:`contact_transient_spec`
@@ -1142,7 +1255,7 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
 
     Parameters
     ----------
-    cylinder, half_plane, radius, load, speed, friction, lam, duration, steps, elements, window, speed2, dundurs, materials
+    cylinder, half_plane, radius, load, speed, friction, lam, closure, duration, steps, elements, window, speed2, dundurs, materials
         As for :func:`contact_transient_spec`.
     progress : callable, optional
         ``progress(done, total)`` before the first step and after each step.
@@ -1167,7 +1280,7 @@ def contact_transient(cylinder, half_plane, *, radius, load, speed, friction, la
     """
     spec, attrs = contact_transient_spec(cylinder, half_plane, radius=radius, load=load,
                                          speed=speed, friction=friction, lam=lam,
-                                         duration=duration, steps=steps, elements=elements,
+                                         closure=closure, duration=duration, steps=steps, elements=elements,
                                          window=window, speed2=speed2, dundurs=dundurs,
                                          materials=materials)
     ds = compute_transient(spec, progress=progress, preparing=preparing).to_dataset()

@@ -9,7 +9,9 @@ import click
 
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from .options import physical_options, problem_options
+from ..problem.errors import InputError
+from .options import (bulk_temperatures_closure, far_temperatures, physical_options,
+                      problem_options)
 from .progress import StageProgress
 
 __all__ = ["boundary_cmd"]
@@ -61,15 +63,20 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
     from ..api import PHYSICAL_ALONG, boundary
 
     bar = StageProgress(f"boundary along {along}")
+    physical = (cylinder is not None or half_plane is not None
+                or along.replace("-", "_") in PHYSICAL_ALONG)
+    closure = (bulk_temperatures_closure(bulk_temperatures, sink_distance, layer_thickness)
+               if physical else far_temperatures(theta, sink_distance))
+    if physical and theta is not None:
+        raise InputError("theta belongs to a dimensionless path, not to one with cylinder",
+                         parameters=("theta", "cylinder"))
     path = boundary(along, start, stop, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1,
                     k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
-                    cylinder=cylinder, half_plane=half_plane, radius=radius, load=load,
-                    speed=speed, friction=friction, dundurs=dundurs, materials=materials_file,
-                    method=method, tol=tol, n=n, progress=bar,
-                    bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
-                    layer_thickness=layer_thickness, theta=theta,
-                    stability=stability)
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma,
+                    closure=closure, cylinder=cylinder, half_plane=half_plane,
+                    radius=radius, load=load, speed=speed, friction=friction,
+                    dundurs=dundurs, materials=materials_file, method=method, tol=tol, n=n,
+                    progress=bar, stability=stability)
     method = path.method
     bar.close()
     if as_json:

@@ -11,8 +11,9 @@ import click
 
 from .._version import __version__
 from ..problem.validation import InputError
-from .options import (contact_set_options, given_here, hertz_unit_options, one_closure,
-                      parse_conductance, physical_options)
+from .options import (bulk_temperatures_closure, contact_set_options, far_temperatures,
+                      given_here, hertz_unit_options, one_closure, parse_conductance,
+                      physical_options)
 
 __all__ = ["contact_cmd", "zones_cmd"]
 
@@ -111,7 +112,7 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     bar = ProgressLine("zones: fHPe_l followed", "%")
     one_closure(lam, sigma, theta)
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
-                      theta=theta, sink_distance=sink_distance, k2_over_k1=k2_over_k1,
+                      closure=far_temperatures(theta, sink_distance), k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,
                       conductance=parse_conductance(conductance, "the Biot number h0 l/K2"),
                       progress=lambda fraction: bar(round(100 * fraction), 100))
@@ -213,17 +214,21 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
                          "contact: give neither --zones nor --conductance",
                          parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
-                  speed2=speed2, dundurs=dundurs is not False, materials=materials_file,
-                  tol=tol)
-    if bulk_temperatures is not None or sink_distance is not None or layer_thickness is not None:
-        inputs.update(bulk_temperatures=bulk_temperatures, sink_distance=sink_distance,
-                      layer_thickness=layer_thickness)
-    if zones or conductance is not None:
+                  closure=bulk_temperatures_closure(bulk_temperatures, sink_distance,
+                                                    layer_thickness),
+                  speed2=speed2, dundurs=dundurs is not False, materials=materials_file)
+    if conductance is not None and not zones:
+        raise InputError("--conductance needs --zones (the single patch assumes perfect "
+                         "thermal contact)", parameters=("conductance", "zones"))
+    if zones:
+        from ..api import contact_set
         from ..execution.progress import ProgressLine
 
         bar = ProgressLine("contact: fHPe_l followed", "%")
-        found = contact(cylinder, half_plane, zones=zones, conductance=parse_conductance(
-            conductance, "in W/(m^2 K)", physical=True), progress=bar, **inputs)
+        found = contact_set(cylinder=cylinder, half_plane=half_plane,
+                            conductance=parse_conductance(conductance, "in W/(m^2 K)",
+                                                          physical=True),
+                            progress=bar, **inputs)
         bar.close()
         if as_json:
             click.echo(json.dumps(found.to_dict(), allow_nan=False))
@@ -254,7 +259,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         "thermocontact.plotting.curves", "matplotlib.figure", "matplotlib.backends.backend_agg")
     try:
         bar = ProgressLine("contact: half-widths followed", "%")
-        res = contact(cylinder, half_plane, progress=bar, **inputs)
+        res = contact(cylinder, half_plane, progress=bar, tol=tol, **inputs)
         bar.close()
         if csv_file is not None:
             write_contact_csv(res, csv_file)

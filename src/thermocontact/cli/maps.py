@@ -12,7 +12,8 @@ import click
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..problem.validation import InputError
-from .options import contact_set_options, parse_conductance, physical_options, problem_options
+from .options import (bulk_temperatures_closure, contact_set_options, far_temperatures,
+                      parse_conductance, physical_options, problem_options)
 
 __all__ = ["map_cmd"]
 
@@ -190,19 +191,21 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     if stability and operating:
         raise InputError("--stability maps dimensionless parameters only (for a physical "
                          "contact, contact --stability)", parameters=("stability",))
+    if operating and theta is not None:
+        raise InputError("theta belongs to a dimensionless map, not to an operating map",
+                         parameters=("theta", "cylinder"))
+    closure = (bulk_temperatures_closure(bulk_temperatures, sink_distance, layer_thickness)
+               if operating else far_temperatures(theta, sink_distance))
     spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
                     K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2,
-                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma=sigma,
-                    delta_over_r=delta_over_r, method=method, cylinder=cylinder,
-                    half_plane=half_plane, friction=friction, radius=radius, load=load,
-                    speed=speed, dundurs=dundurs, materials=materials_file, zones=zones,
+                    speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma,
+                    closure=closure, delta_over_r=delta_over_r, method=method,
+                    cylinder=cylinder, half_plane=half_plane, friction=friction,
+                    radius=radius, load=load, speed=speed, dundurs=dundurs,
+                    materials=materials_file, zones=zones,
                     conductance=parse_conductance(conductance, "in W/(m^2 K)", physical=True),
-                    tol=tol, **{k: v for k, v in (("theta", theta),
-                                                  ("bulk_temperatures", bulk_temperatures),
-                                                  ("sink_distance", sink_distance),
-                                                  ("layer_thickness", layer_thickness))
-                                if v is not None})
+                    tol=tol)
     fixed = ", ".join(f"{k} = {v:g}" for k, v in spec.fixed.items())
     if operating:
         closure = (f"lambda = {spec.lam:g}" if spec.bulk_temperatures is None else

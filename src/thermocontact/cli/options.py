@@ -156,3 +156,23 @@ def given_here(name) -> bool:
     ctx = click.get_current_context(silent=True)
     source = None if ctx is None else ctx.get_parameter_source(name)
     return source not in (None, ParameterSource.DEFAULT)
+
+
+def far_temperatures(theta, sink_distance):
+    """The closure of ``--theta`` and ``--sink-distance`` (a dimensionless command's sink
+    distance, in its half-widths), or None where neither is given."""
+    if theta is None and sink_distance is None:
+        return None
+    from ..problem.closure import FarTemperatures
+
+    return FarTemperatures(theta, sink_distance)
+
+
+def bulk_temperatures_closure(temperatures, sink_distance, layer_thickness):
+    """The closure of ``--bulk-temperatures`` with ``--sink-distance`` or
+    ``--layer-thickness`` (metres, or with units), or None where none is given."""
+    from ..problem.closure import spelled_closure
+
+    given = {"bulk_temperatures": temperatures, "sink_distance": sink_distance,
+             "layer_thickness": layer_thickness}
+    return spelled_closure(given, physical=True)[0]

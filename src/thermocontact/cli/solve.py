@@ -6,7 +6,7 @@ import click
 
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from .options import one_closure, parse_conductance, problem_options
+from .options import far_temperatures, one_closure, parse_conductance, problem_options
 from .progress import RefinementProgress
 
 __all__ = ["solve_cmd"]
@@ -96,7 +96,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
                 speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,
-                theta=theta, sink_distance=sink_distance,
+                closure=far_temperatures(theta, sink_distance),
                 method=method, tol=tol, check_convergence=check,
                 progress=RefinementProgress(), delta_over_r=delta_over_r,
                 conductance=parse_conductance(conductance, "the Biot number h0 Delta/K2"))

@@ -9,7 +9,7 @@ import os
 import click
 
 from ..problem.validation import InputError
-from .options import given_here, hertz_unit_options, parse_conductance
+from .options import far_temperatures, given_here, hertz_unit_options, parse_conductance
 
 __all__ = ["run_to_file", "transient_cmd"]
 
@@ -73,7 +73,8 @@ def summary(run, extra, written) -> str:
     """The run's end in a few lines (and in SI units when it has them)."""
     a, b = run.zones(-1)
     steps = run.time.size - 1
-    lines = [f"transient: {run.status}, {steps} of {run.spec.steps} steps to t = "
+    why = f" {run.message}" if run.status == "stopped" else ""
+    lines = [f"transient: {run.status}{why}, {steps} of {run.spec.steps} steps to t = "
              f"{run.time[-1]:.6g} l^2/kappa2"
              + (f" = {run.time[-1] * extra['time_unit_s']:.6g} s" if extra else "")
              + f", in {run.seconds:.1f} s of computing",
@@ -120,7 +121,8 @@ def run_to_file(spec, out, plot=None, gif=None, as_json=False, extra=None):
     echo = (lambda text: click.echo(text, err=True)) if as_json else click.echo
     done, ds = _existing(out, spec, extra)
     if done is not None and done.status != "partial":
-        state = "complete" if done.status == "complete" else f"finished ({done.status})"
+        state = ("complete" if done.status == "complete"
+                 else f"finished ({done.status} {done.message})")
         echo(f"{out} is {state} with the same inputs: nothing to compute")
         written = _pictures(ds, plot, gif)
         if as_json:
@@ -225,9 +227,9 @@ def transient_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delt
         raise InputError("--hold belongs to --start steady (from Hertz's state the "
                          "closure given, --lam or --theta, is held)", parameters=("hold",))
     spec = transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, until=until, steps=steps, lam=lam,
-                          theta=theta, k2_over_k1=k2_over_k1,
+                          closure=far_temperatures(theta, None), k2_over_k1=k2_over_k1,
                           delta1_over_delta2=delta1_over_delta2, elements=elements,
-                          window=_window(window), start=start, hold=hold, perturb=perturb,
+                          window=_window(window), initial=start, hold=hold, perturb=perturb,
                           conductance=parse_conductance(conductance, "the Biot number h0 l/K2"))
     out, plot_file, gif_file = check_outputs(out, plot_file, gif_file)
     run_to_file(spec, out, plot_file, gif_file, as_json)

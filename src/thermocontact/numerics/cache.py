@@ -131,7 +131,7 @@ def small_cache(maxsize: int):
     return deco
 
 
-def clear_caches():
+def clear_caches() -> None:
     """Empty every cache of this process (the bounded ones and the small tables')."""
     for cache in _ALL.values():
         cache.clear()

@@ -19,7 +19,8 @@ from .validation import check_finite, check_positive, check_range
 __all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures",
            "HeatPartition", "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX",
            "Temperatures", "check_closure_range", "check_sink_distance", "check_theta",
-           "closure_of", "layer_sink_distance", "temperature_closure", "temperature_group"]
+           "closure_of", "layer_sink_distance", "spelled_closure", "temperature_closure",
+           "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far
@@ -156,6 +157,10 @@ class HeatPartition:
     def __post_init__(self):
         object.__setattr__(self, "lam", check_closure_range(lam=self.lam)[0])
 
+    def keywords(self) -> dict:
+        """The closure as the solvers' keywords."""
+        return {"lam": self.lam}
+
 
 @dataclass(frozen=True)
 class Offset:
@@ -169,6 +174,10 @@ class Offset:
         object.__setattr__(self, "sigma_over_delta",
                            check_closure_range(sigma_over_delta=self.sigma_over_delta)[1])
 
+    def keywords(self) -> dict:
+        """The closure as the solvers' keywords."""
+        return {"sigma_over_delta": self.sigma_over_delta}
+
 
 @dataclass(frozen=True)
 class FarTemperatures:
@@ -177,26 +186,32 @@ class FarTemperatures:
 
     Attributes
     ----------
-    theta : float
-        ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)``, ``|Theta| <= 1e6``.
+    theta : float or None
+        ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)``, ``|Theta| <= 1e6``; None where a
+        path or a map follows it (``along="theta"``, an axis ``theta``).
     sink_distance_over_delta : float or None
         A stationary half-plane's sink distance ``L`` in half-widths (> 1: beyond the
-        contact); None for a half-plane moving through the contact.
+        contact; Hertz's half-width ``l`` for a contact set or a transient run); None
+        for a half-plane moving through the contact.
     """
 
-    theta: float
+    theta: float | None
     sink_distance_over_delta: float | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "theta", check_theta(self.theta))
+        if self.theta is not None:
+            object.__setattr__(self, "theta", check_theta(self.theta))
         if self.sink_distance_over_delta is not None:
             object.__setattr__(self, "sink_distance_over_delta",
                                check_sink_distance(self.sink_distance_over_delta,
                                                    "sink_distance_over_delta"))
 
-    def temperatures(self) -> Temperatures:
-        """The solver's form (lengths in half-widths)."""
-        return Temperatures(self.theta, self.sink_distance_over_delta)
+    def keywords(self) -> dict:
+        """The closure as the solvers' keywords (``sink_distance`` in the problem's
+        unit of length)."""
+        return {k: v for k, v in (("theta", self.theta),
+                                  ("sink_distance", self.sink_distance_over_delta))
+                if v is not None}
 
 
 @dataclass(frozen=True)
@@ -240,6 +255,13 @@ class BulkTemperatures:
     def temperatures(self) -> tuple:
         """``(T1, T2)``, K."""
         return (self.T1, self.T2)
+
+    def keywords(self) -> dict:
+        """The closure as the physical problem's keywords."""
+        return {k: v for k, v in (("bulk_temperatures", self.temperatures),
+                                  ("sink_distance", self.sink_distance),
+                                  ("layer_thickness", self.layer_thickness))
+                if v is not None}
 
 
 
@@ -299,3 +321,45 @@ def closure_of(closure=None, *, kinds=DIMENSIONLESS_CLOSURES, required=True, **s
     if not isinstance(value, kinds):
         raise InputError(f"{name} must be {accepted}, got {value!r}", parameters=(name,))
     return value
+
+
+def spelled_closure(kwargs: dict, physical: bool):
+    """The closure that the keyword spellings of versions before 1.0 give, taken out of
+    ``kwargs``: ``theta`` with ``sink_distance`` as ``L/Delta`` (``physical`` False), or
+    ``bulk_temperatures`` (``"150C,40C"`` or a pair) with ``sink_distance`` or
+    ``layer_thickness`` in metres (``physical``).
+
+    Returns
+    -------
+    closure, names
+        The closure (None where none of them was given) and the names found, for the
+        caller's DeprecationWarning.
+    """
+    old = {k: kwargs.pop(k) for k in ("theta", "bulk_temperatures", "sink_distance",
+                                      "layer_thickness") if kwargs.get(k) is not None}
+    for k in ("theta", "bulk_temperatures", "sink_distance", "layer_thickness"):
+        kwargs.pop(k, None)
+    if not old:
+        return None, []
+    if not physical:
+        for name in ("bulk_temperatures", "layer_thickness"):
+            if name in old:
+                raise InputError(f"{name} belongs to a problem in physical units: give "
+                                 f"cylinder and half_plane too", parameters=(name,))
+        return FarTemperatures(old.get("theta"), old.get("sink_distance")), list(old)
+    if "theta" in old:
+        raise InputError("theta closes a problem in dimensionless form: here give "
+                         "closure=BulkTemperatures(T1, T2, ...)", parameters=("theta",))
+    value = old.get("bulk_temperatures")
+    if value is None:
+        raise InputError(f"{' and '.join(old)} belong to the bulk temperatures: give "
+                         f"closure=BulkTemperatures(T1, T2, ...)", parameters=tuple(old))
+    parts = value.split(",") if isinstance(value, str) else value
+    try:
+        t1, t2 = parts
+    except (TypeError, ValueError):
+        raise InputError(f"bulk_temperatures must be two temperatures, the cylinder's and "
+                         f"the half-plane's ('150C,40C'), got {value!r}",
+                         parameters=("bulk_temperatures",)) from None
+    return (BulkTemperatures(t1, t2, old.get("sink_distance"), old.get("layer_thickness")),
+            list(old))

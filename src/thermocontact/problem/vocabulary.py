@@ -14,7 +14,7 @@ a flag, a count, a function, a file).
 
 from __future__ import annotations
 
-__all__ = ["DEPRECATED", "VOCABULARY"]
+__all__ = ["DEPRECATED", "VOCABULARY", "deprecated_spellings"]
 
 #: name -> (unit, meaning).
 VOCABULARY = {
@@ -43,6 +43,8 @@ VOCABULARY = {
     "layer_thickness": ("m", "thickness of a layer on a sink (L = 4h/pi)"),
     "conductance": ("", "interface conductance h(p): (Bi0, m) dimensionless, "
                         "(h0 W/(m^2 K), m[, p_ref Pa]) physical"),
+    "temperatures": ("", "the far temperatures in the solvers' own form, Temperatures(theta, "
+                         "L over the length unit), one or one per point (Model's methods)"),
     # The problem in physical units.
     "cylinder": ("", "the cylinder's material: a name, an inline definition, a Material"),
     "half_plane": ("", "the half-plane's material"),
@@ -68,6 +70,7 @@ VOCABULARY = {
     "max_temperature_source": ("", "where max_temperature comes from"),
     "source": ("", "where the material's values come from"),
     "note": ("", "a note on the material"),
+    "role": ("", "the body's role, as a message names it"),
     # Paths, maps and their axes.
     "along": ("", "the parameter a path follows"),
     "start": ("", "a range's first value, in the unit of its parameter"),
@@ -105,6 +108,8 @@ VOCABULARY = {
     "polish": ("", "polish the validity margins' extrema (flag)"),
     "rcond": ("", "how a grid line's condition numbers are found"),
     "progress": ("", "a function told of the progress"),
+    "preparing": ("", "a function told of the progress of the operators' making"),
+    "check_validity": ("", "evaluate the contact inequalities too (flag)"),
     "workers": ("", "where the work runs: processes, an executor, a Dask client"),
     "store": ("", "a folder keeping finished work"),
     "command": ("", "the command line recorded in a map's attributes"),
@@ -123,3 +128,57 @@ DEPRECATED = {
     "start": "initial (of a transient run)",
     "zones": "contact_set(...) (of contact)",
 }
+
+
+def deprecated_spellings(*, renamed=(), closure=None, physical=None):
+    """A public call that still takes the spellings of versions before 1.0, each with a
+    :class:`DeprecationWarning` naming what replaces it (:data:`DEPRECATED`).
+
+    Parameters
+    ----------
+    renamed : sequence of (str, str)
+        ``(old, new)`` keyword names.
+    closure : {"dimensionless", "physical", "either"}, optional
+        The call's closure keywords of earlier versions (``theta``, ``sink_distance``,
+        ``bulk_temperatures``, ``layer_thickness``) become its ``closure=``
+        (:func:`~thermocontact.problem.closure.spelled_closure`); ``"either"``: which
+        kind ``physical(args, kwargs)`` tells.
+
+    The call's own signature (``inspect.signature`` of the decorated function) holds the
+    names of 1.0 only.
+    """
+    import functools
+    import warnings
+
+    def wrap(func):
+        @functools.wraps(func)
+        def call(*args, **kwargs):
+            from .closure import spelled_closure
+            from .errors import InputError
+
+            used = []
+            for old, new in renamed:
+                if old in kwargs:
+                    if new in kwargs:
+                        raise InputError(f"give {new}, not both {old} and {new}",
+                                         parameters=(new,))
+                    kwargs[new] = kwargs.pop(old)
+                    used.append(f"{old}= ({new}=)")
+            if closure is not None:
+                kind = (physical(args, kwargs) if closure == "either"
+                        else closure == "physical")
+                found, names = spelled_closure(kwargs, kind)
+                if found is not None:
+                    if kwargs.get("closure") is not None:
+                        raise InputError(f"give closure alone, not with {', '.join(names)}",
+                                         parameters=("closure", *names))
+                    kwargs["closure"] = found
+                    used.append(", ".join(f"{n}=" for n in names)
+                                + f" (closure={type(found).__name__}(...))")
+            if used:
+                warnings.warn(f"{func.__name__}: {'; '.join(used)}: the spelling of versions "
+                              f"before 1.0, taken until 1.1 (CHANGELOG.md)",
+                              DeprecationWarning, stacklevel=2)
+            return func(*args, **kwargs)
+        return call
+    return wrap

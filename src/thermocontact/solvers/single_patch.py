@@ -33,12 +33,13 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance,
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
-from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range,
+from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range, closure_of,
                                temperature_closure)
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
                                   check_finite, check_flag, check_integer, check_numbers,
                                   check_offset_coupling, check_positive)
+from ..problem.vocabulary import deprecated_spellings
 from .contact_system import solve_contact_system
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
@@ -395,8 +396,9 @@ class Model:
         coarse = [m for m in (self.n // 4, self.n // 2) if m >= N_RANGE[0]]
         return coarse + [self.n], self.n
 
-    def solve(self, fhpe, *, lam=None, sigma_over_delta=None, check_convergence=False,
-              progress=None, polish=True, temperatures=None, _stacklevel=2) -> ContactSolution:
+    def solve(self, fhpe, *, lam=None, sigma_over_delta=None, closure=None,
+              check_convergence=False, progress=None, polish=True,
+              _stacklevel=2) -> ContactSolution:
         """Solve at ``fhpe`` with the heat partition, the offset or the far
         temperatures given.
 
@@ -405,11 +407,13 @@ class Model:
         fhpe : float
             ``f H Pe >= 0``.
         lam, sigma_over_delta : float
-            The heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the offset.
-        temperatures : Temperatures or tuple ``(Theta, L/Delta)``, optional
-            Or the bodies' far temperatures (derivation section 17): ``lam`` is then
-            an output, its error estimated with ``P_H/P`` and ``sigma/Delta`` and
-            reported as ``lam_error``.  Exactly one of the three closures.
+            The heat partition ``(Q1 - Q2)/(Q1 + Q2)`` or the offset: the same as
+            ``closure=HeatPartition(lam)`` and ``closure=Offset(sigma_over_delta)``.
+        closure : HeatPartition, Offset or FarTemperatures
+            What fixes the heat partition (:mod:`thermocontact.problem.closure`); with
+            the far temperatures (derivation section 17) ``lam`` is an output, its error
+            estimated with ``P_H/P`` and ``sigma/Delta`` and reported as ``lam_error``.
+            Exactly one of ``lam``, ``sigma_over_delta`` and ``closure``.
         check_convergence : bool, optional
             Also solve with ``2n`` (``n/2`` when ``2n`` exceeds the largest ``n``)
             and report the change in ``P_H/P``.
@@ -429,6 +433,9 @@ class Model:
             :class:`ConvergenceWarning`.
         """
         # One point: each input one number (solve_many takes sequences).
+        given = closure_of(closure, lam=lam, sigma_over_delta=sigma_over_delta).keywords()
+        lam, sigma_over_delta = given.get("lam"), given.get("sigma_over_delta")
+        temperatures = temperature_closure(given.get("theta"), given.get("sink_distance"))
         fhpe = check_finite("fhpe", fhpe)
         check_flag("check_convergence", check_convergence)
         check_callable("progress", progress)
@@ -618,12 +625,11 @@ class Model:
         return out
 
 
-def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
-          speed_ratio=0.0, beta_f=0.0, lam=None, sigma_over_delta=None, n=None,
-          method=DEFAULT_METHOD,
-          tol=DEFAULT_TOL, check_convergence=False, progress=None,
-          conductance=None, delta_over_r=None, theta=None,
-          sink_distance=None) -> ContactSolution:
+@deprecated_spellings(closure="dimensionless")
+def solve(pe, fhpe, K2_over_K1, *, lam=None, sigma_over_delta=None, closure=None,
+          k2_over_k1=None, delta1_over_delta2=1.0, speed_ratio=0.0, beta_f=0.0, n=None,
+          method=DEFAULT_METHOD, tol=DEFAULT_TOL, check_convergence=False, progress=None,
+          conductance=None, delta_over_r=None) -> ContactSolution:
     """Solve the steady thermoelastic sliding-contact problem.
 
     ``Model(pe, K2_over_K1, ...).solve(fhpe, ...)``: see :class:`Model` for the
@@ -640,15 +646,16 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     beta_f : float, optional
         ``B = beta f`` of the Dundurs term (default 0).
     lam, sigma_over_delta : float
-        The heat partition or the contact offset.
-    theta : float
-        Or the far temperatures' group ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)``
-        (D39; derivation section 17): ``lam`` is then an output with its error
-        (``lam_error``).  Exactly one of ``lam``, ``sigma_over_delta`` and ``theta``.
-    sink_distance : float
-        With ``theta`` and a stationary half-plane: ``L/Delta > 1``, the distance of
-        the half-plane's sink at ``T2`` (D38); a moving half-plane's ``T2`` is its
-        incoming temperature (none given).
+        The heat partition or the contact offset: the same as
+        ``closure=HeatPartition(lam)`` and ``closure=Offset(sigma_over_delta)``.
+    closure : HeatPartition, Offset or FarTemperatures
+        What fixes the heat partition (:mod:`thermocontact.problem.closure`): the
+        far temperatures ``FarTemperatures(theta, sink_distance_over_delta)``, the
+        group ``Theta = pi K2 (T2 - T1)/(f |v1 - v2| P)`` (D39) with a stationary
+        half-plane's sink at ``L/Delta > 1`` (D38; none for a moving half-plane, whose
+        ``T2`` is its incoming temperature), make ``lam`` an output with its error
+        (``lam_error``; derivation section 17).  Exactly one of ``lam``,
+        ``sigma_over_delta`` and ``closure``.
     n : int, optional
         Unknowns per function; by default chosen until the estimate meets ``tol``.
     method : str, optional
@@ -685,16 +692,14 @@ def solve(pe, fhpe, K2_over_K1, *, k2_over_k1=None, delta1_over_delta2=1.0,
     >>> round(solve(5, 0.0, 10, lam=-1).load_ratio, 12)
     1.0
     """
-    check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta, theta=theta)
-    temperatures = temperature_closure(theta, sink_distance)
+    closure = closure_of(closure, lam=lam, sigma_over_delta=sigma_over_delta)
     if delta_over_r is not None:
         delta_over_r = check_positive("delta_over_r", delta_over_r)
     model = Model(pe, K2_over_K1, k2_over_k1=k2_over_k1,
                   delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio, beta_f=beta_f,
                   method=method, n=n, tol=tol, conductance=conductance)
-    sol = model.solve(fhpe, lam=lam, sigma_over_delta=sigma_over_delta,
-                      temperatures=temperatures, check_convergence=check_convergence,
-                      progress=progress, _stacklevel=3)
+    sol = model.solve(fhpe, closure=closure, check_convergence=check_convergence,
+                      progress=progress, _stacklevel=4)
     if delta_over_r is None:
         return sol
     from ..analysis.applicability import applicability

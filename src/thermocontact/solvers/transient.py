@@ -226,8 +226,9 @@ class TransientRun(Result):
         heat is 0/0 and the surfaces' temperatures have no difference to report; from
         the first step on they are the step's.  From a steady start they are that
         state's.
-    status : str
-        ``"complete"``, ``"partial"`` (a resumable part), or why the run stopped.
+    status : {"complete", "partial", "stopped"}
+        The run to its end, a resumable part of it, or a run that stopped early
+        (:attr:`STATUSES`; ``message`` says why).
     set_iterations : ndarray of int, shape (T,)
         Linear solves of each step's active sets.
     scheme : ndarray of int, shape (T,)
@@ -251,6 +252,17 @@ class TransientRun(Result):
     scheme: np.ndarray
     status: str = "complete"
     seconds: float = 0.0
+    message: str = ""
+
+    STATUSES = {"complete": "every step computed",
+                "partial": "the steps up to an interruption or a save, resumable",
+                "stopped": "the run stopped early (the contact reached the window's end, "
+                           "or a step has no settled contact set): message says where and why"}
+    SUCCESS = frozenset({"complete"})
+    UNITS = {"time": "l^2/kappa2", "x": "l", "zones": "l", "window": "l",
+             "pressure": "P/l", "peak_pressure": "P/l", "flux": "f v P/l", "gap": "l^2/R",
+             "temperature1": "f v P/(pi K2)", "temperature2": "f v P/(pi K2)",
+             "temperature_difference": "f v P/(pi K2)", "approach": "l^2/R", "seconds": "s"}
 
     def _summary(self) -> str:
         a, b = self.zones(-1)
@@ -308,6 +320,7 @@ class TransientRun(Result):
         a, b = self.zones(-1)
         return {"spec": self.spec.__dict__, "time": float(self.time[-1]),
                 "steps": int(self.time.size - 1), "status": self.status,
+                "message": self.message,
                 "zones": [[float(s), float(e)] for s, e in zip(a, b)],
                 "lam": float(self.lam[-1]), "approach": float(self.approach[-1]),
                 "temperature_difference": float(self.temperature_difference[-1]),
@@ -347,6 +360,7 @@ class TransientRun(Result):
         ds.attrs.update(dataset_attrs(attrs))
         ds.attrs["window"] = list(self.spec.window)
         ds.attrs["status"] = self.status
+        ds.attrs["message"] = self.message
         ds.attrs["seconds"] = self.seconds
         return ds
 
@@ -388,11 +402,14 @@ class TransientRun(Result):
             renamed = {"theta1": "temperature1", "theta2": "temperature2"}
             arrays = {}
             for f in fields(cls):
-                if f.name not in ("spec", "status", "seconds"):
+                if f.name not in ("spec", "status", "seconds", "message"):
                     v = np.asarray(ds[renamed.get(f.name, f.name)].values)
                     arrays[f.name] = v.astype(int if v.dtype.kind in "iub" else float)
-            return cls(spec=spec, status=str(attrs["status"]), seconds=float(attrs["seconds"]),
-                       **arrays)
+            status, message = str(attrs["status"]), str(attrs.get("message", ""))
+            if status.startswith("stopped at step"):  # a file of versions before 1.0
+                status, message = "stopped", status[len("stopped "):]
+            return cls(spec=spec, status=status, seconds=float(attrs["seconds"]),
+                       message=message, **arrays)
         except KeyError as exc:
             raise InputError(f"the dataset is not a transient run's: it has no {exc}",
                              parameters=("ds",)) from None
@@ -735,10 +752,10 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
         if done:
             p, q = resume.pressure[done], resume.flux[done]
             q1_last, q2_last = 0.5 * (p + q), 0.5 * (p - q)
-    status = "complete"
+    status, message = "complete", "every step computed"
     last_save = _time.perf_counter()
 
-    def result(status):
+    def result(status, message=""):
         return TransientRun(spec, spec.dt * np.arange(len(state.pressure)), X,
                             np.array(state.pressure), np.array(state.flux), np.array(state.gap),
                             np.array(state.theta1), np.array(state.theta2),
@@ -747,7 +764,7 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
                             np.array(state.iterations, dtype=int),
                             np.array(state.scheme, dtype=int), status,
                             (resume.seconds if resume is not None else 0.0)
-                            + _time.perf_counter() - t0)
+                            + _time.perf_counter() - t0, message)
 
     tol = 1e-12
     if progress is not None:
@@ -767,12 +784,12 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
         try:
             p, gap, D, active, it = _contact(ops.flamant, gap_known + bulge, h, active, load, tol)
         except SolveError as exc:
-            status = f"stopped at step {n}: {exc}"
+            status, message = "stopped", f"at step {n}: {exc}"
             break
         try:
             q, C = _partition(ops, p, t1_known - t2_known, h, active, closure, resistance(p))
         except np.linalg.LinAlgError:
-            status = f"stopped at step {n}: the heat on the contact set is singular"
+            status, message = "stopped", f"at step {n}: the heat on the contact set is singular"
             break
         scheme = 1
         try:
@@ -795,7 +812,7 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
                              f"(x = {X[0] if active[0] else X[-1]:.4g}); widen it or give "
                              f"more elements", parameters=("window",))
         if active[0] or active[-1]:
-            status = (f"stopped at step {n}: the contact reached the window's end "
+            status, message = "stopped", (f"at step {n}: the contact reached the window's end "
                       f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
             break
         q1, q2 = 0.5 * (p + q), 0.5 * (p - q)
@@ -810,6 +827,6 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
         if progress is not None:
             progress(n, spec.steps)
         if save is not None and _time.perf_counter() - last_save > save_every and n < spec.steps:
-            save(result("partial"))
+            save(result("partial", f"the first {n} of {spec.steps} steps, resumable"))
             last_save = _time.perf_counter()
-    return result(status)
+    return result(status, message)

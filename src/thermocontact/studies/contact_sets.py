@@ -18,6 +18,7 @@ a budget of evaluations, each one telling the progress.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -78,6 +79,17 @@ class ContactSetResult(Result):
     history: list = field(default_factory=list)
     folds: list = field(default_factory=list)
     reached: float = 1.0
+
+    STATUSES = {"solved": "the contact set at the point asked for, valid or not (valid says)",
+                "no steady solution": "the branch followed from Hertz's zone folds back, and "
+                                      "no other contact set tried holds: none exists there",
+                "not converged": "the path stopped short of the point asked for (its steps, "
+                                 "or the budget of evaluations, ran out); the last contact "
+                                 "set followed is kept"}
+    SUCCESS = frozenset({"solved"})
+    # Lengths in Hertz's half-width l of the load, loads in units of the load P.
+    UNITS = {"a": "l", "b": "l", "centre": "l", "half_width": "l", "load": "P",
+             "peak_pressure": "P/l", "pe_hertz": "1", "fhpe_hertz": "1"}
 
     @property
     def answer(self) -> ZoneSolution | None:
@@ -666,14 +678,14 @@ def _physical(conductance) -> PhysicalConductance:
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class PhysicalContactSet:
-    """The contact set of a physical problem, in SI units (:func:`physical_contact_set`).
+class PhysicalContactSet(ContactSetResult):
+    """The contact set of a physical problem, in SI units (:func:`physical_contact_set`):
+    the dimensionless answer (:class:`ContactSetResult`, units of the Hertz half-width)
+    and the problem's fields and applicability.
 
     Attributes
     ----------
     problem : PhysicalProblem
-    result : ContactSetResult
-        The answer in units of the Hertz half-width.
     conductance : PhysicalConductance or None
     fields : ContactFields or None
         Pressure, both surfaces' temperatures, slopes and strains of the contact set
@@ -685,24 +697,33 @@ class PhysicalContactSet:
         a single patch); None without a contact set.
     """
 
-    problem: object
-    result: ContactSetResult
+    problem: object = None
     conductance: PhysicalConductance | None = None
     fields: ContactFields | None = None
     applicability: Applicability | None = None
 
-    @property
-    def status(self) -> str:
-        return self.result.status
+    UNITS = {"a": "m", "b": "m", "load": "N/m", "peak_pressure": "Pa", "mean_pressure": "Pa",
+             "flash_temperature": "K", "temperature_mismatch": "K", "peak_temperature": "K",
+             "bulk_temperatures": "K", "hertz_half_width": "m"}
+
+    @classmethod
+    def of(cls, result: ContactSetResult, problem, conductance=None, fields=None,
+           applicability=None) -> PhysicalContactSet:
+        """The dimensionless ``result`` with its problem in SI units."""
+        return cls(**{f.name: getattr(result, f.name) for f in dataclasses.fields(result)},
+                   problem=problem, conductance=conductance, fields=fields,
+                   applicability=applicability)
 
     @property
-    def message(self) -> str:
-        return self.result.message
+    def result(self) -> ContactSetResult:
+        """The answer in units of the Hertz half-width."""
+        return ContactSetResult(**{f.name: getattr(self, f.name)
+                                   for f in dataclasses.fields(ContactSetResult)})
 
     @property
     def valid(self):
         """Whether the contact set satisfies every inequality (None without one)."""
-        sol = self.result.answer
+        sol = self.answer
         return None if sol is None else sol.valid
 
     @property
@@ -718,13 +739,14 @@ class PhysicalContactSet:
         """Each zone's ``a``, ``b`` (m, from the undeformed cylinder's lowest point, the
         leading edge at larger x), ``load`` (N/m) and ``peak_pressure`` (Pa)."""
         ell, P = self.problem.hertz_half_width, self.problem.load
-        sol = self.result.answer
+        sol = self.answer
         return [{"a": z["a"] * ell, "b": z["b"] * ell, "load": z["load"] * P,
                  "peak_pressure": z["peak_pressure"] * P / ell}
                 for z in ([] if sol is None else sol.zone_records())]
 
-    def to_dict(self) -> dict:
-        """The JSON record of ``contact --zones``."""
+    def _record(self) -> dict:
+        """The JSON record of ``contact --zones`` (the dimensionless answer under
+        ``"dimensionless"``)."""
         app, f = self.applicability, self.fields
         rec = {"status": self.status, "message": self.message, "valid": self.valid,
                "theory_applicable": self.applicable,
@@ -742,7 +764,7 @@ class PhysicalContactSet:
             if self.problem.bulk_temperatures is not None:
                 # lam an output; the surfaces' absolute peak, the cylinder's incoming
                 # temperature plus its flash temperature (section 17).
-                rec.update({"lam": self.result.answer.lam,
+                rec.update({"lam": self.answer.lam,
                             "bulk_temperatures": list(self.problem.bulk_temperatures),
                             "peak_temperature": (self.problem.bulk_temperatures[0]
                                                  + f.flash_temperature)})
@@ -750,17 +772,10 @@ class PhysicalContactSet:
             rec.update(app.to_dict())
         return rec
 
-    def __eq__(self, other):
-        if type(other) is not type(self):
-            return NotImplemented
-        return self.problem == other.problem and self.to_dict() == other.to_dict()
-
-    __hash__ = None
-
-    def __repr__(self):
+    def _summary(self) -> str:
         z = ", ".join(f"[{q['a']:.4g}, {q['b']:.4g}] m" for q in self.zones)
-        return (f"PhysicalContactSet(status={self.status!r}, zones={z or 'none'}, "
-                f"valid={self.valid}, applicable={self.applicable})")
+        return (f"status={self.status!r}, zones={z or 'none'}, valid={self.valid}, "
+                f"applicable={self.applicable}")
 
 
 def physical_contact_set(problem, *, conductance=None, n=32,
@@ -806,4 +821,4 @@ def physical_contact_set(problem, *, conductance=None, n=32,
                                 fractions=problem.compliance_fractions,
                                 perfect_contact=conductance is None)
         app = physical_applicability(problem, fields)
-    return PhysicalContactSet(problem, res, conductance, fields, app)
+    return PhysicalContactSet.of(res, problem, conductance, fields, app)
