@@ -554,9 +554,10 @@ def transient_view(ds) -> dict:
     a = ds.attrs
     step = max(1, math.ceil(ds.sizes["time"] / FRAMES))
     frames = ds.isel(time=slice(None, None, step))
+    time = frames["time"].values * a["time_unit_s"]
     # Temperatures of the run are in units of f v P/(pi K2) (temperature_unit_K).
     return plain({
-        "time": frames["time"].values * a["time_unit_s"],
+        "time": time, "time_repr": [repr(float(t)) for t in time],
         "x": ds["x"].values * a["length_unit_m"],
         "pressure": frames["pressure"].values * a["pressure_unit_Pa"],
         "temperature_cylinder": frames["temperature1"].values * a["temperature_unit_K"],

@@ -294,7 +294,7 @@
     ] : [];
     plot($("plot-temperature"), {series: temps, xlabel: "x, mm",
                                  ylabel: view.verdicts.temperatures});
-    setCode(view.code);
+    if (tab === "contact") setCode(view.code);
     const panel = $("panel-contact");
     panel.dataset.stale = "0";
     panel.dataset.ready = String(Number(panel.dataset.ready) + 1);
@@ -317,7 +317,7 @@
     renderContact(body);
     if (tab === "tei") updateTei();
     if (tab === "map") { drawMap(); if (jobs.map && jobs.map.key !== mapKey(s)) markMap(); }
-    if (tab === "transient") updateCode();
+    if (tab === "map" || tab === "transient") updateCode();
   }
 
   function update() {
@@ -552,7 +552,7 @@
     ctx.fillRect(0, j, v.x.length, 1);
     const t = $("transient-time");
     t.dataset.quantity = "time";
-    t.dataset.value = String(v.time[j]);
+    t.dataset.value = v.time_repr[j];
     t.textContent = `t = ${Number((v.time[j] * 1e3).toPrecision(4))} ms`;
     plot($("plot-frame"), {series: [{x: times(v.x, 1e3), y: times(v.pressure[j], 1e-6), label: "pressure"}],
                            xlabel: "x, mm", ylabel: "pressure, MPa", ydomain: [0, v.pmax * 1e-6 * 1.05]});
