@@ -172,6 +172,9 @@ class Handler(BaseHTTPRequestHandler):
 
     server_version = "thermocontact-explore"
     protocol_version = "HTTP/1.1"
+    # Small answers on a kept-alive connection: sent at once, not held back by Nagle's
+    # algorithm for the browser's delayed acknowledgement (40 ms each).
+    disable_nagle_algorithm = True
 
     def _answer(self, method):
         length = int(self.headers.get("Content-Length") or 0)
