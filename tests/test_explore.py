@@ -82,6 +82,32 @@ def test_absolute_temperatures_with_bulk_temperatures(views):
     assert np.nanmax(curve) <= record["peak_temperatures"][0] * (1 + 1e-12)
 
 
+def test_a_load_no_patch_carries():
+    """No branch: the numbers of the branch shown as absent (None), the message why."""
+    view = adapter.contact_view({"cylinder": "steel", "half_plane": "cast-iron",
+                                 "radius": "450mm", "load": "1e9N/m", "speed": "20m/s",
+                                 "friction": "0.35", "lam": "1", "dundurs": "false"})
+    shown = {n["key"]: n["value"] for n in view["numbers"]}
+    assert shown["half_width"] == shown["flash_temperature"] == "None"
+    assert float(shown["hertz_half_width"]) > 0
+    assert view["verdicts"]["valid"]["value"] == "False" and view["verdicts"]["branches"] == 0
+    assert view["verdicts"]["message"].startswith("no half-width carries this load")
+    assert "x" not in view["curves"] and view["curves"]["hertz_pressure"]
+
+
+def test_a_map_at_bulk_temperatures_has_no_curves():
+    """Each point of such a map is its own contact: no boundary curves to draw."""
+    import xarray as xr
+
+    ds = xr.Dataset({k: (("speed", "load"), v) for k, v in (
+        ("valid", [[1, 0]]), ("applicable", [[1, 0]]), ("branches", [[1, 1]]))},
+                    coords={"load": [1e4, 2e4], "speed": [1.0]},
+                    attrs={"x": "load:1e4:2e4:2:log", "y": "speed:1:1:1"})
+    ds["reason"] = (("speed", "load"), [["valid", "invalid single patch"]])
+    view = adapter.map_view(ds)
+    assert view["verdict"] == [[3, 1]] and view["boundary_x"] == []
+
+
 BAD = [("cylinder", "nosuch"), ("half_plane", "E=1"), ("half_plane", ""),
        ("radius", "abc"), ("radius", "0"), ("load", "abc"), ("load", "-5kN/m"),
        ("speed", "2kg"), ("speed", "1e999"), ("speed2", "x"), ("friction", "abc"),

@@ -200,6 +200,29 @@ def test_bad_input_named_and_last_picture_kept(browser, server):
     s.close()
 
 
+def test_bad_input_in_the_tabs_fields(browser, server):
+    """The map's axes, the TEI's wavelength, the transient's fields: each bad one named
+    next to it."""
+    s = Session(browser, server, {**POINT, **MAP, "tab": "tei"})
+    s.ready("tei", 1)
+    for tab, name, text in (("tei", "wavelength", "abc"), ("map", "x", "load:1:abc:3"),
+                            ("map", "y", "lam:0:1:3"), ("transient", "steps", "1.5"),
+                            ("transient", "elements", "x"), ("transient", "duration", "1kg")):
+        s.page.click(f"#tab-{tab}")
+        s.page.fill(f"#f-{name}", text)
+        s.page.press(f"#f-{name}", "Enter")
+        s.page.wait_for_function(
+            f"document.querySelector('[data-error-for={name}]').textContent !== ''",
+            timeout=WAIT)
+        assert name in s.page.inner_text(f"[data-error-for={name}]")
+        assert "Traceback" not in s.page.content()
+        s.page.fill(f"#f-{name}", {**MAP, "wavelength": "50mm", "steps": "200",
+                                   "elements": "120", "duration": ""}[name])
+        s.page.press(f"#f-{name}", "Enter")
+    assert s.errors == []
+    s.close()
+
+
 def test_bad_input_in_the_url(browser, server):
     s = Session(browser, server, {**POINT, "load": "abc", "unknown": "1"}, wait=False)
     s.page.wait_for_function("document.body.dataset.started === '1'", timeout=WAIT)

@@ -36,7 +36,7 @@ from ..problem.materials import get_material, list_materials, material_aliases
 from ..problem.units import parse_quantity
 from ..problem.validation import InputError
 
-__all__ = ["DEFAULTS", "FIELDS", "UserError", "code_for", "contact_csv", "contact_record",
+__all__ = ["DEFAULTS", "EXPECTED", "FIELDS", "UserError", "code_for", "contact_csv", "contact_record",
            "contact_view", "explain", "job_key", "materials", "parse_state", "run_job",
            "tei_view"]
 
@@ -107,6 +107,11 @@ TEI_NUMBERS = (
     ("most_unstable_wavelength", "most unstable wavelength", "mm", 1e3),
     ("most_unstable_growth_rate", "its growth rate", "1/s", 1.0),
 )
+
+
+#: The library's errors of bad input or of no solution: the page's words, never a
+#: traceback (:func:`explain`).
+EXPECTED = (InputError, SolveError)
 
 
 class UserError(Exception):
@@ -316,7 +321,7 @@ def contact_view(state) -> dict:
     branch = rec["branches"][index] if index is not None else {}
     verdicts = {
         "valid": {"key": "valid", "value": repr(rec["valid"]),
-                  "reason": branch.get("reason", rec["message"]) or rec["message"]},
+                  "reason": branch.get("reason", "")},
         "applicable": {"key": "applicable", "value": repr(rec["applicable"]),
                        "reasons": rec["applicability_reasons"]},
         "converged": {"key": "converged", "value": repr(rec["converged"])},
@@ -380,7 +385,8 @@ def code_for(state, tab="contact") -> dict:
         pyargs.append("dundurs=False")
     head = f"{cyl!r}, {half!r}, "
     if tab == "map":
-        x, y = (Axis.parse(state.get(k) or DEFAULTS[k], k) for k in ("x", "y"))
+        spec = map_spec_of(state)  # every input of the map checked, each named
+        x, y = spec.x, spec.y
         axes = [a.name for a in (x, y)]
         args = [a for a in args if a.split()[0].split("=")[0] not in
                 [_flag(n) for n in axes + ["speed2"]]]
@@ -461,11 +467,11 @@ def map_view(ds) -> dict:
     branches = np.asarray(ds["branches"].values, dtype=int)
     # 0 no branch, 1 invalid, 2 valid but the theory does not apply, 3 valid.
     verdict = np.where(branches == 0, 0, np.where(valid == 0, 1, 2 + applicable))
+    # A map at fixed bulk temperatures (each point its own contact) draws no curves.
+    curves = {k: ds[k].values if k in ds else [] for k in ("boundary_x", "boundary_y")}
     return plain({
         "x": {"name": x, "values": ds[x].values}, "y": {"name": y, "values": ds[y].values},
-        "verdict": verdict, "boundary_x": ds["boundary_x"].values,
-        "boundary_y": ds["boundary_y"].values,
-        "reasons": np.asarray(ds["reason"].values).tolist(),
+        "verdict": verdict, **curves, "reasons": np.asarray(ds["reason"].values).tolist(),
     })
 
 

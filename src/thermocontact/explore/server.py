@@ -106,8 +106,8 @@ class Explorer:
             return 200, kind, body, {}
         try:
             return self._route(method, path, query)
-        except adapter.UserError as exc:
-            return self._error(400, exc)
+        except (adapter.UserError, *adapter.EXPECTED) as exc:
+            return self._error(400, adapter.explain(exc))
         except Exception as exc:  # never a traceback in the page: it goes to stderr
             traceback.print_exc(file=sys.stderr)
             return self._error(500, adapter.explain(exc))
@@ -226,6 +226,13 @@ class Server(ThreadingHTTPServer):
             return True
         name = header.rsplit(":", 1)[0] if not header.endswith("]") else header
         return is_loopback(name.strip("[]")) or name == host
+
+    def handle_error(self, request, client_address):
+        """A page that went away mid-answer (its request aborted by a newer one) is not
+        an error; anything else is told on standard error."""
+        if isinstance(sys.exc_info()[1], ConnectionError):
+            return
+        super().handle_error(request, client_address)
 
     def server_close(self):
         super().server_close()

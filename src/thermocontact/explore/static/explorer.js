@@ -71,28 +71,33 @@
   }
 
   // -- errors ----------------------------------------------------------------------
-  function showErrors(error, scope) {
-    clearErrors(scope);
-    const fields = error.fields || {};
-    for (const [name, message] of Object.entries(fields)) {
-      const span = document.querySelector(`[data-error-for="${name}"]`);
-      if (span) span.textContent = message;
-      const f = field(name);
-      if (f) f.setAttribute("aria-invalid", "true");
-    }
-    const named = Object.keys(fields).some((n) => document.querySelector(`[data-error-for="${n}"]`));
-    $("general").textContent = named ? "" : error.message;
-  }
+  // Each kind of request (contact, tei, code, map, transient) reports the errors of its
+  // last answer; the page shows them all, each next to its field, so that one answer's
+  // success does not hide another's complaint.
+  const errorsBy = {};
 
-  function clearErrors(scope) {
-    const names = scope === "point" ? POINT : [...POINT, ...EXTRA];
-    for (const name of names) {
+  function report(kind, error) {
+    if (error) errorsBy[kind] = error;
+    else delete errorsBy[kind];
+    for (const name of [...POINT, ...EXTRA]) {
       const span = document.querySelector(`[data-error-for="${name}"]`);
       if (span) span.textContent = "";
       const f = field(name);
       if (f) f.removeAttribute("aria-invalid");
     }
-    $("general").textContent = "";
+    const general = new Set();
+    for (const e of Object.values(errorsBy)) {
+      let placed = false;
+      for (const [name, message] of Object.entries(e.fields || {})) {
+        const span = document.querySelector(`[data-error-for="${name}"]`);
+        if (!span) continue;
+        span.textContent = message;
+        field(name).setAttribute("aria-invalid", "true");
+        placed = true;
+      }
+      if (!placed) general.add(e.message);
+    }
+    $("general").textContent = [...general].join("; ");
   }
 
   async function ask(kind, url, options = {}) {
@@ -144,12 +149,15 @@
     div.replaceChildren();
     const valid = v.valid.value === "True";
     div.append(badge(valid, "valid", v.valid.value,
-                     valid ? "valid single patch" : `not valid: ${v.valid.reason}`));
+                     valid ? "valid single patch"
+                       : "no valid single patch" + (v.valid.reason ? `: ${v.valid.reason}` : "")));
     const applicable = v.applicable.value === "True";
     div.append(badge(applicable, "applicable", v.applicable.value,
                      applicable ? "the theory applies" : "the theory does not apply"));
-    div.append(badge(v.converged.value === "True", "converged", v.converged.value,
-                     v.converged.value === "True" ? "error target met" : "error target not met"));
+    if (v.converged.value !== "None") {
+      div.append(badge(v.converged.value === "True", "converged", v.converged.value,
+                       v.converged.value === "True" ? "error target met" : "error target not met"));
+    }
     if (v.branches !== 1) {
       div.append(badge(v.branches > 0, "branches", String(v.branches),
                        `${v.branches} half-widths carry the load (the first valid shown)`));
@@ -304,16 +312,18 @@
     const s = readState();
     writeURL(s);
     setDownloads(s);
+    $("busy").hidden = false;
     const body = await ask("contact", "/api/contact?" + query(s));
-    if (body === null) return;
+    if (body === null) return;   // a newer request is in flight
+    $("busy").hidden = true;
     const panel = $("panel-contact");
     if (body.error) {
-      showErrors(body.error, "all");
+      report("contact", body.error);
       panel.dataset.stale = "1";   // the last good picture kept
       panel.dataset.errors = String(Number(panel.dataset.errors || 0) + 1);
       return;
     }
-    clearErrors("all");
+    report("contact", null);
     renderContact(body);
     if (tab === "tei") updateTei();
     if (tab === "map") { drawMap(); if (jobs.map && jobs.map.key !== mapKey(s)) markMap(); }
@@ -334,7 +344,9 @@
   async function updateCode() {
     if (tab === "contact" || tab === "tei") return;   // their views carry their code
     const body = await ask("code", "/api/code?" + query(readState(), {tab}));
-    if (body && !body.error) setCode(body);
+    if (body === null) return;
+    report("code", body.error || null);   // a bad axis or run field named
+    if (!body.error) setCode(body);
   }
 
   function setDownloads(s) {
@@ -365,11 +377,11 @@
     const body = await ask(kind + "-start", "/api/jobs?" + query(s, {kind}), {method: "POST"});
     if (body === null) return;
     if (body.error) {
-      showErrors(body.error, "all");
+      report(kind, body.error);
       $(`${kind}-status`).textContent = body.error.message;
       return;
     }
-    clearErrors("all");
+    report(kind, null);
     jobs[kind] = {id: body.job, key: kind === "map" ? mapKey(s) : JSON.stringify(s), done: false};
     $(`${kind}-cancel`).disabled = false;
     $(`download-${kind}`).hidden = true;
@@ -416,7 +428,7 @@
       panel.dataset.ready = String(Number(panel.dataset.ready) + 1);
     } else if (r.status === "failed") {
       $(`${kind}-status`).textContent = r.error.message;
-      showErrors(r.error, "all");
+      report(kind, r.error);
     } else {
       $(`${kind}-status`).textContent = "cancelled";
     }
@@ -492,7 +504,8 @@
     const body = await ask("tei", "/api/tei?" + query(s));
     if (body === null) return;
     const panel = $("panel-tei");
-    if (body.error) { showErrors(body.error, "all"); panel.dataset.stale = "1"; return; }
+    report("tei", body.error || null);
+    if (body.error) { panel.dataset.stale = "1"; return; }
     renderNumbers($("tei-numbers"), body.numbers);
     const div = $("tei-verdicts");
     div.replaceChildren();
