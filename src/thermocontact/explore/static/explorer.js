@@ -313,18 +313,22 @@
     writeURL(s);
     setDownloads(s);
     $("busy").hidden = false;
+    const panel = $("panel-contact");
+    // Requests sent and the last answered (a test waits for the answer to its change).
+    const n = Number(panel.dataset.sent || 0) + 1;
+    panel.dataset.sent = String(n);
     const body = await ask("contact", "/api/contact?" + query(s));
     if (body === null) return;   // a newer request is in flight
     $("busy").hidden = true;
-    const panel = $("panel-contact");
     if (body.error) {
       report("contact", body.error);
       panel.dataset.stale = "1";   // the last good picture kept
-      panel.dataset.errors = String(Number(panel.dataset.errors || 0) + 1);
+      panel.dataset.answered = String(n);
       return;
     }
     report("contact", null);
     renderContact(body);
+    panel.dataset.answered = String(n);
     if (tab === "tei") updateTei();
     if (tab === "map") { drawMap(); if (jobs.map && jobs.map.key !== mapKey(s)) markMap(); }
     if (tab === "map" || tab === "transient") updateCode();
