@@ -81,7 +81,7 @@ def main(count=100):
     from playwright.sync_api import sync_playwright
     from threadpoolctl import threadpool_limits
 
-    from thermocontact.explore.browser import launch
+    from thermocontact.explore.browser import launch, session
     from thermocontact.explore.server import Explorer, serve
 
     print(f"thermocontact explore: address printed after {startup():.2f} s")
@@ -100,7 +100,7 @@ def main(count=100):
     warm, steps = changes(count + 8)[:8], changes(count + 8)[8:]
     with sync_playwright() as pw:
         browser = launch(pw)
-        page = browser.new_page()
+        page = session(browser).new_page()
         t0 = time.perf_counter()
         page.goto(server.url + "?" + urlencode(POINT))
         page.wait_for_function(

@@ -10,6 +10,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
 import urllib.request
 
 import numpy as np
@@ -309,6 +310,13 @@ def test_explore_prints_its_address_and_serves():
         url = line.split()[2]
         with urllib.request.urlopen(url, timeout=30) as page:
             assert b"thermocontact explore" in page.read()
+            assert page.headers["Content-Security-Policy"].startswith("default-src 'self'")
+        # Addressed by another name (a page elsewhere rebinding its name to loopback):
+        # refused.
+        other = urllib.request.Request(url, headers={"Host": "example.org"})
+        with pytest.raises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(other, timeout=30)
+        assert refused.value.code == 421
         with urllib.request.urlopen(url + "api/setup", timeout=30) as setup:
             assert "copper" in json.load(setup)["names"]
     finally:

@@ -17,7 +17,7 @@ from urllib.parse import parse_qsl, urlencode, urlsplit
 import pytest
 
 import thermocontact as tc
-from thermocontact.explore.browser import chromium_path, launch
+from thermocontact.explore.browser import chromium_path, launch, session
 
 sync_api = pytest.importorskip("playwright.sync_api",
                                reason="playwright is not installed (pip install '.[test]')")
@@ -71,7 +71,7 @@ class Session:
     page reports."""
 
     def __init__(self, browser, server, query=None, wait=True):
-        self.context = browser.new_context(viewport={"width": 1280, "height": 900})
+        self.context = session(browser)
         self.page = self.context.new_page()
         self.errors = []
         self.page.on("pageerror", lambda e: self.errors.append(str(e)))

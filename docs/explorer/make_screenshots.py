@@ -24,13 +24,13 @@ WAIT = 600_000
 def main():
     from playwright.sync_api import sync_playwright
 
-    from thermocontact.explore.browser import launch
+    from thermocontact.explore.browser import launch, session
     from thermocontact.explore.server import serve
 
     server = serve()
     with sync_playwright() as pw:
         browser = launch(pw)
-        page = browser.new_page(viewport={"width": 1280, "height": 860})
+        page = session(browser, height=860).new_page()
 
         def ready(panel):
             page.wait_for_function(

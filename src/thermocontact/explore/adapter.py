@@ -289,8 +289,7 @@ def _shown(key, label, unit, factor, value):
 
 
 def materials() -> dict:
-    """The materials of the library's table: names, their aliases, and each one's
-    properties as a line (for the page's lists)."""
+    """The materials of the library's table, their names and aliases (the page's list)."""
     return {"names": [m.name for m in list_materials()], "aliases": material_aliases()}
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 import shutil
 
-__all__ = ["FLAGS", "chromium_path", "launch"]
+__all__ = ["FLAGS", "chromium_path", "launch", "session"]
 
 #: Chromium's flags: no sandbox (the tests run as root in a container), no GPU, and
 #: nothing that would reach the network by itself.
@@ -47,3 +47,17 @@ def launch(playwright, headless=True):
         raise RuntimeError("no chromium on this machine (apt-get install chromium)")
     return playwright.chromium.launch(executable_path=path, headless=headless,
                                       args=list(FLAGS))
+
+
+def session(browser, width=1280, height=900):
+    """A browser session of its own (a context: no storage shared with another).
+
+    The page's Content-Security-Policy allows no evaluation of strings, which is how
+    Playwright runs its predicates and scripts in a page: the session bypasses it (the
+    page itself never evaluates a string).
+
+    Returns
+    -------
+    playwright.sync_api.BrowserContext
+    """
+    return browser.new_context(bypass_csp=True, viewport={"width": width, "height": height})
