@@ -300,10 +300,12 @@ def test_explore_warns_off_loopback(capsys, monkeypatch):
     assert "error: cannot listen on 192.0.2.1:8123 (Cannot assign requested address)" in err
 
 
-def test_explore_prints_its_address_and_serves():
-    """The command, as a user runs it: its address on loopback, the page there."""
+def test_explore_prints_its_address_and_serves(tmp_path):
+    """The command, as a user runs it: its address on loopback, the page there; ended,
+    it leaves nothing in the temporary folder."""
     proc = subprocess.Popen([sys.executable, "-m", "thermocontact", "explore"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "TMPDIR": str(tmp_path)})
     try:
         line = proc.stdout.readline()
         assert line.startswith("thermocontact explore: http://127.0.0.1:"), line
@@ -319,6 +321,9 @@ def test_explore_prints_its_address_and_serves():
         assert refused.value.code == 421
         with urllib.request.urlopen(url + "api/setup", timeout=30) as setup:
             assert "copper" in json.load(setup)["names"]
+        assert [p.name for p in tmp_path.iterdir()][0].startswith("thermocontact-explore-")
     finally:
         proc.terminate()
         proc.wait(timeout=30)
+    assert proc.returncode == 0 and "stopped" in proc.stderr.read()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith("thermocontact-explore-")]

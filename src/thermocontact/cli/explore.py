@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import signal
+
 import click
 
 __all__ = ["explore_cmd"]
@@ -33,10 +35,17 @@ def explore_cmd(host, port):
     except OSError as exc:
         raise InputError(f"cannot listen on {host}:{port} ({exc.strerror or exc})") from None
     click.echo(f"thermocontact explore: {server.url} (Ctrl-C to stop)")
+    # A termination ends the server as an interrupt does: its processes and its
+    # temporary folder go with it.
+    signal.signal(signal.SIGTERM, _stop)
     try:
         threading.Event().wait()
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemExit):
         click.echo("stopped", err=True)
     finally:
         server.shutdown()
         server.server_close()
+
+
+def _stop(signum, frame):
+    raise SystemExit(0)

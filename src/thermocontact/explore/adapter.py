@@ -278,14 +278,22 @@ def _at(record, path):
     return value
 
 
-def _shown(key, label, unit, factor, value):
-    """One number as the page shows it: its record key, its ``repr`` (what a test or
-    a screen reader reads) and a short text."""
-    if value is None or isinstance(value, str):
-        text = "—" if value is None else value
-    else:
-        text = f"{value * factor:.5g}" + (f" {unit}" if unit else "")
-    return {"key": key, "label": label, "value": repr(value), "text": text}
+def _shown(record, table, prefix="", always=()):
+    """The numbers of ``table`` (key, label, unit, factor) as the page shows them: each
+    its record key (``prefix`` + key), its ``repr`` (what a test or a screen reader
+    reads) and a short text; those absent from ``record`` left out, but for
+    ``always`` (shown as absent)."""
+    out = []
+    for key, label, unit, factor in table:
+        value = _at(record, prefix + key)
+        if value is None and key not in always:
+            continue
+        if value is None or isinstance(value, str):
+            text = "—" if value is None else value
+        else:
+            text = f"{value * factor:.5g}" + (f" {unit}" if unit else "")
+        out.append({"key": prefix + key, "label": label, "value": repr(value), "text": text})
+    return out
 
 
 def materials() -> dict:
@@ -298,14 +306,10 @@ def contact_view(state) -> dict:
     res = contact_of(state)
     rec = res.to_dict()
     prim = res.primary
-    numbers = [_shown(k, label, unit, factor, _at(rec, k))
-               for k, label, unit, factor in CONTACT_NUMBERS
-               if _at(rec, k) is not None or k in ("half_width", "flash_temperature")]
+    numbers = _shown(rec, CONTACT_NUMBERS, always=("half_width", "flash_temperature"))
     index = res.branches.index(prim) if prim is not None else None
     if index is not None:
-        numbers += [_shown(f"branches[{index}].{k}", label, unit, factor,
-                           _at(rec, f"branches[{index}].{k}"))
-                    for k, label, unit, factor in BRANCH_NUMBERS]
+        numbers += _shown(rec, BRANCH_NUMBERS, prefix=f"branches[{index}].")
     prob = res.problem
     # Hertz's pressure (the frictionless, isothermal contact) for comparison.
     ell = prob.hertz_half_width
@@ -492,9 +496,7 @@ def tei_view(state) -> dict:
     grid = grid[(grid >= 1e-9) & (grid <= 1e3)]
     curve = [_call(api.tei, *args, float(w), dundurs=kw["dundurs"]).critical_speed
              for w in grid]
-    numbers = [_shown(k, label, unit, factor, _at(rec, k))
-               for k, label, unit, factor in TEI_NUMBERS]
-    return {"numbers": numbers,
+    return {"numbers": _shown(rec, TEI_NUMBERS, always=[k for k, *_ in TEI_NUMBERS]),
             "curves": plain({"wavelength": grid, "critical_speed": curve,
                              "point": [wavelength, speed]}),
             "verdicts": {"stable_at_all_speeds": rec["stable_at_all_speeds"],

@@ -28,6 +28,7 @@ stops; nothing a client sends is used as a path.
 
 from __future__ import annotations
 
+import atexit
 import ipaddress
 import json
 import shutil
@@ -76,11 +77,13 @@ class Explorer:
     def __init__(self, running=2):
         self.folder = tempfile.mkdtemp(prefix="thermocontact-explore-")
         self.jobs = Jobs(self.folder, running=running)
+        atexit.register(self.close)  # the folder goes even if nobody closes the server
         package = files(__package__) / "static"
         self.static = {route: ((package / name).read_bytes(), kind)
                        for route, (name, kind) in STATIC.items()}
 
     def close(self):
+        """End the jobs' processes and remove the temporary folder (again: nothing)."""
         self.jobs.close()
         shutil.rmtree(self.folder, ignore_errors=True)
 
