@@ -278,6 +278,24 @@ def test_jobs_run_cancel_and_share(app):
         assert os.path.realpath(path).startswith(os.path.realpath(tempfile.gettempdir()))
 
 
+def test_jobs_are_bounded(tmp_path):
+    """No more jobs waiting or computing than the server keeps: the next is refused in
+    one line, and none starts a process before its turn."""
+    from thermocontact.explore.jobs import Jobs
+
+    jobs = Jobs(str(tmp_path), running=0, kept=2)  # none may compute: all wait
+    try:
+        ids = [jobs.start("transient", {}, key) for key in ("a", "b")]
+        assert jobs.start("transient", {}, "a") == ids[0]  # the same: shared
+        with pytest.raises(adapter.UserError, match="2 maps and runs to compute"):
+            jobs.start("transient", {}, "c")
+        assert [jobs.report(i)["status"] for i in ids] == ["queued", "queued"]
+        assert jobs.cancel(ids[1]) and jobs.report(ids[1])["status"] == "cancelled"
+        jobs.start("transient", {}, "c")
+    finally:
+        jobs.close()
+
+
 def test_loopback_only_by_name():
     assert all(map(is_loopback, ("127.0.0.1", "127.0.0.2", "::1", "[::1]", "localhost")))
     assert not any(map(is_loopback, ("0.0.0.0", "192.0.2.1", "example.org", "")))

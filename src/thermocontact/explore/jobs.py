@@ -21,7 +21,7 @@ import shutil
 import threading
 import time
 
-from .adapter import run_job
+from .adapter import UserError, run_job
 
 __all__ = ["Jobs"]
 
@@ -41,11 +41,12 @@ def _context():
 
 
 class Job:
-    """One background computation: its kind, state, folder, process and status."""
+    """One background computation: its kind, state, what identifies its result (key),
+    folder, process, progress and status."""
 
-    def __init__(self, kind, state, folder, ctx):
+    def __init__(self, kind, state, key, folder, ctx):
         self.id = secrets.token_urlsafe(12)
-        self.kind, self.state, self.folder = kind, dict(state), folder
+        self.kind, self.state, self.key, self.folder = kind, dict(state), key, folder
         self.progress = ctx.Array("d", 2, lock=False)
         self.process = None
         self.status = "queued"  # queued, running, done, failed, cancelled
@@ -73,7 +74,8 @@ class Jobs:
     running : int
         Jobs computing at once; the others wait.
     kept : int
-        Jobs remembered (with their files); the oldest finished are forgotten first.
+        Jobs remembered (with their files); the oldest finished are forgotten first, and
+        a job is refused while this many wait or compute.
     """
 
     def __init__(self, folder, running=2, kept=40):
@@ -94,11 +96,14 @@ class Jobs:
                     job.holders += 1
                     return job.id
             self._forget_old()
+            waiting = sum(j.status in ("queued", "running") for j in self._jobs.values())
+            if waiting >= self.kept:
+                raise UserError(f"the server has {waiting} maps and runs to compute: cancel "
+                                f"one, or wait for one to finish")
             folder = os.path.join(self.folder, f"job-{len(os.listdir(self.folder))}-"
                                                f"{secrets.token_hex(4)}")
             os.mkdir(folder)
-            job = Job(kind, state, folder, self._ctx)
-            job.key = key
+            job = Job(kind, state, key, folder, self._ctx)
             self._jobs[job.id] = job
         threading.Thread(target=self._run, args=(job,), daemon=True,
                          name=f"explore-{kind}").start()
