@@ -11,8 +11,10 @@ its ``change`` event; the page measures, with its own clock, the time from the e
 to the first frame painted after the new numbers are in the page.  The server (in
 this process) times its answer to each of those requests (the solve, the view, the
 JSON), so that the table splits the latency into the server's work and the rest (the
-request, drawing and painting), change by change, in the same run.  Also: the time
-from ``thermocontact explore`` to its address, and to the first view.
+request, drawing and painting), change by change, in the same run; the server's
+thread's processor time beside its wall time tells how much of it was spent waiting
+for a busy machine.  Also: the time from ``thermocontact explore`` to its address, and
+to the first view.
 """
 
 from __future__ import annotations
@@ -69,7 +71,7 @@ def startup():
     """Seconds from ``thermocontact explore`` to its address printed."""
     t0 = time.perf_counter()
     proc = subprocess.Popen([sys.executable, "-m", "thermocontact", "explore"],
-                            stdout=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     proc.stdout.readline()
     seconds = time.perf_counter() - t0
     proc.terminate()
@@ -85,14 +87,15 @@ def main(count=100):
     from thermocontact.explore.server import Explorer, serve
 
     print(f"thermocontact explore: address printed after {startup():.2f} s")
-    answered = []  # the server's milliseconds per request for a contact
+    answered, cpu = [], []  # the server's milliseconds per request for a contact
     handle = Explorer.handle
 
     def timed(self, method, target):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.thread_time()
         out = handle(self, method, target)
         if target.startswith("/api/contact"):
             answered.append(1e3 * (time.perf_counter() - t))
+            cpu.append(1e3 * (time.thread_time() - c))
         return out
     Explorer.handle = timed
     threadpool_limits(limits=1, user_api="blas")  # as the command line serves it
@@ -110,16 +113,18 @@ def main(count=100):
               f"{time.perf_counter() - t0:.2f} s")
         for name, value, _ in warm:  # not counted
             page.evaluate(MEASURE, [name, value])
-        latency, solve = [], []
+        latency, solve, solve_cpu = [], [], []
         for name, value, _ in steps:
             before = len(answered)
             latency.append(page.evaluate(MEASURE, [name, value]))
             solve.append(sum(answered[before:]))
+            solve_cpu.append(sum(cpu[before:]))
         browser.close()
     server.shutdown()
     server.server_close()
     rows = [("in the browser: change to painted", latency),
-            ("the server's answer (solve, JSON)", solve)]
+            ("the server's answer (solve, JSON)", solve),
+            ("  its processor time (its thread's)", solve_cpu)]
     print(f"\n{count} changes of one input (load, speed, radius, friction in turn), ms")
     print(f"{'':38s} {'median':>8s} {'p95':>8s} {'max':>8s}")
     for label, values in rows:

@@ -295,12 +295,14 @@
     const series = [];
     if (c.x) series.push({x: times(c.x, 1e3), y: times(c.pressure, 1e-6), label: "pressure"});
     series.push({x: times(c.hertz_x, 1e3), y: times(c.hertz_pressure, 1e-6), label: "Hertz", dashed: true, color: 3});
-    plot($("plot-pressure"), {series, xlabel: "x, mm (leading edge to the right)", ylabel: "pressure, MPa", yzero: true});
+    const xdomain = extent(series.map((t) => t.x), false);   // both plots over one x
+    plot($("plot-pressure"), {series, xdomain, xlabel: "x, mm (leading edge to the right)",
+                              ylabel: "pressure, MPa", yzero: true});
     const temps = c.x ? [
       {x: times(c.x, 1e3), y: c.temperature_cylinder, label: "cylinder's surface", color: 1},
       {x: times(c.x, 1e3), y: c.temperature_half_plane, label: "half-plane's surface", color: 2, dashed: true},
     ] : [];
-    plot($("plot-temperature"), {series: temps, xlabel: "x, mm",
+    plot($("plot-temperature"), {series: temps, xdomain, xlabel: "x, mm",
                                  ylabel: view.verdicts.temperatures});
     if (tab === "contact") setCode(view.code);
     const panel = $("panel-contact");
