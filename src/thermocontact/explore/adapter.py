@@ -578,7 +578,13 @@ def run_job(kind, state, folder, progress):
     run (``"transient"``) of ``state``; writes ``<kind>.nc`` and ``view.json`` in
     ``folder``, or ``error.json`` with the page's words.  ``progress`` is a shared array
     ``[done, total]``."""
+    import signal
+
     from threadpoolctl import threadpool_limits
+
+    # Ctrl-C in the server's terminal reaches every process of its group: the server
+    # ends the jobs itself, so a job does not answer it with a traceback of its own.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
     def tell(done, total):
         progress[0], progress[1] = float(done), float(total)
