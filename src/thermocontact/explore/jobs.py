@@ -119,6 +119,7 @@ class Jobs:
                     daemon=True)
                 job.process.start()
                 job.status = "running"
+                job.started = time.monotonic()  # its seconds count from here on
             job.process.join()
             with self._lock:
                 job.seconds = time.monotonic() - job.started

@@ -412,8 +412,16 @@
     const secs = `${r.seconds.toFixed(1)} s`;
     if (r.status === "queued") $(`${kind}-status`).textContent = `waiting for a free core (${secs})`;
     if (r.status === "running") {
-      $(`${kind}-status`).textContent = r.total > 0
-        ? `computing: ${r.done} of ${r.total} (${secs})` : `starting (${secs})`;
+      let text = `starting (${secs})`;
+      if (r.total > 0) {
+        text = `computing: ${r.done} of ${r.total} (${secs})`;
+        if (r.done > 0 && r.done < r.total) {
+          const rate = r.done / r.seconds;   // steps of its progress per second
+          text = `computing: ${r.done} of ${r.total}, ${Number(rate.toPrecision(2))} a second, ` +
+                 `about ${Math.ceil((r.total - r.done) / rate)} s left (${secs})`;
+        }
+      }
+      $(`${kind}-status`).textContent = text;
     }
     if (r.status === "queued" || r.status === "running") {
       setTimeout(() => poll(kind, id), 250);
