@@ -37,7 +37,7 @@ from ..problem.units import parse_quantity
 from ..problem.validation import InputError
 
 __all__ = ["DEFAULTS", "EXPECTED", "FIELDS", "UserError", "code_for", "contact_csv", "contact_record",
-           "contact_view", "explain", "job_key", "materials", "parse_state", "run_job",
+           "contact_view", "explain", "job_key", "parse_state", "run_job", "setup",
            "tei_view"]
 
 #: The single contact's fields: the keyword names of :func:`thermocontact.contact`, with
@@ -296,9 +296,17 @@ def _shown(record, table, prefix="", always=()):
     return out
 
 
-def materials() -> dict:
-    """The materials of the library's table, their names and aliases (the page's list)."""
-    return {"names": [m.name for m in list_materials()], "aliases": material_aliases()}
+#: The closure by the bulk temperatures: its fields (instead of ``lam``).
+TEMPERATURES = ("bulk_temperatures", "sink_distance", "layer_thickness")
+
+
+def setup() -> dict:
+    """What the page needs first: its fields (the contact's, the closure by temperatures
+    among them, the other tabs', those always written in its URL) and their defaults,
+    and the materials of the library's table (names and aliases)."""
+    return {"point": list(POINT), "temperatures": list(TEMPERATURES), "extra": list(EXTRA),
+            "always": [*REQUIRED, "lam", *TEMPERATURES], "defaults": DEFAULTS,
+            "names": [m.name for m in list_materials()], "aliases": material_aliases()}
 
 
 def contact_view(state) -> dict:

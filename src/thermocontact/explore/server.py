@@ -13,7 +13,7 @@ Routes
 ``GET /api/contact?<state>``     the contact tab's view, or the errors by field
 ``GET /api/tei?<state>``         the TEI tab's view
 ``GET /api/code?<state>&tab=``   the command and the Python call of a tab
-``GET /api/setup``               the library's materials, the fields' defaults
+``GET /api/setup``               the fields, their defaults, the library's materials
 ``POST /api/jobs?kind=&<state>`` start a map or a transient run (or join the same one)
 ``GET /api/jobs/<id>``           its status, progress and, once done, its view
 ``POST /api/jobs/<id>/cancel``   cancel it
@@ -117,7 +117,7 @@ class Explorer:
 
     def _route(self, method, path, query):
         if method == "GET" and path == "/api/setup":
-            return self._json({**adapter.materials(), "defaults": adapter.DEFAULTS})
+            return self._json(adapter.setup())
         if method == "GET" and path in ("/api/contact", "/api/tei", "/api/code",
                                         "/download/point.json", "/download/point.csv"):
             state = adapter.parse_state(query)

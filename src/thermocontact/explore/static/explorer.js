@@ -5,13 +5,10 @@
 // (data-quantity, data-value).
 "use strict";
 (() => {
-  const POINT = ["cylinder", "half_plane", "radius", "load", "speed", "speed2", "friction",
-                 "lam", "bulk_temperatures", "sink_distance", "layer_thickness", "dundurs"];
-  const TEMPERATURES = ["bulk_temperatures", "sink_distance", "layer_thickness"];
-  const EXTRA = ["x", "y", "wavelength", "duration", "steps", "elements"];
-  // Keys always written in the URL (the others when they differ from the default).
-  const ALWAYS = ["cylinder", "half_plane", "radius", "load", "speed", "friction", "lam",
-                  "bulk_temperatures", "sink_distance", "layer_thickness"];
+  // The fields, from the server (its adapter names them): the contact's (the keyword
+  // names of thermocontact.contact), the closure by temperatures among them, the other
+  // tabs', and those always written in the URL (the others when not their default).
+  let POINT = [], TEMPERATURES = [], EXTRA = [], ALWAYS = [];
   const TABS = ["contact", "map", "tei", "transient"];
   const SVG = "http://www.w3.org/2000/svg";
   const $ = (id) => document.getElementById(id);
@@ -617,7 +614,7 @@
 
   async function start() {
     const setup = await (await fetch("/api/setup")).json();
-    defaults = setup.defaults;
+    ({defaults, point: POINT, temperatures: TEMPERATURES, extra: EXTRA, always: ALWAYS} = setup);
     const list = $("materials");
     for (const name of [...setup.names, ...Object.keys(setup.aliases)].sort()) {
       const o = document.createElement("option");
