@@ -35,7 +35,7 @@ def kwargs(state):
 
 
 def record_at(record, key):
-    return adapter._at(record, key)
+    return adapter.record_value(record, key)
 
 
 @pytest.fixture(scope="module")

@@ -118,9 +118,9 @@ class Session:
 
 
 def at(record, key):
-    from thermocontact.explore.adapter import _at
+    from thermocontact.explore.adapter import record_value
 
-    return _at(record, key)
+    return record_value(record, key)
 
 
 def assert_shown_is(shown, record):

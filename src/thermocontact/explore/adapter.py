@@ -36,9 +36,9 @@ from ..problem.materials import get_material, list_materials, material_aliases
 from ..problem.units import parse_quantity
 from ..problem.validation import InputError
 
-__all__ = ["DEFAULTS", "EXPECTED", "FIELDS", "UserError", "code_for", "contact_csv", "contact_record",
-           "contact_view", "explain", "job_key", "parse_state", "run_job", "setup",
-           "tei_view"]
+__all__ = ["DEFAULTS", "EXPECTED", "FIELDS", "UserError", "code_for", "contact_csv",
+           "contact_record", "contact_view", "explain", "job_key", "parse_state", "record_value",
+           "run_job", "setup", "tei_view"]
 
 #: The single contact's fields: the keyword names of :func:`thermocontact.contact`, with
 #: the page's defaults (the README's copper-on-steel contact) and their SI units
@@ -56,7 +56,7 @@ POINT = {
 #: duration, steps and elements (:func:`thermocontact.contact_transient`; an empty
 #: duration is :data:`TRANSIENT_UNITS` times ``l^2/kappa2``).
 EXTRA = {
-    "x": ("load:5000:500000:15:log", None), "y": ("speed:0.2:20:15:log", None),
+    "x": ("load:1000:1000000:21:log", None), "y": ("speed:0.1:50:21:log", None),
     "wavelength": ("50mm", "m"),
     "duration": ("", "s"), "steps": ("200", None), "elements": ("120", None),
 }
@@ -262,8 +262,10 @@ def _contact(items):
     return _call(api.contact, **dict(items))
 
 
-def _at(record, path):
-    """``record`` at ``path`` (``"a.b[0].c"``), or None where it has no such entry."""
+def record_value(record, path):
+    """``record`` (a result's ``to_dict()``) at ``path``, a record key as the page's
+    ``data-quantity`` writes it (``"flash_temperature"``, ``"peak_temperatures[0]"``,
+    ``"branches[0].min_gap_margin"``); None where it has no such entry."""
     value = record
     for part in path.replace("]", "").replace("[", ".").split("."):
         if isinstance(value, list):
@@ -285,7 +287,7 @@ def _shown(record, table, prefix="", always=()):
     ``always`` (shown as absent)."""
     out = []
     for key, label, unit, factor in table:
-        value = _at(record, prefix + key)
+        value = record_value(record, prefix + key)
         if value is None and key not in always:
             continue
         if value is None or isinstance(value, str):
