@@ -58,6 +58,15 @@ def test_every_number_shown_is_the_records(views, name):
     assert view["verdicts"]["applicable"]["reasons"] == record["applicability_reasons"]
 
 
+def test_a_moving_half_plane_shows_its_temperatures():
+    state = {**POINT, "speed2": "0.5m/s"}
+    view = adapter.contact_view(state)
+    record = tc.contact(**kwargs(state)).to_dict()
+    shown = {n["key"]: n["value"] for n in view["numbers"]}
+    for key in ("half_plane_incoming_temperature", "flash_temperature_half_plane"):
+        assert shown[f"branches[0].{key}"] == repr(record["branches"][0][key])
+
+
 def test_hertz_pressure_for_comparison(views):
     """The dashed Hertz curve: its peak is the record's Hertz peak pressure and it
     carries the load (Simpson's rule on the cosine points: a few parts in 1e4)."""

@@ -94,10 +94,15 @@ CONTACT_NUMBERS = (
     ("fhpe", "coupling fHPe", "", 1.0),
     ("error_estimate", "error estimate of P_H/P", "", 1.0),
 )
-#: Validity margins of the primary branch, from ``branches[i]`` of the record.
+#: Numbers of the primary branch, from ``branches[i]`` of the record: its validity
+#: margins, and a moving half-plane's temperatures.
 BRANCH_NUMBERS = (
     ("min_pressure_margin", "least pressure margin", "", 1.0),
     ("min_gap_margin", "least gap margin", "", 1.0),
+    # A moving half-plane, lam given: its incoming temperature the partition implies.
+    ("half_plane_incoming_temperature", "half-plane's incoming temperature over the "
+                                        "cylinder's", "K", 1.0),
+    ("flash_temperature_half_plane", "half-plane's flash temperature", "K", 1.0),
 )
 TEI_NUMBERS = (
     ("critical_speed", "critical speed", "m/s", 1.0),

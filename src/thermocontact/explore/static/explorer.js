@@ -273,8 +273,9 @@
       svgEl("line", {x1: x, x2: x + 22, y1: y - 4, y2: y - 4, class: `series s${s.color ?? i}` + (s.dashed ? " dashed" : "")}, svg);
       svgEl("text", {x: x + 28, y}, svg).textContent = s.label;
     });
+    const inside = (v, d) => v >= Math.min(...d) && v <= Math.max(...d);
     for (const mk of spec.markers || []) {
-      if (mk.x === null || mk.y === null) continue;
+      if (mk.x == null || mk.y == null || !inside(mk.x, xd) || !inside(mk.y, yd)) continue;
       svgEl("circle", {cx: sx(mk.x), cy: sy(mk.y), r: 6, class: "marker"}, svg);
       if (mk.label) svgEl("text", {x: sx(mk.x) + 9, y: sy(mk.y) - 8}, svg).textContent = mk.label;
     }
