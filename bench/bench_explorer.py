@@ -135,6 +135,13 @@ def main(count=100):
     print(f"ratio of the medians, browser/server: "
           f"{statistics.median(latency) / statistics.median(solve):.2f}")
     print(f"changes shown within 300 ms: {sum(v <= 300 for v in latency)} of {count}")
+    print("\nby the input changed, ms: median in the browser, median and p95 of the "
+          "server's processor time")
+    for name in ("load", "speed", "radius", "friction"):
+        pick = [i for i, (n, _, _) in enumerate(steps) if n == name]
+        ms = [solve_cpu[i] for i in pick]
+        print(f"  {name:9s} {statistics.median([latency[i] for i in pick]):8.1f} "
+              f"{statistics.median(ms):8.1f} {percentile(ms, 0.95):8.1f}")
 
 
 if __name__ == "__main__":
