@@ -262,6 +262,8 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         res = contact(cylinder, half_plane, progress=bar, tol=tol, **inputs)
         bar.close()
         if csv_file is not None:
+            from ..io.tables import write_contact_csv
+
             write_contact_csv(res, csv_file)
         if plot_file is not None:
             from ..plotting.curves import contact_figure
@@ -281,18 +283,6 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     else:
         click.echo(contact_summary(res)
                    + ("\n" + stability_summary(record["stability"]) if stability else ""))
-
-
-def write_contact_csv(res, path):
-    from ..io.tables import write_table
-
-    rows = ([i + 1, int(b.valid)] + [float(v) for v in row]
-            for i, b in enumerate(res.branches)
-            for row in zip(b.x, b.pressure, b.temperature_cylinder, b.temperature_half_plane))
-    write_table(path, ["SI units; temperatures are rises above the cylinder's incoming "
-                       "surface temperature"],
-                ["branch", "valid", "x", "pressure", "temperature_cylinder",
-                 "temperature_half_plane"], rows)
 
 
 def _contact_transient(cylinder, half_plane, materials_file, radius, load, speed, friction,

@@ -25,6 +25,7 @@ __all__ = ["cli", "main"]
 COMMANDS = {
     "boundary": (".boundary", "boundary_cmd"),
     "contact": (".contact", "contact_cmd"),
+    "explore": (".explore", "explore_cmd"),
     "map": (".maps", "map_cmd"),
     "reproduce": (".reproduce", "reproduce_cmd"),
     "solve": (".solve", "solve_cmd"),
