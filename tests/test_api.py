@@ -105,7 +105,7 @@ def test_errors_name_parameters_in_python_and_flags_on_the_command_line(capsys):
                  "--lam", "1"]) == 2
     assert capsys.readouterr().err == ("error: --K2-over-K1 must be given (it is not the "
                                        "parameter followed)\n")
-    with pytest.raises(InputError, match="^give exactly one of lam and sigma"):
+    with pytest.raises(InputError, match="^give exactly one closure: lam, sigma_over_delta"):
         tc.boundary("fhpe", 0, 1, pe=5, K2_over_K1=1)
     with pytest.raises(InputError, match="^radius must be > 0"):
         tc.contact("steel", "copper", radius=-1, load=1e4, speed=1, friction=0.1, lam=0)

@@ -79,7 +79,7 @@ def test_numbers_given_as_strings_are_those_numbers(short_run):
     (dict(steps=True), "steps must be an integer in [1, 100000], got True"),
     (dict(steps=10.5), "steps must be an integer in [1, 100000], got 10.5"),
     (dict(elements=False), "elements must be an integer in [8, 4000], got False"),
-    (dict(start=None), "start must be one of ['hertz', 'steady']"),
+    (dict(initial=None), "initial must be one of ['hertz', 'steady']"),
 ])
 def test_a_transient_run_refuses_wrong_types_by_name(kw, message):
     """Tracebacks before (ValueError, TypeError): InputError naming the parameter, and

@@ -80,7 +80,7 @@ def test_boundary_command(capsys):
     (["--along", "bogus", "--pe", "5", "--K2-over-K1", "10", "--lam", "1"],
      "--along must be one of"),
     (["--along", "fhpe", "--pe", "5", "--lam", "1"], "--K2-over-K1 must be given"),
-    (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10"], "give exactly one of --lam"),
+    (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10"], "give exactly one closure: --lam"),
     (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10", "--lam", "1", "--to", "0"],
      "stop must differ from start"),
 ])

@@ -196,10 +196,10 @@ def test_the_layer_is_the_sink_law_with_l_4h_over_pi():
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(theta=0.0, sink_distance=1.0), r"sink_distance must be in \(1, 1e\+12\]"),
+    (dict(theta=0.0, sink_distance=1.0), r"sink_distance_over_delta must be in \(1, 1e\+12\]"),
     (dict(theta=0.0), "stationary half-plane needs sink_distance"),
     (dict(theta=0.0, sink_distance=5.0, speed_ratio=-0.5), "stationary half-plane only"),
-    (dict(theta=0.0, sink_distance=5.0, lam=0.2), "exactly one of"),
+    (dict(theta=0.0, sink_distance=5.0, lam=0.2), "exactly one closure"),
     (dict(lam=0.2, sink_distance=5.0), "with theta only"),
     (dict(theta=float("nan"), sink_distance=5.0), "theta must be"),
 ])

@@ -41,7 +41,7 @@ def test_file_holds_every_variable_and_the_inputs(complete):
     assert (attrs["pe_hertz"], attrs["fhpe_hertz"], attrs["K2_over_K1"]) == (2.7, 0.36, 10.0)
     assert (attrs["until"], attrs["steps"], attrs["elements"], attrs["lam"]) == (0.5, 40, 96, 1)
     assert attrs["theta"] == "none" and attrs["k2_over_k1"] == "none"
-    assert list(attrs["window"]) == [-3.0, 3.0] and attrs["start"] == "hertz"
+    assert list(attrs["window"]) == [-3.0, 3.0] and attrs["initial"] == "hertz"
     assert attrs["status"] == "complete"
     h = 6.0 / 96
     np.testing.assert_allclose(ds["pressure"].values.sum(axis=1) * h, 1.0, rtol=1e-12)

@@ -497,8 +497,8 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
                              parameters=(k,))
     closures = [k for k in ("lam", "sigma_over_delta", "theta") if k in fixed or k == name]
     if len(closures) != 1:
-        raise InputError("give one closure (lam, sigma_over_delta or closure), or follow "
-                         "one of lam, sigma_over_delta and theta",
+        raise InputError("give exactly one closure: lam, sigma_over_delta or closure (or "
+                         "follow one of lam, sigma_over_delta and theta)",
                          parameters=("lam", "sigma_over_delta", "closure"))
     _check_sink(fixed, closures[0], (name,))
     path = follow(fixed, name, _number("start", start), _number("stop", stop),
@@ -982,15 +982,19 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
 
 
 def _transient_closure(closure, lam) -> dict:
-    """A transient run's closure as its keywords: ``lam`` or ``theta`` (its far
-    temperatures, both bodies infinite: no sink)."""
-    found = closure_of(closure, lam=lam, kinds=(HeatPartition, FarTemperatures),
-                       required=False)
-    if isinstance(found, FarTemperatures) and found.sink_distance_over_delta is not None:
-        raise InputError("a transient run's far temperatures have no sink (both bodies are "
-                         "infinite): give FarTemperatures(theta) alone",
-                         parameters=("closure",))
-    return {} if found is None else found.keywords()
+    """A transient run's closure as its specification's ``lam`` and ``theta`` (its far
+    temperatures, both bodies infinite: no sink); how many are given, and whether the
+    initial state takes them, the specification checks (TransientSpec)."""
+    if closure is None:
+        return {"lam": lam}
+    if not isinstance(closure, (HeatPartition, FarTemperatures)) or closure.keywords().keys() & (
+            {"lam"} if lam is not None else set()):
+        closure_of(closure, lam=lam, kinds=(HeatPartition, FarTemperatures))
+    if isinstance(closure, FarTemperatures) and (closure.sink_distance_over_delta is not None
+                                                 or closure.theta is None):
+        raise InputError("a transient run's far temperatures are FarTemperatures(theta) "
+                         "alone: both bodies are infinite (no sink)", parameters=("closure",))
+    return {"lam": lam, **closure.keywords()}
 
 
 @deprecated_spellings(renamed=(("start", "initial"),), closure="dimensionless")
@@ -1016,7 +1020,7 @@ def transient_spec(pe_hertz, fhpe_hertz, K2_over_K1, *, until, steps, lam=None, 
                          until=until, steps=steps, k2_over_k1=k2_over_k1,
                          delta1_over_delta2=delta1_over_delta2, lam=given.get("lam"),
                          theta=given.get("theta"), elements=elements, window=window,
-                         start=initial, hold=hold, perturb=perturb, conductance=conductance)
+                         initial=initial, hold=hold, perturb=perturb, conductance=conductance)
 
 
 def compute_transient(spec, *, resume=None, progress=None, save=None, save_every=30.0,

@@ -10,7 +10,8 @@ import click
 from .._version import __version__
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..problem.errors import InputError
-from .options import (bulk_temperatures_closure, far_temperatures, physical_options,
+from .options import (at_most_one_closure, bulk_temperatures_closure, far_temperatures,
+                      physical_options,
                       problem_options)
 from .progress import StageProgress
 
@@ -65,8 +66,14 @@ def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_ov
     bar = StageProgress(f"boundary along {along}")
     physical = (cylinder is not None or half_plane is not None
                 or along.replace("-", "_") in PHYSICAL_ALONG)
-    closure = (bulk_temperatures_closure(bulk_temperatures, sink_distance, layer_thickness)
-               if physical else far_temperatures(theta, sink_distance))
+    at_most_one_closure(lam=lam, sigma=sigma, theta=theta,
+                        bulk_temperatures=bulk_temperatures)
+    # (A physical path without its bodies is refused by the call, naming them first.)
+    closure = (None if physical and (cylinder is None or half_plane is None)
+               else bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,
+                                              layer_thickness)
+               if physical else far_temperatures(theta, sink_distance,
+                                                 along.replace("-", "_") == "theta"))
     if physical and theta is not None:
         raise InputError("theta belongs to a dimensionless path, not to one with cylinder",
                          parameters=("theta", "cylinder"))

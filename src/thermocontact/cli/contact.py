@@ -214,7 +214,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
                          "contact: give neither --zones nor --conductance",
                          parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
-                  closure=bulk_temperatures_closure(bulk_temperatures, sink_distance,
+                  closure=bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,
                                                     layer_thickness),
                   speed2=speed2, dundurs=dundurs is not False, materials=materials_file)
     if conductance is not None and not zones:

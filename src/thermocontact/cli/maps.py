@@ -12,7 +12,8 @@ import click
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..problem.validation import InputError
-from .options import (bulk_temperatures_closure, contact_set_options, far_temperatures,
+from .options import (at_most_one_closure, bulk_temperatures_closure, contact_set_options,
+                      far_temperatures,
                       parse_conductance, physical_options, problem_options)
 
 __all__ = ["map_cmd"]
@@ -194,8 +195,11 @@ def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2
     if operating and theta is not None:
         raise InputError("theta belongs to a dimensionless map, not to an operating map",
                          parameters=("theta", "cylinder"))
-    closure = (bulk_temperatures_closure(bulk_temperatures, sink_distance, layer_thickness)
-               if operating else far_temperatures(theta, sink_distance))
+    at_most_one_closure(lam=lam, sigma=sigma, theta=theta,
+                        bulk_temperatures=bulk_temperatures)
+    axes = (x_spec.split(":")[0], y_spec.split(":")[0])
+    closure = (bulk_temperatures_closure(lam, bulk_temperatures, sink_distance, layer_thickness)
+               if operating else far_temperatures(theta, sink_distance, "theta" in axes))
     spec = map_spec(Axis.parse(x_spec, "--x"), Axis.parse(y_spec, "--y"), pe=pe, fhpe=fhpe,
                     K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2,

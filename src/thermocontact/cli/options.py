@@ -158,19 +158,46 @@ def given_here(name) -> bool:
     return source not in (None, ParameterSource.DEFAULT)
 
 
-def far_temperatures(theta, sink_distance):
+def at_most_one_closure(**given) -> None:
+    """At most one of the closure's flags (a path or a map may follow the closure)."""
+    names = [name for name, value in given.items() if value is not None]
+    if len(names) > 1:
+        raise InputError(f"give at most one of {', '.join(given)}, got {' and '.join(names)}",
+                         parameters=tuple(names))
+
+
+def far_temperatures(theta, sink_distance, may_follow=False):
     """The closure of ``--theta`` and ``--sink-distance`` (a dimensionless command's sink
-    distance, in its half-widths), or None where neither is given."""
+    distance, in its half-widths), or None where neither is given; ``--sink-distance``
+    alone only where the command may follow theta (a path along it, a map over it)."""
     if theta is None and sink_distance is None:
         return None
+    if theta is None and not may_follow:
+        raise InputError("sink_distance is given with theta only (the far temperatures)",
+                         parameters=("sink_distance", "theta"))
     from ..problem.closure import FarTemperatures
 
     return FarTemperatures(theta, sink_distance)
 
 
-def bulk_temperatures_closure(temperatures, sink_distance, layer_thickness):
+def bulk_temperatures_closure(lam, temperatures, sink_distance, layer_thickness):
     """The closure of ``--bulk-temperatures`` with ``--sink-distance`` or
-    ``--layer-thickness`` (metres, or with units), or None where none is given."""
+    ``--layer-thickness`` (metres, or with units), or None where none is given; exactly
+    one of ``--lam`` and ``--bulk-temperatures`` where either is."""
+    if temperatures is None:
+        for name, value in (("sink_distance", sink_distance),
+                            ("layer_thickness", layer_thickness)):
+            if value is not None:
+                raise InputError(f"give bulk_temperatures, not lam, with {name}" if lam
+                                 is not None else f"{name} is given with bulk_temperatures "
+                                 f"only", parameters=("bulk_temperatures", "lam", name))
+        if lam is None:
+            raise InputError("give exactly one of lam and bulk_temperatures",
+                             parameters=("lam", "bulk_temperatures"))
+        return None
+    if lam is not None:
+        raise InputError("give exactly one of lam and bulk_temperatures",
+                         parameters=("lam", "bulk_temperatures"))
     from ..problem.closure import spelled_closure
 
     given = {"bulk_temperatures": temperatures, "sink_distance": sink_distance,

@@ -31,7 +31,8 @@ from ..io.results import plain
 from ..io.tables import write_contact_csv
 from ..physics.reference_solutions import hertz_pressure
 from ..problem.axes import Axis
-from ..problem.errors import SolveError
+from ..problem.closure import spelled_closure
+from ..problem.errors import Error, SolveError
 from ..problem.materials import get_material, list_materials, material_aliases
 from ..problem.units import parse_quantity
 from ..problem.validation import InputError
@@ -119,7 +120,7 @@ TEI_NUMBERS = (
 EXPECTED = (InputError, SolveError)
 
 
-class UserError(Exception):
+class UserError(Error):
     """What the page tells a user about bad input: a message per field and one for all.
 
     Attributes
@@ -264,7 +265,21 @@ CACHED = 64
 
 @functools.lru_cache(maxsize=CACHED)
 def _contact(items):
-    return _call(api.contact, **dict(items))
+    return _call(api.contact, **library_keywords(dict(items)))
+
+
+def library_keywords(kw) -> dict:
+    """The page's fields (the command line's words: ``bulk_temperatures`` with
+    ``sink_distance`` or ``layer_thickness``) as the library's keywords: the bulk
+    temperatures as ``closure=BulkTemperatures(...)``."""
+    kw = dict(kw)
+    given = {k: kw.pop(k) for k in TEMPERATURES if k in kw}
+    if given:
+        try:
+            kw["closure"] = spelled_closure(given, physical=True)[0]
+        except InputError as exc:
+            raise explain(exc) from None
+    return kw
 
 
 def record_value(record, path):
@@ -398,7 +413,11 @@ def code_for(state, tab="contact") -> dict:
              for k, v in kw.items()]
     if not dundurs:
         args.append("--no-dundurs")
-    pyargs = [f"{k}={_python_value(k, v)}" for k, v in kw.items()]
+    pyargs = [f"{k}={_python_value(k, v)}" for k, v in kw.items() if k not in TEMPERATURES]
+    if "bulk_temperatures" in kw:
+        t1, t2 = kw["bulk_temperatures"].split(",")
+        sinks = "".join(f", {k}={kw[k]!r}" for k in TEMPERATURES[1:] if k in kw)
+        pyargs.append(f"closure=tc.BulkTemperatures({t1.strip()!r}, {t2.strip()!r}{sinks})")
     if not dundurs:
         pyargs.append("dundurs=False")
     head = f"{cyl!r}, {half!r}, "
@@ -414,9 +433,10 @@ def code_for(state, tab="contact") -> dict:
         ratio = _speed_ratio(state)
         if ratio:
             command += f" --speed-ratio {ratio!r}"
+        fixed_args = [a for a in pyargs if a.split("=")[0] in fixed or a.startswith("closure=")]
         python = (f"tc.operating_map(tc.Axis.parse({x.spec!r}), tc.Axis.parse({y.spec!r}), "
                   f"cylinder={cyl!r}, half_plane={half!r}, "
-                  + ", ".join(f"{k}={_python_value(k, v)}" for k, v in fixed.items())
+                  + ", ".join(a for a in fixed_args if not a.startswith("dundurs="))
                   + (f", speed_ratio={ratio!r}" if ratio else "")
                   + ("" if dundurs else ", dundurs=False") + ")")
     elif tab == "tei":
@@ -473,7 +493,7 @@ def map_spec_of(state):
     kw.pop("speed2", None)
     for axis in axes:
         kw.pop(axis.name)
-    return _call(api.map_spec, axes[0], axes[1], speed_ratio=ratio, **kw)
+    return _call(api.map_spec, axes[0], axes[1], speed_ratio=ratio, **library_keywords(kw))
 
 
 def map_view(ds) -> dict:

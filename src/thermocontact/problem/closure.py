@@ -19,7 +19,7 @@ from .validation import check_finite, check_positive, check_range
 __all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures",
            "HeatPartition", "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX",
            "Temperatures", "check_closure_range", "check_sink_distance", "check_theta",
-           "closure_of", "layer_sink_distance", "spelled_closure", "temperature_closure",
+           "closure_of", "far_temperatures", "layer_sink_distance", "spelled_closure", "temperature_closure",
            "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
@@ -308,8 +308,16 @@ def closure_of(closure=None, *, kinds=DIMENSIONLESS_CLOSURES, required=True, **s
         given.append((name, value))
     names = [name for name, _ in given]
     accepted = " or ".join(k.__name__ for k in kinds)
+    template = [value for _, value in given
+                if isinstance(value, FarTemperatures) and value.theta is None]
+    if template and (len(given) > 1 or required):
+        # The far temperatures' sink without their group: for a path or map that
+        # follows theta only.
+        raise InputError("sink_distance_over_delta is given with theta only: "
+                         "FarTemperatures(theta, sink_distance_over_delta)",
+                         parameters=("sink_distance_over_delta", "theta"))
     if len(given) > 1:
-        raise InputError(f"give one closure ({accepted}), got {' and '.join(names)}",
+        raise InputError(f"give exactly one closure, got {' and '.join(names)} ({accepted})",
                          parameters=tuple(names))
     if not given:
         if required:
@@ -321,6 +329,19 @@ def closure_of(closure=None, *, kinds=DIMENSIONLESS_CLOSURES, required=True, **s
     if not isinstance(value, kinds):
         raise InputError(f"{name} must be {accepted}, got {value!r}", parameters=(name,))
     return value
+
+
+def far_temperatures(temperatures) -> FarTemperatures:
+    """The closure of the solvers' ``Temperatures`` (or ``(theta, L/Delta)``) as given to
+    ``Model.solve`` before version 1.0."""
+    if isinstance(temperatures, Temperatures):
+        return FarTemperatures(temperatures.theta, temperatures.sink_distance)
+    try:
+        theta, sink = temperatures
+    except (TypeError, ValueError):
+        raise InputError(f"temperatures must be Temperatures or (theta, L/Delta), got "
+                         f"{temperatures!r}", parameters=("temperatures",)) from None
+    return FarTemperatures(theta, sink)
 
 
 def spelled_closure(kwargs: dict, physical: bool):

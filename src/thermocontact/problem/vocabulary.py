@@ -59,6 +59,7 @@ VOCABULARY = {
     "dundurs": ("", "keep the Dundurs term of the friction traction (flag)"),
     "wavelength": ("m", "a perturbation's wavelength (TEI)"),
     "duration": ("s", "time computed by a transient contact"),
+    "temperature_difference": ("K", "T2 - T1, followed by a physical path"),
     # Materials (problem/materials.py).
     "name": ("", "a name (a material's, an axis's parameter)"),
     "E": ("Pa", "Young's modulus"),
@@ -130,7 +131,7 @@ DEPRECATED = {
 }
 
 
-def deprecated_spellings(*, renamed=(), closure=None, physical=None):
+def deprecated_spellings(*, renamed=(), closure=None, physical=None, converted=()):
     """A public call that still takes the spellings of versions before 1.0, each with a
     :class:`DeprecationWarning` naming what replaces it (:data:`DEPRECATED`).
 
@@ -138,6 +139,8 @@ def deprecated_spellings(*, renamed=(), closure=None, physical=None):
     ----------
     renamed : sequence of (str, str)
         ``(old, new)`` keyword names.
+    converted : sequence of (str, str, callable)
+        ``(old, new, convert)``: ``new=convert(old value)``.
     closure : {"dimensionless", "physical", "either"}, optional
         The call's closure keywords of earlier versions (``theta``, ``sink_distance``,
         ``bulk_temperatures``, ``layer_thickness``) become its ``closure=``
@@ -164,6 +167,14 @@ def deprecated_spellings(*, renamed=(), closure=None, physical=None):
                                          parameters=(new,))
                     kwargs[new] = kwargs.pop(old)
                     used.append(f"{old}= ({new}=)")
+            for old, new, convert in converted:
+                if kwargs.get(old) is not None:
+                    if kwargs.get(new) is not None:
+                        raise InputError(f"give {new}, not both {old} and {new}",
+                                         parameters=(new,))
+                    kwargs[new] = convert(kwargs.pop(old))
+                    used.append(f"{old}= ({new}=)")
+                kwargs.pop(old, None)
             if closure is not None:
                 kind = (physical(args, kwargs) if closure == "either"
                         else closure == "physical")

@@ -34,7 +34,7 @@ from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range, closure_of,
-                               temperature_closure)
+                               far_temperatures, temperature_closure)
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
                                   check_finite, check_flag, check_integer, check_numbers,
@@ -396,6 +396,7 @@ class Model:
         coarse = [m for m in (self.n // 4, self.n // 2) if m >= N_RANGE[0]]
         return coarse + [self.n], self.n
 
+    @deprecated_spellings(converted=(("temperatures", "closure", far_temperatures),))
     def solve(self, fhpe, *, lam=None, sigma_over_delta=None, closure=None,
               check_convergence=False, progress=None, polish=True,
               _stacklevel=2) -> ContactSolution:

@@ -88,7 +88,7 @@ class TransientSpec:
         The problem in units of ``l`` (as ``zones``): ``Pe_l = v l/(2 k2)``,
         ``F_l = f H Pe_l``.
     lam, theta : float or None
-        The closure: exactly one with ``start = "hertz"``; with ``start = "steady"``
+        The closure: exactly one with ``initial = "hertz"``; with ``initial = "steady"``
         ``lam`` picks the steady state and ``hold`` says what is then held.
     until : float
         Duration, units ``l^2/kappa2``, at least :data:`UNTIL_MIN`.
@@ -98,9 +98,9 @@ class TransientSpec:
         Elements on the window.
     window : (float, float)
         Where contact may occur, units ``l``.
-    start : {"hertz", "steady"}
+    initial : {"hertz", "steady"}
     hold : {"theta", "lam"}
-        With ``start = "steady"``: the far temperatures (default) or the heat partition.
+        With ``initial = "steady"``: the far temperatures (default) or the heat partition.
     perturb : float
         The load is ``1 + perturb`` during the first step.
     conductance : (float, float) or None
@@ -118,7 +118,7 @@ class TransientSpec:
     theta: float | None = None
     elements: int = 240
     window: tuple = (-3.0, 3.0)
-    start: str = "hertz"
+    initial: str = "hertz"
     hold: str = "theta"
     perturb: float = 0.0
     conductance: tuple | None = None
@@ -159,23 +159,23 @@ class TransientSpec:
             raise InputError(f"window must be at most {self.elements} half-widths wide "
                              f"with {self.elements} elements (each at most one, two across "
                              f"Hertz's contact), got ({lo!r}, {hi!r})", parameters=("window",))
-        check_choice("start", self.start, ("hertz", "steady"))
+        check_choice("initial", self.initial, ("hertz", "steady"))
         check_choice("hold", self.hold, ("theta", "lam"))
-        if self.start == "hertz" and (self.lam is None) == (self.theta is None):
+        if self.initial == "hertz" and (self.lam is None) == (self.theta is None):
             raise InputError("give one closure: lam (the heat partition held) or theta (the "
                              "far temperatures held)", parameters=("lam", "theta"))
-        if self.start == "steady" and (self.lam is None or self.theta is not None):
-            raise InputError("start='steady' takes lam (which steady state) and no theta",
-                             parameters=("lam", "theta", "start"))
+        if self.initial == "steady" and (self.lam is None or self.theta is not None):
+            raise InputError("initial='steady' takes lam (which steady state) and no theta",
+                             parameters=("lam", "theta", "initial"))
         if self.lam is not None:
             fix("lam", check_range("lam", self.lam, -1.0, 1.0))
         if self.theta is not None:
             fix("theta", check_finite("theta", self.theta))
         fix("perturb", check_range("perturb", self.perturb, -0.5, 0.5))
-        if self.conductance is not None and self.start == "steady":
-            raise InputError("start='steady' takes no conductance: the steady element "
+        if self.conductance is not None and self.initial == "steady":
+            raise InputError("initial='steady' takes no conductance: the steady element "
                              "solution is one of perfect thermal contact",
-                             parameters=("conductance", "start"))
+                             parameters=("conductance", "initial"))
         if self.conductance is not None:
             Bi0, m = check_pair("conductance", self.conductance, "(Bi0, m), two numbers")
             check_positive("conductance", Bi0)
@@ -392,7 +392,9 @@ class TransientRun(Result):
                 delta1_over_delta2=float(attrs["delta1_over_delta2"]),
                 lam=optional("lam"), theta=optional("theta"), elements=int(attrs["elements"]),
                 window=tuple(float(w) for w in np.ravel(attrs["window"])),
-                start=str(attrs["start"]), hold=str(attrs["hold"]),
+                # (A file of versions before 1.0 names the initial state "start".)
+                initial=str(attrs.get("initial", attrs.get("start"))),
+                hold=str(attrs["hold"]),
                 perturb=float(attrs["perturb"]),
                 conductance=(tuple(float(c) for c in np.ravel(attrs["conductance"]))
                              if "conductance" in attrs else None))
@@ -700,7 +702,7 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
     q1s = np.zeros(N)
     q2s = np.zeros(N)
     state = _State()
-    if spec.start == "hertz":
+    if spec.initial == "hertz":
         closure = {"lam": spec.lam} if spec.lam is not None else {"theta": spec.theta}
         p0 = _hertz(X, h)
         active = p0 > 0.0

@@ -146,8 +146,15 @@ class Path(FieldResult):
         "no estimate": "no error estimate (nothing solved at two levels)",
         "no solution": "no point of the path has a solution"}
     SUCCESS = frozenset({"solved"})
-    # The samples and the events' positions are the parameter followed, in its own
-    # unit (SI on a physical path, "1" on a dimensionless one: the record's "along").
+    # Where a margin is least past an event, in the contact's half-widths; the samples
+    # and the events' places are the parameter followed, in its own unit (_units).
+    UNITS = {"position": "Delta"}
+
+    def _units(self) -> dict:
+        from ..problem.vocabulary import VOCABULARY
+
+        unit = VOCABULARY.get(self.along, ("1",))[0] or "1"
+        return {**self.UNITS, "x": unit, "at": unit}
 
     def _summary(self) -> str:
         return (f"along={self.along!r}, from {self.x[0]:g} to {self.x[-1]:g}, "
