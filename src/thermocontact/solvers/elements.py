@@ -29,6 +29,7 @@ from ..discretisation.element_operators import steady_element_operators
 from ..io.results import FieldResult
 from ..problem.errors import NotConvergedError
 from ..problem.parameters import Parameters
+from .active_set import chattering, next_set
 
 __all__ = ["ElementSolution", "contact_runs", "solve_elements", "solve_on_set"]
 
@@ -138,23 +139,15 @@ def solve_elements(par: Parameters, lam, *, profile=None, domain=(-2.5, 2.5), el
         if tension.min() >= 0.0 and overlap.min() >= 0.0:
             return ElementSolution(X, h, p, q, gap, active, it)
         history.append(active.tobytes())
-        new = active.copy()
-        if tension.min() < 0.0:
-            new[int(np.argmin(tension))] = False
-        else:
-            new[int(np.argmin(overlap))] = True
-        key = new.tobytes()
-        if key in history:
+        new, _, cycled = next_set(active, p, gap, tension < 0.0, overlap < 0.0, history, True)
+        if cycled:
             # A cycle.  If it toggles only elements at the ends of the zones, the
             # edges are settled to within them: return the state of the cycle with
             # no tension, and how many elements chatter.
+            key = new.tobytes()
             states = [np.frombuffer(k, dtype=bool) for k in history[history.index(key):]]
-            every = np.logical_and.reduce(states)
-            toggled = np.flatnonzero(np.logical_or.reduce(states) & ~every)
-            ends = np.flatnonzero(np.diff(np.concatenate([[0], every.astype(int), [0]])))
-            # Within two elements of an end of the zones that every state shares.
-            if toggled.size and np.all(np.min(np.abs(toggled[:, None] - ends[None, :] + 0.5),
-                                              axis=1) <= 2.5):
+            toggled = chattering(states)
+            if toggled is not None:
                 for state in states:
                     p, q, gap = solve_set(state)
                     if np.all(p[state] >= 0.0):

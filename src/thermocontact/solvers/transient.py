@@ -38,6 +38,7 @@ from ..problem.errors import NotConvergedError
 from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_integer,
                                   check_nonnegative, check_pair, check_positive, check_range)
+from .active_set import chattering, next_set
 from .elements import contact_runs, solve_elements, solve_on_set
 
 __all__ = ["TransientRun", "TransientSpec", "longest_step", "read_run", "run_transient",
@@ -479,22 +480,6 @@ def _hertz(X, h):
     return (prim(X + 0.5 * h) - prim(X - 0.5 * h)) / h
 
 
-def _next_set(active, p, gap, tension, overlap, seen, one_at_a_time):
-    """The next active set: every change at once until that revisits a set, then the
-    worst violation alone (the most tensile element out, else the most interpenetrating
-    in).  Returns ``(new, one_at_a_time, cycled)``; ``cycled`` when ``new`` was seen."""
-    if not one_at_a_time:
-        new = (active & ~tension) | overlap
-        if new.tobytes() not in seen:
-            return new, False, False
-    new = active.copy()
-    if tension.any():
-        new[int(np.argmin(np.where(active, p, np.inf)))] = False
-    else:
-        new[int(np.argmin(np.where(active, np.inf, gap)))] = True
-    return new, True, new.tobytes() in seen
-
-
 def _solve_set(ops, g_known, t_known, h, active, load, closure, resistance_of, p):
     """(R9) on one active set; with a pressure-dependent conductance, Bi from the
     solution's own pressure (a few passes from ``p``).  Raises SolveError where the
@@ -536,7 +521,7 @@ def _coupled(ops, g_known, t_known, h, active, load, closure, resistance_of, p_s
         if not tension.any() and not overlap.any():
             return p, q, gap, D, C, it, 0
         seen[active.tobytes()] = (p, q, gap, D, C, active)
-        new, one_at_a_time, cycled = _next_set(active, p, gap, tension, overlap, seen,
+        new, one_at_a_time, cycled = next_set(active, p, gap, tension, overlap, seen,
                                                one_at_a_time)
         if cycled:
             return _settle(seen, it, tol)
@@ -548,15 +533,10 @@ def _coupled(ops, g_known, t_known, h, active, load, closure, resistance_of, p_s
 
 def _settle(seen, it, tol):
     """A cycle of the active set: the state without tension that interpenetrates least,
-    if the states differ only at the zones' ends (within two elements)."""
-    states = [v[5] for v in seen.values()]
-    every = np.logical_and.reduce(states)
-    toggled = np.flatnonzero(np.logical_or.reduce(states) & ~every)
-    ends = np.flatnonzero(np.diff(np.concatenate([[0], every.astype(int), [0]])))
-    near = toggled.size and ends.size and np.all(np.min(np.abs(toggled[:, None] - ends[None, :] + 0.5),
-                                          axis=1) <= 2.5)
+    if it has settled (:func:`~.active_set.chattering`)."""
+    toggled = chattering([v[5] for v in seen.values()])
     calm = [v for v in seen.values() if np.all(v[0][v[5]] >= -tol)]
-    if not near or not calm:
+    if toggled is None or not calm:
         raise NotConvergedError("the active set cycles: no settled contact set at this step")
     p, q, gap, D, C, _ = min(calm, key=lambda v: -np.min(np.where(v[5], 0.0, v[2])))
     return p, q, gap, D, C, it, int(toggled.size)
@@ -594,7 +574,7 @@ def _contact(flamant, g_known, h, active, load, tol):
         if not tension.any() and not overlap.any():
             return p, gap, x[k], active, it
         seen.add(active.tobytes())
-        new, one_at_a_time, cycled = _next_set(active, p, gap, tension, overlap, seen,
+        new, one_at_a_time, cycled = next_set(active, p, gap, tension, overlap, seen,
                                                one_at_a_time)
         if cycled:
             raise NotConvergedError("the active set cycles: no settled contact set at this step")
@@ -689,114 +669,150 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
 
 def _run(spec, resume, progress, save, save_every, preparing=None):
     t0 = _time.perf_counter()
-    par = spec.parameters()
-    X, h = spec.grid()
-    N = X.size
-    tops = transient_element_operators(par, X, h, spec.dt, spec.steps, preparing)
-    ops, conv = tops.current, tops.convolution
-    histories = [OnlineConvolution(k) for k in tops.kernels]
-    g0 = 0.5 * X * X
-    base_gap = np.zeros(N)
-    base_t1 = np.zeros(N)
-    base_t2 = np.zeros(N)
-    q1s = np.zeros(N)
-    q2s = np.zeros(N)
-    state = _State()
-    if spec.initial == "hertz":
-        closure = {"lam": spec.lam} if spec.lam is not None else {"theta": spec.theta}
-        p0 = _hertz(X, h)
-        active = p0 > 0.0
+    run = _Stepper(spec, preparing)
+    done = 0 if resume is None else run.replay(resume)
+    seconds = (resume.seconds if resume is not None else 0.0) - t0
+    status, message = "complete", "every step computed"
+    last_save = _time.perf_counter()
+    if progress is not None:
+        progress(done, spec.steps)
+    for n in range(done + 1, spec.steps + 1):
+        stopped = run.step(n)
+        if stopped is not None:
+            status, message = "stopped", stopped
+            break
+        if progress is not None:
+            progress(n, spec.steps)
+        if save is not None and _time.perf_counter() - last_save > save_every and n < spec.steps:
+            save(run.result("partial", f"the first {n} of {spec.steps} steps, resumable",
+                            seconds + _time.perf_counter()))
+            last_save = _time.perf_counter()
+    return run.result(status, message, seconds + _time.perf_counter())
+
+
+class _Stepper:
+    """A transient run in the making: its operators and its start (:meth:`__init__`),
+    the steps of a partial run taken as they are (:meth:`replay`), one step at a time
+    (:meth:`step`), the run so far (:meth:`result`)."""
+
+    #: The active sets' tolerance on the pressure and the gap.
+    TOL = 1e-12
+
+    def __init__(self, spec, preparing=None):
+        self.spec = spec
+        self.par = spec.parameters()
+        self.X, self.h = spec.grid()
+        N = self.X.size
+        tops = transient_element_operators(self.par, self.X, self.h, spec.dt, spec.steps,
+                                           preparing)
+        self.ops, self.conv = tops.current, tops.convolution
+        self.histories = [OnlineConvolution(k) for k in tops.kernels]
+        self.g0 = 0.5 * self.X * self.X
+        self.base_gap, self.base_t1, self.base_t2 = np.zeros(N), np.zeros(N), np.zeros(N)
+        self.q1s, self.q2s = np.zeros(N), np.zeros(N)
+        self.state = _State()
+        if spec.initial == "hertz":
+            self._start_hertz()
+        else:
+            self._start_steady()
+        self.resistance = _Resistance(spec.conductance, N)
+        self.q1_last, self.q2_last = self.q1s, self.q2s
+
+    def _start_hertz(self):
+        """Isothermal bodies under Hertz's pressure, the closure given held."""
+        spec, ops, N = self.spec, self.ops, self.X.size
+        self.closure = {"lam": spec.lam} if spec.lam is not None else {"theta": spec.theta}
+        p0 = _hertz(self.X, self.h)
+        self.active = p0 > 0.0
         zero = np.zeros(N)
         # Hertz's contact before any heat: the approach that closes it on average.
-        elastic = g0 + ops.flamant @ p0
-        D0 = float(np.mean(elastic[active]))
-        state.append(p0, zero, np.where(active, 0.0, elastic - D0), zero, zero, np.nan, D0,
-                     np.nan, 0)
-        state.scheme.append(0)
-    else:
-        steady = solve_elements(par, spec.lam, domain=spec.window, elements=N)
+        elastic = self.g0 + ops.flamant @ p0
+        D0 = float(np.mean(elastic[self.active]))
+        self.state.append(p0, zero, np.where(self.active, 0.0, elastic - D0), zero, zero,
+                          np.nan, D0, np.nan, 0)
+        self.state.scheme.append(0)
+
+    def _start_steady(self):
+        """The steady element solution at ``lam`` on these elements, its far
+        temperatures (or its heat partition) held."""
+        spec, ops, par, X, h = self.spec, self.ops, self.par, self.X, self.h
+        steady = solve_elements(par, spec.lam, domain=spec.window, elements=X.size)
         sops = steady_element_operators(par, X, h)
         ps, qs = steady.pressure, steady.flux
         q1s, q2s = 0.5 * (ps + qs), 0.5 * (ps - qs)
+        self.q1s, self.q2s = q1s, q2s
         # The steady fields held for all time, less what the step's own lag adds back.
-        base_gap = (sops.gap1 @ q1s + sops.gap2 @ q2s) - (ops.gap1 @ q1s + ops.gap2 @ q2s)
-        base_t1 = sops.theta1 @ q1s - ops.theta1 @ q1s
-        base_t2 = sops.theta2 @ q2s - ops.theta2 @ q2s
-        active = steady.active.copy()
+        self.base_gap = (sops.gap1 @ q1s + sops.gap2 @ q2s) - (ops.gap1 @ q1s + ops.gap2 @ q2s)
+        self.base_t1 = sops.theta1 @ q1s - ops.theta1 @ q1s
+        self.base_t2 = sops.theta2 @ q2s - ops.theta2 @ q2s
+        self.active = steady.active.copy()
         t1, t2 = sops.theta1 @ q1s, sops.theta2 @ q2s
         # The steady state's own temperature difference on its contact.
-        C = float(np.mean((t1 - t2)[active]))
-        D = float(np.mean((g0 + sops.Gp @ ps + sops.Gq @ qs)[active]))
-        state.append(ps, qs, steady.gap, t1, t2, spec.lam, D, C, steady.iterations)
-        state.scheme.append(0)
-        closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": C}
-    resistance = _Resistance(spec.conductance, N)
-    q1_last, q2_last = q1s, q2s
-    done = 0
-    if resume is not None:
-        if resume.spec != spec:
+        C = float(np.mean((t1 - t2)[self.active]))
+        D = float(np.mean((self.g0 + sops.Gp @ ps + sops.Gq @ qs)[self.active]))
+        self.state.append(ps, qs, steady.gap, t1, t2, spec.lam, D, C, steady.iterations)
+        self.state.scheme.append(0)
+        self.closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": C}
+
+    def replay(self, resume) -> int:
+        """Take the steps of the partial run ``resume`` as they are (its heat into the
+        histories, its states): the run goes on from its last, as if uninterrupted.
+        Returns the steps taken."""
+        if resume.spec != self.spec:
             raise InputError("the partial run was computed with other inputs",
                              parameters=("resume",))
+        conv, histories = self.conv, self.histories
         done = resume.time.size - 1
         for n in range(1, done + 1):
             for hist in histories:
                 hist.history(n)
             p, q = resume.pressure[n], resume.flux[n]
-            histories[0].push(conv.forward(0.5 * (p + q) - q1s)[None, :])
-            histories[1].push(conv.forward(0.5 * (p - q) - q2s)[None, :])
-        state = _State()
+            histories[0].push(conv.forward(0.5 * (p + q) - self.q1s)[None, :])
+            histories[1].push(conv.forward(0.5 * (p - q) - self.q2s)[None, :])
+        self.state = _State()
         for n in range(done + 1):
-            state.append(resume.pressure[n], resume.flux[n], resume.gap[n], resume.theta1[n],
-                         resume.theta2[n], resume.lam[n], resume.approach[n],
-                         resume.temperature_difference[n], int(resume.set_iterations[n]))
-            state.scheme.append(int(resume.scheme[n]))
-        active = resume.pressure[done] > 0.0
+            self.state.append(resume.pressure[n], resume.flux[n], resume.gap[n],
+                              resume.theta1[n], resume.theta2[n], resume.lam[n],
+                              resume.approach[n], resume.temperature_difference[n],
+                              int(resume.set_iterations[n]))
+            self.state.scheme.append(int(resume.scheme[n]))
+        self.active = resume.pressure[done] > 0.0
         if done:
             p, q = resume.pressure[done], resume.flux[done]
-            q1_last, q2_last = 0.5 * (p + q), 0.5 * (p - q)
-    status, message = "complete", "every step computed"
-    last_save = _time.perf_counter()
+            self.q1_last, self.q2_last = 0.5 * (p + q), 0.5 * (p - q)
+        return done
 
-    def result(status, message=""):
-        return TransientRun(spec, spec.dt * np.arange(len(state.pressure)), X,
-                            np.array(state.pressure), np.array(state.flux), np.array(state.gap),
-                            np.array(state.theta1), np.array(state.theta2),
-                            np.array(state.lam, dtype=float), np.array(state.approach, dtype=float),
-                            np.array(state.difference, dtype=float),
-                            np.array(state.iterations, dtype=int),
-                            np.array(state.scheme, dtype=int), status,
-                            (resume.seconds if resume is not None else 0.0)
-                            + _time.perf_counter() - t0, message)
-
-    tol = 1e-12
-    if progress is not None:
-        progress(done, spec.steps)
-    for n in range(done + 1, spec.steps + 1):
+    def step(self, n) -> str | None:
+        """Step ``n``: its state appended; or where and why the run stops (the state
+        not appended)."""
+        spec, ops, conv, histories, h = self.spec, self.ops, self.conv, self.histories, self.h
+        X, tol = self.X, self.TOL
         y1 = conv.backward(histories[0].history(n))
         y2 = conv.backward(histories[1].history(n))
-        gap_known = g0 + base_gap + y1[0] + y2[0]
-        t1_known = base_t1 + y1[1]
-        t2_known = base_t2 + y2[1]
+        gap_known = self.g0 + self.base_gap + y1[0] + y2[0]
+        t1_known = self.base_t1 + y1[1]
+        t2_known = self.base_t2 + y2[1]
         load = 1.0 + spec.perturb if n == 1 else 1.0
         # First the step with its own thermal bulge from the last step's heat (IMEX,
         # eq. R10): the contact is then elastic, a convex problem with one solution.
         # Then the implicit step (R9) from its contact set, which the IMEX one replaces
         # where the implicit one has no settled contact set on these elements.
-        bulge = ops.gap1 @ q1_last + ops.gap2 @ q2_last
+        bulge = ops.gap1 @ self.q1_last + ops.gap2 @ self.q2_last
         try:
-            p, gap, D, active, it = _contact(ops.flamant, gap_known + bulge, h, active, load, tol)
+            p, gap, D, active, it = _contact(ops.flamant, gap_known + bulge, h, self.active,
+                                             load, tol)
         except SolveError as exc:
-            status, message = "stopped", f"at step {n}: {exc}"
-            break
+            return f"at step {n}: {exc}"
         try:
-            q, C = _partition(ops, p, t1_known - t2_known, h, active, closure, resistance(p))
+            q, C = _partition(ops, p, t1_known - t2_known, h, active, self.closure,
+                              self.resistance(p))
         except np.linalg.LinAlgError:
-            status, message = "stopped", f"at step {n}: the heat on the contact set is singular"
-            break
+            return f"at step {n}: the heat on the contact set is singular"
         scheme = 1
         try:
             p, q, gap, D, C, more, chatter = _coupled(ops, gap_known, t1_known - t2_known, h,
-                                                      active, load, closure, resistance, p, tol)
+                                                      active, load, self.closure,
+                                                      self.resistance, p, tol)
             it += more
             scheme = 0 if chatter == 0 else 2
         except SolveError:
@@ -806,6 +822,7 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
                    + ops.flamant @ p - D)
             gap[active] = 0.0
         active = p > 0.0
+        self.active = active
         if (active[0] or active[-1]) and n == 1:
             # Before any step there is no heat to report (a partition of 0/0): the window
             # is refused, as an input.
@@ -814,21 +831,27 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
                              f"(x = {X[0] if active[0] else X[-1]:.4g}); widen it or give "
                              f"more elements", parameters=("window",))
         if active[0] or active[-1]:
-            status, message = "stopped", (f"at step {n}: the contact reached the window's end "
-                      f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
-            break
+            return (f"at step {n}: the contact reached the window's end "
+                    f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
         q1, q2 = 0.5 * (p + q), 0.5 * (p - q)
-        q1_last, q2_last = q1, q2
-        histories[0].push(conv.forward(q1 - q1s)[None, :])
-        histories[1].push(conv.forward(q2 - q2s)[None, :])
+        self.q1_last, self.q2_last = q1, q2
+        histories[0].push(conv.forward(q1 - self.q1s)[None, :])
+        histories[1].push(conv.forward(q2 - self.q2s)[None, :])
         t1 = t1_known + ops.theta1 @ q1
         t2 = t2_known + ops.theta2 @ q2
         lam = float(np.sum(q) / np.sum(p))
-        state.append(p, q, gap, t1, t2, lam, D, C, it)
-        state.scheme.append(scheme)
-        if progress is not None:
-            progress(n, spec.steps)
-        if save is not None and _time.perf_counter() - last_save > save_every and n < spec.steps:
-            save(result("partial", f"the first {n} of {spec.steps} steps, resumable"))
-            last_save = _time.perf_counter()
-    return result(status, message)
+        self.state.append(p, q, gap, t1, t2, lam, D, C, it)
+        self.state.scheme.append(scheme)
+        return None
+
+    def result(self, status, message, seconds) -> TransientRun:
+        """The run so far."""
+        state = self.state
+        return TransientRun(self.spec, self.spec.dt * np.arange(len(state.pressure)), self.X,
+                            np.array(state.pressure), np.array(state.flux), np.array(state.gap),
+                            np.array(state.theta1), np.array(state.theta2),
+                            np.array(state.lam, dtype=float),
+                            np.array(state.approach, dtype=float),
+                            np.array(state.difference, dtype=float),
+                            np.array(state.iterations, dtype=int),
+                            np.array(state.scheme, dtype=int), status, seconds, message)
