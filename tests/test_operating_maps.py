@@ -36,7 +36,7 @@ def test_load_speed_and_radius_enter_only_through_pe_hertz():
 #: The map of the tests below: copper on steel, the steel's surface moving against the
 #: copper's at half its speed (R = -1/2), the Dundurs term of the pair; the plane of
 #: tests/data/make_operating_points.py.
-PLANE = ("load:1e4:3e4:2:log", "speed:0.5:2:2:log")
+PLANE = ("load:1e4:2e4:2:log", "speed:0.8:2:2:log")
 
 
 @pytest.fixture(scope="session")
@@ -53,57 +53,77 @@ def small_map(tmp_path_factory):
     return s, ds, operating_ray(s, store_path=parts)
 
 
+def _stored_contacts() -> dict:
+    """`contact` at the map's corners and at 50 random points of its plane
+    (tests/data/make_operating_points.py)."""
+    import json
+    import pathlib
+
+    return json.loads((pathlib.Path(__file__).parent / "data" /
+                       "operating_points.json").read_text())
+
+
+def _equals_contact(point, ref, field_tol):
+    """A map's point against `contact` there: half-width and offset to 1e-6, the fields
+    to ``field_tol`` relative and within the two sides' estimates, validity and
+    applicability exactly.  Returns the largest relative difference of the fields."""
+    assert point["half_width"] == pytest.approx(ref["half_width"], rel=1e-6)
+    assert point["offset"] == pytest.approx(ref["offset"], rel=1e-6,
+                                            abs=1e-9 * ref["half_width"])
+    worst = 0.0
+    for ours, theirs in ((point["peak_pressure"], ref["peak_pressure"]),
+                         (point["flash_temperature"], ref["flash_temperature"]),
+                         (point["max_slope_cylinder"], ref["max_slope"][0]),
+                         (point["max_slope_half_plane"], ref["max_slope"][1]),
+                         (point["max_strain_cylinder"], ref["max_strain"][0]),
+                         (point["max_strain_half_plane"], ref["max_strain"][1])):
+        error = abs(ours / theirs - 1.0)
+        assert error <= field_tol
+        assert error <= point["error_estimate"] + ref["field_error"]
+        worst = max(worst, error)
+    # The samples meet the target and the interpolation adds little here: each point's
+    # own estimate meets it too (observed up to 5.6e-6; the errors up to 7.1e-7).
+    assert point["error_estimate"] <= field_tol
+    assert bool(point["valid"]) == ref["valid"]
+    assert bool(point["applicable"]) == ref["applicable"]
+    return worst
+
+
 def test_map_points_equal_contact(small_map):
-    """Every point of a 2 x 2 map (load 10-30 kN/m, speed 0.5-2 m/s;
-    the steel half-plane's surface moving against the copper cylinder's at half its speed,
+    """Every point of a 2 x 2 map (load 10-20 kN/m, speed 0.8-2 m/s; the steel
+    half-plane's surface moving against the copper cylinder's at half its speed,
     R = -1/2, and the Dundurs term of the pair), read off the one ray, equals `contact`
-    at that point (speed2 = R v): half-width and offset to 1e-6, peak pressure,
-    flash temperature, slopes and strains to the fields' target 1e-5 relative (each side
-    refines its fields to 10 tol, tol = 1e-6; the ray is interpolated in ln Pe to degree
-    5 at 24 samples per decade), validity and applicability exactly; and each point's
-    own estimate is within that target."""
+    at that point (speed2 = R v; stored by tests/data/make_operating_points.py):
+    half-width and offset to 1e-6, peak pressure, flash temperature, slopes and strains
+    to the fields' target 1e-5 relative (both sides refine their fields to 10 tol,
+    tol = 1e-6; the ray is interpolated in ln Pe to degree 5 at 24 samples per decade)
+    and within the sum of the two sides' estimates (each below the target), validity
+    and applicability exactly."""
+    from thermocontact.studies.operating_maps import POINT_FIELDS
+
     s, ds, _ = small_map
     assert s.manifest()["speed_ratio"] == -0.5
-    assert ds.attrs["field_tol"] == pytest.approx(1e-5)
-    assert (ds.error_estimate.values <= 1e-5).all()
-    for j, v in enumerate(ds.speed.values):
-        for i, P in enumerate(ds["load"].values):
-            ref = contact(PhysicalProblem(CU, ST, 0.01, float(P), float(v), 0.2, -1.0,
-                                          speed2=-0.5 * float(v))).primary
-            point = ds.isel(speed=j, load=i)
-            assert float(point.half_width) == pytest.approx(ref.half_width, rel=1e-6)
-            assert float(point.offset) == pytest.approx(ref.offset, rel=1e-6, abs=1e-9 * ref.half_width)
-            assert float(point.peak_pressure) == pytest.approx(ref.peak_pressure, rel=1e-5)
-            assert float(point.flash_temperature) == pytest.approx(ref.flash_temperature,
-                                                                   rel=1e-5)
-            assert bool(point.valid) == ref.valid
-            a = ref.applicability
-            for i, body in enumerate(("cylinder", "half_plane")):
-                assert float(point[f"max_slope_{body}"]) == pytest.approx(a.max_slope[i],
-                                                                        rel=1e-5)
-                assert float(point[f"max_strain_{body}"]) == pytest.approx(a.max_strain[i],
-                                                                         rel=1e-5)
-            assert bool(point.applicable) == ref.applicable
+    field_tol = ds.attrs["field_tol"]
+    assert field_tol == pytest.approx(1e-5)
+    data = _stored_contacts()
+    assert data["plane"]["speed_ratio"] == -0.5
+    for ref in data["corners"]:
+        point = ds.sel(load=ref["load"], speed=ref["speed"])
+        _equals_contact({k: float(point[k]) for k in POINT_FIELDS + ("valid", "applicable")},
+                        ref, field_tol)
 
 
 def test_random_points_of_a_map_equal_contact(small_map):
     """50 points drawn at random over the map's plane (log-uniform in load and speed),
     each read off the map's ray as the map reads its grid points
     (:func:`operating_point`), against `contact` at that point, solved on its own
-    (stored by tests/data/make_operating_points.py): half-width and offset to 1e-6,
-    peak pressure, flash temperature, slopes and strains to the fields' target 1e-5
-    (the map's `field_tol`), validity and applicability exactly.  Each point's own
-    estimate meets that target, and so does each contact's; the map's error is within
-    the sum of the two estimates (the map's estimate is not a vacuous bound either: it
-    is below 1e-5, not 1)."""
-    import json
-    import pathlib
-
+    (stored by tests/data/make_operating_points.py): as the grid's points above.  The
+    map's error is within the sum of the two sides' estimates, each below the target
+    1e-5."""
     from thermocontact.studies.operating_maps import operating_point
 
     s, ds, ray = small_map
-    data = json.loads((pathlib.Path(__file__).parent / "data" /
-                       "operating_points.json").read_text())
+    data = _stored_contacts()
     assert data["plane"]["load"] == [s.x.start, s.x.stop]
     assert data["plane"]["speed"] == [s.y.start, s.y.stop]
     assert len(data["points"]) == 50
@@ -112,22 +132,8 @@ def test_random_points_of_a_map_equal_contact(small_map):
     for ref in data["points"]:
         p = operating_point(s, ray, ref["load"], ref["speed"], 0.01)
         assert p["status"] == "solved" and p["branches"] == 1
-        assert p["error_estimate"] <= field_tol and ref["field_error"] <= field_tol
-        assert p["half_width"] == pytest.approx(ref["half_width"], rel=1e-6)
-        assert p["offset"] == pytest.approx(ref["offset"], rel=1e-6, abs=1e-9 * ref["half_width"])
-        pairs = [(p["peak_pressure"], ref["peak_pressure"]),
-                 (p["flash_temperature"], ref["flash_temperature"]),
-                 (p["max_slope_cylinder"], ref["max_slope"][0]),
-                 (p["max_slope_half_plane"], ref["max_slope"][1]),
-                 (p["max_strain_cylinder"], ref["max_strain"][0]),
-                 (p["max_strain_half_plane"], ref["max_strain"][1])]
-        for ours, theirs in pairs:
-            error = abs(ours / theirs - 1.0)
-            assert error <= field_tol
-            assert error <= p["error_estimate"] + ref["field_error"]
-            worst = max(worst, error)
-        assert bool(p["valid"]) == ref["valid"]
-        assert bool(p["applicable"]) == ref["applicable"]
+        assert ref["field_error"] <= field_tol
+        worst = max(worst, _equals_contact(p, ref, field_tol))
     assert worst > 0.0  # two routes, not one number twice
 
 

@@ -271,9 +271,9 @@ SAMPLE_FIELDS = ("peak", "flash", "slope_cylinder", "slope_half_plane", "strain"
 
 def evaluate_fields(task) -> dict:
     """The fields of the chunk's ray samples (``task["samples"]``: ``(Pe, n)``, ``n``
-    where ``P_H/P`` met the target), each refined until they meet half their target
-    (:func:`~.ray.refine_fields`; the other half is the interpolation's, so that the
-    points between samples meet it): :data:`SAMPLE_FIELDS`."""
+    where ``P_H/P`` met the target), each refined until they meet their target
+    (:func:`~.ray.refine_fields`): :data:`SAMPLE_FIELDS`.  A point read between samples
+    adds the interpolation's error (:func:`operating_point`'s estimate)."""
     out = {k: [] for k in SAMPLE_FIELDS}
     ray = task["ray"]
     for pe, n in task["samples"]:
@@ -283,7 +283,7 @@ def evaluate_fields(task) -> dict:
                 fine = refine_fields(
                     lambda m, pe=pe: ray.solve_at(pe, m, polish=False), n,
                     lambda s: contact_fields(s, fractions=task["fractions"]),
-                    0.5 * task["tol"], method=ray.method)
+                    task["tol"], method=ray.method)
             level = fine.levels[-1][0]
             f = level.fields
             rec = (f.peak_pressure, f.flash_temperature, *f.slope_factors, f.strain_pressure,
@@ -359,7 +359,9 @@ def needed_samples(ray, pe_h_lo, pe_h_hi) -> np.ndarray:
         changes |= np.isfinite(a) & np.isfinite(b) & (a * b <= 0)
     needed = np.zeros(pe.size, dtype=bool)
     for i in np.flatnonzero(changes):
-        needed[max(i - STENCIL // 2, 0):i + STENCIL // 2 + 2] = True
+        # A root inside the interval reads the STENCIL samples nearest it (and the
+        # next smaller stencil, among them): i - 2 to i + 3 for STENCIL = 6.
+        needed[nearest(np.log(pe), 0.5 * (np.log(pe[i]) + np.log(pe[i + 1])))] = True
     return np.flatnonzero(needed)
 
 
