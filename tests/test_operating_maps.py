@@ -137,6 +137,35 @@ def test_random_points_of_a_map_equal_contact(small_map):
     assert worst > 0.0  # two routes, not one number twice
 
 
+def test_fields_refined_to_their_target_from_where_the_load_ratio_met_its_own():
+    """The brake block's ray (wheel steel on the organic block, lambda = -1) at
+    Pe = 163.77, where P_H/P meets 1e-6 at n = 32 but the fields are 6e-5 off: refined
+    from n = 32 (:func:`refine_fields`), the fields' estimate meets the target 1e-5 and
+    is above each field's error against n = 256 (stored by
+    tests/data/make_operating_points.py; that reference's own error is about 1e-7)."""
+    from thermocontact.analysis.fields import contact_fields
+    from thermocontact.studies.physical_contact import problem_ray
+    from thermocontact.studies.ray import FIELD_QUANTITIES, refine_fields
+
+    ref = _stored_contacts()["brake_fields"]
+    prob = PhysicalProblem(get_material("wheel-steel"),
+                           get_material("organic-composite-brake-block"), 0.46, 310e3, 30.0,
+                           0.3, -1.0)
+    ray = problem_ray(prob)
+    fine = refine_fields(lambda m: ray.solve_at(ref["pe"], m, polish=False), 32,
+                         lambda sol: contact_fields(sol, fractions=prob.compliance_fractions),
+                         1e-6)
+    assert fine.status == "converged" and fine.estimate <= 1e-5 and fine.n > 32
+    level = fine.levels[-1][0]
+    errors = [abs(getattr(level, q) / ref["fields"][q] - 1.0) for q in FIELD_QUANTITIES]
+    assert max(errors) <= fine.estimate
+    # At n = 32 alone (where P_H/P met its target) they were beyond it.
+    coarse = fine.levels[1][0]
+    assert coarse.solution.n == 32
+    assert max(abs(getattr(coarse, q) / ref["fields"][q] - 1.0)
+               for q in FIELD_QUANTITIES) > 1e-5
+
+
 def test_bad_operating_maps_are_refused():
     with pytest.raises(InputError, match="parameter must be one of"):
         parse_physical_axis("--x", "fhpe:0:1:3")

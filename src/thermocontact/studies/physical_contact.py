@@ -301,16 +301,16 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
     """The fields of the solution at ``Pe`` with ``n`` unknowns, whose error estimate
     is ``estimate`` (:func:`~.ray.root`)."""
     half_width = prob.half_width(pe)
-    est = estimate
     # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
-    est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
+    hertz = prob.friction == 0.0 or prob.fhpe(1.0) == 0.0
+    est = 0.0 if hertz else estimate
     ray = problem_ray(prob)
 
     def fields_of(s):
         return contact_fields(s, length=half_width, load=prob.load,
                               temperature_units=prob.temperature_units,
                               fractions=prob.compliance_fractions)
-    if est == 0.0:  # Hertz's contact: exact at any n
+    if hertz:  # Hertz's contact: exact at any n
         sol = ray.solve_at(pe, n, check_validity=True)
         f, field_error = fields_of(sol), 0.0
     else:
