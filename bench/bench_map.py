@@ -10,17 +10,27 @@ grid point with that of one plain ``solve`` (fresh assembly, closed-form polish)
 at a point of the grid.
 
 ``python bench/bench_map.py --against-lu [COUNT [REPEATS]]`` (defaults 200 and 3) times
-the same COUNT x COUNT map on a process pool of 2 workers and, in the same run, COUNT^2
-LU solves (``scipy.linalg.lu_factor`` and ``lu_solve``, one system at a time) of the
-size of the map's systems at its most frequent ``n`` (``2n + 2`` unknowns), in this
-process: REPEATS maps, each in a fresh process of its own, between REPEATS + 1 LU loops
-(the machine's speed drifts: each map's ratio is taken to the mean of the loops on
-either side of it).  It prints each map's times and ratio, in wall time and in CPU time
-(the workers' and the map's own process's: on a shared machine the less disturbed
-measure), and the median ratio, the run's measure (one repeat disturbed by the host
-does not make it); the maps must be identical (a digest of every variable and
-attribute), or no ratio is given.  Then a quarter of the LU solves pinned to each core
-in turn, to show how far the cores' speeds differ during the run.
+the same COUNT x COUNT map on a process pool of 2 workers against the LAPACK work of
+the linear systems it solves, its *floor*: first the map is solved once in one process
+with LAPACK's solver watched (not timed), which records every system that the grid
+lines' stacks hand to LAPACK (every level of every point's refinement in ``n``, the
+events' solves, the refinements to n = 64; their sizes and counts) and keeps the first
+64 matrices and right-hand sides of each size as they are handed over (equilibrated,
+in LAPACK's order).  The floor is then as many ``dgesv`` calls (``getrf`` and
+``getrs`` in one) of those sizes, cycling through the kept matrices, on copies made
+beforehand outside the timing, overwritten in place, without finiteness checks: the
+LAPACK work alone.  REPEATS maps, each in a fresh process of its own, run between
+REPEATS + 1 floor loops (the machine's speed drifts: each map's ratio is taken to the
+mean of the loops on either side of it).  It prints each map's times and ratio, in
+wall time and in CPU time (the workers' and the map's own process's against the floor
+loop's: on a shared machine the less disturbed measure), and the median ratios, the
+run's measure (one repeat disturbed by the host does not make it); the maps must be
+identical (a digest of every variable and attribute), or no ratio is given.  Then a
+quarter of the floor pinned to each core in turn, to show how far the cores' speeds
+differ during the run.  (Before 2026-11-28 the floor was ``lu_solve(lu_factor(A), b)``
+at SciPy's defaults, which check every entry for finiteness and copy the matrix, for
+COUNT^2 systems of the most frequent size only: 1.6 times the processor time of the
+LAPACK work at 66 unknowns here, and not the systems the map solves.)
 """
 
 from __future__ import annotations
@@ -46,11 +56,9 @@ def one_solve_time(repeats=5):
 
 def main(count=100):
     from thermocontact.execution.executors import cpu_count
-    from thermocontact.studies.maps import MapSpec, compute_map, parse_axis
+    from thermocontact.studies.maps import compute_map
 
-    spec = MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
-                   parse_axis("--y", f"pe:0.5:100:{count}:log"),
-                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    spec = map_spec(count)
     points = count * count
     solve_s = one_solve_time()
     print(f"{count} x {count} map ({points} points) on {cpu_count()} cores; one plain solve "
@@ -95,32 +103,107 @@ def main(count=100):
     print(f"(the cluster took {start:.1f} s to start, not counted)")
 
 
-def lu_time(size, count):
-    """Seconds of ``count`` LU solves of one well-conditioned ``size`` x ``size``
-    system, one at a time, in this process."""
-    from scipy.linalg import lu_factor, lu_solve
+#: Matrices kept per size by :func:`systems` (the floor cycles through them).
+KEPT = 64
+#: Systems per timed block of the floor (their copies made before it).
+BLOCK = 256
 
-    rng = np.random.default_rng(0)
-    A = rng.standard_normal((size, size)) + size * np.eye(size)
-    b = rng.standard_normal(size)
-    t0 = time.perf_counter()
-    for _ in range(count):
-        lu_solve(lu_factor(A), b)
-    return time.perf_counter() - t0
+
+def systems(count):
+    """``{size: (solves, matrices, right-hand sides)}``: every system the map's grid
+    lines hand to LAPACK (``gesv``, or ``getrf`` above its size limit), counted by size,
+    and the first :data:`KEPT` of each size as handed over, the map solved once in this
+    process (one BLAS thread, as a worker)."""
+    from threadpoolctl import threadpool_limits
+
+    import thermocontact.solvers.single_patch as sp
+    from thermocontact.studies.maps import compute_map
+
+    seen, inside = {}, [False]
+    chunk, gesv, getrf = sp._solve_chunk, sp.dgesv, sp.dgetrf
+
+    def record(a, b):
+        k = a.shape[0]
+        solves, mats, rhs = seen.setdefault(k, [0, [], []])
+        seen[k][0] = solves + 1
+        if len(mats) < KEPT:
+            mats.append(np.array(a, order="F"))
+            rhs.append(np.zeros(k) if b is None else np.array(b))
+
+    def watched_chunk(A0t, A1t, b, *args, **kwargs):
+        inside[0] = True
+        try:
+            return chunk(A0t, A1t, b, *args, **kwargs)
+        finally:
+            inside[0] = False
+
+    def watched_gesv(a, b, **kwargs):
+        if inside[0]:
+            record(a, b)
+        return gesv(a, b, **kwargs)
+
+    def watched_getrf(a, **kwargs):
+        if inside[0]:
+            record(a, None)
+        return getrf(a, **kwargs)
+    sp._solve_chunk, sp.dgesv, sp.dgetrf = watched_chunk, watched_gesv, watched_getrf
+    try:
+        with threadpool_limits(1):
+            compute_map(map_spec(count), workers=1)
+    finally:
+        sp._solve_chunk, sp.dgesv, sp.dgetrf = chunk, gesv, getrf
+    return {k: (v[0], np.array(v[1]), np.array(v[2])) for k, v in sorted(seen.items())}
+
+
+def floor_time(found, fraction=1.0):
+    """``(wall, CPU)`` seconds of the LAPACK work of the systems ``found``
+    (:func:`systems`; ``fraction`` of each size's count): ``dgesv`` on each, in place
+    (``overwrite_a``, ``overwrite_b``), no checks; the copies it overwrites are made
+    before each block of :data:`BLOCK` solves, outside the timing."""
+    from scipy.linalg.lapack import dgesv
+
+    wall = cpu = 0.0
+    for k, (solves, mats, rhs) in found.items():
+        solves = int(round(fraction * solves))
+        # Each matrix stored transposed, C-contiguous: its transpose is in LAPACK's
+        # (Fortran) order, as the map hands it over.
+        A = np.empty((min(BLOCK, solves), k, k))
+        B = np.empty((min(BLOCK, solves), k))
+        for start in range(0, solves, BLOCK):
+            m = min(BLOCK, solves - start)
+            for j in range(m):
+                A[j] = mats[(start + j) % len(mats)].T
+                B[j] = rhs[(start + j) % len(rhs)]
+            c0, t0 = time.process_time(), time.perf_counter()
+            for j in range(m):
+                dgesv(A[j].T, B[j], overwrite_a=True, overwrite_b=True)
+            wall += time.perf_counter() - t0
+            cpu += time.process_time() - c0
+    return wall, cpu
+
+
+def map_spec(count):
+    from thermocontact.studies.maps import MapSpec, parse_axis
+
+    return MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
+                   parse_axis("--y", f"pe:0.5:100:{count}:log"),
+                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
 
 
 def against_lu(count=200, repeats=3):
-    """The map on 2 workers against ``count**2`` LU solves of its systems' size,
-    ``repeats`` times: LU, map, LU, map, ..., LU, each map's ratio taken to the mean of
-    the LU loops on either side of it; the median ratio is the run's."""
+    """The map on 2 workers against the LAPACK work of its systems, ``repeats`` times:
+    floor, map, floor, map, ..., floor, each map's ratio taken to the mean of the floor
+    loops on either side of it; the median ratio is the run's."""
     import os
 
     if repeats < 1:
         sys.exit(f"bench_map.py: REPEATS must be at least 1, got {repeats}")
     load = os.getloadavg()[0]
-    # The size of the map's systems at its most frequent n, 32 (checked below).
-    size = 66
-    lu = [_timed(lu_time, size, count * count)]
+    found = systems(count)
+    total = sum(v[0] for v in found.values())
+    print(f"{count} x {count} map: {total} systems handed to LAPACK, by unknowns: "
+          + ", ".join(f"{k}: {v[0]}" for k, v in found.items()))
+    lu = [floor_time(found)]
     maps, digests = [], set()
     for _ in range(repeats):
         # Each map in a process of its own, as the first map of a run would be (the
@@ -130,64 +213,47 @@ def against_lu(count=200, repeats=3):
         if done.returncode != 0:
             sys.exit(f"bench_map.py: the map's process failed:\n{done.stderr}")
         out = done.stdout.split()
-        wall, cpu, n, share, digest = float(out[0]), float(out[1]), int(out[2]), \
-            float(out[3]), out[4]
+        wall, cpu, digest = float(out[0]), float(out[1]), out[2]
         maps.append((wall, cpu))
         digests.add(digest)
-        if 2 * n + 2 != size:
-            print(f"the map's most frequent n is {n}, not 32: the LU solves are of the wrong "
-                  "size; no ratio")
-            return
-        lu.append(_timed(lu_time, size, count * count))
+        lu.append(floor_time(found))
     if len(digests) > 1:
         print("the repeats' maps differ: no ratio")
         return
-    print(f"{count} x {count} map on 2 workers against {count * count} LU solves of {size} "
-          f"unknowns (n = {n}, {100 * share:.0f} % of the points) in one process; "
-          "each map between two LU loops, its ratio taken to their mean:")
+    print(f"the map on 2 workers against its floor in one process; each map between two "
+          "floor loops, its ratio taken to their mean:")
     ratios, cpu_ratios = [], []
     for r, (wall, cpu) in enumerate(maps):
         t_lu = 0.5 * (lu[r][0] + lu[r + 1][0])
         cpu_lu = 0.5 * (lu[r][1] + lu[r + 1][1])
         ratios.append(wall / t_lu)
         cpu_ratios.append(cpu / cpu_lu)
-        print(f"  map {wall:5.1f} s (CPU {cpu:5.1f} s), LU {lu[r][0]:.2f} s before, "
-              f"{lu[r + 1][0]:.2f} s after: ratio {ratios[-1]:.1f} (CPU ratio "
-              f"{cpu_ratios[-1]:.1f})")
+        print(f"  map {wall:5.1f} s (CPU {cpu:5.1f} s), floor {lu[r][0]:.2f} s before "
+              f"(CPU {lu[r][1]:.2f} s), {lu[r + 1][0]:.2f} s after (CPU {lu[r + 1][1]:.2f} "
+              f"s): ratio {ratios[-1]:.1f}, CPU ratio {cpu_ratios[-1]:.1f}")
     # On a machine shared with other work a single run's wall times depend on the load;
     # the median of the repeats does much less (and the CPU times less still: a ratio
     # of at most 6 in wall time on 2 busy workers is one of at most 12 in CPU time).
     print(f"median ratio {np.median(ratios):.1f} (CPU {np.median(cpu_ratios):.1f}); the maps "
           f"are identical; load average before {load:.2f}, after {os.getloadavg()[0]:.2f} "
           "(2 cores)")
-    cores = per_core_lu(size, count * count // 4)
+    cores = per_core_floor(found, 0.25)
     if cores:
-        print("a quarter of the LU solves pinned to each core in turn: "
+        print("a quarter of the floor pinned to each core in turn: "
               + ", ".join(f"core {c} {t:.2f} s" for c, t in cores.items())
               + f" (the slowest {max(cores.values()) / min(cores.values()) - 1:.0%} slower: "
-              "the map runs on every core, the reference on one)")
-
-
-def _timed(func, *args):
-    """``(wall seconds, CPU seconds of this process)`` of ``func(*args)``, which returns
-    its own wall time."""
-    c0 = time.process_time()
-    wall = func(*args)
-    return wall, time.process_time() - c0
+              "the map runs on every core, the floor on one)")
 
 
 def one_map(count):
     """Print the wall and CPU seconds of the map on 2 workers (the workers', ended and
-    waited for, and this process's), its most frequent ``n`` and that ``n``'s share of
-    the points, and a digest of the whole dataset."""
+    waited for, and this process's) and a digest of the whole dataset."""
     import hashlib
     import resource
 
-    from thermocontact.studies.maps import MapSpec, compute_map, parse_axis
+    from thermocontact.studies.maps import compute_map
 
-    spec = MapSpec(parse_axis("--x", f"fhpe:0:0.8:{count}"),
-                   parse_axis("--y", f"pe:0.5:100:{count}:log"),
-                   {"K2_over_K1": 10.0, "lam": 1.0}, tol=1e-6)
+    spec = map_spec(count)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     c0, t0 = time.process_time(), time.perf_counter()
     ds = compute_map(spec, workers=2)
@@ -195,20 +261,18 @@ def one_map(count):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (time.process_time() - c0 + after.ru_utime + after.ru_stime
            - before.ru_utime - before.ru_stime)
-    ns = ds.n.values[ds.n.values > 0]
-    n = int(np.bincount(ns).argmax())
     digest = hashlib.sha256()
     for name in sorted(ds.variables):
         digest.update(name.encode())
         digest.update(np.ascontiguousarray(ds[name].values).tobytes())
     digest.update(repr(sorted(ds.attrs.items())).encode())
-    print(wall, cpu, n, np.mean(ns == n), digest.hexdigest())
+    print(wall, cpu, digest.hexdigest())
 
 
-def per_core_lu(size, count):
-    """``{core: seconds}`` of ``count`` LU solves in this process pinned to each core
-    it may use in turn (empty where affinity cannot be set): on a shared machine the
-    cores' speeds can differ for minutes at a time."""
+def per_core_floor(found, fraction):
+    """``{core: seconds}`` of ``fraction`` of the floor in this process pinned to each
+    core it may use in turn (empty where affinity cannot be set): on a shared machine
+    the cores' speeds can differ for minutes at a time."""
     import os
 
     if not hasattr(os, "sched_setaffinity"):
@@ -218,7 +282,7 @@ def per_core_lu(size, count):
     try:
         for core in allowed:
             os.sched_setaffinity(0, {core})
-            out[core] = lu_time(size, count)
+            out[core] = floor_time(found, fraction)[0]
     except OSError:  # affinity refused here (some containers)
         return {}
     finally:

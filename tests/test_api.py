@@ -90,7 +90,13 @@ def test_operating_map_is_the_command(tmp_path, capsys):
                  "--friction", "0.2", "--lam", "-1", "--x", "load:3e4:4e4:2",
                  "--y", "speed:1:1.5:2", "--tol", "1e-4", "--workers", "1",
                  "--out", str(out)]) == 0
-    capsys.readouterr()
+    # The fields' accuracy said after the summary: the points' largest estimate, and
+    # where it meets the target (10 tol).
+    est = ds["error_estimate"].values
+    assert ds.attrs["field_tol"] == pytest.approx(1e-3)
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        f"fields' error estimate up to {est.max():.1e} (target 1e-03: met at "
+        f"{int((est <= 1e-3).sum())} of 4 points)")
     written = read_dataset(out)
     for name in ds.data_vars:
         a, b = ds[name].values, written[name].values

@@ -116,15 +116,15 @@ def test_zones_command_takes_every_closure(capsys):
 
 def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys):
     """`contact --zones --bulk-temperatures ... --sink-distance` (refused before) for a
-    hot copper cylinder on steel, whose partition is -63: the one valid zone equals the
-    single patch's branch (both at n = 32) to 1e-8 in its edges, lam and the peak
-    temperature."""
+    hot copper cylinder on steel, whose partition is -63: the one valid zone (n = 32)
+    equals the single patch's branch (its fields refined to their own target, from
+    n = 32) to 1e-8 in its edges, lam and the peak temperature."""
     assert main(["contact"] + HOT) == 0
     (branch,) = json.loads(capsys.readouterr().out)["branches"]
     assert main(["contact", "--zones"] + HOT) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["status"] == "solved" and rec["valid"] is True
-    assert branch["n"] == rec["dimensionless"]["n"] == 32
+    assert rec["dimensionless"]["n"] == 32 and branch["n"] >= 32
     (zone,) = rec["zones"]
     ell = rec["hertz_half_width"]
     assert abs(zone["a"] - branch["a"]) < 1e-8 * ell

@@ -329,8 +329,8 @@ def test_examples_with_the_bulk_temperatures_print_what_they_show(name, capsys, 
 
 def test_operating_map_at_fixed_bulk_temperatures_is_contact_at_its_points():
     """Each point of the map is the contact at its load and speed: lam (which varies
-    over the plane, of either sign) and the half-width equal, the peak temperature
-    the cylinder's bulk temperature plus the flash temperature."""
+    over the plane, of either sign), the half-width and the error estimate equal, the
+    peak temperature the cylinder's bulk temperature plus the flash temperature."""
     import thermocontact as tc
 
     kw = dict(cylinder="copper", half_plane="steel", friction=0.2, radius="10mm",
@@ -342,6 +342,10 @@ def test_operating_map_at_fixed_bulk_temperatures_is_contact_at_its_points():
     res = tc.contact(load=float(ds["load"][1]), speed=float(ds["speed"][0]), **kw).primary
     assert ds["lam"].values[0, 1] == res.lam
     assert ds["half_width"].values[0, 1] == res.half_width
+    # Each point's estimate is its contact's: the solution's and the fields', within
+    # the fields' target.
+    assert ds["error_estimate"].values[0, 1] == max(res.error_estimate, res.field_error)
+    assert np.all(ds["error_estimate"].values <= ds.attrs["field_tol"])
     assert np.allclose(ds["peak_temperature"].values,
                        353.15 + ds["flash_temperature"].values, rtol=0, atol=1e-9)
     assert ds.attrs["picture_field"] == "lam"

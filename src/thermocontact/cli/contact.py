@@ -46,8 +46,11 @@ def contact_summary(res) -> str:
             f"Pe {b.pe:.4g}, fHPe {b.fhpe:.4g}, P_H/P {b.load_ratio:.4g}",
             f"    flash temperature {b.flash_temperature:.4g} K; heat into cylinder "
             f"{b.heat_cylinder:.4g} W/m, half-plane {b.heat_half_plane:.4g} W/m",
-            f"    error estimate {b.error_estimate:.1e} (n = {b.solution.n}; target "
-            f"{'met' if b.converged else 'NOT met'})",
+            f"    error estimate {b.error_estimate:.1e}, fields {b.field_error:.1e} "
+            f"(n = {b.solution.n}; "
+            + ("targets met" if b.converged and b.fields_converged else
+               "target NOT met" if b.fields_converged else "fields' target NOT met"
+               if b.converged else "targets NOT met") + ")",
         ]
         if b.bulk_temperatures is not None:
             under = ["no limit" if u is None else ("under its limit" if u else "OVER its limit")

@@ -124,6 +124,13 @@ def run_map(spec, out, workers, title, command, stability=False):
                f"valid, {unconverged} not converged, {failed} failed), "
                f"{events} boundary point{'s' * (events != 1)}, "
                f"in {time.perf_counter() - t0:.1f} s")
+    if "field_tol" in ds.attrs and "error_estimate" in ds:
+        est = np.asarray(ds["error_estimate"].values, dtype=float)
+        known = est[np.isfinite(est)]
+        if known.size:
+            within = int((known <= ds.attrs["field_tol"]).sum())
+            click.echo(f"fields' error estimate up to {known.max():.1e} (target "
+                       f"{ds.attrs['field_tol']:.0e}: met at {within} of {known.size} points)")
     if "zones_status" in ds:
         zs = np.asarray(ds["zones_status"].values)
         counts = np.asarray(ds["zones_count"].values)[zs == "solved"]

@@ -41,18 +41,21 @@ from ..execution.resumable import run_chunks
 from ..problem.axes import PHYSICAL_UNITS
 from .maps import Axis, check_axis_name, parse_axis, prepare_dataset
 from .physical_contact import problem_ray
-from .ray import Ray
+from .ray import FIELD_TOL_FACTOR, Ray, refine_fields
 from .ray import interpolated_roots as _interpolated_roots
+from .ray import interpolation_error, nearest
 from .ray import local as _local
 
 __all__ = ["CONTACT_SET_SECONDS", "OperatingSpec", "RAY_PER_DECADE", "compute_operating_map",
-           "ray_samples"]
+           "operating_point", "operating_ray", "ray_samples", "sample_fields"]
 
 #: Physical axes of an operating map, and their SI units.
 AXES = PHYSICAL_UNITS
 #: Samples of the ray per decade of Pe, and of one chunk.
 RAY_PER_DECADE = 24
 RAY_CHUNK = 16
+#: Ray samples per chunk of their fields (each a refinement, up to n = 256: seconds).
+FIELD_CHUNK = 2
 
 
 def parse_physical_axis(option, spec) -> Axis:
@@ -215,7 +218,7 @@ class OperatingSpec:
                 # The values, not only the names: a materials file may redefine a name.
                 "materials": [_material_values(self.cylinder),
                               _material_values(self.half_plane)],
-                "fields": "slopes, strains and temperatures",
+                "fields": "refined to their own target",
                 **({} if self.bulk_temperatures is None else {
                     "bulk_temperatures": list(self.bulk_temperatures),
                     "sink_distance": self.sink_distance,
@@ -232,31 +235,60 @@ def _material_values(m: Material) -> dict:
 
 
 def evaluate_ray(task) -> dict:
-    """Solve the ray at the chunk's Péclet numbers: ``P_H/P``, offset, margins, shapes."""
-    out = {k: [] for k in ("pe", "load_ratio", "sigma_over_delta", "valid", "peak", "flash",
-                           "slope_cylinder", "slope_half_plane", "strain", "temperature_low",
-                           "temperature_high", "error_estimate", "n", "status", "reason")}
+    """Solve the ray at the chunk's Péclet numbers: ``P_H/P``, offset, validity, error
+    estimate and ``n`` (the fields come later, where a point needs them:
+    :func:`evaluate_fields`)."""
+    out = {k: [] for k in ("pe", "load_ratio", "sigma_over_delta", "valid", "error_estimate",
+                           "n", "status", "reason")}
+    ray = task["ray"]
     for pe in task["pe"]:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ConvergenceWarning)
-                ray = task["ray"]
                 sol = ray.model(pe, tol=task["tol"]).solve(ray.fh * pe, lam=ray.lam,
                                                            polish=False)
-            # The single patch's fields in units of its half-width: pressures of P/Delta,
-            # temperatures of f |v1 - v2| P/(pi K1) (D24).
-            f = contact_fields(sol, fractions=task["fractions"])
-            rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid), f.peak_pressure,
-                   f.flash_temperature, *f.slope_factors, f.strain_pressure,
-                   *f.temperature_range,
+            rec = (sol.load_ratio, sol.sigma_over_delta, int(sol.valid),
                    sol.error_estimate if sol.error_estimate is not None else math.nan, sol.n,
                    sol.status, sol.validity.reason)
         except (SolveError, InputError) as exc:
             nan = math.nan
-            rec = (nan, nan, 0, nan, nan, nan, nan, nan, nan, nan, nan, 0, "failed", str(exc))
+            rec = (nan, nan, 0, nan, 0, "failed", str(exc))
         for k, v in zip(list(out)[1:], rec):
             out[k].append(v)
         out["pe"].append(pe)
+    return out
+
+
+#: A ray sample's fields (:func:`evaluate_fields`), in units of its half-width:
+#: pressures of P/Delta, temperatures of f |v1 - v2| P/(pi K1) (D24).
+SAMPLE_FIELDS = ("peak", "flash", "slope_cylinder", "slope_half_plane", "strain",
+                 "temperature_low", "temperature_high", "field_error", "field_n")
+
+
+def evaluate_fields(task) -> dict:
+    """The fields of the chunk's ray samples (``task["samples"]``: ``(Pe, n)``, ``n``
+    where ``P_H/P`` met the target), each refined until they meet their target
+    (:func:`~.ray.refine_fields`): :data:`SAMPLE_FIELDS`.  A point read between samples
+    adds the interpolation's error (:func:`operating_point`'s estimate)."""
+    out = {k: [] for k in SAMPLE_FIELDS}
+    ray = task["ray"]
+    for pe, n in task["samples"]:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ConvergenceWarning)
+                fine = refine_fields(
+                    lambda m, pe=pe: ray.solve_at(pe, m, polish=False), n,
+                    lambda s: contact_fields(s, fractions=task["fractions"]),
+                    task["tol"], method=ray.method)
+            level = fine.levels[-1][0]
+            f = level.fields
+            rec = (f.peak_pressure, f.flash_temperature, *f.slope_factors, f.strain_pressure,
+                   *f.temperature_range, math.nan if fine.estimate is None else fine.estimate,
+                   level.solution.n)
+        except (SolveError, InputError):
+            rec = (math.nan,) * (len(SAMPLE_FIELDS) - 1) + (0,)
+        for k, v in zip(SAMPLE_FIELDS, rec):
+            out[k].append(v)
     return out
 
 
@@ -297,6 +329,61 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
         events += estimate_events(at_n, found, n, pe_lo, pe_hi, xtol)[0]
     ray["events"] = tuple(events)
     return ray
+
+
+def needed_samples(ray, pe_h_lo, pe_h_hi) -> np.ndarray:
+    """Indices of the ray samples that the points of ``Pe_H`` in ``[pe_h_lo, pe_h_hi]``
+    read their fields from: the stencils (:data:`~.ray.STENCIL`, and the next smaller
+    of the interpolation's estimate) of every interval where ``Pe^2 - Pe_H^2 L`` changes
+    sign for some ``Pe_H`` of the range (where :func:`~.ray.interpolated_roots` looks).
+
+    Each sample's sign changes once in ``u = Pe_H^2``, at ``Pe^2/L``; an interval's
+    pair of signs is constant between those two values, so it is tested at the range's
+    ends and at those values that lie inside it.
+    """
+    pe, L = np.asarray(ray["pe"]), np.asarray(ray["load_ratio"])
+    g = pe**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        turn = np.where(L > 0, g / L, np.nan)
+    lo, hi = pe_h_lo**2, pe_h_hi**2
+    tests = [np.full(pe.size - 1, lo), np.full(pe.size - 1, hi)]
+    for t in (turn[:-1], turn[1:]):
+        tests.append(np.where((t >= lo) & (t <= hi), t, lo))
+    changes = np.zeros(pe.size - 1, dtype=bool)
+    for u in tests:
+        a, b = g[:-1] - u * L[:-1], g[1:] - u * L[1:]
+        changes |= np.isfinite(a) & np.isfinite(b) & (a * b <= 0)
+    needed = np.zeros(pe.size, dtype=bool)
+    for i in np.flatnonzero(changes):
+        # A root inside the interval reads the STENCIL samples nearest it (and the
+        # next smaller stencil, among them): i - 2 to i + 3 for STENCIL = 6.
+        needed[nearest(np.log(pe), 0.5 * (np.log(pe[i]) + np.log(pe[i + 1])))] = True
+    return np.flatnonzero(needed)
+
+
+def sample_fields(spec: OperatingSpec, ray: dict, pe_h_lo, pe_h_hi, workers=1,
+                  progress=None, store_path=None) -> dict:
+    """``ray`` with :data:`SAMPLE_FIELDS` at the samples the points of ``Pe_H`` in
+    ``[pe_h_lo, pe_h_hi]`` need (:func:`needed_samples`; NaN elsewhere), computed in
+    chunks kept in ``store_path`` as they finish."""
+    idx = [int(i) for i in needed_samples(ray, pe_h_lo, pe_h_hi)
+           if ray["status"][i] != "failed"]
+    base = {"ray": spec.ray(), "tol": spec.tol, "fractions": spec.fractions()}
+    tasks = [{**base, "samples": [(float(ray["pe"][i]), int(ray["n"][i]))
+                                  for i in idx[k:k + FIELD_CHUNK]]}
+             for k in range(0, len(idx), FIELD_CHUNK)]
+    manifest = {**spec.manifest(), "part": "fields", "samples": [
+        [float(ray["pe"][i]), int(ray["n"][i])] for i in idx], "chunk": FIELD_CHUNK}
+    parts = run_chunks(evaluate_fields, tasks, manifest, store_path, workers=workers,
+                       progress=progress, meanwhile=prepare_dataset)
+    out = dict(ray)
+    for k in SAMPLE_FIELDS:
+        column = np.full(len(ray["pe"]), 0 if k == "field_n" else np.nan)
+        if idx:
+            column[idx] = np.concatenate([np.asarray(parts[j][k], dtype=float)
+                                          for j in range(len(tasks))])
+        out[k] = column
+    return out
 
 
 #: Fields of a map's contact sets (``zones_*``), by point.
@@ -370,21 +457,25 @@ def contact_set_fields(spec: OperatingSpec, workers=1, progress=None, store_path
             for k, v in found.items()}
 
 
-def two_parts(progress, lines):
-    """One progress for a map's two parts, its first part's chunks (their count told by
-    its own progress; none when resumed), then ``lines`` lines of contact sets: the
-    two ``progress(done, total)`` callables."""
-    first_total = [0]
+def in_parts(progress, count, lines):
+    """One progress for a map's parts: ``count`` parts of chunks (each part's count told
+    by its own progress; none when resumed), then ``lines`` lines of contact sets: the
+    ``count + 1`` ``progress(done, total)`` callables."""
+    totals = [0] * count
 
-    def first(done, total):
-        first_total[0] = total
-        if progress is not None:
-            progress(done, total + lines)
+    def part(k):
+        def tell(done, total):
+            totals[k] = total
+            if progress is not None:
+                before = sum(totals[:k])
+                progress(before + done, before + total + lines)
+        return tell
 
-    def second(done, total):
+    def last(done, total):
         if progress is not None:
-            progress(first_total[0] + done, first_total[0] + total)
-    return first, second
+            before = sum(totals)
+            progress(before + done, before + total)
+    return [part(k) for k in range(count)] + [last]
 
 
 def line_fields(spec: OperatingSpec, func, part, names, workers=1, progress=None,
@@ -439,6 +530,129 @@ def boundary_curve(spec: OperatingSpec, pe_h):
     return x, y
 
 
+def operating_ray(spec: OperatingSpec, workers=1, progress=None, store_path=None,
+                  fields_progress=None) -> dict:
+    """The ray of the map's plane (:func:`ray_samples` over the single patch's range of
+    every point, :meth:`PhysicalProblem.scan_range`) with the fields its points read
+    (:func:`sample_fields` over the plane's range of ``Pe_H``), the fields' chunks kept
+    in ``store_path``'s folder ``fields``: what :func:`operating_point` reads any point
+    of the plane from."""
+    load, speed, radius = spec.grid()
+    pe_h = spec.pe_hertz(load, speed, radius)
+    pe_lo, pe_hi = scan_range(pe_h.min(), pe_h.max(), spec.fh)
+    ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=progress,
+                      store_path=store_path)
+    return sample_fields(spec, ray, pe_h.min(), pe_h.max(), workers=workers,
+                         progress=fields_progress, store_path=None if store_path is None
+                         else os.path.join(store_path, "fields"))
+
+
+#: A point's numbers (:func:`operating_point`), the dataset's variables of the same names.
+POINT_FIELDS = ("half_width", "offset", "peak_pressure", "mean_pressure", "flash_temperature",
+                "load_ratio", "pe", "fhpe", "max_slope_cylinder", "max_slope_half_plane",
+                "max_strain_cylinder", "max_strain_half_plane", "error_estimate")
+
+
+def valid_at(ray: dict, pe) -> bool:
+    """The ray's validity at ``Pe``: near an event (within a sample interval on either
+    side; a relocated event may have left the interval it was found in) the event's,
+    elsewhere that of the samples either side."""
+    lp = ray["pe"]
+    i = int(np.clip(np.searchsorted(lp, pe), 1, len(lp) - 1))
+    a, b = lp[max(i - 2, 0)], lp[min(i + 1, len(lp) - 1)]
+    near = [e for e in ray["events"] if a <= e.at <= b]
+    if near:
+        e = min(near, key=lambda e: abs(e.at - pe))
+        return bool(e.valid_before) if pe < e.at else bool(e.valid_after)
+    return bool(ray["valid"][i - 1]) and bool(ray["valid"][i])
+
+
+def _read(lp, values, x, sample_error):
+    """The interpolant of ``values`` at ``x`` and the estimate of its relative error:
+    the interpolation's (:func:`~.ray.interpolation_error`) and the largest of the
+    stencil's samples' own (relative to ``max(|value|, 0.01)``, as the refinement's)."""
+    v = _local(lp, values, x)
+    own = np.max(sample_error[nearest(lp, x)])
+    return v, interpolation_error(lp, values, x) / max(abs(v), 0.01) + own
+
+
+def operating_point(spec: OperatingSpec, ray: dict, load, speed, radius) -> dict:
+    """One point of the operating map from the ray's samples (:func:`ray_samples`, with
+    :func:`sample_fields` over a ``Pe_H`` range holding the point's).
+
+    Returns
+    -------
+    dict
+        ``branches``, ``status`` (``solved`` or ``no branch``) and ``reason``; where
+        solved, :data:`POINT_FIELDS` in SI units, ``valid``, ``applicable``,
+        ``applicability_reasons`` (joined by "; ") and ``start`` (the edges, m, of a
+        valid single patch on the one branch there, else None).  ``error_estimate``
+        is the estimated relative error of the half-width, the offset (relative to
+        the larger of itself and the half-width), the peak pressure, the flash
+        temperature and the slopes and strains: the interpolations' estimates, the
+        stencils' samples' own (their ``P_H/P`` and fields' refinements), and their
+        effect through the root of D26, added.
+    """
+    pe_h = float(spec.pe_hertz(load, speed, radius))
+    lp = np.log(ray["pe"])
+    roots = _interpolated_roots(ray["pe"], ray["load_ratio"], pe_h)
+    out = {"branches": len(roots), "status": "solved"}
+    if not roots:
+        return {**out, "status": "no branch",
+                "reason": "no half-width carries this load on the searched range"}
+    flags = [valid_at(ray, math.exp(r)) for r in roots]
+    r = roots[flags.index(True)] if any(flags) else roots[0]
+    pe = math.exp(r)
+    k2, K1 = spec.half_plane.k, spec.cylinder.K
+    d = pe * 2.0 * k2 / speed
+    L, e_l = _read(lp, ray["load_ratio"], r, ray["error_estimate"])
+    # The root's error in ln Pe from that of L: h = Pe_H^2 L - Pe^2 moves by
+    # Pe_H^2 dL, at the slope dh/dx = Pe_H^2 L' - 2 Pe^2.
+    step = 1e-4
+    slope = pe_h**2 * (_local(lp, ray["load_ratio"], r + step)
+                       - _local(lp, ray["load_ratio"], r - step)) / (2 * step) - 2 * pe**2
+    dx = pe_h**2 * e_l * max(abs(L), 0.01) / max(abs(slope), 1e-300)
+    # L sigma, not sigma, is smooth along the ray: sigma has a pole where L = 0.
+    ls, e_ls = _read(lp, ray["load_ratio"] * ray["sigma_over_delta"], r, ray["error_estimate"])
+    offset = ls / L * d
+    e_offset = e_ls * max(abs(ls), 0.01) / max(abs(ls), abs(L)) + 2 * dx
+
+    def read(name):
+        v, e = _read(lp, ray[name], r, ray["field_error"])
+        shift = abs(_local(lp, ray[name], r + dx) - v) / max(abs(v), 0.01)
+        return v, e + shift
+    (peak, e_peak), (flash, e_flash), (slope_c, e_c), (slope_h, e_h), (strain, e_s) = (
+        read(k) for k in ("peak", "flash", "slope_cylinder", "slope_half_plane", "strain"))
+    # Heat at the sliding speed |1 - R| v (section 5b); temperatures in units of
+    # f |1 - R| v P/(pi K1) along the ray.
+    unit = spec.friction * speed * abs(1.0 - spec.speed_ratio) * load / (np.pi * K1)
+    # Slopes and strains as contact measures them (thermocontact.analysis.fields), from
+    # the ray's per-sample factors.
+    slopes, strains = slopes_and_strains(d / radius, abs(offset / d) + 1.0, L,
+                                         (slope_c, slope_h), strain, spec.fractions())
+    app = assess(d / radius, slopes, strains,
+                 temperature_rises=(unit * _local(lp, ray["temperature_low"], r),
+                                    unit * _local(lp, ray["temperature_high"], r)),
+                 max_temperature=(spec.cylinder.max_temperature,
+                                  spec.half_plane.max_temperature))
+    valid = valid_at(ray, pe)
+    reasons = app.reasons
+    return {**out, "half_width": d, "offset": offset, "peak_pressure": load / d * peak,
+            "mean_pressure": load / (2.0 * d), "flash_temperature": unit * flash,
+            "load_ratio": L, "pe": pe, "fhpe": spec.fh * pe,
+            "max_slope_cylinder": slopes[0], "max_slope_half_plane": slopes[1],
+            "max_strain_cylinder": strains[0], "max_strain_half_plane": strains[1],
+            # Slopes scale as d/L = d^-1 at the root (L = (Pe/Pe_H)^2), and with the
+            # offset (the rigid profile's reach).
+            "error_estimate": max(dx, e_offset, e_peak, e_flash, e_s,
+                                  max(e_c, e_h) + 3 * dx + e_offset),
+            "valid": int(valid), "applicable": int(not reasons),
+            "applicability_reasons": "; ".join(reasons),
+            "reason": ("valid" if valid else "invalid single patch") + (
+                "; not applicable: " + "; ".join(reasons) if reasons else ""),
+            "start": (offset - d, offset + d) if valid and len(roots) == 1 else None}
+
+
 def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command=None,
                           store_path=None):
     """The operating map as an :class:`xarray.Dataset` (SI units).
@@ -449,7 +663,9 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         Over the two axes: ``half_width``, ``offset``, ``peak_pressure``,
         ``mean_pressure``, ``flash_temperature``, ``load_ratio``, ``pe``, ``fhpe``,
         ``max_slope_*`` and ``max_strain_*`` of the cylinder and the half-plane (as
-        ``contact`` measures them), ``valid``, ``applicable`` (size, slopes, strains,
+        ``contact`` measures them), ``error_estimate`` (of those fields, relative:
+        :func:`operating_point`; the attribute ``field_tol`` is its target,
+        :data:`~.ray.FIELD_TOL_FACTOR` times ``tol``), ``valid``, ``applicable`` (size, slopes, strains,
         temperatures: :func:`~thermocontact.analysis.applicability.assess`, as
         ``contact``), ``applicability_reasons`` (joined by "; "), ``branches``,
         ``status``, ``reason``; the boundary
@@ -464,31 +680,13 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
         return temperature_map(spec, workers, progress, command, store_path)
     load, speed, radius = spec.grid()
     pe_h = spec.pe_hertz(load, speed, radius)
-    # The single patch's range (PhysicalProblem.scan_range), in Pe over the whole plane.
-    pe_lo, pe_hi = scan_range(pe_h.min(), pe_h.max(), spec.fh)
-    ray_progress, zone_progress = two_parts(progress, spec.y.count if spec.zones else 0)
-    ray = ray_samples(spec, pe_lo, pe_hi, workers=workers, progress=ray_progress,
-                      store_path=store_path)
+    # One progress for the parts: the ray's chunks, its fields', then the contact sets'.
+    ray_progress, fields_progress, zone_progress = in_parts(
+        progress, 2, spec.y.count if spec.zones else 0)
+    ray = operating_ray(spec, workers, ray_progress, store_path, fields_progress)
     lp = np.log(ray["pe"])
-
-    def valid_at(pe):
-        # Near an event (within a sample interval on either side; a relocated event
-        # may have left the interval it was found in) the event decides; elsewhere
-        # the samples either side.
-        i = int(np.clip(np.searchsorted(ray["pe"], pe), 1, len(lp) - 1))
-        a = ray["pe"][max(i - 2, 0)]
-        b = ray["pe"][min(i + 1, len(lp) - 1)]
-        near = [e for e in ray["events"] if a <= e.at <= b]
-        if near:
-            e = min(near, key=lambda e: abs(e.at - pe))
-            return bool(e.valid_before) if pe < e.at else bool(e.valid_after)
-        return bool(ray["valid"][i - 1]) and bool(ray["valid"][i])
-
     shape = pe_h.shape
-    fields = {k: np.full(shape, np.nan) for k in (
-        "half_width", "offset", "peak_pressure", "mean_pressure", "flash_temperature",
-        "load_ratio", "pe", "fhpe", "max_slope_cylinder", "max_slope_half_plane",
-        "max_strain_cylinder", "max_strain_half_plane")}
+    fields = {k: np.full(shape, np.nan) for k in POINT_FIELDS}
     valid = np.zeros(shape, dtype=np.int8)
     applicable = np.zeros(shape, dtype=np.int8)
     branches = np.zeros(shape, dtype=np.int32)
@@ -498,58 +696,17 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     # The edges (m) of the single patch where it is valid on the one branch there: the
     # contact sets start from them.
     starts = np.full(shape, None, dtype=object)
-    k2, K1 = spec.half_plane.k, spec.cylinder.K
-    fractions = spec.fractions()
-    limits = (spec.cylinder.max_temperature, spec.half_plane.max_temperature)
     for idx in np.ndindex(shape):
-        roots = _interpolated_roots(ray["pe"], ray["load_ratio"], pe_h[idx])
-        branches[idx] = len(roots)
-        if not roots:
-            status[idx] = "no branch"
-            reason[idx] = "no half-width carries this load on the searched range"
+        point = operating_point(spec, ray, load[idx], speed[idx], radius[idx])
+        branches[idx] = point["branches"]
+        status[idx], reason[idx] = point["status"], point["reason"]
+        if point["status"] != "solved":
             continue
-        flags = [valid_at(math.exp(r)) for r in roots]
-        r = roots[flags.index(True)] if any(flags) else roots[0]
-        pe = math.exp(r)
-        P, v, R = load[idx], speed[idx], radius[idx]
-        d = pe * 2.0 * k2 / v
-        Lr = _local(lp, ray["load_ratio"], r)
-        fields["half_width"][idx] = d
-        # L sigma, not sigma, is smooth along the ray: sigma has a pole where L = 0.
-        fields["offset"][idx] = _local(lp, ray["load_ratio"] * ray["sigma_over_delta"],
-                                       r) / Lr * d
-        fields["peak_pressure"][idx] = P / d * _local(lp, ray["peak"], r)
-        fields["mean_pressure"][idx] = P / (2.0 * d)
-        # Heat at the sliding speed |1 - R| v (section 5b); temperatures in units of
-        # f |1 - R| v P/(pi K1) along the ray.
-        unit = spec.friction * v * abs(1.0 - spec.speed_ratio) * P / (np.pi * K1)
-        flash = unit * _local(lp, ray["flash"], r)
-        fields["flash_temperature"][idx] = flash
-        fields["load_ratio"][idx] = Lr
-        fields["pe"][idx] = pe
-        fields["fhpe"][idx] = spec.fh * pe
-        valid[idx] = int(valid_at(pe))
-        if valid[idx] and len(roots) == 1:
-            starts[idx] = (fields["offset"][idx] - d, fields["offset"][idx] + d)
-        # Slopes and strains as contact measures them (thermocontact.analysis.fields),
-        # from the ray's per-sample factors.
-        sigma = fields["offset"][idx] / d
-        slope, strain = slopes_and_strains(
-            d / R, abs(sigma) + 1.0, Lr,
-            (_local(lp, ray["slope_cylinder"], r), _local(lp, ray["slope_half_plane"], r)),
-            _local(lp, ray["strain"], r), fractions)
-        for i, body in enumerate(("cylinder", "half_plane")):
-            fields[f"max_slope_{body}"][idx] = slope[i]
-            fields[f"max_strain_{body}"][idx] = strain[i]
-        app = assess(d / R, slope, strain,
-                     temperature_rises=(unit * _local(lp, ray["temperature_low"], r),
-                                        unit * _local(lp, ray["temperature_high"], r)),
-                     max_temperature=limits)
-        reasons = app.reasons
-        reasons_of[idx] = "; ".join(reasons)
-        applicable[idx] = int(not reasons)
-        reason[idx] = ("valid" if valid[idx] else "invalid single patch") + (
-            "; not applicable: " + "; ".join(reasons) if reasons else "")
+        for k in POINT_FIELDS:
+            fields[k][idx] = point[k]
+        valid[idx], applicable[idx] = point["valid"], point["applicable"]
+        reasons_of[idx] = point["applicability_reasons"]
+        starts[idx] = point["start"]
     # The existence boundary: Pe_H at the ray's validity changes (each a curve
     # Pe_H = const in the plane).
     bounds = np.array([e.at / math.sqrt(_local(lp, ray["load_ratio"], math.log(e.at)))
@@ -585,7 +742,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     ds.attrs.update({"title": "thermocontact operating map", "thermocontact_version": __version__,
                      "cylinder": spec.cylinder.name, "half_plane": spec.half_plane.name,
                      "friction": spec.friction, "lam": spec.lam, "x": spec.x.spec,
-                     "y": spec.y.spec, "tol": spec.tol, "units": "SI",
+                     "y": spec.y.spec, "tol": spec.tol, "field_tol": FIELD_TOL_FACTOR * spec.tol,
+                     "units": "SI",
                      "command": command or "", "chunk_axis": "ray",
                      "manifest": json.dumps(spec.manifest(), sort_keys=True),
                      **{k: v for k, v in spec.fixed.items()}})

@@ -32,7 +32,7 @@ from ..numerics.continuation import secant
 from ..solvers.result import ContactSolution
 from ..solvers.single_patch import DEFAULT_TOL
 from .boundaries import EVENT_RTOL, Path, trace
-from .ray import Ray, brackets, follow, root, start_of_root
+from .ray import FIELD_TOL_FACTOR, Ray, brackets, follow, refine_fields, root, start_of_root
 
 __all__ = ["ALONG", "Branch", "FHPE_MIN", "MAX_WIDTH", "PhysicalContact", "PhysicalProblem",
            "contact", "follow_along", "problem_ray"]
@@ -91,6 +91,14 @@ class Branch(Result):
     temperature in the contact, where both peak), ``flash_temperatures`` (each body's
     rise over its own bulk or sink temperature) and ``under_limits`` (each peak below
     its material's ``max_temperature``; None where the material has none).
+
+    ``error_estimate`` is that of ``P_H/P`` and ``sigma/Delta`` (target ``tol``);
+    ``field_error`` that of the fields, relative: the peak pressure, the flash
+    temperature and the slopes' and strain's factors, local values that converge
+    more slowly in ``n``, refined from the branch's ``n`` to their own target
+    (:data:`~thermocontact.studies.ray.FIELD_TOL_FACTOR` ``tol``,
+    :func:`~thermocontact.studies.ray.refine_fields`; the solution is then that of
+    the finer ``n``), 0 for Hertz's contact (exact at any ``n``).
     """
 
     half_width: float
@@ -120,6 +128,7 @@ class Branch(Result):
     lam_error: float | None = None
     bulk_temperatures: tuple | None = None
     temperature_limits: tuple | None = None
+    field_error: float | None = None
 
     @property
     def peak_temperatures(self) -> tuple | None:
@@ -158,6 +167,13 @@ class Branch(Result):
         return self.flash_temperature - self.half_plane_incoming_temperature
 
     @property
+    def fields_converged(self) -> bool:
+        """Whether ``field_error`` meets its target (``FIELD_TOL_FACTOR`` times the
+        solution's ``tol``)."""
+        return bool(self.field_error is not None
+                    and self.field_error <= FIELD_TOL_FACTOR * self.solution.tol)
+
+    @property
     def applicable(self) -> bool:
         """Whether the theory applies (:mod:`thermocontact.analysis.applicability`)."""
         return bool(self.applicability is not None and self.applicability.applicable)
@@ -177,7 +193,7 @@ class Branch(Result):
             "half_plane_incoming_temperature": self.half_plane_incoming_temperature,
             "flash_temperature_half_plane": self.flash_temperature_half_plane,
             "n": self.solution.n, "error_estimate": self.error_estimate,
-            "converged": self.converged,
+            "converged": self.converged, "field_error": self.field_error,
             "min_pressure_margin": v.pressure_margin, "min_gap_margin": v.gap_margin,
             "reason": v.reason, "strictly_valid": v.strictly_valid,
             "applicable": self.applicable,
@@ -306,13 +322,25 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
     """The fields of the solution at ``Pe`` with ``n`` unknowns, whose error estimate
     is ``estimate`` (:func:`~.ray.root`)."""
     half_width = prob.half_width(pe)
-    est = estimate
     # The F = 0 path has one exact level (P_H/P = 1 at any n): no error.
-    est = 0.0 if prob.friction == 0.0 or prob.fhpe(1.0) == 0.0 else est
-    sol = problem_ray(prob).solve_at(pe, n, check_validity=True).replace(error_estimate=est, tol=tol)
-    f = contact_fields(sol, length=half_width, load=prob.load,
-                       temperature_units=prob.temperature_units,
-                       fractions=prob.compliance_fractions)
+    hertz = prob.friction == 0.0 or prob.fhpe(1.0) == 0.0
+    est = 0.0 if hertz else estimate
+    ray = problem_ray(prob)
+
+    def fields_of(s):
+        return contact_fields(s, length=half_width, load=prob.load,
+                              temperature_units=prob.temperature_units,
+                              fractions=prob.compliance_fractions)
+    if hertz:  # Hertz's contact: exact at any n
+        sol = ray.solve_at(pe, n, check_validity=True)
+        f, field_error = fields_of(sol), 0.0
+    else:
+        # The fields (local values) to their own target, from n on (ray.refine_fields).
+        fine = refine_fields(lambda m: ray.solve_at(pe, m, check_validity=m >= n), n,
+                             fields_of, tol, method=ray.method)
+        sol, f = fine.levels[-1][0].solution, fine.levels[-1][0].fields
+        field_error = fine.estimate
+    sol = sol.replace(error_estimate=est, tol=tol)
     offset = sol.sigma_over_delta * half_width
     lam = sol.lam
     q = prob.friction * prob.sliding_speed * prob.load
@@ -328,6 +356,7 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
         half_plane_incoming_temperature=f.half_plane_incoming_temperature,
         error_estimate=float(sol.error_estimate),
         converged=bool(sol.error_estimate <= tol),
+        field_error=None if field_error is None else float(field_error),
         x=f.x, pressure=f.pressure,
         temperature_cylinder=f.temperature_cylinder,
         temperature_half_plane=f.temperature_half_plane,

@@ -20,14 +20,16 @@ import numpy as np
 from .._version import __version__
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
-from .operating_maps import contact_set_fields, line_fields, two_parts
+from .operating_maps import contact_set_fields, in_parts, line_fields
 from .physical_contact import contact
+from .ray import FIELD_TOL_FACTOR
 
 __all__ = ["TEMPERATURE_FIELDS", "temperature_map"]
 
 #: Numbers of each point's primary branch (NaN without one), then flags and words.
 NUMBERS = ("lam", "lam_error", "half_width", "offset", "peak_pressure", "flash_temperature",
-           "peak_temperature", "flash_temperature_half_plane", "load_ratio", "pe", "fhpe")
+           "peak_temperature", "flash_temperature_half_plane", "load_ratio", "pe", "fhpe",
+           "error_estimate")
 FLAGS = ("valid", "applicable", "under_limit_cylinder", "under_limit_half_plane", "branches")
 WORDS = ("status", "reason", "applicability_reasons")
 TEMPERATURE_FIELDS = NUMBERS + FLAGS + WORDS
@@ -57,6 +59,9 @@ def evaluate_line(task) -> dict:
                            peak_temperature=b.peak_temperatures[0],
                            flash_temperature_half_plane=b.flash_temperatures[1],
                            load_ratio=b.load_ratio, pe=b.pe, fhpe=b.fhpe,
+                           # The solution's estimate (P_H/P, sigma/Delta, lam) and its
+                           # fields' (Branch.field_error), relative.
+                           error_estimate=max(b.error_estimate, b.field_error),
                            valid=int(b.valid), applicable=int(b.applicable),
                            under_limit_cylinder=_flag(b.under_limits[0]),
                            under_limit_half_plane=_flag(b.under_limits[1]),
@@ -79,16 +84,18 @@ def temperature_map(spec, workers=1, progress=None, command=None, store_path=Non
     temperatures) as an :class:`xarray.Dataset` in SI units: over the two axes the
     primary branch's :data:`TEMPERATURE_FIELDS` (``lam`` the partition the
     temperatures imply, ``peak_temperature`` both surfaces' greatest absolute
-    temperature, K), the Hertz Peclet number and the closure's group ``theta``; with
-    ``spec.zones`` the contact sets' ``zones_*``
-    (:func:`~.operating_maps.evaluate_contact_sets`, the temperatures their closure
-    too), each sought first from the valid primary branch's edges."""
+    temperature, K; ``error_estimate`` the larger of the branch's relative estimates,
+    its solution's and its fields', whose target is the attribute ``field_tol``), the
+    Hertz Peclet number and the closure's group ``theta``; with ``spec.zones`` the
+    contact sets' ``zones_*`` (:func:`~.operating_maps.evaluate_contact_sets`, the
+    temperatures their closure too), each sought first from the valid primary branch's
+    edges."""
     import os
 
     import xarray as xr
 
     load, speed, radius = spec.grid()
-    line_progress, zone_progress = two_parts(progress, spec.y.count if spec.zones else 0)
+    line_progress, zone_progress = in_parts(progress, 1, spec.y.count if spec.zones else 0)
     found = line_fields(spec, evaluate_line, "bulk temperatures", TEMPERATURE_FIELDS, workers,
                         line_progress, store_path)
     dims = (spec.y.name, spec.x.name)
@@ -114,7 +121,8 @@ def temperature_map(spec, workers=1, progress=None, command=None, store_path=Non
                      "half_plane": spec.half_plane.name, "friction": spec.friction,
                      "bulk_temperatures": list(ref.bulk_temperatures),
                      "sink_distance": -1.0 if ref.sink_length is None else ref.sink_length,
-                     "x": spec.x.spec, "y": spec.y.spec, "tol": spec.tol, "units": "SI",
+                     "x": spec.x.spec, "y": spec.y.spec, "tol": spec.tol,
+                     "field_tol": FIELD_TOL_FACTOR * spec.tol, "units": "SI",
                      "command": command or "", "chunk_axis": "y", "picture_field": "lam",
                      "manifest": json.dumps(spec.manifest(), sort_keys=True),
                      **{k: v for k, v in spec.fixed.items()}})
