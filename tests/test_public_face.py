@@ -114,7 +114,7 @@ def test_the_closure_is_one_value_for_every_call():
               speed="2m/s", friction=0.2)
     assert (tc.contact(**kw, closure=tc.HeatPartition(-1)).to_dict()
             == tc.contact(**kw, lam=-1).to_dict())
-    with pytest.raises(tc.InputError, match="give one closure.*closure and lam"):
+    with pytest.raises(tc.InputError, match="give exactly one closure, got closure and lam"):
         tc.contact(**kw, lam=-1, closure=tc.HeatPartition(-1))
     with pytest.raises(tc.InputError, match="closure must be HeatPartition or BulkTemperatures"):
         tc.contact(**kw, closure=tc.Offset(0.1))

@@ -26,21 +26,22 @@ import warnings
 
 import numpy as np
 
-from ..analysis.validity import assess, assess_many
+from ..analysis.validity import assess
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
 from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance,
                                      check_temperatures, contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
-from ..problem.closure import (CLOSURE_LIMIT, Temperatures, check_closure_range, closure_of,
-                               far_temperatures, temperature_closure)
+from ..problem.closure import (CLOSURE_LIMIT, check_closure_range, closure_of, far_temperatures,
+                               temperature_closure)
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
-                                  check_finite, check_flag, check_integer, check_numbers,
+                                  check_finite, check_flag, check_integer,
                                   check_offset_coupling, check_positive)
 from ..problem.vocabulary import deprecated_spellings
 from .contact_system import solve_contact_system
+from .grid_line import as_in, line_inputs, line_validities
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
 
@@ -219,33 +220,6 @@ def _patch_solution(par, blocks, method, closure, x, rcond, conductance) -> Cont
         sigma_over_delta=float(sigma), phi=phi, psi=psi, representation=rep,
         validity=None, rcond=rcond, conductance=conductance,
         temperatures=temperatures)
-
-
-def _as_in(sol: ContactSolution, fine: ContactSolution) -> ContactSolution:
-    """``sol`` in ``fine``'s representation where that holds it exactly
-    (:meth:`~thermocontact.discretisation.representations.Representation.prolong`):
-    a coarser level's margins are then evaluated by the finer level's operators, formed
-    once for both (its margins the same but for rounding)."""
-    return _all_as_in([(sol, fine)])[0]
-
-
-def _all_as_in(pairs) -> list:
-    """:func:`_as_in` of each ``(sol, fine)``: the pairs of one ``(n, fine n)``
-    prolonged as one stack (each row summed as alone)."""
-    out = [sol for sol, _ in pairs]
-    groups = {}
-    for i, (sol, fine) in enumerate(pairs):
-        if fine.n != sol.n:
-            groups.setdefault((sol.representation, fine.representation), []).append(i)
-    for (rep, finer), which in groups.items():
-        held = rep.prolong(np.array([v for i in which
-                                     for v in (out[i].phi, out[i].psi)]), finer)
-        if held is None:
-            continue
-        for k, i in enumerate(which):
-            out[i] = out[i].replace(n=finer.n, representation=finer, phi=held[2 * k],
-                                    psi=held[2 * k + 1])
-    return out
 
 
 def _raising(result):
@@ -491,45 +465,23 @@ class Model:
             Per point, the :class:`ContactSolution` that :meth:`solve` returns there, or
             the :class:`InputError` or :class:`SolveError` it would raise.
         """
-        closure = check_exactly_one(lam=lam, sigma_over_delta=sigma_over_delta,
-                                    temperatures=temperatures)
         check_choice("rcond", rcond, RCOND_CHOICES)
-        closures = None
-        if closure == "temperatures":
-            # One closure (a Temperatures or a tuple (Theta, L/Delta)) or a list of them.
-            closures = [t if isinstance(t, Temperatures) else Temperatures(*t)
-                        for t in (temperatures if isinstance(temperatures, list)
-                                  else [temperatures])]
-            given = {"fhpe": fhpe}
-        else:
-            given = {"fhpe": fhpe, closure: lam if closure == "lam" else sigma_over_delta}
-        given = {k: check_numbers(k, v) for k, v in given.items()}
-        count = max([len(v) for v in given.values()] + ([len(closures)] if closures else []))
-        for k, v in given.items():
-            if len(v) not in (1, count):
-                raise InputError(f"{k} must be one value or {count} (one per point), got "
-                                 f"{len(v)}", parameters=(k,))
-        given = {k: v * count if len(v) == 1 else v for k, v in given.items()}
-        if closures is not None:
-            given["temperatures"] = closures * count if len(closures) == 1 else closures
+        fhpes, keys = line_inputs(fhpe, lam, sigma_over_delta, temperatures)
+        far = keys[0][2] is not None
         # lam is an output of the offset and of the temperatures, but its error is
         # estimated only where the temperatures make it (the offset's estimates stay).
-        quantities = QUANTITIES if closures is None else QUANTITIES_WITH_LAM
+        quantities = QUANTITIES if not far else QUANTITIES_WITH_LAM
         sizes, n_max = self.sizes()
         method = METHODS[self.method]
         systems = {}  # by n, the systems by closure
-        out = [None] * count
+        out = [None] * len(keys)
         pars = {}
-        for i, f in enumerate(given["fhpe"]):
+        for i, f in enumerate(fhpes):
             try:
                 pars[i] = self.parameters_at(f)
             except InputError as exc:
                 out[i] = exc
         cases = sorted(pars)
-        keys = [(given["lam"][i] if closure == "lam" else None,
-                 given["sigma_over_delta"][i] if closure == "sigma_over_delta" else None,
-                 given["temperatures"][i] if closure == "temperatures" else None)
-                for i in range(count)]
 
         def solve_level(m, which):
             # Validity only for the solutions returned: the coarser levels feed the
@@ -556,74 +508,60 @@ class Model:
                 out[cases[j]] = res
             else:
                 refined[cases[j]] = (lambda m, j=j: _raising(solve_level(m, [j])[0]), *res)
-        # The validity of every point's finest level and of the one before (whose
-        # margins' change is their error), all points at one n together.
-        wanted = {}
-        pairs = [(i, sol, levels[-1]) for i, (_, levels, _) in refined.items()
-                 for sol in levels[-2:]]
-        for (i, sol, _), checked in zip(pairs, _all_as_in([p[1:] for p in pairs])):
-            wanted.setdefault(checked.n, []).append(((i, sol.n), checked))
         # The systems (34 MB at n = 1024, partly resident) are formed again for any
         # further level.
         systems.clear()
-        validities = {}
-        if max(wanted, default=0) >= SHARED_BLOCKS_N:
-            release_freed_memory()  # the heap pages the levels' systems left
-        # The finest n first: its moment bases, formed again, serve its checks and polish.
-        for _, group in sorted(wanted.items(), reverse=True):
-            found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
-                                np.array([sol.phi for _, sol in group]),
-                                np.array([sol.psi for _, sol in group]),
-                                [sol.load_ratio for _, sol in group],
-                                [sol.sigma_over_delta for _, sol in group],
-                                [sol.lam for _, sol in group], polish=polish)
-            validities.update({key: v for (key, _), v in zip(group, found)})
-
+        validities = line_validities(refined, polish)
         for i, (at, levels, est) in refined.items():
-            def validity_of(sol, fine, i=i):
-                known = validities.get((i, sol.n))
-                if known is not None:
-                    return known
-                sol = _as_in(sol, fine)
-                return assess(sol.parameters, sol.representation, sol.phi, sol.psi,
-                              sol.load_ratio, sol.sigma_over_delta, sol.lam, polish=polish)
             try:
-                fin = levels[-1]
-                validity = validity_of(fin, fin)
-                if len(levels) > 1:
-                    # The margins' error: their change since n/2.  With n chosen, refine
-                    # on until every margin's sign is beyond it (or n reaches its largest).
-                    while True:
-                        coarse = validity_of(levels[-2], fin).margins()
-                        change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
-                        validity = validity.replace(margin_change=float(change))
-                        if self.n is not None or validity.certain() or 2 * fin.n > n_max:
-                            break
-                        if progress is not None:
-                            progress(2 * fin.n, est)
-                        levels.append(at(2 * fin.n))
-                        fin = levels[-1]
-                        est = error_estimate(levels, quantities,
-                                             p_max=method.order_cap)
-                        validity = validity_of(fin, fin)
-                lam_error = None
-                if closures is not None and len(levels) > 1:
-                    # Absolute: error_estimate is relative to max(|lam|, 0.01).
-                    lam_error = float(error_estimate(levels, ("lam",),
-                                                     p_max=method.order_cap)
-                                      * max(abs(fin.lam), 0.01))
+                sol = self._finished(at, levels, est, validities, i, quantities, far, polish,
+                                     progress)
             except (InputError, SolveError) as exc:
                 out[i] = exc
                 continue
-            sol = fin.replace(validity=validity,
-                              error_estimate=None if est is None else float(est),
-                              auto_n=self.n is None, tol=self.tol,
-                              estimate_is_bound=method.estimate_is_bound, lam_error=lam_error)
             if sol.converged is False and self.n is None:
                 warnings.warn(f"thermocontact: {sol.message}", ConvergenceWarning,
                               stacklevel=_stacklevel)
             out[i] = sol
         return out
+
+    def _finished(self, at, levels, est, validities, i, quantities, far, polish, progress):
+        """A point's solution from its levels: its validity, the margins' change since
+        n/2 (refined on, with n chosen, until every margin's sign is beyond it, or n
+        reaches its largest), the error estimates."""
+        method = METHODS[self.method]
+        n_max = self.sizes()[1]
+
+        def validity_of(sol, fine):
+            known = validities.get((i, sol.n))
+            if known is not None:
+                return known
+            sol = as_in(sol, fine)
+            return assess(sol.parameters, sol.representation, sol.phi, sol.psi,
+                          sol.load_ratio, sol.sigma_over_delta, sol.lam, polish=polish)
+        fin = levels[-1]
+        validity = validity_of(fin, fin)
+        if len(levels) > 1:
+            while True:
+                coarse = validity_of(levels[-2], fin).margins()
+                change = max(abs(a - coarse[k]) for k, a in validity.margins().items())
+                validity = validity.replace(margin_change=float(change))
+                if self.n is not None or validity.certain() or 2 * fin.n > n_max:
+                    break
+                if progress is not None:
+                    progress(2 * fin.n, est)
+                levels.append(at(2 * fin.n))
+                fin = levels[-1]
+                est = error_estimate(levels, quantities, p_max=method.order_cap)
+                validity = validity_of(fin, fin)
+        lam_error = None
+        if far and len(levels) > 1:
+            # Absolute: error_estimate is relative to max(|lam|, 0.01).
+            lam_error = float(error_estimate(levels, ("lam",), p_max=method.order_cap)
+                              * max(abs(fin.lam), 0.01))
+        return fin.replace(validity=validity, error_estimate=None if est is None else float(est),
+                           auto_n=self.n is None, tol=self.tol,
+                           estimate_is_bound=method.estimate_is_bound, lam_error=lam_error)
 
 
 @deprecated_spellings(closure="dimensionless")

@@ -293,37 +293,58 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
     check_range("delta1_over_delta2", delta1_over_delta2, 0.0, DISTORTIVITY_RATIO_MAX)
     if not 8 <= int(n) <= 256:
         raise InputError(f"n must be in [8, 256], got {n!r}")
-    if not isinstance(budget, _Budget):
-        budget = _Budget(budget)
-    # The last solution followed and its t: the answer where the budget is spent.
-    latest = [None, 0.0]
-    if progress is not None:
-        budget.tick = lambda: progress(latest[1])
+    follower = _Follower(path, K2_over_K1, lam, temperatures, progress,
+                         budget if isinstance(budget, _Budget) else _Budget(budget),
+                         k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
+                         beta_f=beta_f, conductance=conductance, n=int(n))
+    return follower.result(start)
 
-    def model_at(t):
+
+class _Follower:
+    """The contact set followed along a path (:func:`follow_contact_set`): the solves
+    along it (:meth:`at`), the steps (:meth:`follow`, :meth:`around`), the event where
+    the single zone fails (:meth:`event_of`) and the contact sets tried there
+    (:meth:`tried`); what was found so far kept where the budget ends."""
+
+    def __init__(self, path, K2_over_K1, lam, temperatures, progress, budget, **materials):
+        self.path, self.K2_over_K1, self.materials = path, K2_over_K1, materials
+        self.progress, self.budget = progress, budget
+        # The last solution followed and its t: the answer where the budget is spent.
+        self.latest = [None, 0.0]
+        if progress is not None:
+            budget.tick = lambda: progress(self.latest[1])
+        self.model = self.model_at(0.0)
+        # The closure held, checked as the solver checks it (lam's range; a sink
+        # distance for a stationary half-plane, none for a moving one).
+        if lam is not None:
+            self.closure = {"lam": check_closure_range(lam)[0]}
+        else:
+            self.closure = {"temperatures": check_temperatures(self.model.base, temperatures)}
+        self.history, self.folds, self.budget_steps = [], [], []
+        # The event and the contact sets tried, once found: kept where the budget ends.
+        self.event, self.attempts = None, []
+
+    def model_at(self, t):
         # A conductance may change along the path (a law h = C p^m has a Biot number
         # at the mean Hertz pressure that grows with the load).
-        cond = conductance(t) if callable(conductance) else conductance
-        return _Budgeted(budget, K2_over_K1, k2_over_k1=k2_over_k1,
-                         delta1_over_delta2=delta1_over_delta2, beta_f=beta_f, n=int(n),
-                         conductance=cond)
+        cond = self.materials["conductance"]
+        return _Budgeted(self.budget, self.K2_over_K1,
+                         **{**self.materials, "conductance": cond(t) if callable(cond) else cond})
 
-    model = model_at(0.0)
-    # The closure held, checked as the solver checks it (lam's range; a sink distance
-    # for a stationary half-plane, none for a moving one).
-    if lam is not None:
-        closure = {"lam": check_closure_range(lam)[0]}
-    else:
-        closure = {"temperatures": check_temperatures(model.base, temperatures)}
+    def at(self, edges, t, polish=False, max_iter=40):
+        pe, F = self.path(t)
+        return self.model_at(t).solve(edges, pe, F, polish=polish, max_iter=max_iter,
+                                      **self.closure)
 
-    def at(edges, t, polish=False, max_iter=40):
-        pe, F = path(t)
-        return model_at(t).solve(edges, pe, F, polish=polish, max_iter=max_iter, **closure)
+    def where(self, t):
+        pe, F = self.path(t)
+        return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
 
-    def follow(sol, t, to, stop_when_invalid):
-        # From sol at t toward `to` (steps from an eighth of what remains, halved on
-        # failure, grown by half on success); stops at the first invalid solution if
-        # asked.  Returns the last solution, its t, and the t where it failed.
+    def follow(self, sol, t, to, stop_when_invalid):
+        """From ``sol`` at ``t`` toward ``to`` (steps from an eighth of what remains,
+        halved on failure, grown by half on success); stops at the first invalid
+        solution if asked.  Returns the last solution, its t, and the t where it
+        failed."""
         last = None  # the previous (t, edges), for the secant predictor
         failed_at = None
         steps = 0
@@ -332,7 +353,7 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
             nonlocal sol, last, failed_at, steps
             steps += 1
             if steps > MAX_STEPS:
-                budget_steps.append(where(t))
+                self.budget_steps.append(self.where(t))
                 return STOP
             guess = sol.edges
             if last is not None and last[1].shape == sol.edges.shape:
@@ -341,7 +362,7 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
                 # From the predicted edges a step converges in a few Newton steps, or
                 # is too long; the correction, not the move, is limited (a zone may
                 # travel many of its widths along a path).
-                new = at(guess, trial, max_iter=12)
+                new = self.at(guess, trial, max_iter=12)
             except SolveError:
                 return REJECT
             if new.zones != sol.zones or float(np.max(np.abs(new.edges - guess))) > (
@@ -352,48 +373,45 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
                 return STOP
             last = (t, sol.edges)
             sol = new
-            latest[:] = [sol, trial]
-            history.append(dict(where(trial), edges=sol.edges.ravel().tolist(),
-                                valid=bool(sol.valid)))
-            if progress is not None:
-                progress(trial)
+            self.latest[:] = [sol, trial]
+            self.history.append(dict(self.where(trial), edges=sol.edges.ravel().tolist(),
+                                     valid=bool(sol.valid)))
+            if self.progress is not None:
+                self.progress(trial)
             return 1.5
 
         def stalled(t):
             # Natural steps stall: round the point by pseudo-arclength, which passes it
             # or finds the branch turning back (a fold).
             nonlocal sol, last
-            outcome, z = around(sol, t, min(to, t + 0.02 * (to - t)))
+            outcome, z = self.around(sol, t, min(to, t + 0.02 * (to - t)))
             if outcome == "passed":
                 try:
-                    sol = at(z[:-1].reshape(-1, 2), z[-1])
+                    sol = self.at(z[:-1].reshape(-1, 2), z[-1])
                 except SolveError:
                     return None
                 last = None
-                latest[:] = [sol, float(z[-1])]
+                self.latest[:] = [sol, float(z[-1])]
                 return float(z[-1])
             if outcome == "fold":
-                folds.append(dict(where(float(z[-1])), edges=z[:-1].tolist()))
+                self.folds.append(dict(self.where(float(z[-1])), edges=z[:-1].tolist()))
             return None
 
         t = march(attempt, t, to, step=lambda t: (to - t) / 8.0,
                   smallest=lambda t: 1e-4 * (to - t), stalled=stalled)
         return sol, t, failed_at
 
-    def where(t):
-        pe, F = path(t)
-        return {"t": t, "pe_hertz": pe, "fhpe_hertz": F}
-
-    def around(sol, t, until):
+    def around(self, sol, t, until):
+        """Pseudo-arclength from ``sol`` at ``t``: ``("passed" | "fold" | ..., z)``."""
         def residual(z):
-            pe, F = path(z[-1])
-            return model_at(z[-1]).defects(z[:-1], pe, F, **closure)[0]
+            pe, F = self.path(z[-1])
+            return self.model_at(z[-1]).defects(z[:-1], pe, F, **self.closure)[0]
 
         def jacobian(z, F0):
-            pe, F = path(z[-1])
+            pe, F = self.path(z[-1])
             h = 1e-7 * max(1.0, abs(z[-1]))
-            return np.column_stack([model_at(z[-1]).jacobian(z[:-1], pe, F, defects=F0,
-                                                             **closure),
+            return np.column_stack([self.model_at(z[-1]).jacobian(z[:-1], pe, F, defects=F0,
+                                                                  **self.closure),
                                     (residual(np.append(z[:-1], z[-1] + h)) - F0) / h])
         try:
             return arclength(residual, jacobian, np.append(sol.edges.ravel(), t),
@@ -401,53 +419,77 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
         except (SolveError, InputError, np.linalg.LinAlgError):
             return "failed", None
 
-    history, folds, budget_steps = [], [], []
-    # The event and the contact sets tried, once found: kept where the budget ends.
-    located = {"event": None, "attempts": []}
+    def result(self, start) -> ContactSetResult:
+        """The answer; where the budget of evaluations ends, what was found so far."""
+        try:
+            return self.followed(start)
+        except _BudgetSpent:
+            sol, reached = self.latest
+            return ContactSetResult(
+                "not converged", f"stopped after {self.budget.limit} evaluations of the "
+                f"contact set's defects, the most allowed, with the single zone followed to "
+                f"{_point(self.where(reached))}", sol, self.event, self.attempts,
+                history=self.history, folds=self.folds, reached=reached)
 
-    def _followed():
+    def followed(self, start) -> ContactSetResult:
+        """Newton's method from ``start`` (a valid single patch's edges) first; else the
+        single zone followed from Hertz's, and past the event where it fails the other
+        contact sets tried."""
         if start is not None:
             try:
-                found = at(np.asarray(start, dtype=float).reshape(1, 2), 1.0, polish=True)
+                found = self.at(np.asarray(start, dtype=float).reshape(1, 2), 1.0, polish=True)
             except (SolveError, InputError):
                 found = None
             if found is not None and found.zones == 1 and found.valid:
                 return ContactSetResult("solved", "one zone, by Newton's method from the valid "
                                         "single patch's edges", found)
-
-        latest[0] = at(np.array([[-1.0, 1.0]]), 0.0)
-        sol, t, failed_at = follow(latest[0], 0.0, 1.0, True)
+        self.latest[0] = self.at(np.array([[-1.0, 1.0]]), 0.0)
+        sol, t, failed_at = self.follow(self.latest[0], 0.0, 1.0, True)
         if failed_at is None and t < 1.0:
-            if budget_steps:
-                return ContactSetResult(
-                    "not converged", f"the single zone was followed to {_point(where(t))} in "
-                    f"{MAX_STEPS} steps, the most allowed, and no further", sol,
-                    history=history, reached=t)
-            if folds:
-                return ContactSetResult(
-                    "no steady solution", f"the single zone's branch folds back at "
-                    f"{_point(folds[-1])}: beyond it, along this path, it has no continuation",
-                    sol, history=history, folds=folds, reached=t)
-            return ContactSetResult(
-                "not converged", f"the single zone could not be followed past "
-                f"{_point(where(t))} (Newton's method fails, or jumps, for every step)", sol,
-                history=history, reached=t)
+            return self.stopped(sol, t)
         if failed_at is None:
-            final = at(sol.edges, 1.0, polish=True)
+            final = self.at(sol.edges, 1.0, polish=True)
             if final.valid:
                 return ContactSetResult("solved", "one zone, followed from Hertz's", final,
-                                        history=history)
+                                        history=self.history)
             failed_at = 1.0
+        lo_sol, bad, hi = self.event_of(sol, t, failed_at)
+        # The single zone itself at the end (followed on past the event).
+        single, reached, _ = self.follow(bad, hi, 1.0, False)
+        single = self.at(single.edges, reached, polish=True)
+        if reached < 1.0:
+            self.event["single_zone_followed_to"] = self.where(reached)
+        return self.tried(single, reached, hi)
 
-        # Locate the event between the last valid t and the first invalid one on the
-        # least margin (continuous where the verdict changes, sections 7-8; >= 0 exactly
-        # where valid), each solve starting from the valid solution nearest the event.
+    def stopped(self, sol, t) -> ContactSetResult:
+        """The single zone followed short of the point, and why."""
+        history, where = self.history, self.where
+        if self.budget_steps:
+            return ContactSetResult(
+                "not converged", f"the single zone was followed to {_point(where(t))} in "
+                f"{MAX_STEPS} steps, the most allowed, and no further", sol,
+                history=history, reached=t)
+        if self.folds:
+            return ContactSetResult(
+                "no steady solution", f"the single zone's branch folds back at "
+                f"{_point(self.folds[-1])}: beyond it, along this path, it has no "
+                f"continuation", sol, history=history, folds=self.folds, reached=t)
+        return ContactSetResult(
+            "not converged", f"the single zone could not be followed past "
+            f"{_point(where(t))} (Newton's method fails, or jumps, for every step)", sol,
+            history=history, reached=t)
+
+    def event_of(self, sol, t, failed_at):
+        """The event between the last valid ``t`` and the first invalid one, located on
+        the least margin (continuous where the verdict changes, sections 7-8; >= 0
+        exactly where valid), each solve starting from the valid solution nearest it:
+        the solutions either side and the event's ``t``."""
         solved = {t: sol}
 
         def margin(t_):
             if t_ not in solved:
                 start = max((x for x in solved if solved[x].valid), default=t)
-                solved[t_] = at(solved[start].edges, t_)
+                solved[t_] = self.at(solved[start].edges, t_)
             return min(solved[t_].validity.margins().values())
         try:
             lo, hi = locate(margin, t, failed_at, xtol=EVENT_TOL * 1e-9, rtol=EVENT_TOL,
@@ -455,31 +497,30 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
         except ValueError:  # no sign change between the ends: the event at the invalid one
             lo, hi = t, failed_at
         lo_sol = solved[lo]
-        bad = at(lo_sol.edges, hi, polish=True)
-        event = dict(where(hi), failure=_first_failure(bad), edges=bad.edges.ravel().tolist())
-        located["event"] = event
+        bad = self.at(lo_sol.edges, hi, polish=True)
+        self.event = dict(self.where(hi), failure=_first_failure(bad),
+                          edges=bad.edges.ravel().tolist())
         # The history passes the event where it was located.
         for s_ev, t_ev in ((lo_sol, lo), (bad, hi)):
-            history.append(dict(where(t_ev), edges=s_ev.edges.ravel().tolist(),
-                                valid=bool(s_ev.valid)))
-        # The single zone itself at the end (followed on past the event).
-        single, reached, _ = follow(bad, hi, 1.0, False)
-        single = at(single.edges, reached, polish=True)
-        if reached < 1.0:
-            event["single_zone_followed_to"] = where(reached)
+            self.history.append(dict(self.where(t_ev), edges=s_ev.edges.ravel().tolist(),
+                                     valid=bool(s_ev.valid)))
+        return lo_sol, bad, hi
 
+    def tried(self, single, reached, hi) -> ContactSetResult:
+        """The contact sets the failed single zone suggests, and the second method's,
+        tried at ``reached``: the first valid one, or why there is none."""
+        event, attempts, where = self.event, self.attempts, self.where
         guesses = _suggested_sets(single)
         (a, b), = single.edges
         h = 0.5 * (b - a)
-        attempts = located["attempts"]
         try:
-            if beta_f or conductance is not None:
+            if self.materials["beta_f"] or self.materials["conductance"] is not None:
                 raise SolveError("not tried: the second method has no Dundurs term and perfect "
                                  "thermal contact only")
-            pe, F = path(reached)
+            pe, F = self.path(reached)
             # (With the temperatures, at the single zone's partition: its contact set
             # is a start for Newton's method, which then holds the temperatures.)
-            el = solve_elements(model.parameters(pe, F), single.lam,
+            el = solve_elements(self.model.parameters(pe, F), single.lam,
                                 domain=(a - 1.5 * h, b + 1.5 * h), elements=400)
             guesses.append(("the second method's contact set", el.zones.tolist()))
             attempts.append({"tried": "second method (400 elements)",
@@ -489,7 +530,7 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
         for name, guess in guesses:
             try:
                 # A contact set that holds converges in a few steps from these guesses.
-                s2 = at(np.array(guess, dtype=float), reached, polish=True, max_iter=15)
+                s2 = self.at(np.array(guess, dtype=float), reached, polish=True, max_iter=15)
             except (SolveError, InputError) as exc:
                 attempts.append({"tried": name, "from": np.ravel(guess).tolist(),
                                  "result": f"no convergence ({exc})"})
@@ -502,8 +543,8 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
                 status = "solved" if reached >= 1.0 else "not converged"
                 return ContactSetResult(
                     status, f"{s2.zones} zones ({name}) at {_point(where(reached))}; the single "
-                    f"zone fails beyond {_point(where(hi))}", s2, event, attempts, history, folds,
-                    reached)
+                    f"zone fails beyond {_point(where(hi))}", s2, event, attempts,
+                    self.history, self.folds, reached)
         end = where(reached)
         return ContactSetResult(
             "no steady solution",
@@ -512,18 +553,8 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
             f"{event['failure']}), and none of the {len(guesses)} other contact sets tried "
             f"is valid at fHPe_l = {end['fhpe_hertz']:.6g} (see attempts)"
             + ("" if reached >= 1.0 else "; the single zone itself could be followed only "
-               "that far, where it is returned"), single, event, attempts, history, folds,
-            reached)
-
-    try:
-        return _followed()
-    except _BudgetSpent:
-        sol, reached = latest
-        return ContactSetResult(
-            "not converged", f"stopped after {budget.limit} evaluations of the contact "
-            f"set's defects, the most allowed, with the single zone followed to "
-            f"{_point(where(reached))}", sol, located["event"], located["attempts"],
-            history=history, folds=folds, reached=reached)
+               "that far, where it is returned"), single, event, attempts, self.history,
+            self.folds, reached)
 
 
 def _offset_contact_set(pe, fhpe, K2_over_K1, sigma_over_delta, *, n, progress,
