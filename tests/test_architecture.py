@@ -147,3 +147,24 @@ def test_the_explorer_reaches_the_library_through_its_adapter():
             continue
         outside = [t for t in _imports(name, path) if _layer(t) != "explore"]
         assert not outside, f"{name} imports {outside}: go through explore.adapter"
+
+
+def test_no_import_circle():
+    """The modules' imports (at any depth, lazy ones included) form no circle: every
+    module can be read after the ones it imports."""
+    graph = {name: {m for m in _imports(name, path) if m != name}
+             for name, path in _modules()}
+    known = set(graph)
+    graph = {name: {m for m in deps if m in known} for name, deps in graph.items()}
+    state = {}
+
+    def visit(name, trail):
+        if state.get(name) == "done":
+            return
+        assert state.get(name) != "open", " -> ".join(trail + [name])
+        state[name] = "open"
+        for dep in sorted(graph[name]):
+            visit(dep, trail + [name])
+        state[name] = "done"
+    for name in sorted(graph):
+        visit(name, [])

@@ -5,7 +5,7 @@ import pytest
 
 from thermocontact.problem.materials import get_material
 from thermocontact.problem.validation import InputError
-from thermocontact.studies.contact_sets import PhysicalConductance
+from thermocontact.problem.conductance import PhysicalConductance
 from thermocontact.studies.operating_maps import (OperatingSpec, compute_operating_map,
                                                   parse_physical_axis)
 from thermocontact.studies.physical_contact import PhysicalProblem, contact

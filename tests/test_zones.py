@@ -272,7 +272,7 @@ def test_conductance_in_si_units(capsys, tmp_path):
     `contact` and, before any point is computed, by `map`."""
     from thermocontact.cli import main
     from thermocontact.problem.materials import get_material
-    from thermocontact.studies.contact_sets import PhysicalConductance
+    from thermocontact.problem.conductance import PhysicalConductance
     from thermocontact.studies.physical_contact import PhysicalProblem
     prob = PhysicalProblem(get_material("steel"), get_material("copper"), 0.01, 3e5, 40.0,
                            0.3, 1.0)
@@ -287,7 +287,7 @@ def test_conductance_in_si_units(capsys, tmp_path):
     import re
 
     from thermocontact.problem.validation import InputError
-    from thermocontact.solvers.zones import BIOT_RANGE
+    from thermocontact.problem.conductance import BIOT_RANGE
     with pytest.raises(InputError) as err:
         PhysicalConductance(1e300, 0.95, 2e9).biot(prob)
     lo, hi = map(float, re.search(r"h0 must be in \[(\S+), (\S+)\]", str(err.value)).groups())

@@ -32,6 +32,7 @@ _EXPORTS = {
     "Applicability": ".analysis.applicability",
     "ContactFields": ".analysis.fields",
     "Material": ".problem.materials",
+    "PhysicalConductance": ".problem.conductance",
     "PhysicalProblem": ".problem.physical",
     "Branch": ".studies.physical_contact",
     "PhysicalContact": ".studies.physical_contact",

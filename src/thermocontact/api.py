@@ -98,7 +98,7 @@ def _physical_problem(cylinder, half_plane, radius, load, speed, friction, closu
 def _physical_conductance(conductance):
     """``None``, a :class:`~thermocontact.studies.contact_sets.PhysicalConductance` or
     ``(h0, m[, p_ref])`` with ``p_ref`` in Pa or with units."""
-    from .studies.contact_sets import PhysicalConductance
+    from .problem.conductance import PhysicalConductance
 
     if conductance is None or isinstance(conductance, PhysicalConductance):
         return conductance
@@ -849,6 +849,11 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
         ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
                            command=command)
         return map_stability(ds, spec) if stability else ds
+    if spec.bulk_temperatures is not None:
+        # Each point its own contact at the temperatures (section 17).
+        from .studies.temperature_maps import temperature_map
+
+        return temperature_map(spec, workers, progress, command, store)
     return compute_operating_map(spec, workers=workers, progress=progress, command=command,
                                  store_path=store)
 

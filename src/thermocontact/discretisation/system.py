@@ -39,64 +39,13 @@ from dataclasses import replace
 from ..numerics.moment_engine import BASES, GEOMETRY
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
-from ..problem.validation import InputError, check_pair, check_range, check_sink_given
+from ..problem.validation import InputError, check_sink_given
 from .operator import contact_operators, heat_operators, outside_operators, temperature_operators
 from .representations import (Representation, projection_columns, projection_nodes,
                               range_projections)
 
-__all__ = ["BIOT_RANGE", "Blocks", "Conductance", "ContactSetSystem", "assemble",
+__all__ = ["Blocks", "ContactSetSystem", "assemble",
            "contact_set_system", "equation_points", "temperature_points", "zone_parameters"]
-
-#: The Biot numbers ``h l/K2`` of an interface conductance that are solved: from
-#: nearly insulating to perfect contact to rounding (section 15).
-BIOT_RANGE = (1e-12, 1e15)
-
-
-@dataclass(frozen=True)
-class Conductance:
-    """An interface conductance ``h = h0 (p / p_ref)^m`` (derivation sections 15, 16).
-
-    Attributes
-    ----------
-    biot0 : float
-        ``h0 l / K2 > 0``: the Biot number of the conductance at the reference
-        pressure ``p_ref = P/(2 l)``, ``l`` the length unit (the Hertz half-width of
-        the load for a contact set, the contact's half-width ``Delta`` for the single
-        patch, section 16).
-    exponent : float
-        ``m >= 0`` (0: a constant conductance; about 0.95 for plastically deformed
-        asperities, Cooper, Mikic and Yovanovich 1969).
-    """
-
-    biot0: float
-    exponent: float = 0.0
-
-    def __post_init__(self):
-        object.__setattr__(self, "biot0", check_range("conductance h0", self.biot0,
-                                                      *BIOT_RANGE))
-        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent, 0.0, 10.0))
-
-    @classmethod
-    def of(cls, value):
-        """``value`` (None, a Conductance or ``(Bi0, m)``) as a Conductance or None."""
-        if value is None or isinstance(value, cls):
-            return value
-        return cls(*check_pair("conductance", value, "(Bi0, m), two numbers"))
-
-    def biot(self, pressure):
-        """``Bi = h l/K2`` at pressures ``p l/P`` (clipped at 1e-300 of the reference)."""
-        if self.exponent == 0.0:
-            return np.full(np.shape(pressure), self.biot0)
-        return self.biot0 * np.maximum(2.0 * np.asarray(pressure), 1e-300) ** self.exponent
-
-    def dbiot(self, pressure):
-        """``dBi/dp`` (0 where the pressure is clipped)."""
-        p2 = 2.0 * np.asarray(pressure)
-        live = p2 > 1e-300
-        out = np.zeros(np.shape(p2))
-        out[live] = 2.0 * self.exponent * self.biot0 * p2[live] ** (self.exponent - 1.0)
-        return out
-
 
 @dataclass(frozen=True, eq=False)
 class Blocks:

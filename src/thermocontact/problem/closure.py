@@ -19,8 +19,8 @@ from .validation import check_finite, check_positive, check_range
 __all__ = ["BulkTemperatures", "CLOSURE_LIMIT", "DIMENSIONLESS_CLOSURES", "FarTemperatures",
            "HeatPartition", "Offset", "PHYSICAL_CLOSURES", "SINK_RANGE", "THETA_MAX",
            "Temperatures", "check_closure_range", "check_sink_distance", "check_theta",
-           "closure_of", "far_temperatures", "layer_sink_distance", "spelled_closure", "temperature_closure",
-           "temperature_group"]
+           "closure_of", "far_temperatures", "layer_sink_distance", "spelled_closure",
+           "temperature_closure", "temperature_group"]
 
 #: Sink distances ``L/Delta`` solved: beyond the contact (the law holds for a flux
 #: inside the semicircle of radius ``L``) up to where ``ln(L/Delta)`` is still far

@@ -28,13 +28,14 @@ import numpy as np
 
 from ..analysis.validity import assess
 from ..discretisation.methods import DEFAULT_METHOD, DEFAULT_TOL, METHODS
-from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, Conductance,
-                                     check_temperatures, contact_set_system)
+from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, check_temperatures,
+                                     contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
 from ..numerics.moment_engine import GEOMETRY
 from ..problem.closure import (CLOSURE_LIMIT, check_closure_range, closure_of, far_temperatures,
                                temperature_closure)
+from ..problem.conductance import Conductance
 from ..problem.parameters import ConvergenceWarning, Parameters, SolveError
 from ..problem.validation import (InputError, check_callable, check_choice, check_exactly_one,
                                   check_finite, check_flag, check_integer,

@@ -36,11 +36,12 @@ from numpy.polynomial import Polynomial
 from .._version import __version__
 from ..analysis.zone_validity import ZoneValidity, assess_zones
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
-from ..discretisation.system import (BIOT_RANGE, Conductance, ContactSetSystem,
+from ..discretisation.system import (ContactSetSystem,
                                      check_temperatures, contact_set_system, zone_parameters)
 from ..io.results import Result
 from ..numerics.extrema import polish_minimum
 from ..problem.closure import Temperatures, check_closure_range
+from ..problem.conductance import Conductance
 from ..problem.errors import NotConvergedError
 from ..problem.parameters import Parameters, SolveError
 from ..problem.validation import (InputError, check_exactly_one, check_offset_coupling,
@@ -48,7 +49,7 @@ from ..problem.validation import (InputError, check_exactly_one, check_offset_co
 from .contact_system import solve_contact_system
 from .refinement import N_RANGE, refine
 
-__all__ = ["BIOT_RANGE", "CYLINDER", "Conductance", "ZoneModel", "ZoneSolution",
+__all__ = ["CYLINDER", "ZoneModel", "ZoneSolution",
            "zone_parameters", "zone_system"]
 
 #: The cylinder's initial gap, ``X^2/2`` in units of ``l^2/R``.

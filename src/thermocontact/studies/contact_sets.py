@@ -32,10 +32,10 @@ from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveErro
 from ..problem.validation import InputError, check_exactly_one, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..problem.closure import check_closure_range
-from ..solvers.zones import (BIOT_RANGE, FHPE_HERTZ_RANGE, PE_HERTZ_RANGE, ZoneModel,
-                             ZoneSolution)
+from ..problem.conductance import PhysicalConductance
+from ..solvers.zones import FHPE_HERTZ_RANGE, PE_HERTZ_RANGE, ZoneModel, ZoneSolution
 
-__all__ = ["ContactSetResult", "PhysicalConductance", "PhysicalContactSet", "find_contact_set",
+__all__ = ["ContactSetResult", "PhysicalContactSet", "find_contact_set",
            "follow_contact_set", "other_starts", "physical_contact_set"]
 
 #: Relative width to which the event of the first failing inequality is located.
@@ -647,59 +647,6 @@ def other_starts(model: ZoneModel, sol: ZoneSolution, lam) -> list[dict]:
         out.append({"start": name, "edges": other.edges.ravel().tolist(),
                     "valid": bool(other.valid), "same": same})
     return out
-
-
-@dataclass(frozen=True)
-class PhysicalConductance:
-    """An interface conductance ``h = h0 (p/p_ref)^m`` in SI units (section 15).
-
-    Attributes
-    ----------
-    h0 : float
-        W/(m^2 K) at ``p_ref``, > 0.
-    exponent : float
-        ``m`` in [0, 10].
-    p_ref : float or None
-        Pa; None: the mean Hertz pressure ``P/(2 l)`` of each load (a law that then
-        changes with the load, so that a map, whose loads differ, needs a ``p_ref``
-        unless ``m = 0``).
-    """
-
-    h0: float
-    exponent: float = 0.0
-    p_ref: float | None = None
-
-    def __post_init__(self):
-        object.__setattr__(self, "h0", check_range("conductance h0", self.h0, 0.0, 1e300,
-                                                   open_low=True))
-        object.__setattr__(self, "exponent", check_range("conductance m", self.exponent,
-                                                         0.0, 10.0))
-        if self.p_ref is not None:
-            object.__setattr__(self, "p_ref", check_range(
-                "conductance p_ref", self.p_ref, 0.0, 1e300, open_low=True))
-
-    def biot(self, problem) -> tuple[float, float]:
-        """``(Bi0, m)`` of :class:`~thermocontact.solvers.zones.Conductance` for
-        ``problem``: ``Bi0 = h(P/(2 l)) l/K2``."""
-        ell = problem.hertz_half_width
-        with np.errstate(over="ignore", under="ignore"):
-            factor = ell / problem.half_plane.K  # Bi0 / h0
-            if self.p_ref is not None and self.exponent:
-                factor *= (problem.load / (2.0 * ell) / self.p_ref) ** self.exponent
-            bi = self.h0 * factor
-        lo, hi = BIOT_RANGE
-        if not (np.isfinite(factor) and factor > 0.0):
-            raise InputError(f"conductance p_ref = {self.p_ref:g} Pa makes h at the mean "
-                             f"Hertz pressure {'infinite' if factor > 0 else 'zero'}: "
-                             f"give a p_ref near the contact pressures")
-        if not lo <= bi <= hi:
-            raise InputError(f"conductance h0 = {self.h0:g} W/(m^2 K) gives a Biot number "
-                             f"h l/K2 = {bi:.3g} at load {problem.load:g} N/m, outside "
-                             f"[{lo:g}, {hi:g}]: h0 must be in [{lo / factor:.3g}, "
-                             f"{hi / factor:.3g}] W/(m^2 K) here" + (
-                                 f" with p_ref = {self.p_ref:g} Pa, m = {self.exponent:g}"
-                                 if self.p_ref is not None and self.exponent else ""))
-        return bi, self.exponent
 
 
 def _physical(conductance) -> PhysicalConductance:

@@ -36,15 +36,16 @@ from ..problem.parameters import ConvergenceWarning, SolveError
 from ..problem.physical import PhysicalProblem, hertz_half_width, scan_range
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from .boundaries import estimate_events, locate_events
-from .contact_sets import PhysicalConductance, physical_contact_set
+from ..problem.conductance import PhysicalConductance
+from .contact_sets import physical_contact_set
 from ..execution.resumable import run_chunks
 from ..problem.axes import PHYSICAL_UNITS
 from .maps import Axis, check_axis_name, parse_axis, prepare_dataset
 from .physical_contact import problem_ray
+from ..numerics.interpolation import interpolation_error, nearest
+from ..numerics.interpolation import local as _local
 from .ray import FIELD_TOL_FACTOR, Ray, refine_fields
 from .ray import interpolated_roots as _interpolated_roots
-from .ray import interpolation_error, nearest
-from .ray import local as _local
 
 __all__ = ["CONTACT_SET_SECONDS", "OperatingSpec", "RAY_PER_DECADE", "compute_operating_map",
            "operating_point", "operating_ray", "ray_samples", "sample_fields"]
@@ -333,7 +334,8 @@ def ray_samples(spec: OperatingSpec, pe_lo, pe_hi, workers=1, progress=None,
 
 def needed_samples(ray, pe_h_lo, pe_h_hi) -> np.ndarray:
     """Indices of the ray samples that the points of ``Pe_H`` in ``[pe_h_lo, pe_h_hi]``
-    read their fields from: the stencils (:data:`~.ray.STENCIL`, and the next smaller
+    read their fields from: the stencils
+    (:data:`~thermocontact.numerics.interpolation.STENCIL`, and the next smaller
     of the interpolation's estimate) of every interval where ``Pe^2 - Pe_H^2 L`` changes
     sign for some ``Pe_H`` of the range (where :func:`~.ray.interpolated_roots` looks).
 
@@ -569,7 +571,8 @@ def valid_at(ray: dict, pe) -> bool:
 
 def _read(lp, values, x, sample_error):
     """The interpolant of ``values`` at ``x`` and the estimate of its relative error:
-    the interpolation's (:func:`~.ray.interpolation_error`) and the largest of the
+    the interpolation's
+    (:func:`~thermocontact.numerics.interpolation.interpolation_error`) and the largest of the
     stencil's samples' own (relative to ``max(|value|, 0.01)``, as the refinement's)."""
     v = _local(lp, values, x)
     own = np.max(sample_error[nearest(lp, x)])
@@ -675,9 +678,8 @@ def compute_operating_map(spec: OperatingSpec, workers=1, progress=None, command
     import xarray as xr
 
     if spec.bulk_temperatures is not None:
-        from .temperature_maps import temperature_map
-
-        return temperature_map(spec, workers, progress, command, store_path)
+        raise InputError("a map at fixed bulk temperatures is each point's own contact: "
+                         "temperature_maps.temperature_map", parameters=("spec",))
     load, speed, radius = spec.grid()
     pe_h = spec.pe_hertz(load, speed, radius)
     # One progress for the parts: the ray's chunks, its fields', then the contact sets'.

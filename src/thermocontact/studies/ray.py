@@ -23,6 +23,7 @@ import numpy as np
 
 from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult
+from ..numerics.interpolation import lagrange, local
 from ..numerics.continuation import REJECT, locate, march, secant, sign_changes
 from ..problem.parameters import SolveError
 from ..problem.closure import Temperatures
@@ -31,8 +32,8 @@ from ..solvers.refinement import (N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, Refi
 from ..solvers.single_patch import DEFAULT_TOL, Model
 
 __all__ = ["FIELD_P_MAX", "FIELD_QUANTITIES", "FIELD_TOL_FACTOR", "FieldLevel", "Ray",
-           "RayScan", "follow", "interpolated_roots", "interpolation_error", "lagrange",
-           "local", "nearest", "refine_fields", "root", "start_of_root"]
+           "RayScan", "follow", "interpolated_roots", "refine_fields", "root",
+           "start_of_root"]
 
 #: Unknowns per function of the continuation: enough to bracket the roots of D26,
 #: which :func:`root` then refines at the resolution that meets the error target.
@@ -48,8 +49,6 @@ PREDICTOR_TOL = 0.02
 SIGN_MARGIN = 0.25
 #: Points per step where the parabola of ``L`` is checked for hidden roots.
 SUBSTEPS = 16
-#: Samples of the local interpolant in ln Pe (degree STENCIL - 1).
-STENCIL = 6
 #: The fields' error target over the solution's: a contact's fields (the peak
 #: pressure, the flash temperature, the slope factors and the strain's pressure) are
 #: local values and converge more slowly in ``n`` than ``P_H/P`` and ``sigma/Delta``
@@ -283,41 +282,6 @@ def follow(ray: Ray, pe_lo, pe_hi, n=SCAN_N, pe_h=None, progress=None) -> RaySca
     return RayScan(np.exp(xs), np.array(fs), n, evaluations)
 
 
-def lagrange(xs, fs, x):
-    """The polynomial through the points ``(xs, fs)`` at ``x`` (Lagrange's form)."""
-    x = np.asarray(x, dtype=float)
-    out = np.zeros_like(x)
-    for j, (xj, fj) in enumerate(zip(xs, fs)):
-        w = np.ones_like(x)
-        for k, xk in enumerate(xs):
-            if k != j:
-                w = w * (x - xk) / (xj - xk)
-        out = out + w * fj
-    return out
-
-
-def nearest(ln_pe, x, stencil=STENCIL) -> slice:
-    """The ``stencil`` samples nearest ``x`` (of :func:`local`)."""
-    i = int(np.searchsorted(ln_pe, x))
-    stencil = min(stencil, len(ln_pe))
-    lo = min(max(i - stencil // 2, 0), len(ln_pe) - stencil)
-    return slice(lo, lo + stencil)
-
-
-def local(ln_pe, values, x, stencil=STENCIL):
-    """The Lagrange interpolant of ``values`` in ``ln Pe`` at ``x``, on the ``stencil``
-    samples nearest ``x``."""
-    near = nearest(ln_pe, x, stencil)
-    return float(lagrange(ln_pe[near], values[near], x))
-
-
-def interpolation_error(ln_pe, values, x) -> float:
-    """An estimate of the error of :func:`local` at ``x``: its change from the
-    interpolant on one sample fewer (the error of the lower degree, an upper estimate
-    of its own where the samples resolve the function)."""
-    return abs(local(ln_pe, values, x) - local(ln_pe, values, x, STENCIL - 1))
-
-
 def brackets(pe, load_ratio, pe_h):
     """Indices ``i`` where ``Pe^2 - Pe_H^2 L`` changes sign between samples ``i`` and
     ``i + 1`` (both finite)."""
@@ -326,7 +290,8 @@ def brackets(pe, load_ratio, pe_h):
 
 def interpolated_roots(pe, load_ratio, pe_h):
     """The roots ``ln Pe`` of D26 on the local interpolants of the samples (those
-    with ``STENCIL`` finite samples around them)."""
+    with :data:`~thermocontact.numerics.interpolation.STENCIL` finite samples around
+    them)."""
     lp = np.log(pe)
     L = np.asarray(load_ratio)
     ok = np.isfinite(L)
