@@ -81,8 +81,9 @@ API_DIR = HERE / "api"
 
 
 def public_names():
-    """The documented names: ``thermocontact.__all__`` in its order."""
-    return list(thermocontact.__all__)
+    """The documented names: ``thermocontact.__all__`` in its order (``__version__``, a
+    string, on the package's own page)."""
+    return [name for name in thermocontact.__all__ if name != "__version__"]
 
 
 def _attribute_comment(name, value):
@@ -141,13 +142,18 @@ def _summary(name):
 
 
 class PublicNames(SphinxDirective):
-    """A table of every public name, its link and its summary, and the toctree of their
-    pages."""
+    """A table of the public names of each group (``thermocontact.GROUPS``), their links
+    and summaries, and the toctree of their pages."""
 
     def run(self):
-        rst = [".. list-table::", "   :widths: 25 75", ""]
-        for name in public_names():
-            rst += [f"   * - :py:obj:`~thermocontact.{name}`", f"     - {_summary(name)}"]
+        rst = []
+        for group, names in thermocontact.GROUPS.items():
+            rst += [group, "-" * len(group), "", ".. list-table::", "   :widths: 25 75", ""]
+            for name in names:
+                if name == "__version__":
+                    continue
+                rst += [f"   * - :py:obj:`~thermocontact.{name}`", f"     - {_summary(name)}"]
+            rst += [""]
         rst += ["", ".. toctree::", "   :hidden:", ""]
         rst += [f"   api/{name}" for name in public_names()]
         container = nodes.container()

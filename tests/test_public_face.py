@@ -220,3 +220,11 @@ def test_every_result_is_an_outcome_with_a_strict_record(results, name):
         for var in ds.variables:
             if var in rec["units"]:
                 assert ds[var].attrs.get("units"), (name, var)
+
+
+def test_every_public_name_is_in_one_group_of_the_reference():
+    """The API reference groups the public names (thermocontact.GROUPS): each name of
+    ``__all__`` in exactly one group, no other."""
+    grouped = [name for names in tc.GROUPS.values() for name in names]
+    assert sorted(grouped) == sorted(tc.__all__)
+    assert len(grouped) == len(set(grouped))

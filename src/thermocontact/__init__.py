@@ -76,6 +76,29 @@ _EXPORTS = {
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
+#: The public names in groups, as the API reference shows them (each name in one group;
+#: tested).
+GROUPS = {
+    "Solve a contact": ["solve", "Model", "contact", "contact_set", "stability"],
+    "Follow and map": ["boundary", "parameter_map", "operating_map", "map_spec",
+                       "compute_map", "Axis"],
+    "In time, and its instability": ["transient", "transient_spec", "compute_transient",
+                                     "read_transient", "contact_transient",
+                                     "contact_transient_spec", "tei"],
+    "The closure": ["HeatPartition", "Offset", "FarTemperatures", "BulkTemperatures"],
+    "The problem": ["Material", "PhysicalProblem", "Parameters", "PhysicalConductance",
+                    "MapSpec", "OperatingSpec", "TransientSpec"],
+    "Results": ["ContactSolution", "PhysicalContact", "Branch", "ContactSetResult",
+                "PhysicalContactSet", "ZoneSolution", "Path", "Event", "StabilityResult",
+                "TEIResult", "TEIMode", "TransientRun", "Validity", "Applicability",
+                "ContactFields"],
+    "Errors and warnings": ["Error", "InputError", "MaterialError", "FileError",
+                            "SolveError", "NotConvergedError", "ExecutionError",
+                            "ConvergenceWarning"],
+    "Methods and caches": ["METHODS", "Method", "DEFAULT_METHOD", "clear_caches",
+                           "__version__"],
+}
+
 
 def __getattr__(name):
     if name in _EXPORTS:
