@@ -115,3 +115,191 @@ def depth_modes(pair: SlidingPair, wavenumber, velocity, n=48):
     b = scipy.linalg.eigvals(L, M)
     b = b[np.isfinite(b)]
     return b[np.argsort(-b.real, kind="stable")]
+
+
+def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
+    """One body's collocation: the interior rows (heat, then Navier's two equations),
+    the rows that hold its fields at zero at infinity (a half-plane), its face fields
+    as linear maps of its nodal unknowns, and which unknowns are the interior
+    temperatures.
+
+    Unknowns ``[T, u_x, u_y]`` at the points (``T`` only for a conductor).  The
+    elastic law is written in the plane asked for, directly: plane strain
+    ``lambda = 2 mu nu/(1 - 2 nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - 2 nu)``;
+    plane stress ``lambda = 2 mu nu/(1 - nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - nu)``.
+    """
+    mat = body.material
+    x, d, _ = _chebyshev(n)
+    mu = mat.mu
+    if plane == "strain":
+        lam = 2.0 * mu * mat.nu / (1.0 - 2.0 * mat.nu)
+        beta = 2.0 * mu * (1.0 + mat.nu) * mat.alpha / (1.0 - 2.0 * mat.nu)
+    else:
+        lam = 2.0 * mu * mat.nu / (1.0 - mat.nu)
+        beta = 2.0 * mu * (1.0 + mat.nu) * mat.alpha / (1.0 - mat.nu)
+    U = speed if body.moving else 0.0
+    if body.thickness is not None:
+        # y = h (1 - x)/2: x = 1 the bottom face (point 0), x = -1 the top (point n).
+        d1 = -(2.0 / body.thickness) * d
+        faces = {0: 0, 1: n}
+        infinity = None
+    else:
+        pe = abs(speed) / (mat.k * m) if mat.K > 0.0 and not split else 0.0
+        ell = 1.0 / (m * (1.0 + pe) ** 0.25)
+        with np.errstate(divide="ignore"):
+            jac = (1.0 - x) ** 2 / (2.0 * ell)          # d xi/d eta, eta the depth
+        d1 = jac[:, None] * d * (1.0 if upper else -1.0)  # d/dy = +-d/d eta
+        faces = {0: n, 1: n}
+        infinity = 0
+    d2 = d1 @ d1
+    npt = n + 1
+    eye = np.eye(npt)
+    conducts = mat.K > 0.0
+    nf = 3 if conducts else 2
+    o_t, o_x, o_y = (0, npt, 2 * npt) if conducts else (None, 0, npt)
+    cols = nf * npt
+    inner = [i for i in range(npt) if i not in set(faces.values()) and i != infinity]
+    rows = []
+    mass = []
+    if conducts:
+        heat = mat.k * (d2 - m * m * eye) - 1j * m * U * eye
+        for i in inner:
+            r = np.zeros(cols, dtype=complex)
+            r[o_t:o_t + npt] = heat[i]
+            rows.append(r)
+            mass.append(o_t + i)
+    for i in inner:
+        rx = np.zeros(cols, dtype=complex)
+        ry = np.zeros(cols, dtype=complex)
+        rx[o_x:o_x + npt] = mu * d2[i] - (lam + 2.0 * mu) * m * m * eye[i]
+        rx[o_y:o_y + npt] = 1j * m * (lam + mu) * d1[i]
+        ry[o_y:o_y + npt] = (lam + 2.0 * mu) * d2[i] - mu * m * m * eye[i]
+        ry[o_x:o_x + npt] = 1j * m * (lam + mu) * d1[i]
+        if conducts:
+            rx[o_t + i] = -1j * m * beta
+            ry[o_t:o_t + npt] = -beta * d1[i]
+        rows.extend((rx, ry))
+    zero_rows = []
+    if infinity is not None:
+        for o in ([o_t] if conducts else []) + [o_x, o_y]:
+            r = np.zeros(cols, dtype=complex)
+            r[o + infinity] = 1.0
+            zero_rows.append(r)
+    mu_ref, a_ref, K_ref = refs
+    F = np.zeros((2, 6, cols), dtype=complex)
+    for f, i in faces.items():
+        F[f, 0, o_x + i] = 2.0 * mu_ref * m
+        F[f, 1, o_y + i] = 2.0 * mu_ref * m
+        F[f, 2, o_x:o_x + npt] = mu * d1[i]
+        F[f, 2, o_y + i] += 1j * m * mu
+        F[f, 3, o_y:o_y + npt] = (lam + 2.0 * mu) * d1[i]
+        F[f, 3, o_x + i] += 1j * m * lam
+        if conducts:
+            F[f, 3, o_t + i] -= beta
+            F[f, 4, o_t + i] = 2.0 * mu_ref * a_ref
+            F[f, 5, o_t:o_t + npt] = -mat.K * d1[i] * 2.0 * mu_ref * a_ref / (K_ref * m)
+    return np.array(rows + zero_rows), F, mass, cols, len(rows)
+
+
+def _split(layup, m, speed):
+    """The layup with each conductor's thermal boundary layers as bodies of their own,
+    bonded to the rest of it: at a Péclet number ``P = V/(kappa m)`` the temperature
+    varies over ``1/(m sqrt(1 + P))`` near a sliding face, the displacements over
+    ``1/m``; one Chebyshev grid would need both.  The skins are 25 such lengths
+    thick (the temperature falls by ``e^{-17}`` or more across), and a layer thinner
+    than 8 skins is kept whole."""
+    from ..physics.tei_layers import Body, Layup
+
+    bodies, interfaces = [], []
+    last = len(layup.bodies) - 1
+    for j, body in enumerate(layup.bodies):
+        mat = body.material
+        pe = abs(speed) / (mat.k * m) if mat.K > 0.0 else 0.0
+        skin = 25.0 / (m * np.sqrt(1.0 + pe))
+        h = body.thickness
+        if pe < 100.0 or (h is not None and h < 8.0 * skin):
+            parts = [h]
+        elif h is None:
+            parts = [skin, None] if j == last else [None, skin]
+        else:
+            parts = [skin, h - 2.0 * skin, skin]
+        if j > 0:
+            interfaces.append(layup.interfaces[j - 1])
+        for k, t in enumerate(parts):
+            if k:
+                interfaces.append("bonded")
+            bodies.append(Body(mat, t, body.moving))
+    return Layup(tuple(bodies), tuple(interfaces), layup.bottom, layup.top, layup.friction,
+                 layup.dundurs, layup.plane)
+
+
+def layup_modes(layup, wavenumber, speed, n=32, count=None):
+    """Growth rates ``b`` (1/s, in the frame of the bodies at rest) of a layup,
+    discretised in depth: the second method of the layered TEI.
+
+    Each body's temperature and displacements are collocated at ``n + 1``
+    Chebyshev-Lobatto points (a layer's thickness, or a half-plane's depth mapped
+    as for :func:`depth_modes`); the rows are the heat equation with convection
+    (L1), Navier's equations with the thermal load in the plane of the layup
+    (written directly, not through the plane-stress substitution), and the face
+    conditions of :func:`thermocontact.physics.tei_layers.condition_matrix` applied
+    to the discretised face fields.  The displacements and face temperatures are
+    eliminated (the elastic problem is static), leaving a standard eigenproblem for
+    the interior temperatures.  It shares with the root search only the
+    statement of the face conditions.
+
+    Parameters
+    ----------
+    layup : thermocontact.physics.tei_layers.Layup
+    wavenumber : float
+        ``m > 0``, 1/m.
+    speed : float
+        Sliding velocity ``U`` of the moving bodies, m/s.
+    n : int, optional
+        Chebyshev intervals per body.
+    count : int, optional
+        Return only this many, the largest real parts.
+
+    Returns
+    -------
+    ndarray of complex
+        Eigenvalues by decreasing real part.
+    """
+    from ..physics.tei_layers import condition_matrix, heat_coefficient
+
+    m = float(wavenumber)
+    refs = layup.references()          # the scales of the face fields: the layup's own
+    heat = heat_coefficient(layup, m, speed)
+    whole = len(layup.bodies)
+    layup = _split(layup, m, speed)
+    split = len(layup.bodies) > whole
+    last = len(layup.bodies) - 1
+    parts = [_body_operators(body, n, m, speed, layup.plane, j == last, refs, split)
+             for j, body in enumerate(layup.bodies)]
+    offsets = np.cumsum([0] + [p[3] for p in parts])
+    size = int(offsets[-1])
+    C0, C1 = condition_matrix(layup)
+    C = C0 + heat * C1
+    L = np.zeros((size, size), dtype=complex)
+    dyn = []
+    r0 = 0
+    cond_rows = np.zeros((C.shape[0], size), dtype=complex)
+    for j, (rows, F, mass, cols, ninner) in enumerate(parts):
+        o = offsets[j]
+        L[r0:r0 + rows.shape[0], o:o + cols] = rows
+        dyn.extend(r0 + k for k in range(len(mass)))          # heat rows come first
+        r0 += rows.shape[0]
+        cond_rows[:, o:o + cols] = np.einsum("rfk,fkc->rc", C[:, j], F)
+    L[r0:] = cond_rows
+    dyn_cols = [offsets[j] + c for j, p in enumerate(parts) for c in p[2]]
+    dyn_rows = np.array(dyn)
+    dyn_cols = np.array(dyn_cols)
+    st_rows = np.setdiff1d(np.arange(size), dyn_rows)
+    st_cols = np.setdiff1d(np.arange(size), dyn_cols)
+    Lss = L[np.ix_(st_rows, st_cols)]
+    Lsd = L[np.ix_(st_rows, dyn_cols)]
+    A = (L[np.ix_(dyn_rows, dyn_cols)]
+         - L[np.ix_(dyn_rows, st_cols)] @ np.linalg.solve(Lss, Lsd))
+    b = scipy.linalg.eigvals(A, check_finite=False, overwrite_a=True)
+    b = b[np.argsort(-b.real, kind="stable")]
+    return b if count is None else b[:count]

@@ -1,0 +1,298 @@
+"""Thermoelastic instability of brake discs, pads on backing plates and clutch packs:
+the modes of each family, critical speeds against the wavelength and their minimum.
+
+A *family* is one layup of :mod:`thermocontact.physics.tei_layers` whose modes are
+studied together: a disc rubbing on both faces between identical pads splits into
+the modes symmetric and antisymmetric about its mid-plane (each a half-disc with the
+mid-plane's conditions), a clutch pack into four families (docs/tei.md).  Two
+half-planes are the family of :mod:`thermocontact.physics.tei`, whose polynomial
+root search finds every mode; the same interface serves both (:class:`HalfPlanes`,
+:class:`Layered`), so that every study below works for every geometry.
+
+For a layup the modes are roots of ``det M(b)`` (L8): the rightmost few are seeded by
+the eigenvalues of the depth discretisation
+(:func:`thermocontact.discretisation.tei_depth.layup_modes`) and polished by Newton's
+method on the determinant.  A neutral mode, ``b = i omega`` at the critical speed, is
+found by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
+``(V, omega)`` (L10); along a curve of wavelengths it is continued from the last one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..discretisation.tei_depth import layup_modes
+from ..physics.tei import SlidingPair, modes as half_plane_modes, speed_lower_bound
+from ..physics.tei_layers import Layup, layup_dispersion
+
+__all__ = ["HalfPlanes", "Layered", "continue_neutral", "neutral_point"]
+
+#: Chebyshev intervals per body of the depth discretisation that seeds the roots.
+SEED_POINTS = 16
+#: Seeds polished per evaluation of the modes.
+SEEDS = 4
+#: Speeds per factor 2 of the scan for the first crossing.
+PER_OCTAVE = 2
+
+
+def _scale(layup: Layup, m) -> float:
+    """``kappa m^2`` of the slowest conductor: the growth rates' scale."""
+    return min(b.material.k for b in layup.bodies if b.conducts) * m * m
+
+
+def _newton(func, x0, scale, iters=30):
+    """Newton's method on an analytic ``func`` (vectorised), the derivative by central
+    differences of step ``1e-6 scale``; returns the roots and which converged to
+    ``1e-13 scale``."""
+    x = np.array(x0, dtype=complex)
+    done = np.zeros(x.shape, dtype=bool)
+    h = 1e-6 * scale
+    for _ in range(iters):
+        f = func(np.stack([x, x + h, x - h]))
+        d = (f[1] - f[2]) / (2.0 * h)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.where(done, 0.0, f[0] / d)
+        step = np.where(np.isfinite(step), step, 0.0)
+        x = x - step
+        done |= np.abs(step) <= 1e-13 * (np.abs(x) + scale)
+        if done.all():
+            break
+    return x, done
+
+
+@dataclass(frozen=True)
+class Layered:
+    """One family of modes of a layup.
+
+    Parameters
+    ----------
+    name : str
+        The family's name ("symmetric", "antisymmetric", ...; docs/tei.md).
+    layup : Layup
+    """
+
+    name: str
+    layup: Layup
+
+    def scale(self, m) -> float:
+        return _scale(self.layup, m)
+
+    def continuum(self, m) -> float:
+        """The right end of the half-planes' continuous spectrum, ``-kappa m^2``
+        (``-inf`` without a half-plane): roots are sought to its right."""
+        ks = [b.material.k for b in self.layup.bodies if b.thickness is None and b.conducts]
+        return -min(ks) * m * m if ks else -math.inf
+
+    def dispersion(self, b, m, speed):
+        return layup_dispersion(self.layup, b, m, speed)
+
+    def modes(self, m, speed, count=SEEDS, seeds=None):
+        """The rightmost modes at one wavenumber and speed, 1/s, by decreasing real part:
+        depth-discretisation seeds (or ``seeds``) polished by Newton's method."""
+        m = float(m)
+        if seeds is None:
+            seeds = layup_modes(self.layup, m, speed, SEED_POINTS)
+            edge = self.continuum(m)
+            seeds = seeds[seeds.real > 0.5 * edge][:count] if math.isfinite(edge) else seeds[:count]
+        if not len(seeds):
+            return np.array([], dtype=complex)
+        scale = max(self.scale(m), 1e-300)
+        roots, ok = _newton(lambda z: self.dispersion(z, m, speed), seeds, scale)
+        roots = roots[ok & (roots.real > self.continuum(m))]
+        out = []
+        for r in roots[np.argsort(-roots.real, kind="stable")]:
+            if all(abs(r - x) > 1e-8 * (abs(r) + scale) for x in out):
+                out.append(complex(r))
+        return np.array(out, dtype=complex)
+
+    def lowest_speed(self, m) -> float:
+        """Where the scan for the first crossing starts, m/s: the frictional heat's
+        coefficient ``2 mu a f V/(K m)`` times the layers' bending compliance
+        ``(m h)^-3``, 1e-4 times: the frictional heat then moves every
+        mode by a fraction of order 1e-4.  At least 1e-9 m/s."""
+        mu, a, K = self.layup.references()
+        hs = [b.thickness for b in self.layup.bodies if b.thickness is not None]
+        bend = min(1.0, (m * min(hs)) ** 3) if hs else 1.0
+        return max(1e-9, 1e-4 * bend * K * m / (2.0 * mu * a * max(self.layup.friction, 1e-300)))
+
+
+@dataclass(frozen=True)
+class HalfPlanes:
+    """Two sliding half-planes as a family: the root search of
+    :mod:`thermocontact.physics.tei` (every mode, H8)."""
+
+    name: str
+    pair: SlidingPair
+
+    def scale(self, m) -> float:
+        return min(b.k for b in self.pair.bodies if b.K > 0.0) * m * m
+
+    def modes(self, m, speed, count=None, seeds=None):
+        b = half_plane_modes(self.pair, m, speed)
+        return b if count is None else b[:count]
+
+    def lowest_speed(self, m) -> float:
+        return 0.5 * speed_lower_bound(self.pair, m)
+
+    def dispersion(self, b, m, speed):
+        from ..physics.tei import dispersion
+
+        return dispersion(self.pair, b, m, speed)
+
+
+def growth_rate(family, m, speed) -> float:
+    """The largest ``Re b`` of the family's modes, 1/s (``-inf`` without a mode)."""
+    b = family.modes(m, speed)
+    return float(b[0].real) if len(b) else -math.inf
+
+
+def _frame(m, V, omega):
+    """1 if the pattern is nearer to rest on the moving bodies than on the bodies at
+    rest, else 0: the frame in which a neutral mode's frequency is measured."""
+    return np.where(np.abs(omega + m * V) < np.abs(omega), 1.0, 0.0)
+
+
+def neutral_point(family, m, speed, omega, iters=40):
+    """``(V, omega, converged)`` with ``D(i omega; V) = 0`` near a guess, by Newton's
+    method on two real unknowns (L10).
+
+    A neutral mode fixed on a body is sharply defined in ``omega``: within
+    ``kappa m^2`` of ``-m U`` of that body.  The unknowns are therefore ``V`` and
+    the frequency in the frame of the bodies the pattern is nearer to rest on,
+    ``s = (omega + phi m V)/(kappa m^2)`` (``phi`` 1 for the moving bodies, 0 for
+    those at rest), which Newton's method varies independently.  ``m`` may be an
+    array (with ``speed`` and ``omega`` of its shape): the points are solved together,
+    each on its own."""
+    m = np.asarray(m, dtype=float)
+    V = np.array(np.broadcast_to(speed, m.shape), dtype=float)
+    w = np.array(np.broadcast_to(omega, m.shape), dtype=float)
+    sig = (np.vectorize(family.scale)(m) if m.ndim else np.asarray(family.scale(float(m))))
+    phi = _frame(m, V, w)
+    s = (w + phi * m * V) / sig
+    done = np.zeros(m.shape, dtype=bool)
+
+    def omega_of(V, s):
+        return -phi * m * V + sig * s
+
+    for _ in range(iters):
+        hs = 1e-6 * (1.0 + np.abs(s))
+        hv = 1e-7 * V
+        f = family.dispersion(1j * np.stack([omega_of(V, s), omega_of(V, s + hs),
+                                             omega_of(V, s - hs), omega_of(V + hv, s)]),
+                              np.stack([m] * 4), np.stack([V, V, V, V + hv]))
+        ds = (f[1] - f[2]) / (2.0 * hs)
+        dv = (f[3] - f[0]) / hv
+        det = dv.real * ds.imag - dv.imag * ds.real
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sV = (-f[0].real * ds.imag + f[0].imag * ds.real) / det
+            sS = (-dv.real * f[0].imag + dv.imag * f[0].real) / det
+        sV = np.where(done | ~np.isfinite(sV), 0.0, sV)
+        sS = np.where(done | ~np.isfinite(sS), 0.0, sS)
+        # Damped: a step changes the speed by at most a factor 1.5.
+        sV = np.clip(sV, -V / 3.0, 0.5 * V)
+        V = V + sV
+        s = s + sS
+        done |= (np.abs(sV) <= 1e-13 * V) & (np.abs(sS) <= 1e-11 * (1.0 + np.abs(s)))
+        if done.all():
+            break
+    return V, omega_of(V, s), done
+
+
+def first_crossing(family, m, v_low=None, v_high=1e4):
+    """The lowest speed at which a mode of wavenumber ``m`` grows, from a scan
+    upward (:data:`PER_OCTAVE` speeds per factor 2) located by Newton's method on the
+    neutral point; ``(None, None)`` if none grows below ``v_high``.
+
+    Returns
+    -------
+    (float, complex) or (None, None)
+        The critical speed, m/s, and the neutral growth rate ``b = i omega``, 1/s.
+    """
+    v = family.lowest_speed(m) if v_low is None else v_low
+    ratio = 2.0 ** (1.0 / PER_OCTAVE)
+    prev = None
+    while v <= v_high * ratio:
+        b = family.modes(m, v)
+        if len(b) and b[0].real > 0.0:
+            if prev is None:   # unstable at the scan's start: not expected
+                return v, complex(b[0])
+            v0, b0 = prev
+            # Interpolate the speed where Re b crosses 0, then Newton.
+            t = -b0.real / (b[0].real - b0.real) if b0 is not None else 0.5
+            vg = v0 * (v / v0) ** t
+            wg = (b0.imag * (1 - t) + b[0].imag * t) if b0 is not None else b[0].imag
+            V, w, ok = neutral_point(family, m, vg, wg)
+            if ok and v0 * 0.999 <= V <= v * 1.001:
+                return float(V), 1j * float(w)
+            return _brent_crossing(family, m, v0, v)
+        prev = (v, complex(b[0]) if len(b) else None)
+        v *= ratio
+    return None, None
+
+
+def _brent_crossing(family, m, v0, v1):
+    from scipy.optimize import brentq
+
+    vc = brentq(lambda v: growth_rate(family, m, v), v0, v1, rtol=1e-13)
+    b = family.modes(m, vc)
+    return float(vc), complex(b[0])
+
+
+def _step(family, m0, point, m1, depth=0):
+    """The neutral point at ``m1`` continued from ``point = (V, omega)`` at ``m0``:
+    Newton's method from the same speed and frequency in the pattern's frame
+    (:func:`neutral_point`), accepted if it converges within a factor 2 of the speed;
+    otherwise the interval is halved (in ``ln m``, at most 8 times)."""
+    v0, w0 = point
+    # Predicted: the same speed and the same frequency in the pattern's frame, in
+    # units of kappa m^2.
+    phi = float(_frame(m0, v0, w0))
+    s = (w0 + phi * m0 * v0) / family.scale(m0)
+    v, w, ok = neutral_point(family, m1, v0, -phi * m1 * v0 + s * family.scale(m1))
+    if ok and 0.5 * v0 < v < 2.0 * v0:
+        return float(v), float(w)
+    if depth >= 8:
+        return None
+    mid = math.sqrt(m0 * m1)
+    half = _step(family, m0, point, mid, depth + 1)
+    return None if half is None else _step(family, mid, half, m1, depth + 1)
+
+
+def continue_neutral(family, wavenumbers, start=None, check_every=20):
+    """The critical speed and neutral ``omega`` along sorted wavenumbers, continued.
+
+    The first point (or ``start = (V, omega)`` at ``wavenumbers[0]``) comes from a
+    scan (:func:`first_crossing`); each next point from Newton's method on the
+    neutral point started from the last (:func:`_step`, halving the step where it
+    fails).  Every ``check_every`` points, and wherever the continuation fails, a
+    scan confirms that no other mode grows at a lower speed (where one does, its
+    branch takes over).
+
+    Returns
+    -------
+    (V, omega) : ndarrays
+        NaN where no mode grows below the scan's end.
+    """
+    ms = np.asarray(wavenumbers, dtype=float)
+    V = np.full(ms.shape, np.nan)
+    W = np.full(ms.shape, np.nan)
+    prev = None if start is None else (float(ms[0]), start)
+    for i, m in enumerate(ms):
+        found = None
+        if prev is not None:
+            found = prev[1] if prev[0] == m else _step(family, prev[0], prev[1], m)
+            if found is not None and i % check_every == 0 and growth_rate(
+                    family, m, 0.999 * found[0]) > 0.0:
+                found = None
+        if found is None:
+            vc, b = first_crossing(family, m)
+            found = None if vc is None else (vc, b.imag)
+        if found is None:
+            prev = None
+            continue
+        V[i], W[i] = found
+        prev = (float(m), found)
+    return V, W
