@@ -44,7 +44,9 @@ from ..problem.materials import Material
 from ..problem.validation import InputError
 
 __all__ = [
+    "BACKINGS",
     "Body",
+    "CLUTCH_FAMILIES",
     "FACE_CONDITIONS",
     "FIELDS",
     "Layup",
@@ -52,6 +54,7 @@ __all__ = [
     "dispersion_matrix",
     "face_fields",
     "layup_dispersion",
+    "layups",
     "plane_stress_material",
 ]
 
@@ -443,3 +446,57 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
             U = V if body.moving else 0.0
             d = d / np.sqrt(1.0 + (b + 1j * m * U) / (body.material.k * m * m))
     return d
+
+
+#: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).
+BACKINGS = ("slip-insulated", "bonded-insulated", "slip-isothermal")
+#: A clutch pack's families: the friction disc's mid-plane's symmetry, and whether
+#: neighbouring cells (separator plate and friction disc) move in phase (the
+#: separator's mid-plane of the same symmetry) or in anti-phase (the other).
+CLUTCH_FAMILIES = {
+    "symmetric in-phase": ("symmetric", "symmetric"),
+    "antisymmetric in-phase": ("antisymmetric", "antisymmetric"),
+    "symmetric anti-phase": ("symmetric", "antisymmetric"),
+    "antisymmetric anti-phase": ("antisymmetric", "symmetric"),
+}
+
+
+def layups(slider: Material, counterface: Material, friction, *, dundurs=True,
+           plane="strain", slider_thickness=None, faces=2, counterface_thickness=None,
+           backing="slip-insulated", separator=None, separator_thickness=None) -> dict:
+    """The families of modes of a brake or clutch, each as a :class:`Layup` (L12).
+
+    * Two half-planes (no thickness given): ``{}`` (the relation of
+      :mod:`thermocontact.physics.tei`).
+    * A disc (``slider_thickness`` d) rubbing on ``faces = 2`` identical pads: the
+      half-disc on a pad, its mid-plane "symmetric" or "antisymmetric" (the two
+      families); on one pad (``faces = 1``), the other face free and insulated: one
+      family, "all".  A half-plane slider on a pad layer: "all".
+    * Pads: half-planes, or layers of thickness ``counterface_thickness`` on a rigid
+      backing plate (:data:`BACKINGS`).
+    * A clutch pack (``separator`` given): the cell of half a separator plate (at
+      rest), a facing (the counterface's material and thickness) and half the
+      friction disc's core (the slider's), both moving; the four families of
+      :data:`CLUTCH_FAMILIES`.
+
+    The counterface lies below the slider, as for two half-planes.
+    """
+    if separator is not None:
+        cell = (Body(separator, 0.5 * separator_thickness, False),
+                Body(counterface, counterface_thickness, True),
+                Body(slider, 0.5 * slider_thickness, True))
+        return {name: Layup(cell, ("sliding", "bonded"), sep, core, friction, dundurs, plane)
+                for name, (core, sep) in CLUTCH_FAMILIES.items()}
+    if slider_thickness is None and counterface_thickness is None:
+        return {}
+    pad = Body(counterface, counterface_thickness, False)
+    bottom = "infinite" if counterface_thickness is None else backing
+    if slider_thickness is None:
+        return {"all": Layup((pad, Body(slider, None, True)), ("sliding",), bottom,
+                             "infinite", friction, dundurs, plane)}
+    if faces == 1:
+        return {"all": Layup((pad, Body(slider, slider_thickness, True)), ("sliding",),
+                             bottom, "free", friction, dundurs, plane)}
+    half = Body(slider, 0.5 * slider_thickness, True)
+    return {name: Layup((pad, half), ("sliding",), bottom, name, friction, dundurs, plane)
+            for name in ("antisymmetric", "symmetric")}

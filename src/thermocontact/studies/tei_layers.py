@@ -6,8 +6,9 @@ studied together: a disc rubbing on both faces between identical pads splits int
 the modes symmetric and antisymmetric about its mid-plane (each a half-disc with the
 mid-plane's conditions), a clutch pack into four families (docs/tei.md).  Two
 half-planes are the family of :mod:`thermocontact.physics.tei`, whose polynomial
-root search finds every mode; the same interface serves both (:class:`HalfPlanes`,
-:class:`Layered`), so that every study below works for every geometry.
+root search finds every mode; the same interface serves both
+(:class:`thermocontact.studies.tei.HalfPlanes`, :class:`Layered`), so that every study
+works for every geometry.
 
 For a layup the modes are roots of ``det M(b)`` (L8): the rightmost few are seeded by
 the eigenvalues of the depth discretisation
@@ -25,10 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
-from ..physics.tei import SlidingPair, modes as half_plane_modes, speed_lower_bound
 from ..physics.tei_layers import Layup, layup_dispersion
 
-__all__ = ["HalfPlanes", "Layered", "continue_neutral", "neutral_point"]
+__all__ = ["Layered", "continue_neutral", "first_crossing", "growth_rate", "neutral_point"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -108,39 +108,21 @@ class Layered:
                 out.append(complex(r))
         return np.array(out, dtype=complex)
 
+    def critical(self, m):
+        """The critical speed at ``m`` and the neutral ``b = i omega`` (:func:`first_crossing`)."""
+        return first_crossing(self, m)
+
+    def curve(self, wavenumbers):
+        """Critical speeds and neutral ``omega`` along sorted wavenumbers
+        (:func:`continue_neutral`)."""
+        return continue_neutral(self, wavenumbers)
+
     def lowest_speed(self, m) -> float:
         """Where the scan for the first crossing starts, m/s: the frictional heat's
-        coefficient ``2 mu a f V/(K m)`` times the layers' bending compliance
-        ``(m h)^-3``, 1e-4 times: the frictional heat then moves every
-        mode by a fraction of order 1e-4.  At least 1e-9 m/s."""
+        coefficient ``2 mu a f V/(K m)`` (the references' scales) is 1e-4 there.
+        At least 1e-9 m/s."""
         mu, a, K = self.layup.references()
-        hs = [b.thickness for b in self.layup.bodies if b.thickness is not None]
-        bend = min(1.0, (m * min(hs)) ** 3) if hs else 1.0
-        return max(1e-9, 1e-4 * bend * K * m / (2.0 * mu * a * max(self.layup.friction, 1e-300)))
-
-
-@dataclass(frozen=True)
-class HalfPlanes:
-    """Two sliding half-planes as a family: the root search of
-    :mod:`thermocontact.physics.tei` (every mode, H8)."""
-
-    name: str
-    pair: SlidingPair
-
-    def scale(self, m) -> float:
-        return min(b.k for b in self.pair.bodies if b.K > 0.0) * m * m
-
-    def modes(self, m, speed, count=None, seeds=None):
-        b = half_plane_modes(self.pair, m, speed)
-        return b if count is None else b[:count]
-
-    def lowest_speed(self, m) -> float:
-        return 0.5 * speed_lower_bound(self.pair, m)
-
-    def dispersion(self, b, m, speed):
-        from ..physics.tei import dispersion
-
-        return dispersion(self.pair, b, m, speed)
+        return max(1e-9, 1e-4 * K * m / (2.0 * mu * a * max(self.layup.friction, 1e-300)))
 
 
 def growth_rate(family, m, speed) -> float:
@@ -193,6 +175,7 @@ def neutral_point(family, m, speed, omega, iters=40):
         sS = np.where(done | ~np.isfinite(sS), 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
         sV = np.clip(sV, -V / 3.0, 0.5 * V)
+        sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
         V = V + sV
         s = s + sS
         done |= (np.abs(sV) <= 1e-13 * V) & (np.abs(sS) <= 1e-11 * (1.0 + np.abs(s)))
@@ -201,10 +184,21 @@ def neutral_point(family, m, speed, omega, iters=40):
     return V, omega_of(V, s), done
 
 
+def _seeds(family, m, speed):
+    """The depth discretisation's rightmost eigenvalues right of the half-planes'
+    continuous spectrum (unpolished)."""
+    seeds = layup_modes(family.layup, m, speed, SEED_POINTS)
+    edge = family.continuum(m)
+    if math.isfinite(edge):
+        seeds = seeds[seeds.real > 0.5 * edge]
+    return seeds[:SEEDS]
+
+
 def first_crossing(family, m, v_low=None, v_high=1e4):
     """The lowest speed at which a mode of wavenumber ``m`` grows, from a scan
-    upward (:data:`PER_OCTAVE` speeds per factor 2) located by Newton's method on the
-    neutral point; ``(None, None)`` if none grows below ``v_high``.
+    upward (:data:`PER_OCTAVE` speeds per factor 2, the depth discretisation's
+    eigenvalues) located by Newton's method on the neutral point; ``(None, None)`` if
+    none grows below ``v_high``.
 
     Returns
     -------
@@ -215,16 +209,22 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
     ratio = 2.0 ** (1.0 / PER_OCTAVE)
     prev = None
     while v <= v_high * ratio:
-        b = family.modes(m, v)
+        b = _seeds(family, m, v)
+        if len(b) and b[0].real > 0.0:
+            b = family.modes(m, v, seeds=b)      # polished
         if len(b) and b[0].real > 0.0:
             if prev is None:   # unstable at the scan's start: not expected
                 return v, complex(b[0])
             v0, b0 = prev
-            # Interpolate the speed where Re b crosses 0, then Newton.
-            t = -b0.real / (b[0].real - b0.real) if b0 is not None else 0.5
+            # Interpolate in ln V where Re b crosses 0, and the frequency in the
+            # pattern's frame (neutral_point), then Newton.
+            b1 = complex(b[0])
+            t = 0.5 if b0 is None else -b0.real / (b1.real - b0.real)
             vg = v0 * (v / v0) ** t
-            wg = (b0.imag * (1 - t) + b[0].imag * t) if b0 is not None else b[0].imag
-            V, w, ok = neutral_point(family, m, vg, wg)
+            phi = float(_frame(m, v, b1.imag))
+            s1 = b1.imag + phi * m * v
+            s0 = s1 if b0 is None else b0.imag + phi * m * v0
+            V, w, ok = neutral_point(family, m, vg, -phi * m * vg + s0 + t * (s1 - s0))
             if ok and v0 * 0.999 <= V <= v * 1.001:
                 return float(V), 1j * float(w)
             return _brent_crossing(family, m, v0, v)
