@@ -50,11 +50,13 @@ __all__ = [
     "FACE_CONDITIONS",
     "FIELDS",
     "Layup",
+    "body_fields",
     "condition_matrix",
     "dispersion_matrix",
     "face_fields",
     "layup_dispersion",
     "layups",
+    "mode_shape",
     "plane_stress_material",
 ]
 
@@ -182,8 +184,9 @@ class Layup:
         for i, kind in enumerate(self.interfaces):
             a, b = self.bodies[i], self.bodies[i + 1]
             if kind == "sliding" and not (a.conducts or b.conducts):
-                raise InputError("two non-conductors slide on each other: the frictional "
-                                 "heat would enter neither", parameters=("bodies",))
+                raise InputError(f"{a.material.name} and {b.material.name} must not both be "
+                                 f"non-conducting (K = 0): the frictional heat would enter "
+                                 f"neither", parameters=("slider", "counterface"))
 
     @property
     def columns(self) -> int:
@@ -266,6 +269,21 @@ def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None)
         then the thermal solutions in the same order (conductors only); a
         half-plane above the stack has only the bottom's, one below only the top's.
     """
+    if body.thickness is None:
+        out = body_fields(body, b, wavenumber, velocity, refs, [0.0], upper, mat)
+        return np.concatenate([out, out], axis=-3)
+    return body_fields(body, b, wavenumber, velocity, refs, [0.0, body.thickness], upper, mat)
+
+
+def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, mat=None):
+    """The six fields of each of a body's solutions at ``depths`` (L2-L4): as
+    :func:`face_fields`, at the distances ``depths`` (m) above a layer's bottom face
+    or from a half-plane's face into it.
+
+    Returns
+    -------
+    ndarray, shape ``S + (len(depths), 6, columns)``
+    """
     mat = body.material if mat is None else mat
     b, m, U = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
                                   np.asarray(velocity, float))
@@ -276,54 +294,52 @@ def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None)
     nu = mat.nu
     layer = body.thickness is not None
     # Each solution starts from a face (s = -1 the bottom, +1 the top) and decays
-    # away from it; t = m (y - y_start) at each face, s t <= 0.
+    # away from it; t = m (y - y_start) at each point, s t <= 0.
     starts = (-1, 1) if layer else ((-1,) if upper else (1,))
-    H = m * body.thickness if layer else np.zeros(m.shape)
-    out = np.zeros(b.shape + (2, 6, body.columns), dtype=complex)
+    depths = np.asarray(depths, dtype=float)
+    tau = m[..., None] * depths                        # S + (points,)
+    H = (m * body.thickness)[..., None] if layer else 0.0
+    out = np.zeros(b.shape + (depths.size, 6, body.columns), dtype=complex)
     ux, uy, sxy, syy, T, q = range(6)
 
-    def offsets(s):
-        """t at the bottom and top faces for solutions starting at face s."""
-        if not layer:
-            return (np.zeros(m.shape),) * 2
-        return (np.zeros(m.shape), H) if s < 0 else (-H, np.zeros(m.shape))
+    def offset(s):
+        if layer:
+            return tau if s < 0 else tau - H
+        return tau if upper else -tau
 
     col = 0
     for s in starts:
-        for f, t in enumerate(offsets(s)):
-            with np.errstate(under="ignore"):
-                g = np.exp(s * t)
-            # phi-type: 2 mu u = grad phi, phi = g/m^2 (L2).
-            o = out[..., f, :, col]
-            o[..., ux], o[..., uy], o[..., sxy], o[..., syy] = 1j * r * g, s * r * g, 1j * s * g, g
-            # psi-type: 2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y, psi = g/m.
-            o = out[..., f, :, col + 1]
-            o[..., ux] = 1j * t * r * g
-            o[..., uy] = (s * t - 3.0 + 4.0 * nu) * r * g
-            o[..., sxy] = 1j * (s * t - 1.0 + 2.0 * nu) * g
-            o[..., syy] = (t - 2.0 * (1.0 - nu) * s) * g
+        t = offset(s)
+        with np.errstate(under="ignore"):
+            g = np.exp(s * t)
+        # phi-type: 2 mu u = grad phi, phi = g/m^2 (L2).
+        o = out[..., col]
+        o[..., ux], o[..., uy], o[..., sxy], o[..., syy] = 1j * r * g, s * r * g, 1j * s * g, g
+        # psi-type: 2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y, psi = g/m.
+        o = out[..., col + 1]
+        o[..., ux] = 1j * t * r * g
+        o[..., uy] = (s * t - 3.0 + 4.0 * nu) * r * g
+        o[..., sxy] = 1j * (s * t - 1.0 + 2.0 * nu) * g
+        o[..., syy] = (t - 2.0 * (1.0 - nu) * s) * g
         col += 2
     if body.conducts:
-        G = np.sqrt(1.0 + (b + 1j * m * U) / (mat.k * m * m))   # gamma/m, Re >= 0 (L1)
+        G = np.sqrt(1.0 + (b + 1j * m * U) / (mat.k * m * m))[..., None]   # gamma/m (L1)
         pot = _potential(mat) / a_ref
         kr = mat.K / K_ref
         for s in starts:
-            for f, t in enumerate(offsets(s)):
-                dist = np.abs(t)            # m times the distance from the start face
-                with np.errstate(under="ignore"):
-                    e = np.exp(-G * dist)
-                D, dD = _potential_profile(G, dist)
-                dy = -s                     # d/dy = -s d/d(distance)
-                o = out[..., f, :, col]
-                o[..., ux] = 1j * pot * D
-                o[..., uy] = pot * dy * dD
-                o[..., sxy] = 1j * pot * dy * dD / r
-                o[..., syy] = pot * D / r
-                o[..., T] = e
-                o[..., q] = -s * kr * G * e        # q = -K dT/dy
+            dist = np.abs(offset(s))       # m times the distance from the start face
+            with np.errstate(under="ignore"):
+                e = np.exp(-G * dist)
+            D, dD = _potential_profile(G, dist)
+            dy = -s                        # d/dy = -s d/d(distance)
+            o = out[..., col]
+            o[..., ux] = 1j * pot * D
+            o[..., uy] = pot * dy * dD
+            o[..., sxy] = 1j * pot * dy * dD / r
+            o[..., syy] = pot * D / r
+            o[..., T] = e
+            o[..., q] = -s * kr * G * e        # q = -K dT/dy
             col += 1
-    if not layer:
-        out[..., 1, :, :] = out[..., 0, :, :]
     return out
 
 
@@ -500,3 +516,41 @@ def layups(slider: Material, counterface: Material, friction, *, dundurs=True,
     half = Body(slider, 0.5 * slider_thickness, True)
     return {name: Layup((pad, half), ("sliding",), bottom, name, friction, dundurs, plane)
             for name in ("antisymmetric", "symmetric")}
+
+
+def mode_shape(layup: Layup, b, wavenumber, speed, points=41):
+    """A mode's temperature, normal displacement and normal stress through every
+    body (L8): the null vector of ``M(b)`` (the last right singular vector), its
+    solutions summed at ``points`` depths per body.
+
+    Returns
+    -------
+    list of (y, T, u_y, sigma_yy) per body, bottom first
+        ``y`` in m from the first interface (a half-plane over ``3/m``);
+        complex amplitudes, the temperature's largest modulus made 1 (K),
+        ``u_y`` in m/K and ``sigma_yy`` in Pa/K per unit of it.
+    """
+    m = float(wavenumber)
+    refs = layup.references()
+    mu_ref, a_ref, _ = refs
+    M = dispersion_matrix(layup, complex(b), m, speed)
+    coef = np.linalg.svd(M)[2][-1].conj()
+    out, col, base = [], 0, 0.0
+    last = len(layup.bodies) - 1
+    for j, body in enumerate(layup.bodies):
+        h = body.thickness
+        depths = np.linspace(0.0, 3.0 / m if h is None else h, points)
+        F = body_fields(body, complex(b), m, speed, refs, depths, upper=j == last,
+                        mat=layup.elastic(body))
+        vals = F @ coef[col:col + body.columns]
+        col += body.columns
+        if h is None and j == 0:
+            y = -depths[::-1]
+            vals = vals[::-1]
+        else:
+            y = base + depths
+            base += 0.0 if h is None else h
+        out.append([y, vals[:, 4] / (2.0 * mu_ref * a_ref), vals[:, 1] / (2.0 * mu_ref * m),
+                    vals[:, 3]])
+    peak = max(np.max(np.abs(o[1])) for o in out) or 1.0
+    return [(y, T / peak, u / peak, s / peak) for y, T, u, s in out]

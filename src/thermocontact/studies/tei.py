@@ -32,7 +32,7 @@ from ..problem.validation import check_range, check_zero_or_range
 
 __all__ = ["FRICTION_RANGE", "HalfPlanes", "HotSpot", "SPEED_RANGE", "TEIFamily", "TEIMode",
            "TEIResult", "WAVELENGTH_RANGE", "analyse", "critical_speed", "critical_speeds",
-           "family_minimum", "growth_rate", "hot_spot_table", "most_unstable_wavelength",
+           "check_geometry", "family_minimum", "growth_rate", "hot_spot_table", "most_unstable_wavelength",
            "stable_at_all_speeds", "tei_modes"]
 
 #: Speeds scanned per factor 2 above the lower bound (H9) before Brent's method.
@@ -189,6 +189,9 @@ class TEIResult(Result):
         The families as studied (:class:`HalfPlanes` or
         :class:`~thermocontact.studies.tei_layers.Layered`), for pictures and
         further studies.
+    half_planes : HalfPlanes or None
+        For layers: two half-planes of the same materials, the reference line of
+        the pictures.
     """
 
     slider: str
@@ -219,6 +222,7 @@ class TEIResult(Result):
     stop: object = None
     pair: SlidingPair | None = field(default=None, repr=False)
     systems: tuple = field(default=(), repr=False)
+    half_planes: object = field(default=None, repr=False)
 
     def _summary(self) -> str:
         vc = (f"stable_at_all_speeds={self.stable_at_all_speeds}" if self.critical_speed is None
@@ -451,7 +455,7 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS):
     the family is stable throughout."""
     from scipy.optimize import minimize_scalar
 
-    from .tei_layers import _step
+    from .tei_layers import continue_step
 
     ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], points)
     V, W = system.curve(ms)
@@ -463,7 +467,7 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS):
     anchor = (float(ms[i]), (float(V[i]), float(W[i])))
 
     def vc(x):
-        p = _step(system, anchor[0], anchor[1], math.exp(x))
+        p = continue_step(system, anchor[0], anchor[1], math.exp(x))
         return math.inf if p is None else p[0]
 
     res = minimize_scalar(vc, bracket=(math.log(ms[i - 1]), math.log(ms[i]),
@@ -524,6 +528,15 @@ def _most_unstable(systems, speed, wl_range):
 def _rate(system, m, speed):
     b = system.modes(m, speed)
     return float(b[0].real) if len(b) else -math.inf
+
+
+def check_geometry(slider, counterface, **geometry):
+    """The layups of a geometry built, so that their checks run before any work
+    (:func:`~thermocontact.physics.tei_layers.layups`); two half-planes: the pair's."""
+    from ..physics.tei_layers import layups
+
+    if not layups(slider, counterface, 0.0, **geometry):
+        SlidingPair(slider, counterface, 0.0)
 
 
 def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True, *,
@@ -633,4 +646,5 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
                      backing=backing if counterface_thickness is not None else None,
                      separator=None if separator is None else separator.name,
                      separator_thickness=separator_thickness, families=tuple(fams),
-                     wavelength_range=wl_range, pair=pair, systems=systems)
+                     wavelength_range=wl_range, pair=pair, systems=systems,
+                     half_planes=HalfPlanes("half-planes", pair) if lay else None)

@@ -26,9 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
-from ..physics.tei_layers import Layup, layup_dispersion
+from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
-__all__ = ["Layered", "continue_neutral", "first_crossing", "growth_rate", "neutral_point"]
+__all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "growth_rate",
+           "neutral_point", "newton_roots", "pattern_frame"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -43,7 +44,7 @@ def _scale(layup: Layup, m) -> float:
     return min(b.material.k for b in layup.bodies if b.conducts) * m * m
 
 
-def _newton(func, x0, scale, iters=30):
+def newton_roots(func, x0, scale, iters=30):
     """Newton's method on an analytic ``func`` (vectorised), the derivative by central
     differences of step ``1e-6 scale``; returns the roots and which converged to
     ``1e-13 scale``."""
@@ -100,7 +101,7 @@ class Layered:
         if not len(seeds):
             return np.array([], dtype=complex)
         scale = max(self.scale(m), 1e-300)
-        roots, ok = _newton(lambda z: self.dispersion(z, m, speed), seeds, scale)
+        roots, ok = newton_roots(lambda z: self.dispersion(z, m, speed), seeds, scale)
         roots = roots[ok & (roots.real > self.continuum(m))]
         out = []
         for r in roots[np.argsort(-roots.real, kind="stable")]:
@@ -117,6 +118,11 @@ class Layered:
         (:func:`continue_neutral`)."""
         return continue_neutral(self, wavenumbers)
 
+    def mode_shape(self, m, speed, b, points=41):
+        """The mode ``b`` through the layup
+        (:func:`~thermocontact.physics.tei_layers.mode_shape`)."""
+        return mode_shape(self.layup, b, m, speed, points)
+
     def lowest_speed(self, m) -> float:
         """Where the scan for the first crossing starts, m/s: the frictional heat's
         coefficient ``2 mu a f V/(K m)`` (the references' scales) is 1e-4 there.
@@ -131,7 +137,7 @@ def growth_rate(family, m, speed) -> float:
     return float(b[0].real) if len(b) else -math.inf
 
 
-def _frame(m, V, omega):
+def pattern_frame(m, V, omega):
     """1 if the pattern is nearer to rest on the moving bodies than on the bodies at
     rest, else 0: the frame in which a neutral mode's frequency is measured."""
     return np.where(np.abs(omega + m * V) < np.abs(omega), 1.0, 0.0)
@@ -152,7 +158,7 @@ def neutral_point(family, m, speed, omega, iters=40):
     V = np.array(np.broadcast_to(speed, m.shape), dtype=float)
     w = np.array(np.broadcast_to(omega, m.shape), dtype=float)
     sig = (np.vectorize(family.scale)(m) if m.ndim else np.asarray(family.scale(float(m))))
-    phi = _frame(m, V, w)
+    phi = pattern_frame(m, V, w)
     s = (w + phi * m * V) / sig
     done = np.zeros(m.shape, dtype=bool)
 
@@ -221,7 +227,7 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
             b1 = complex(b[0])
             t = 0.5 if b0 is None else -b0.real / (b1.real - b0.real)
             vg = v0 * (v / v0) ** t
-            phi = float(_frame(m, v, b1.imag))
+            phi = float(pattern_frame(m, v, b1.imag))
             s1 = b1.imag + phi * m * v
             s0 = s1 if b0 is None else b0.imag + phi * m * v0
             V, w, ok = neutral_point(family, m, vg, -phi * m * vg + s0 + t * (s1 - s0))
@@ -241,7 +247,7 @@ def _brent_crossing(family, m, v0, v1):
     return float(vc), complex(b[0])
 
 
-def _step(family, m0, point, m1, depth=0):
+def continue_step(family, m0, point, m1, depth=0):
     """The neutral point at ``m1`` continued from ``point = (V, omega)`` at ``m0``:
     Newton's method from the same speed and frequency in the pattern's frame
     (:func:`neutral_point`), accepted if it converges within a factor 2 of the speed;
@@ -249,7 +255,7 @@ def _step(family, m0, point, m1, depth=0):
     v0, w0 = point
     # Predicted: the same speed and the same frequency in the pattern's frame, in
     # units of kappa m^2.
-    phi = float(_frame(m0, v0, w0))
+    phi = float(pattern_frame(m0, v0, w0))
     s = (w0 + phi * m0 * v0) / family.scale(m0)
     v, w, ok = neutral_point(family, m1, v0, -phi * m1 * v0 + s * family.scale(m1))
     if ok and 0.5 * v0 < v < 2.0 * v0:
@@ -257,8 +263,8 @@ def _step(family, m0, point, m1, depth=0):
     if depth >= 8:
         return None
     mid = math.sqrt(m0 * m1)
-    half = _step(family, m0, point, mid, depth + 1)
-    return None if half is None else _step(family, mid, half, m1, depth + 1)
+    half = continue_step(family, m0, point, mid, depth + 1)
+    return None if half is None else continue_step(family, mid, half, m1, depth + 1)
 
 
 def continue_neutral(family, wavenumbers, start=None, check_every=20):
@@ -266,7 +272,7 @@ def continue_neutral(family, wavenumbers, start=None, check_every=20):
 
     The first point (or ``start = (V, omega)`` at ``wavenumbers[0]``) comes from a
     scan (:func:`first_crossing`); each next point from Newton's method on the
-    neutral point started from the last (:func:`_step`, halving the step where it
+    neutral point started from the last (:func:`continue_step`, halving the step where it
     fails).  Every ``check_every`` points, and wherever the continuation fails, a
     scan confirms that no other mode grows at a lower speed (where one does, its
     branch takes over).
@@ -283,7 +289,7 @@ def continue_neutral(family, wavenumbers, start=None, check_every=20):
     for i, m in enumerate(ms):
         found = None
         if prev is not None:
-            found = prev[1] if prev[0] == m else _step(family, prev[0], prev[1], m)
+            found = prev[1] if prev[0] == m else continue_step(family, prev[0], prev[1], m)
             if found is not None and i % check_every == 0 and growth_rate(
                     family, m, 0.999 * found[0]) > 0.0:
                 found = None
