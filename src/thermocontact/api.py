@@ -712,7 +712,11 @@ def _length(name, value):
 
     if value is None:
         return None
-    return check_range(name, _quantity(name, value, "m"), *_LENGTH_RANGE)
+    try:
+        x = _quantity(name, value, "m")
+    except InputError as exc:       # the message names the parameter: so does the error
+        raise InputError(str(exc), parameters=(name,)) from None
+    return check_range(name, x, *_LENGTH_RANGE)
 
 
 def _pair_of(name, value, kind):
@@ -858,18 +862,18 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     if sep is not None and (d is None or h is None):
         raise InputError("separator (a clutch pack) needs slider_thickness (the friction "
                          "disc's core) and counterface_thickness (its facings)",
-                         parameters=("separator",))
+                         parameters=("separator", "slider_thickness", "counterface_thickness"))
     radius = _length("disc_radius", disc_radius)
     if hot_spots is not None and radius is None:
-        raise InputError("hot_spots needs disc_radius", parameters=("hot_spots",))
+        raise InputError("hot_spots needs disc_radius", parameters=("hot_spots", "disc_radius"))
     spots = None if radius is None else _hot_spots("1:60" if hot_spots is None else hot_spots)
     history = None
     if stop is not None or stop_history is not None:
         from .studies.brake_stop import stop_history as make_history
 
         if radius is None:
-            raise InputError("a stop needs disc_radius (its amplification is per number of "
-                             "hot spots)", parameters=("stop",))
+            raise InputError("stop needs disc_radius (its amplification is per number of "
+                             "hot spots)", parameters=("stop", "disc_radius"))
         history = make_history(stop, stop_history, stop_threshold)
     from threadpoolctl import threadpool_limits
 

@@ -18,12 +18,14 @@ spectrum (``Re b <= -kappa m^2``) appears as a cloud of eigenvalues to be ignore
 from __future__ import annotations
 
 
+import math
+
 import numpy as np
 import scipy.linalg
 
 from ..physics.tei import SlidingPair
 
-__all__ = ["depth_modes"]
+__all__ = ["depth_modes", "layup_modes", "layup_operator"]
 
 
 def _chebyshev(n):
@@ -206,8 +208,10 @@ def _split(layup, m, speed):
     bonded to the rest of it: at a Péclet number ``P = V/(kappa m)`` the temperature
     varies over ``1/(m sqrt(1 + P))`` near a sliding face, the displacements over
     ``1/m``; one Chebyshev grid would need both.  The skins are 25 such lengths
-    thick (the temperature falls by ``e^{-17}`` or more across), and a layer thinner
-    than 8 skins is kept whole."""
+    thick (the temperature falls by ``e^{-17}`` or more across), at the faces that
+    slide, and a layer less than 1.5 times as thick as its skins and the rest is kept
+    whole.  A layer thicker than ``8/m`` is cut into pieces (at most 16) no thicker,
+    the elastic fields' scale."""
     from ..physics.tei_layers import Body, Layup
 
     bodies, interfaces = [], []
@@ -217,12 +221,21 @@ def _split(layup, m, speed):
         pe = abs(speed) / (mat.k * m) if mat.K > 0.0 else 0.0
         skin = 25.0 / (m * np.sqrt(1.0 + pe))
         h = body.thickness
-        if pe < 100.0 or (h is not None and h < 8.0 * skin):
+        # Skins at the faces that slide: the others carry no thin thermal layer.
+        below = j > 0 and layup.interfaces[j - 1] == "sliding"
+        above = j < last and layup.interfaces[j] == "sliding"
+        if pe < 100.0:
             parts = [h]
         elif h is None:
             parts = [skin, None] if j == last else [None, skin]
+        elif h < (1 + below + above) * 1.5 * skin:
+            parts = [h]
         else:
-            parts = [skin, h - 2.0 * skin, skin]
+            parts = [skin] * below + [h - (below + above) * skin] + [skin] * above
+        if h is not None:
+            # The elastic fields vary over 1/m: a layer thicker than 8/m in pieces.
+            cut = [min(16, math.ceil(m * p / 8.0)) for p in parts]
+            parts = [p / k for p, k in zip(parts, cut) for _ in range(k)]
         if j > 0:
             interfaces.append(layup.interfaces[j - 1])
         for k, t in enumerate(parts):
@@ -235,18 +248,8 @@ def _split(layup, m, speed):
 
 def layup_modes(layup, wavenumber, speed, n=32, count=None):
     """Growth rates ``b`` (1/s, in the frame of the bodies at rest) of a layup,
-    discretised in depth: the second method of the layered TEI.
-
-    Each body's temperature and displacements are collocated at ``n + 1``
-    Chebyshev-Lobatto points (a layer's thickness, or a half-plane's depth mapped
-    as for :func:`depth_modes`); the rows are the heat equation with convection
-    (L1), Navier's equations with the thermal load in the plane of the layup
-    (written directly, not through the plane-stress substitution), and the face
-    conditions of :func:`thermocontact.physics.tei_layers.condition_matrix` applied
-    to the discretised face fields.  The displacements and face temperatures are
-    eliminated (the elastic problem is static), leaving a standard eigenproblem for
-    the interior temperatures.  It shares with the root search only the
-    statement of the face conditions.
+    discretised in depth: the second method of the layered TEI, the eigenvalues of
+    :func:`layup_operator`.
 
     Parameters
     ----------
@@ -264,6 +267,33 @@ def layup_modes(layup, wavenumber, speed, n=32, count=None):
     -------
     ndarray of complex
         Eigenvalues by decreasing real part.
+    """
+    # NumPy's LAPACK: the one whose threads the package limits (cli.main, api.tei).
+    b = np.linalg.eigvals(layup_operator(layup, wavenumber, speed, n))
+    b = b[np.argsort(-b.real, kind="stable")]
+    return b if count is None else b[:count]
+
+
+def layup_operator(layup, wavenumber, speed, n=32):
+    """The layup's linearised equations discretised in depth: ``dT/dt = A T`` for the
+    temperatures at the interior points (the second method of the layered TEI).
+
+    Each body's temperature and displacements are collocated at ``n + 1``
+    Chebyshev-Lobatto points (a layer's thickness, or a half-plane's depth mapped
+    as for :func:`depth_modes`; a thin thermal boundary layer made a body of its
+    own, :func:`_split`); the rows are the heat equation with convection (L1),
+    Navier's equations with the thermal load in the plane of the layup (written
+    directly, not through the plane-stress substitution), and the face conditions
+    of :func:`thermocontact.physics.tei_layers.condition_matrix` applied to the
+    discretised face fields.  The displacements and face temperatures are
+    eliminated (the elastic problem is static).  It shares with the root search
+    only the statement of the face conditions.
+
+    Returns
+    -------
+    ndarray, complex, square
+        ``A``, 1/s, at one speed (the speed enters through the convection and the
+        frictional heat).
     """
     from ..physics.tei_layers import condition_matrix, heat_coefficient
 
@@ -301,9 +331,5 @@ def layup_modes(layup, wavenumber, speed, n=32, count=None):
     scale = 1.0 / np.max(np.abs(L[st_rows]), axis=1, keepdims=True)
     Lss = L[np.ix_(st_rows, st_cols)] * scale
     Lsd = L[np.ix_(st_rows, dyn_cols)] * scale
-    A = (L[np.ix_(dyn_rows, dyn_cols)]
-         - L[np.ix_(dyn_rows, st_cols)] @ np.linalg.solve(Lss, Lsd))
-    # NumPy's LAPACK: the one whose threads the package limits (cli.main, api.tei).
-    b = np.linalg.eigvals(A)
-    b = b[np.argsort(-b.real, kind="stable")]
-    return b if count is None else b[:count]
+    return (L[np.ix_(dyn_rows, dyn_cols)]
+            - L[np.ix_(dyn_rows, st_cols)] @ np.linalg.solve(Lss, Lsd))

@@ -184,9 +184,10 @@ class Layup:
         for i, kind in enumerate(self.interfaces):
             a, b = self.bodies[i], self.bodies[i + 1]
             if kind == "sliding" and not (a.conducts or b.conducts):
-                raise InputError(f"{a.material.name} and {b.material.name} must not both be "
-                                 f"non-conducting (K = 0): the frictional heat would enter "
-                                 f"neither", parameters=("slider", "counterface"))
+                raise InputError("slider and counterface must not both be non-conducting "
+                                 f"(K = 0): the frictional heat at the interface of "
+                                 f"{a.material.name} and {b.material.name} would enter neither",
+                                 parameters=("slider", "counterface"))
 
     @property
     def columns(self) -> int:

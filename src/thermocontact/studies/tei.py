@@ -416,10 +416,13 @@ class HalfPlanes:
         vc, mode = critical_speed(self.pair, m)
         return (None, None) if vc is None else (vc, -1j * mode.migration_speed * m)
 
-    def curve(self, wavenumbers):
+    def curve(self, wavenumbers, anchor=None):
         """Exact: only ``V/(kappa m)`` enters (H11), ``V_c`` and the neutral
         frequency in units of ``kappa m^2`` are fixed multiples."""
         ms = np.asarray(wavenumbers, dtype=float)
+        if anchor is not None:
+            m0, vc, w = anchor
+            return vc * ms / m0, w * (ms / m0) ** 2
         m0 = float(np.exp(np.mean(np.log(ms))))
         vc, b = self.critical(m0)
         if vc is None:
@@ -447,7 +450,7 @@ def _wavelength_range(thicknesses, radius):
 MINIMUM_POINTS = 40
 
 
-def family_minimum(system, wl_range, points=MINIMUM_POINTS):
+def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
     """The lowest critical speed over ``wl_range`` and its wavelength, (m/s, m): the
     curve on ``points`` wavelengths (continued, :func:`~thermocontact.studies.tei_layers.
     continue_neutral`), its least point refined by golden-section search in ``ln m``
@@ -458,7 +461,7 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS):
     from .tei_layers import continue_step
 
     ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], points)
-    V, W = system.curve(ms)
+    V, W = system.curve(ms, anchor)
     if not np.isfinite(V).any():
         return None, None
     i = int(np.nanargmin(V))
@@ -477,12 +480,14 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS):
     return float(res.fun), float(2.0 * math.pi / math.exp(res.x))
 
 
-def hot_spot_table(systems, radius, n1, n2):
+def hot_spot_table(systems, radius, n1, n2, anchors=None):
     """``HotSpot`` for ``n = n1 ... n2`` round a disc of radius ``radius``, and the
-    governing ``n`` (lowest critical speed; None if none goes unstable)."""
+    governing ``n`` (lowest critical speed; None if none goes unstable).
+    ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None."""
     ns = np.arange(n1, n2 + 1)
     ms = ns / radius                                  # m = 2 pi/(2 pi R/n)
-    speeds = np.array([system.curve(ms)[0] for system in systems])   # (families, n)
+    anchors = anchors or [None] * len(systems)
+    speeds = np.array([system.curve(ms, a)[0] for system, a in zip(systems, anchors)])
     table = []
     for k, n in enumerate(ns):
         col = speeds[:, k]
@@ -504,10 +509,10 @@ def _growing(system, m, speed):
 
 def _most_unstable(systems, speed, wl_range):
     """Over the layups' wavelengths: the largest growth rate at ``speed`` and its
-    wavelength, from 40 wavelengths refined by Brent's method in ``ln m``."""
+    wavelength, from 24 wavelengths refined by Brent's method in ``ln m``."""
     from scipy.optimize import minimize_scalar
 
-    ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], 40)
+    ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], 24)
     best = (-math.inf, None, None)
     for system in systems:
         rates = np.array([_rate(system, m, speed) for m in ms])
@@ -592,14 +597,18 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
              if t is not None]
     wl_range = _wavelength_range(thick, disc_radius) if thick else None
     m = 2.0 * math.pi / wl
-    fams = []
+    fams, anchors = [], []
     for system in systems:
         if friction == 0.0:
             fams.append(TEIFamily(system.name, None, None))
+            anchors.append(None)
             continue
         vc, b = system.critical(m)
-        low, at = (None, None) if wl_range is None else family_minimum(system, wl_range)
+        anchor = None if vc is None else (m, vc, b.imag)
+        low, at = ((None, None) if wl_range is None
+                   else family_minimum(system, wl_range, anchor=anchor))
         fams.append(TEIFamily(system.name, vc, None if vc is None else -b.imag / m, low, at))
+        anchors.append(anchor)
     found = [f for f in fams if f.critical_speed is not None]
     first = min(found, key=lambda f: f.critical_speed) if found else None
     if first is not None:
@@ -629,7 +638,7 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         extra = dict(speed=v, modes=tuple(found_modes), most_unstable_wavelength=mw,
                      most_unstable_growth_rate=rate)
     if disc_radius is not None and friction > 0.0:
-        table, governing = hot_spot_table(systems, disc_radius, *hot_spots)
+        table, governing = hot_spot_table(systems, disc_radius, *hot_spots, anchors=anchors)
         extra.update(disc_radius=disc_radius, hot_spots=table, governing_hot_spots=governing)
     elif disc_radius is not None:
         extra.update(disc_radius=disc_radius)

@@ -102,7 +102,10 @@ class Layered:
             return np.array([], dtype=complex)
         scale = max(self.scale(m), 1e-300)
         roots, ok = newton_roots(lambda z: self.dispersion(z, m, speed), seeds, scale)
-        roots = roots[ok & (roots.real > self.continuum(m))]
+        # A root far from its seed is none of the discretisation's: Newton's method
+        # has run off to where the determinant underflows.
+        near = np.abs(roots - seeds) <= 0.5 * np.abs(seeds) + 10.0 * scale
+        roots = roots[ok & near & (roots.real > self.continuum(m))]
         out = []
         for r in roots[np.argsort(-roots.real, kind="stable")]:
             if all(abs(r - x) > 1e-8 * (abs(r) + scale) for x in out):
@@ -113,10 +116,10 @@ class Layered:
         """The critical speed at ``m`` and the neutral ``b = i omega`` (:func:`first_crossing`)."""
         return first_crossing(self, m)
 
-    def curve(self, wavenumbers):
+    def curve(self, wavenumbers, anchor=None):
         """Critical speeds and neutral ``omega`` along sorted wavenumbers
-        (:func:`continue_neutral`)."""
-        return continue_neutral(self, wavenumbers)
+        (:func:`continue_neutral`, from ``anchor = (m, V, omega)`` if given)."""
+        return continue_neutral(self, wavenumbers, anchor)
 
     def mode_shape(self, m, speed, b, points=41):
         """The mode ``b`` through the layup
@@ -267,15 +270,16 @@ def continue_step(family, m0, point, m1, depth=0):
     return None if half is None else continue_step(family, mid, half, m1, depth + 1)
 
 
-def continue_neutral(family, wavenumbers, start=None, check_every=20):
+def continue_neutral(family, wavenumbers, anchor=None, check_every=20):
     """The critical speed and neutral ``omega`` along sorted wavenumbers, continued.
 
-    The first point (or ``start = (V, omega)`` at ``wavenumbers[0]``) comes from a
-    scan (:func:`first_crossing`); each next point from Newton's method on the
-    neutral point started from the last (:func:`continue_step`, halving the step where it
-    fails).  Every ``check_every`` points, and wherever the continuation fails, a
-    scan confirms that no other mode grows at a lower speed (where one does, its
-    branch takes over).
+    From ``anchor = (m, V, omega)``, a neutral point already found, outward both
+    ways; without one, from a scan (:func:`first_crossing`) at the first
+    wavenumber.  Each next point comes from Newton's method on the neutral point
+    started from the last (:func:`continue_step`, halving the step where it fails).
+    Every ``check_every`` points, and wherever the continuation fails, a scan
+    confirms that no other mode grows at a lower speed (where one does, its branch
+    takes over).
 
     Returns
     -------
@@ -285,12 +289,23 @@ def continue_neutral(family, wavenumbers, start=None, check_every=20):
     ms = np.asarray(wavenumbers, dtype=float)
     V = np.full(ms.shape, np.nan)
     W = np.full(ms.shape, np.nan)
-    prev = None if start is None else (float(ms[0]), start)
-    for i, m in enumerate(ms):
+    if anchor is None:
+        _walk(family, ms, range(ms.size), None, V, W, check_every)
+    else:
+        k = int(np.searchsorted(ms, anchor[0]))
+        start = (float(anchor[0]), (float(anchor[1]), float(anchor[2])))
+        _walk(family, ms, range(k, ms.size), start, V, W, check_every)
+        _walk(family, ms, range(k - 1, -1, -1), start, V, W, check_every)
+    return V, W
+
+
+def _walk(family, ms, order, prev, V, W, check_every):
+    for count, i in enumerate(order):
+        m = ms[i]
         found = None
         if prev is not None:
             found = prev[1] if prev[0] == m else continue_step(family, prev[0], prev[1], m)
-            if found is not None and i % check_every == 0 and growth_rate(
+            if found is not None and count % check_every == check_every - 1 and growth_rate(
                     family, m, 0.999 * found[0]) > 0.0:
                 found = None
         if found is None:
@@ -301,4 +316,3 @@ def continue_neutral(family, wavenumbers, start=None, check_every=20):
             continue
         V[i], W[i] = found
         prev = (float(m), found)
-    return V, W
