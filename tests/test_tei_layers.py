@@ -59,7 +59,7 @@ def test_thick_layers_are_half_planes(geometry, dundurs):
         V, w, ok = neutral_point(fam, M, vc * 1.001, -mode.migration_speed * M)
         assert ok and _rel(V, vc) < 1e-10
         assert abs(-w / M - mode.migration_speed) < 1e-10 * vc
-        root, ok = newton_roots(lambda z: fam.dispersion(z, M, 60.0), [b * (1 + 1e-6)],
+        root, ok = newton_roots(lambda z, _: fam.dispersion(z, M, 60.0), [b * (1 + 1e-6)],
                                 fam.scale(M))
         assert ok[0] and abs(root[0] - b) < 1e-10 * abs(b)
 

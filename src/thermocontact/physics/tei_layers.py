@@ -439,8 +439,8 @@ def dispersion_matrix(layup: Layup, b, wavenumber, speed):
     blocks = []
     for j, body in enumerate(layup.bodies):
         F = face_fields(body, b, m, V, refs, upper=j == last, mat=layup.elastic(body))
-        blocks.append(np.einsum("rfk,...fkc->...rc", C0[:, j], F)
-                      + h * np.einsum("rfk,...fkc->...rc", C1[:, j], F))
+        F = F.reshape(F.shape[:-3] + (12, F.shape[-1]))          # (face, field) as one axis
+        blocks.append(C0[:, j].reshape(-1, 12) @ F + h * (C1[:, j].reshape(-1, 12) @ F))
     return np.concatenate(blocks, axis=-1)
 
 

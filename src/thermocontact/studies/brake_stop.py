@@ -13,7 +13,7 @@ needs the speed to change little over a growth time, ``|dV/dt| / V << |Re b|``; 
 checked against a time integration of the linearised equations discretised in depth
 (``tests/test_tei_layers.py``).  For each ``n`` the rightmost modes are followed
 down the speeds by Newton's method (all ``n`` together) from the depth
-discretisation's eigenvalues at the top speed, reseeded every eighth speed.
+discretisation's eigenvalues at the top speed, reseeded every 16th speed.
 """
 
 from __future__ import annotations
@@ -139,8 +139,9 @@ def _track(system, ms, speeds):
     dispersion function from speed to speed, all wavenumbers at once, each
     predicted in the frame it is nearer to rest in (its frequency there kept); a
     root that lands farther than the step from its prediction is dropped, and the
-    depth discretisation reseeds every eighth speed."""
-    from .tei_layers import pattern_frame, newton_roots
+    depth discretisation reseeds (all wavenumbers polished together) every 16th
+    speed."""
+    from .tei_layers import newton_roots, pattern_frame, raw_seeds
 
     out = np.full((speeds.size, ms.size), -np.inf)
     tracked = None
@@ -151,16 +152,17 @@ def _track(system, ms, speeds):
             # Predict: a pattern at rest on the moving bodies moves with the speed.
             phi = pattern_frame(ms[:, None], prev_v, tracked.imag)
             tracked = tracked - 1j * phi * ms[:, None] * (v - prev_v)
-        if i % 8 == 0:
-            seeds = [system.modes(m, v)[:2] for m in ms]
+        if i % 16 == 0:
+            seeds = [raw_seeds(system, m, v)[:2] for m in ms]
             fresh = np.array([np.pad(s_, (0, 2 - len(s_)), constant_values=np.nan)
                               for s_ in seeds])
             tracked = fresh if tracked is None else np.concatenate([tracked, fresh], axis=1)
         mm = np.broadcast_to(ms[:, None], tracked.shape)
         scale = np.broadcast_to(scale1[:, None], tracked.shape)
         good = np.isfinite(tracked)
-        roots, ok = newton_roots(lambda z: system.dispersion(z, mm[good], v), tracked[good],
-                            scale[good])
+        mg = mm[good]
+        roots, ok = newton_roots(lambda z, act: system.dispersion(z, mg[act], v),
+                                 tracked[good], scale[good])
         near = np.abs(roots - tracked[good]) <= (0.2 * np.abs(tracked[good].real) + 10.0
                                                   * scale[good] + mm[good] * abs(v - (
                                                       prev_v if prev_v is not None else v)))

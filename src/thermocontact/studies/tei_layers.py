@@ -29,7 +29,7 @@ from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
 __all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "growth_rate",
-           "neutral_point", "newton_roots", "pattern_frame"]
+           "neutral_point", "newton_roots", "pattern_frame", "raw_seeds"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -44,24 +44,26 @@ def _scale(layup: Layup, m) -> float:
     return min(b.material.k for b in layup.bodies if b.conducts) * m * m
 
 
-def newton_roots(func, x0, scale, iters=30):
+def newton_roots(func, x0, scale, iters=25):
     """Newton's method on an analytic ``func`` (vectorised), the derivative by central
     differences of step ``1e-6 scale``; returns the roots and which converged to
-    ``1e-13 scale``."""
+    ``1e-13 scale`` (each root iterated only until it has)."""
     x = np.array(x0, dtype=complex)
+    scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
-    h = 1e-6 * scale
     for _ in range(iters):
-        f = func(np.stack([x, x + h, x - h]))
+        act = np.flatnonzero(~done & np.isfinite(x))
+        if not act.size:
+            break
+        xa, h = x[act], 1e-6 * scale[act]
+        f = func(np.stack([xa, xa + h, xa - h]), act)
         d = (f[1] - f[2]) / (2.0 * h)
         with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.where(done, 0.0, f[0] / d)
-        step = np.where(np.isfinite(step), step, 0.0)
-        x = x - step
-        done |= np.abs(step) <= 1e-13 * (np.abs(x) + scale)
-        if done.all():
-            break
-    return x, done
+            step = f[0] / d
+        step = np.where(np.isfinite(step), step, np.nan)
+        x[act] = xa - step
+        done[act] = np.abs(step) <= 1e-13 * (np.abs(x[act]) + scale[act])
+    return x, done & np.isfinite(x)
 
 
 @dataclass(frozen=True)
@@ -101,7 +103,7 @@ class Layered:
         if not len(seeds):
             return np.array([], dtype=complex)
         scale = max(self.scale(m), 1e-300)
-        roots, ok = newton_roots(lambda z: self.dispersion(z, m, speed), seeds, scale)
+        roots, ok = newton_roots(lambda z, _: self.dispersion(z, m, speed), seeds, scale)
         # A root far from its seed is none of the discretisation's: Newton's method
         # has run off to where the determinant underflows.
         near = np.abs(roots - seeds) <= 0.5 * np.abs(seeds) + 10.0 * scale
@@ -193,7 +195,7 @@ def neutral_point(family, m, speed, omega, iters=40):
     return V, omega_of(V, s), done
 
 
-def _seeds(family, m, speed):
+def raw_seeds(family, m, speed):
     """The depth discretisation's rightmost eigenvalues right of the half-planes'
     continuous spectrum (unpolished)."""
     seeds = layup_modes(family.layup, m, speed, SEED_POINTS)
@@ -218,7 +220,7 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
     ratio = 2.0 ** (1.0 / PER_OCTAVE)
     prev = None
     while v <= v_high * ratio:
-        b = _seeds(family, m, v)
+        b = raw_seeds(family, m, v)
         if len(b) and b[0].real > 0.0:
             b = family.modes(m, v, seeds=b)      # polished
         if len(b) and b[0].real > 0.0:
