@@ -8,7 +8,7 @@ import json
 
 import click
 
-__all__ = ["tei_cmd"]
+__all__ = ["report_lines", "tei_cmd"]
 
 
 @click.command("tei")
@@ -100,14 +100,16 @@ def tei_cmd(slider, counterface, friction, wavelength, speed, dundurs, slider_th
     if as_json:
         click.echo(json.dumps(res.to_dict(), allow_nan=False))
         return
-    click.echo("\n".join(_lines(res)))
+    click.echo("\n".join(report_lines(res)))
 
 
 def _speed(v):
     return "none below 1e4 m/s" if v is None else f"{v:.6g} m/s"
 
 
-def _lines(res):
+def report_lines(res):
+    """The command's text report of a :class:`~thermocontact.studies.tei.TEIResult`,
+    line by line."""
     geometry = []
     if res.separator is not None:
         geometry.append(f"clutch pack: core {res.slider_thickness:.6g} m, facings "
@@ -127,11 +129,8 @@ def _lines(res):
     if geometry:
         lines.append("  " + "; ".join(geometry))
     if res.critical_speed is None:
-        lines.append("  stable at all speeds" if res.stable_at_all_speeds
-                     else "  no mode grows below 1e4 m/s" if res.stable_at_all_speeds is None
-                     and len(res.families) > 1 or res.slider_thickness is not None
-                     or res.counterface_thickness is not None
-                     else "  no critical speed found; stability at all speeds not proven")
+        lines.append("  stable at all speeds" if res.stable_at_all_speeds else
+                     "  no mode grows below 1e4 m/s (stability beyond not established)")
     else:
         lines.append(f"  critical speed  {res.critical_speed:.6g} m/s (the neutral mode "
                      f"migrates at {res.migration_speed:.6g} m/s relative to the counterface)")

@@ -46,8 +46,13 @@ def plot_tei(result, ax=None, wavelengths=None):
     wavelengths = np.sort(np.asarray(wavelengths, dtype=float))
     ms = 2.0 * math.pi / wavelengths[::-1]
     tops, bottoms = [], []
+    m0 = 2.0 * math.pi / wl0
     for system in result.systems if result.friction > 0.0 else ():
-        speeds = system.curve(ms)[0][::-1]
+        fam = next((f for f in result.families if f.family == system.name), None)
+        # Continued from the family's neutral point at the result's wavelength.
+        anchor = (None if fam is None or fam.critical_speed is None
+                  else (m0, fam.critical_speed, -fam.migration_speed * m0))
+        speeds = system.curve(ms, anchor)[0][::-1]
         if not np.isfinite(speeds).any():
             continue
         label = system.name if system.name != "all" else (
@@ -56,7 +61,6 @@ def plot_tei(result, ax=None, wavelengths=None):
         line, = ax.loglog(wavelengths, speeds, "-", lw=1.5, label=label)
         tops.append(np.nanmax(speeds))
         bottoms.append(np.nanmin(speeds))
-        fam = next((f for f in result.families if f.family == system.name), None)
         if fam is not None and fam.minimum_critical_speed is not None:
             ax.loglog([fam.minimum_wavelength], [fam.minimum_critical_speed], "v",
                       color=line.get_color(), ms=5,
