@@ -41,6 +41,38 @@ def _rel(a, b):
     return abs(a - b) / abs(b)
 
 
+# --- the solutions of a layer (L1-L3) -------------------------------------------------
+
+@pytest.mark.parametrize("plane", ["strain", "stress"])
+def test_solutions_satisfy_the_discretised_equations(plane):
+    """Each closed-form solution of a moving layer (L2, L3; at Gamma near 1 too, where
+    (L3) is a divided difference), sampled at the Chebyshev points of the second method,
+    satisfies its discretised heat and Navier equations, and its face fields are those
+    of the discretisation's differentiation, to 1e-9 of the terms."""
+    from thermocontact.discretisation.tei_depth import _body_operators, _chebyshev
+    from thermocontact.physics.tei_layers import Body, body_fields
+
+    mat = IRON if plane == "strain" else plane_stress_material(IRON)
+    body = Body(IRON, 0.02, True)
+    refs = (IRON.mu, IRON.alpha * (1 + IRON.nu) / (1 - IRON.nu), IRON.K)
+    m, V, n = 84.0, 20.0, 40
+    rows, F, mass, cols, ninner = _body_operators(body, n, m, V, plane, True, refs)
+    x = _chebyshev(n)[0]
+    depths = 0.02 * (1 - x) / 2
+    for b in (0.3 - 1600j, -1j * m * V + 1e-9 * IRON.k * m * m):
+        fields = body_fields(body, b, m, V, refs, depths, mat=mat)
+        faces = body_fields(body, b, m, V, refs, [0.0, 0.02], mat=mat)
+        for c in range(body.columns):
+            T = fields[:, 4, c] / (2 * refs[0] * refs[1])
+            X = np.concatenate([T, fields[:, 0, c], fields[:, 1, c]]) / np.repeat(
+                [1.0, 2 * refs[0] * m, 2 * refs[0] * m], n + 1)
+            res = rows @ X
+            res[:len(mass)] -= b * T[1:-1]
+            terms = np.abs(rows) @ np.abs(X)          # each row's largest possible sum
+            assert np.all(np.abs(res) <= 1e-9 * np.max(terms)), (b, c)
+            assert np.max(np.abs(F @ X - faces[:, :, c])) <= 1e-9 * np.max(np.abs(faces[:, :, c]))
+
+
 # --- every thickness to infinity: the half-planes ------------------------------------
 
 @pytest.mark.parametrize("dundurs", [True, False])
