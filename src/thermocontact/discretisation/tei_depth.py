@@ -160,27 +160,25 @@ def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     nf = 3 if conducts else 2
     o_t, o_x, o_y = (0, npt, 2 * npt) if conducts else (None, 0, npt)
     cols = nf * npt
-    inner = [i for i in range(npt) if i not in set(faces.values()) and i != infinity]
-    rows = []
+    inner = np.array([i for i in range(npt) if i not in set(faces.values()) and i != infinity])
+    k = inner.size
+    E = eye[inner]
+    # Navier's equations at the interior points, x then y, interleaved as (x, y) pairs.
+    nav = np.zeros((k, 2, cols), dtype=complex)
+    nav[:, 0, o_x:o_x + npt] = mu * d2[inner] - (lam + 2.0 * mu) * m * m * E
+    nav[:, 0, o_y:o_y + npt] = 1j * m * (lam + mu) * d1[inner]
+    nav[:, 1, o_y:o_y + npt] = (lam + 2.0 * mu) * d2[inner] - mu * m * m * E
+    nav[:, 1, o_x:o_x + npt] = 1j * m * (lam + mu) * d1[inner]
+    rows = [nav.reshape(2 * k, cols)]
     mass = []
     if conducts:
-        heat = mat.k * (d2 - m * m * eye) - 1j * m * U * eye
-        for i in inner:
-            r = np.zeros(cols, dtype=complex)
-            r[o_t:o_t + npt] = heat[i]
-            rows.append(r)
-            mass.append(o_t + i)
-    for i in inner:
-        rx = np.zeros(cols, dtype=complex)
-        ry = np.zeros(cols, dtype=complex)
-        rx[o_x:o_x + npt] = mu * d2[i] - (lam + 2.0 * mu) * m * m * eye[i]
-        rx[o_y:o_y + npt] = 1j * m * (lam + mu) * d1[i]
-        ry[o_y:o_y + npt] = (lam + 2.0 * mu) * d2[i] - mu * m * m * eye[i]
-        ry[o_x:o_x + npt] = 1j * m * (lam + mu) * d1[i]
-        if conducts:
-            rx[o_t + i] = -1j * m * beta
-            ry[o_t:o_t + npt] = -beta * d1[i]
-        rows.extend((rx, ry))
+        nav[:, 0, o_t:o_t + npt] = -1j * m * beta * E
+        nav[:, 1, o_t:o_t + npt] = -beta * d1[inner]
+        heat = np.zeros((k, cols), dtype=complex)
+        heat[:, o_t:o_t + npt] = mat.k * (d2[inner] - m * m * E) - 1j * m * U * E
+        rows = [heat, nav.reshape(2 * k, cols)]
+        mass = list(o_t + inner)
+    rows = list(np.concatenate(rows))
     zero_rows = []
     if infinity is not None:
         for o in ([o_t] if conducts else []) + [o_x, o_y]:

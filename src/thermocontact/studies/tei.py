@@ -439,9 +439,10 @@ def _systems(pair, layups_):
 
 
 def _wavelength_range(thicknesses, radius):
-    """Where a layup's families' minima are sought, m: from a fifth of the thinnest
-    layer to the disc's circumference (one hot spot) or 200 times the thickest."""
-    lo = 0.2 * min(thicknesses)
+    """Where a layup's families' minima are sought, m: from the thinnest layer's
+    thickness (shorter waves see half-planes, whose critical speed rises as 1/L) to
+    the disc's circumference (one hot spot) or 200 times the thickest layer."""
+    lo = min(thicknesses)
     hi = 2.0 * math.pi * radius if radius is not None else 200.0 * max(thicknesses)
     return max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
 

@@ -33,6 +33,9 @@ __all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "gr
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
+#: Chebyshev intervals per body of the scan for the first crossing (signs only; the
+#: crossing is then polished by Newton's method).
+SCAN_POINTS = 12
 #: Seeds polished per evaluation of the modes.
 SEEDS = 4
 #: Speeds per factor 2 of the scan for the first crossing.
@@ -195,10 +198,10 @@ def neutral_point(family, m, speed, omega, iters=40):
     return V, omega_of(V, s), done
 
 
-def raw_seeds(family, m, speed):
+def raw_seeds(family, m, speed, points=None):
     """The depth discretisation's rightmost eigenvalues right of the half-planes'
-    continuous spectrum (unpolished)."""
-    seeds = layup_modes(family.layup, m, speed, SEED_POINTS)
+    continuous spectrum (unpolished; ``points`` per body, default :data:`SEED_POINTS`)."""
+    seeds = layup_modes(family.layup, m, speed, SEED_POINTS if points is None else points)
     edge = family.continuum(m)
     if math.isfinite(edge):
         seeds = seeds[seeds.real > 0.5 * edge]
@@ -207,8 +210,9 @@ def raw_seeds(family, m, speed):
 
 def first_crossing(family, m, v_low=None, v_high=1e4):
     """The lowest speed at which a mode of wavenumber ``m`` grows, from a scan
-    upward (:data:`PER_OCTAVE` speeds per factor 2, the depth discretisation's
-    eigenvalues) located by Newton's method on the neutral point; ``(None, None)`` if
+    upward (:data:`PER_OCTAVE` speeds per factor 2, one where every mode decays at
+    least at ``kappa m^2``; the depth discretisation's eigenvalues at
+    :data:`SCAN_POINTS`) located by Newton's method on the neutral point; ``(None, None)`` if
     none grows below ``v_high``.
 
     Returns
@@ -217,10 +221,11 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
         The critical speed, m/s, and the neutral growth rate ``b = i omega``, 1/s.
     """
     v = family.lowest_speed(m) if v_low is None else v_low
-    ratio = 2.0 ** (1.0 / PER_OCTAVE)
+    fine = 2.0 ** (1.0 / PER_OCTAVE)
+    ratio = fine
     prev = None
     while v <= v_high * ratio:
-        b = raw_seeds(family, m, v)
+        b = raw_seeds(family, m, v, SCAN_POINTS)
         if len(b) and b[0].real > 0.0:
             b = family.modes(m, v, seeds=b)      # polished
         if len(b) and b[0].real > 0.0:
@@ -236,10 +241,12 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
             s1 = b1.imag + phi * m * v
             s0 = s1 if b0 is None else b0.imag + phi * m * v0
             V, w, ok = neutral_point(family, m, vg, -phi * m * vg + s0 + t * (s1 - s0))
-            if ok and v0 * 0.999 <= V <= v * 1.001:
+            if ok and v0 / fine <= V <= v * fine:
                 return float(V), 1j * float(w)
             return _brent_crossing(family, m, v0, v)
         prev = (v, complex(b[0]) if len(b) else None)
+        # Octaves where every mode decays at least at kappa m^2 are crossed in one step.
+        ratio = 2.0 if not len(b) or b[0].real < -family.scale(m) else fine
         v *= ratio
     return None, None
 
