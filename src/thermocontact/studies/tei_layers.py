@@ -35,7 +35,7 @@ __all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "gr
 SEED_POINTS = 16
 #: Chebyshev intervals per body of the scan for the first crossing (signs only; the
 #: crossing is then polished by Newton's method).
-SCAN_POINTS = 12
+SCAN_POINTS = 16
 #: Seeds polished per evaluation of the modes.
 SEEDS = 4
 #: Speeds per factor 2 of the scan for the first crossing.
