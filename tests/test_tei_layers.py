@@ -422,3 +422,17 @@ def test_stable_at_all_speeds_is_a_claim_it_can_prove():
     assert r.stable_at_all_speeds is False and r.critical_speed < 1e4
     assert tei("steel", "organic-composite-brake-block", 0.01, "1km", speed=0.999 *
                r.critical_speed, dundurs=False).modes[0].growth_rate < 0
+
+
+def test_a_root_at_the_rounding_of_the_determinant_is_kept():
+    """A clutch's antisymmetric in-phase mode: Newton's steps on det M stall at 7e-11
+    (4e-13 of |b|), above 1e-13 |b|; the root is kept (it was dropped, and the scan
+    then missed the first crossing).  The critical speed found is the crossing: decaying
+    just below, growing just above."""
+    fam = _family("antisymmetric in-phase", STEEL, get_material("paper-based-clutch-facing"),
+                  0.12, slider_thickness=0.0012, counterface_thickness=0.0005,
+                  separator=STEEL, separator_thickness=0.0016)
+    b = fam.modes(M, 1060.0)
+    assert b.size and b[0].real > 0.5
+    vc, w = fam.critical(M)
+    assert fam.modes(M, 0.999 * vc)[0].real < 0 < fam.modes(M, 1.001 * vc)[0].real

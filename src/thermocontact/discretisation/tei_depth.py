@@ -1,17 +1,24 @@
-"""A second method for the sliding half-planes' instability: a discretisation in depth.
+"""A second method for the thermoelastic instability: discretisations in depth.
 
-Each conducting body's temperature amplitude ``T(eta)`` (``eta`` the depth below its
-surface) is collocated at Chebyshev–Lobatto points of ``xi`` in ``[-1, 1]`` mapped
-onto the whole depth, ``eta = l (1 + xi)/(1 - xi)`` (``xi = 1`` is ``eta = inf``,
-where ``T = 0``).  The heat equation with convection (H1), temperature continuity
-and the heat balance at the interface (H5), with the pressure given by the contact
-condition (H6) and each body's thermal displacement by Maysel's integral
-``2 alpha (1 + nu) int T e^{-m eta} d eta`` (D3; Clenshaw–Curtis weights), make a
-linear generalised eigenproblem ``L x = b M x`` for the growth rate ``b``.
+:func:`depth_modes`, for two sliding half-planes: each conducting body's temperature
+amplitude ``T(eta)`` (``eta`` the depth below its surface) is collocated at
+Chebyshev–Lobatto points of ``xi`` in ``[-1, 1]`` mapped onto the whole depth,
+``eta = l (1 + xi)/(1 - xi)`` (``xi = 1`` is ``eta = inf``, where ``T = 0``).  The heat
+equation with convection (H1), temperature continuity and the heat balance at the
+interface (H5), with the pressure given by the contact condition (H6) and each body's
+thermal displacement by Maysel's integral ``2 alpha (1 + nu) int T e^{-m eta} d eta``
+(D3; Clenshaw–Curtis weights), make a linear generalised eigenproblem ``L x = b M x``
+for the growth rate ``b``.  It shares nothing with the root search of
+:mod:`thermocontact.physics.tei` but the material constants.
 
-It shares nothing with the root search of :mod:`thermocontact.physics.tei` but the
-material constants: neither the closed-form kernels (H3, H4) nor the polynomial
-(H8).  Its eigenvalues converge spectrally in the number of points; the continuous
+:func:`layup_operator` and :func:`layup_modes`, for any layup of
+:mod:`thermocontact.physics.tei_layers` (L14): every body's temperature and both
+displacements collocated, the heat and Navier equations in the plane asked for written
+directly, and the face conditions of
+:func:`~thermocontact.physics.tei_layers.condition_matrix` (the one statement of them)
+applied to the discretised face fields; the statics eliminated, ``dT/dt = A T``.
+
+Eigenvalues converge spectrally in the number of points; a half-plane's continuous
 spectrum (``Re b <= -kappa m^2``) appears as a cloud of eigenvalues to be ignored.
 """
 

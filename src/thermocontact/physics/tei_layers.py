@@ -12,7 +12,7 @@ contact) or are bonded; the outer faces of the end layers carry one of
 
 Every field of a perturbation is ``exp(b t + i m x)`` times a function of ``y``.  In
 each body it is a combination of closed-form solutions decaying away from either
-face (derivation, "Thermoelastic instability of layers", L1-L9): two of the heat
+face (derivation, "Thermoelastic instability of layers", L1-L12): two of the heat
 equation with convection, ``kappa (T'' - m^2 T) = (b + i m U) T`` (L1), their
 thermoelastic displacements from a displacement potential (L3, divided differences
 that stay regular as ``gamma -> m``), and four isothermal Papkovich-Neuber solutions
@@ -24,8 +24,9 @@ half-plane keeps only its decaying solutions, so two half-planes give the relati
 
 The conditions are written once, as coefficients of face fields
 (:func:`condition_matrix`); the second method
-(:func:`thermocontact.discretisation.tei_depth.layup_modes`) supplies its own face
-fields from a Chebyshev discretisation in depth.
+(:func:`thermocontact.discretisation.tei_depth.layup_operator`, L14) supplies its own
+face fields from a Chebyshev discretisation in depth.  :func:`layups` builds the
+families of a brake disc, pads on backing plates and a clutch pack (L12).
 
 Plane stress is plane strain with ``nu -> nu/(1 + nu)``,
 ``E -> E (1 + 2 nu)/(1 + nu)^2`` and ``alpha -> alpha (1 + nu)/(1 + 2 nu)`` (L9,

@@ -1,9 +1,12 @@
-"""Thermoelastic instability of sliding half-planes: critical speed, modes, the most
-unstable wavelength (``thermocontact tei``).
+"""Thermoelastic instability of sliding bodies: critical speed, modes, the most
+unstable wavelength (``thermocontact tei``), for two half-planes and for every layup of
+layers (brake discs, pads, clutch packs; :mod:`thermocontact.studies.tei_layers`),
+each family's minimum over the wavelength and the hot-spot table.
 
-The dispersion relation and its root search are :mod:`thermocontact.physics.tei`;
-the derivation is the section "Thermoelastic instability of sliding half-planes" of
-``docs/derivation.md`` (H1-H12).  For two half-planes the wavelength enters only
+The half-planes' dispersion relation and its root search are
+:mod:`thermocontact.physics.tei`; the derivation is the section "Thermoelastic
+instability of sliding half-planes" of ``docs/derivation.md`` (H1-H12), and for layers
+"Thermoelastic instability of layers" (L1-L14).  For two half-planes the wavelength enters only
 through the Péclet number ``V/(kappa m)``, so the critical speed is proportional to
 the wavenumber (H11): longer waves go unstable first, and at a given speed the growth
 rate has a maximum over the wavelength.
@@ -573,8 +576,9 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         already checked).
     disc_radius : float, optional
         ``R``, m, with ``hot_spots = (n1, n2)``.
-    stop : BrakeStop spec, optional
-        A speed history (:func:`thermocontact.studies.brake_stop.stop_amplification`).
+    stop : StopHistory, optional
+        A speed history (:func:`thermocontact.studies.brake_stop.stop_history`), with
+        ``disc_radius`` and ``hot_spots``: each hot-spot number's amplification.
 
     Returns
     -------

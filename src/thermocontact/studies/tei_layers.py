@@ -49,11 +49,14 @@ def _scale(layup: Layup, m) -> float:
 
 def newton_roots(func, x0, scale, iters=25):
     """Newton's method on an analytic ``func`` (vectorised), the derivative by central
-    differences of step ``1e-6 scale``; returns the roots and which converged to
-    ``1e-13 scale`` (each root iterated only until it has)."""
+    differences of step ``1e-6 scale``; returns the roots and which converged: a step
+    below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
+    falls (the rounding of the determinant reached).  Each root is iterated only
+    until it has converged; ``func(z, active)`` gets the indices of those iterated."""
     x = np.array(x0, dtype=complex)
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
+    last = np.full(x.shape, np.inf)
     for _ in range(iters):
         act = np.flatnonzero(~done & np.isfinite(x))
         if not act.size:
@@ -65,7 +68,9 @@ def newton_roots(func, x0, scale, iters=25):
             step = f[0] / d
         step = np.where(np.isfinite(step), step, np.nan)
         x[act] = xa - step
-        done[act] = np.abs(step) <= 1e-13 * (np.abs(x[act]) + scale[act])
+        size, unit = np.abs(step), np.abs(x[act]) + scale[act]
+        done[act] = (size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
+        last[act] = size
     return x, done & np.isfinite(x)
 
 
@@ -169,6 +174,7 @@ def neutral_point(family, m, speed, omega, iters=40):
     phi = pattern_frame(m, V, w)
     s = (w + phi * m * V) / sig
     done = np.zeros(m.shape, dtype=bool)
+    last = np.full(m.shape, np.inf)
 
     def omega_of(V, s):
         return -phi * m * V + sig * s
@@ -192,7 +198,10 @@ def neutral_point(family, m, speed, omega, iters=40):
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
         V = V + sV
         s = s + sS
-        done |= (np.abs(sV) <= 1e-13 * V) & (np.abs(sS) <= 1e-11 * (1.0 + np.abs(s)))
+        # Converged: both steps at rounding, or small and no longer falling.
+        size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
+        done |= (size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last))
+        last = np.where(done, last, size)
         if done.all():
             break
     return V, omega_of(V, s), done
