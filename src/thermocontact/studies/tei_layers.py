@@ -295,9 +295,9 @@ def continue_neutral(family, wavenumbers, anchor=None, check_every=20):
     ways; without one, from a scan (:func:`first_crossing`) at the first
     wavenumber.  Each next point comes from Newton's method on the neutral point
     started from the last (:func:`continue_step`, halving the step where it fails).
-    Every ``check_every`` points, and wherever the continuation fails, a scan
-    confirms that no other mode grows at a lower speed (where one does, its branch
-    takes over).
+    Every ``check_every`` points the modes at ``0.999 V`` are checked to decay: where
+    one grows, another branch crosses lower, and a scan (:func:`first_crossing`) takes
+    over, as it does wherever the continuation fails.
 
     Returns
     -------
