@@ -436,3 +436,17 @@ def test_a_root_at_the_rounding_of_the_determinant_is_kept():
     assert b.size and b[0].real > 0.5
     vc, w = fam.critical(M)
     assert fam.modes(M, 0.999 * vc)[0].real < 0 < fam.modes(M, 1.001 * vc)[0].real
+
+
+def test_stop_history_file_is_the_same_stop(tmp_path, disc):
+    """A CSV history of the same stop (3 m/s to rest in 3 s, a header line) gives the
+    amplifications of --stop 3:1."""
+    from thermocontact.studies.brake_stop import stop_amplification, stop_history
+
+    path = tmp_path / "stop.csv"
+    path.write_text("time,speed\n0,3\n1.5,1.5\n3,0\n")
+    hist = stop_history(None, str(path), None)
+    got = stop_amplification(disc.systems, 0.12, (4, 10), hist)
+    assert np.allclose(got.log_amplification, disc.stop.log_amplification, rtol=1e-9,
+                       atol=1e-9)
+    assert got.first_unstable == disc.stop.first_unstable
