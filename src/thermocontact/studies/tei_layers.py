@@ -224,6 +224,10 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
     :data:`SCAN_POINTS`) located by Newton's method on the neutral point; ``(None, None)`` if
     none grows below ``v_high``.
 
+    Where a mode grows at the scan's start, the start moves down (by factors 8) until
+    none does; a mode growing at 1e-9 m/s, the lowest speed studied, gives that speed
+    (an upper bound) and that mode.
+
     Returns
     -------
     (float, complex) or (None, None)
@@ -233,14 +237,23 @@ def first_crossing(family, m, v_low=None, v_high=1e4):
     fine = 2.0 ** (1.0 / PER_OCTAVE)
     ratio = fine
     prev = None
+    # A mode growing at the scan's start: the start moves down until none does.
+    while True:
+        b = raw_seeds(family, m, v, SCAN_POINTS)
+        if not (len(b) and family.modes(m, v, seeds=b[:SEEDS]).real.max(initial=-1.0) > 0.0):
+            break
+        if v <= 1e-9:           # growing at the lowest speed studied: an upper bound
+            return v, complex(family.modes(m, v, seeds=b[:SEEDS])[0])
+        v = max(v / 8.0, 1e-9)
     while v <= v_high * ratio:
         b = raw_seeds(family, m, v, SCAN_POINTS)
         if len(b) and b[0].real > 0.0:
             b = family.modes(m, v, seeds=b)      # polished
         if len(b) and b[0].real > 0.0:
-            if prev is None:   # unstable at the scan's start: not expected
-                return v, complex(b[0])
-            v0, b0 = prev
+            if prev is None:    # growing where the start found none: locate from below
+                v0, b0 = v / fine, None
+            else:
+                v0, b0 = prev
             # Interpolate in ln V where Re b crosses 0, and the frequency in the
             # pattern's frame (neutral_point), then Newton.
             b1 = complex(b[0])
