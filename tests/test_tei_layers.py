@@ -450,3 +450,11 @@ def test_stop_history_file_is_the_same_stop(tmp_path, disc):
     assert np.allclose(got.log_amplification, disc.stop.log_amplification, rtol=1e-9,
                        atol=1e-9)
     assert got.first_unstable == disc.stop.first_unstable
+
+
+def test_the_command_offers_the_backings_of_the_physics():
+    from thermocontact.cli.tei import tei_cmd
+    from thermocontact.physics.tei_layers import BACKINGS, FACE_CONDITIONS
+
+    choice = next(p for p in tei_cmd.params if p.name == "backing").type.choices
+    assert tuple(choice) == BACKINGS and set(BACKINGS) <= set(FACE_CONDITIONS)

@@ -856,8 +856,9 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     d = _length("slider_thickness", slider_thickness)
     faces = check_integer("faces", faces, 1, 2)
     h = _length("counterface_thickness", counterface_thickness)
-    backing = check_choice("backing", backing, ("slip-insulated", "bonded-insulated",
-                                                "slip-isothermal"))
+    from .studies.tei import BACKINGS
+
+    backing = check_choice("backing", backing, BACKINGS)
     sep, sep_t = _separator(separator, materials)
     if sep is not None and (d is None or h is None):
         raise InputError("separator (a clutch pack) needs slider_thickness (the friction "

@@ -29,11 +29,12 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..io.results import Result
+from ..physics.tei_layers import BACKINGS
 from ..physics.tei import (SlidingPair, high_speed_limit, high_speed_roots, modes,
                           speed_lower_bound)
 from ..problem.validation import check_range, check_zero_or_range
 
-__all__ = ["FRICTION_RANGE", "HalfPlanes", "HotSpot", "SPEED_RANGE", "TEIFamily", "TEIMode",
+__all__ = ["BACKINGS", "FRICTION_RANGE", "HalfPlanes", "HotSpot", "SPEED_RANGE", "TEIFamily", "TEIMode",
            "TEIResult", "WAVELENGTH_RANGE", "analyse", "critical_speed", "critical_speeds",
            "check_geometry", "family_minimum", "growth_rate", "hot_spot_table", "most_unstable_wavelength",
            "stable_at_all_speeds", "tei_modes"]
