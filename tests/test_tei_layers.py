@@ -458,3 +458,27 @@ def test_the_command_offers_the_backings_of_the_physics():
 
     choice = next(p for p in tei_cmd.params if p.name == "backing").type.choices
     assert tuple(choice) == BACKINGS and set(BACKINGS) <= set(FACE_CONDITIONS)
+
+
+@pytest.mark.parametrize("dundurs", [False, True])
+def test_whole_disc_is_its_two_families(dundurs):
+    """The whole disc between a pad below and a pad above (no symmetry used: the upper
+    interface's sliding sign and shear the other way) has the modes of both families
+    (L7): its critical speed is the lower of theirs, and each family's neutral mode is
+    one of its zeros, to 1e-10."""
+    from thermocontact.physics.tei_layers import Body, Layup
+
+    whole = Layered("whole", Layup(
+        (Body(SINTERED, None, False), Body(IRON, 0.012, True), Body(SINTERED, None, False)),
+        ("sliding", "sliding"), "infinite", "infinite", 0.4, dundurs))
+    speeds = []
+    for name in ("symmetric", "antisymmetric"):
+        fam = _family(name, IRON, SINTERED, dundurs=dundurs, slider_thickness=0.012)
+        vc, b = fam.critical(M)
+        if vc is None:
+            continue
+        V, w, ok = neutral_point(whole, M, vc * (1 + 1e-6), b.imag)
+        assert ok and _rel(V, vc) < 1e-10 and abs(w - b.imag) < 1e-9 * abs(b.imag)
+        speeds.append(vc)
+    vc, _ = whole.critical(M)
+    assert _rel(vc, min(speeds)) < 1e-10
