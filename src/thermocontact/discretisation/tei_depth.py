@@ -227,8 +227,9 @@ def _split(layup, m, speed):
         skin = 25.0 / (m * np.sqrt(1.0 + pe))
         h = body.thickness
         # Skins at the faces that slide: the others carry no thin thermal layer.
-        below = j > 0 and layup.interfaces[j - 1] == "sliding"
-        above = j < last and layup.interfaces[j] == "sliding"
+        periodic = layup.bottom == "periodic"       # the cells slide on each other
+        below = (j > 0 and layup.interfaces[j - 1] == "sliding") or (j == 0 and periodic)
+        above = (j < last and layup.interfaces[j] == "sliding") or (j == last and periodic)
         if pe < 100.0:
             parts = [h]
         elif h is None:
@@ -248,7 +249,7 @@ def _split(layup, m, speed):
                 interfaces.append("bonded")
             bodies.append(Body(mat, t, body.moving))
     return Layup(tuple(bodies), tuple(interfaces), layup.bottom, layup.top, layup.friction,
-                 layup.dundurs, layup.plane)
+                 layup.dundurs, layup.plane, layup.floquet)
 
 
 def layup_modes(layup, wavenumber, speed, n=32, count=None):

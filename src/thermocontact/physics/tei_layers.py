@@ -148,6 +148,10 @@ class Layup:
     plane : str
         "strain" or "stress" (the bodies' materials are given as they are; plane
         stress is applied through :func:`plane_stress_material`).
+    floquet : float or None
+        With ``bottom = top = "periodic"``: the stack repeats the bodies as one cell,
+        the fields of the next cell ``e^{i floquet}`` times this one's (L7); the
+        last body's top face slides on the next cell's first body.
     """
 
     bodies: tuple
@@ -157,6 +161,7 @@ class Layup:
     friction: float
     dundurs: bool = True
     plane: str = "strain"
+    floquet: float | None = None
 
     def __post_init__(self):
         n = len(self.bodies)
@@ -167,8 +172,14 @@ class Layup:
             if kind not in _INTERFACES:
                 raise InputError(f"interface must be one of {list(_INTERFACES)}, got {kind!r}",
                                  parameters=("interfaces",))
+        periodic = (self.bottom == "periodic", self.top == "periodic")
+        if any(periodic) and (not all(periodic) or self.floquet is None):
+            raise InputError("a periodic stack has bottom = top = 'periodic' and a floquet "
+                             "phase", parameters=("floquet",))
         for end, body, name in ((self.bottom, self.bodies[0], "bottom"),
                                 (self.top, self.bodies[-1], "top")):
+            if end == "periodic" and body.thickness is not None:
+                continue
             if (end == "infinite") != (body.thickness is None):
                 raise InputError(f"{name}: 'infinite' exactly when the end body is a "
                                  f"half-plane", parameters=(name,))
@@ -360,20 +371,24 @@ def condition_matrix(layup: Layup):
     """
     nb = len(layup.bodies)
     rows0, rows1 = [], []
+    links = [(i, i + 1, kind, 1.0) for i, kind in enumerate(layup.interfaces)]
+    if layup.bottom == "periodic":
+        # The next cell's first body, its fields e^{i phase} times this cell's.
+        links.append((nb - 1, 0, "sliding", complex(np.exp(1j * layup.floquet))))
 
     def row(*terms, heat=()):
-        c0 = np.zeros((nb, 2, 6))
-        c1 = np.zeros((nb, 2, 6))
+        c0 = np.zeros((nb, 2, 6), dtype=complex)
+        c1 = np.zeros((nb, 2, 6), dtype=complex)
         for j, face, name, coef in terms:
-            c0[j, face, _F[name]] += coef
+            c0[j, face, _F[name]] += coef * (phase if j == a and face == 0 else 1.0)
         for j, face, name, coef in heat:
-            c1[j, face, _F[name]] += coef
+            c1[j, face, _F[name]] += coef * (phase if j == a and face == 0 else 1.0)
         rows0.append(c0)
         rows1.append(c1)
 
-    for i, kind in enumerate(layup.interfaces):
-        lo, hi = layup.bodies[i], layup.bodies[i + 1]
-        a, bb = i + 1, i          # the body above (its bottom face 0), below (top face 1)
+    for bb, a, kind, phase in links:
+        # a: the body above (its bottom face 0); bb: the body below (its top face 1).
+        lo, hi = layup.bodies[bb], layup.bodies[a]
         row((a, 0, "uy", 1.0), (bb, 1, "uy", -1.0))
         row((a, 0, "syy", 1.0), (bb, 1, "syy", -1.0))
         row((a, 0, "sxy", 1.0), (bb, 1, "sxy", -1.0))
@@ -398,8 +413,9 @@ def condition_matrix(layup: Layup):
         row(*terms, heat=[(a, 0, "syy", abs(s))])
         if hi.conducts and lo.conducts:
             row((a, 0, "T", 1.0), (bb, 1, "T", -1.0))
+    a, phase = -1, 1.0
     for j, face, end in ((0, 0, layup.bottom), (nb - 1, 1, layup.top)):
-        if end == "infinite":
+        if end in ("infinite", "periodic"):
             continue
         elastic, thermal = FACE_CONDITIONS[end]
         for name in elastic:
