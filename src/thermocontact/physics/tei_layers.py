@@ -139,7 +139,7 @@ class Layup:
         perfect thermal contact, free slip) or "bonded".
     bottom, top : str
         The outer faces' conditions, one of :data:`FACE_CONDITIONS`; "infinite" for
-        a half-plane's end.
+        a half-plane's end; "periodic" (both) for a cell of a periodic stack.
     friction : float
         Coulomb coefficient ``f`` at every sliding interface.
     dundurs : bool
