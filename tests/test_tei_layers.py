@@ -516,3 +516,29 @@ def test_clutch_cell_with_any_floquet_phase():
     b = fam.modes(M, 1.3 * in_phase)[0]
     got = np.min(np.abs(layup_modes(fam.layup, M, 1.3 * in_phase, 32) - b))
     assert got < 1e-8 * (abs(b) + fam.scale(M))
+
+
+def test_most_unstable_wavelength_is_a_maximum(disc):
+    """At 10 m/s the disc's most unstable wavelength has the largest growth rate of its
+    neighbours 5 % shorter and longer."""
+    wl, rate = disc.most_unstable_wavelength, disc.most_unstable_growth_rate
+    assert rate > 0
+
+    def best(m):
+        return max(s.modes(m, 10.0)[0].real for s in disc.systems if len(s.modes(m, 10.0)))
+
+    m = 2 * math.pi / wl
+    assert _rel(best(m), rate) < 1e-9
+    assert best(0.95 * m) < rate and best(1.05 * m) < rate
+
+
+def test_plane_stress_half_planes_are_thick_layers_in_plane_stress():
+    """Two half-planes in plane stress (the substituted materials in H7) and a thick disc
+    in plane stress (the layers' solutions with the substituted constants) agree to
+    1e-10: the substitution is made the same way in both."""
+    r = tei(STEEL, PAD, 0.4, 0.05, plane_stress=True)
+    fam = _family("antisymmetric", STEEL, PAD, slider_thickness=1.0, plane="stress")
+    V, w, ok = neutral_point(fam, M, r.critical_speed, -r.migration_speed * M)
+    assert ok and _rel(V, r.critical_speed) < 1e-10
+    assert _rel(fam.critical(M)[0], r.critical_speed) < 1e-10
+    assert r.critical_speed > tei(STEEL, PAD, 0.4, 0.05).critical_speed

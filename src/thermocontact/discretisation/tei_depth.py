@@ -221,8 +221,19 @@ def _split(layup, m, speed):
 
     bodies, interfaces = [], []
     last = len(layup.bodies) - 1
+    bottom, top = layup.bottom, layup.top
     for j, body in enumerate(layup.bodies):
         mat = body.material
+        end = last > 0 and j in (0, last) and layup.bottom != "periodic"
+        if end and body.thickness is not None and m * body.thickness > 40.0:
+            # An end layer thicker than 40/m: its far face is e^{-40} away, and the
+            # half-plane's mapped grid carries its fields better than a stack of pieces
+            # (a thick layer's dense thermal modes blur the ones near them).
+            body = Body(mat, None, body.moving)
+            if j == 0:
+                bottom = "infinite"
+            else:
+                top = "infinite"
         pe = abs(speed) / (mat.k * m) if mat.K > 0.0 else 0.0
         skin = 25.0 / (m * np.sqrt(1.0 + pe))
         h = body.thickness
@@ -248,7 +259,7 @@ def _split(layup, m, speed):
             if k:
                 interfaces.append("bonded")
             bodies.append(Body(mat, t, body.moving))
-    return Layup(tuple(bodies), tuple(interfaces), layup.bottom, layup.top, layup.friction,
+    return Layup(tuple(bodies), tuple(interfaces), bottom, top, layup.friction,
                  layup.dundurs, layup.plane, layup.floquet)
 
 

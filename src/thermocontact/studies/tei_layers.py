@@ -100,14 +100,26 @@ class Layered:
     def dispersion(self, b, m, speed):
         return layup_dispersion(self.layup, b, m, speed)
 
+    def in_continuum(self, b, m, speed):
+        """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-3 of its
+        scale): ``b + i m U`` real and below ``-kappa m^2/2`` for a half-plane moving
+        at ``U``, where the depth discretisation puts a cloud of eigenvalues that are
+        no modes."""
+        b = np.asarray(b, dtype=complex)
+        out = np.zeros(b.shape, dtype=bool)
+        for body in self.layup.bodies:
+            if body.thickness is None and body.conducts:
+                edge = body.material.k * m * m
+                z = b + 1j * m * (speed if body.moving else 0.0)
+                out |= (z.real < -0.5 * edge) & (np.abs(z.imag) <= 1e-3 * (np.abs(z.real) + edge))
+        return out
+
     def modes(self, m, speed, count=SEEDS, seeds=None):
         """The rightmost modes at one wavenumber and speed, 1/s, by decreasing real part:
         depth-discretisation seeds (or ``seeds``) polished by Newton's method."""
         m = float(m)
         if seeds is None:
-            seeds = layup_modes(self.layup, m, speed, SEED_POINTS)
-            edge = self.continuum(m)
-            seeds = seeds[seeds.real > 0.5 * edge][:count] if math.isfinite(edge) else seeds[:count]
+            seeds = raw_seeds(self, m, speed)[:count]
         if not len(seeds):
             return np.array([], dtype=complex)
         scale = max(self.scale(m), 1e-300)
@@ -208,13 +220,10 @@ def neutral_point(family, m, speed, omega, iters=40):
 
 
 def raw_seeds(family, m, speed, points=None):
-    """The depth discretisation's rightmost eigenvalues right of the half-planes'
-    continuous spectrum (unpolished; ``points`` per body, default :data:`SEED_POINTS`)."""
+    """The depth discretisation's rightmost eigenvalues off the half-planes' continuous
+    spectra (unpolished; ``points`` per body, default :data:`SEED_POINTS`)."""
     seeds = layup_modes(family.layup, m, speed, SEED_POINTS if points is None else points)
-    edge = family.continuum(m)
-    if math.isfinite(edge):
-        seeds = seeds[seeds.real > 0.5 * edge]
-    return seeds[:SEEDS]
+    return seeds[~family.in_continuum(seeds, m, speed)][:SEEDS]
 
 
 def first_crossing(family, m, v_low=None, v_high=1e4):
