@@ -234,7 +234,14 @@ def test_result_record_equality_pickle_repr():
     d = r.to_dict()
     assert set(d) == {"slider", "counterface", "friction", "wavelength", "dundurs", "beta",
                       "critical_speed", "stable_at_all_speeds", "migration_speed", "speed",
-                      "modes", "most_unstable_wavelength", "most_unstable_growth_rate"}
+                      "modes", "most_unstable_wavelength", "most_unstable_growth_rate",
+                      "plane", "slider_thickness", "faces", "counterface_thickness",
+                      "backing", "separator", "separator_thickness", "families",
+                      "wavelength_range"}
+    assert d["plane"] == "strain" and d["families"] == [
+        {"family": "all", "critical_speed": d["critical_speed"],
+         "migration_speed": d["migration_speed"], "minimum_critical_speed": None,
+         "minimum_wavelength": None}]
     assert d["wavelength"] == 0.05 and d["speed"] == 60.0
     rates = [mode["growth_rate"] for mode in d["modes"]]
     assert rates == sorted(rates, reverse=True) and rates[0] > 0   # 60 > V_c = 55.4
@@ -288,7 +295,23 @@ def test_command_json_is_the_record(capsys, tmp_path):
     (["--speed", "-1"], "--speed", "must be 0 or in [1e-09, 10000], got -1.0"),
     (["--speed", "1e300"], "--speed", "must be 0 or in [1e-09, 10000]"),
     (["--speed", "1e-200"], "--speed", "must be 0 or in [1e-09, 10000]"),
-    (["--friction", "-0.1"], "--friction", "must be 0 or in [1e-06, 10], got -0.1"),
+    (["--friction", "-0.1"], "--friction", "must be 0 or in [1e-06, 10], got '-0.1'"),
+    (["--friction", "1e-400"], "--friction", "must be 0 or in [1e-06, 10], got '1e-400'"),
+    (["--slider-thickness", "0"], "--slider-thickness", "must be in [1e-09, 1000], got 0.0"),
+    (["--slider-thickness", "-2mm"], "--slider-thickness", "must be in [1e-09, 1000]"),
+    (["--slider-thickness", "12kg"], "--slider-thickness", "cannot read '12kg'"),
+    (["--counterface-thickness", "0mm"], "--counterface-thickness", "must be in [1e-09"),
+    (["--disc-radius", "0.1", "--hot-spots", "5:2"], "--hot-spots", "N1 <= N2 (not empty)"),
+    (["--disc-radius", "0.1", "--hot-spots", "1.5:3"], "--hot-spots", "integers"),
+    (["--disc-radius", "0.1", "--hot-spots", "a"], "--hot-spots", "N1:N2"),
+    (["--hot-spots", "1:3"], "--hot-spots", "needs --disc-radius"),
+    (["--stop", "30:8"], "--stop", "needs --disc-radius"),
+    (["--disc-radius", "0.1", "--stop", "30:-8"], "--stop", "must be in [1e-09, 1e+06]"),
+    (["--disc-radius", "0.1", "--stop", "30"], "--stop", "V0:DECEL"),
+    (["--separator", "steel"], "--separator", "MATERIAL:THICKNESS"),
+    (["--separator", "steel:2mm"], "--separator", "needs --slider-thickness"),
+    (["--slider", "E=1e9,nu=0.3,alpha=1e-5,K=0,k=0", "--slider-thickness", "5mm",
+      "--counterface", "E=1e9,nu=0.3,alpha=1e-5,K=0,k=0"], "--slider", "non-conducting"),
     (["--friction", "1e-300"], "--friction", "must be 0 or in [1e-06, 10]"),
     (["--friction", "1e300"], "--friction", "must be 0 or in [1e-06, 10]"),
     (["--slider", "E=1e9,nu=0.3,alpha=1e-5,K=0,k=0",

@@ -60,11 +60,17 @@ PHYSICAL_ALONG = {"load": "N/m", "speed": "m/s", "radius": "m", "friction": "",
                   "temperature_difference": "K", "sink_distance": "m"}
 
 
-def _materials(cylinder, half_plane, materials):
+def _materials(cylinder, half_plane, materials, names=("cylinder", "half_plane")):
     """Both bodies as :class:`~thermocontact.problem.materials.Material`; names and
-    inline specifications are looked up (with ``materials``, a TOML file, first)."""
+    inline specifications are looked up (with ``materials``, a TOML file, first).
+    Anything else is refused naming its parameter (``names``)."""
     from .problem.materials import Material, get_material, load_materials
 
+    for name, m in zip(names, (cylinder, half_plane)):
+        if not isinstance(m, (str, Material)):
+            raise InputError(f"{name} must be a material name, an inline definition "
+                             f"'E=..,nu=..,alpha=..,K=..,k=..' or a Material, got {m!r}",
+                             parameters=(name,))
     if materials is not None:
         load_materials(materials)  # read and checked even when both bodies are inline
     return tuple(m if isinstance(m, Material) else get_material(m, materials)
@@ -858,19 +864,86 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
                                  store_path=store)
 
 
-def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
-        materials=None) -> TEIResult:
-    """Thermoelastic instability of two sliding half-planes (``thermocontact tei``).
+#: Lengths of layers and radii, m: a nanometre to a kilometre, as the wavelength.
+_LENGTH_RANGE = (1e-9, 1e3)
 
-    The critical speed at one wavelength, the neutral mode's migration speed and, at a
-    given speed, every mode and the most unstable wavelength (docs/derivation.md,
-    "Thermoelastic instability of sliding half-planes").
+
+def _length(name, value):
+    from .problem.validation import check_range
+
+    if value is None:
+        return None
+    try:
+        x = _quantity(name, value, "m")
+    except InputError as exc:       # the message names the parameter: so does the error
+        raise InputError(str(exc), parameters=(name,)) from None
+    return check_range(name, x, *_LENGTH_RANGE)
+
+
+def _pair_of(name, value, kind):
+    """``"a:b"`` or a pair, as two strings or numbers."""
+    parts = value.split(":") if isinstance(value, str) else value
+    try:
+        a, b = parts
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be {kind}, got {value!r}", parameters=(name,)) from None
+    return a, b
+
+
+def _hot_spots(value):
+    from .problem.validation import check_integer
+
+    n1, n2 = _pair_of("hot_spots", value, "N1:N2, integers 1 <= N1 <= N2")
+    try:
+        n1, n2 = (int(x) if isinstance(x, str) and x.strip().isdigit() else x for x in (n1, n2))
+        n1 = check_integer("hot_spots", n1, 1, 10000)
+        n2 = check_integer("hot_spots", n2, 1, 10000)
+    except InputError:
+        raise InputError(f"hot_spots must be N1:N2, integers 1 <= N1 <= N2 <= 10000, got "
+                         f"{value!r}", parameters=("hot_spots",)) from None
+    if n2 < n1:
+        raise InputError(f"hot_spots must be N1:N2 with N1 <= N2 (not empty), got {value!r}",
+                         parameters=("hot_spots",))
+    return n1, n2
+
+
+def _separator(value, materials):
+    from .problem.materials import Material, get_material
+
+    if value is None:
+        return None, None
+    if isinstance(value, str):
+        name, sep, thick = value.rpartition(":")
+        if not sep:
+            raise InputError(f"separator must be MATERIAL:THICKNESS (e.g. steel:2mm), got "
+                             f"{value!r}", parameters=("separator",))
+    else:
+        name, thick = _pair_of("separator", value, "(material, thickness)")
+    mat = name if isinstance(name, Material) else get_material(name, materials)
+    return mat, _length("separator", thick)
+
+
+def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None,
+        *, slider_thickness=None, faces=2, counterface_thickness=None,
+        backing="slip-insulated", separator=None, plane_stress=False, disc_radius=None,
+        hot_spots=None, stop=None, stop_history=None, stop_threshold=None) -> TEIResult:
+    """Thermoelastic instability of sliding bodies (``thermocontact tei``): two
+    half-planes, a brake disc of finite thickness between pads, pads as layers on a
+    backing plate, a clutch pack.
+
+    The critical speed of every family of modes at one wavelength, the neutral mode's
+    migration speed, each family's minimum over the wavelength; at a given speed,
+    every growing mode and the most unstable wavelength; with a disc radius, the
+    critical speed per number of hot spots; with a stop, each hot-spot number's
+    amplification (docs/derivation.md, "Thermoelastic instability of sliding
+    half-planes" and "Thermoelastic instability of layers").
 
     Parameters
     ----------
     slider, counterface : str or Material
-        The sliding half-plane and the one it slides over: names, inline
-        definitions ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
+        The sliding body (the disc; a clutch's friction-disc core) and the one it
+        slides on (the pads; a clutch's facing): names, inline definitions
+        ``"E=..,nu=..,alpha=..,K=..,k=.."`` or Materials.  ``K = 0`` is a
         non-conductor; not both.
     friction : float
         Coulomb coefficient ``f``: 0, or 1e-6 to 10
@@ -884,9 +957,41 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         (:data:`~thermocontact.studies.tei.SPEED_RANGE`), m/s or with units: adds the
         modes at that speed and the most unstable wavelength.
     dundurs : bool, optional
-        Keep the Dundurs term ``beta f`` (default), as ``contact`` does.
+        Keep the Dundurs term ``beta f`` (default), as ``contact`` does: in layers, the
+        friction traction's elastic effect.
     materials : str or os.PathLike, optional
         A TOML file of further materials.
+    slider_thickness : float or str, optional
+        The disc's full thickness ``d`` (1 nm to 1 km); absent: a half-plane.
+    faces : {2, 1}, optional
+        2 (default): both faces rub on identical counterfaces, the modes split into
+        the families symmetric and antisymmetric about the mid-plane; 1: the other
+        face free and insulated.
+    counterface_thickness : float or str, optional
+        The pads' (a clutch's facings') thickness; absent: half-planes.
+    backing : str, optional
+        The pad layers' rigid backing plate: "slip-insulated" (default: the pad free
+        to slip on it, no heat through it), "bonded-insulated" or "slip-isothermal".
+    separator : str or (material, thickness), optional
+        A clutch pack: the separator plates' material and thickness
+        (``"steel:2mm"``); the friction disc's core is the slider
+        (``slider_thickness``), its facings the counterface
+        (``counterface_thickness``).
+    plane_stress : bool, optional
+        Plane stress instead of plane strain (thin discs).
+    disc_radius : float or str, optional
+        ``R``: adds the critical speed of ``n`` hot spots round the disc, wavelength
+        ``2 pi R/n``, for ``hot_spots``.
+    hot_spots : str or (int, int), optional
+        ``"N1:N2"`` (default ``"1:60"`` with a radius).
+    stop : str or (float, float), optional
+        ``"V0:DECEL"``: a stop from ``V0`` (m/s) at a constant deceleration (m/s^2),
+        with ``disc_radius``: each hot-spot number's amplification.
+    stop_history : str or os.PathLike, optional
+        Instead of ``stop``: a CSV file of time (s) and speed (m/s).
+    stop_threshold : float, optional
+        The amplification that marks a hot-spot number unstable over the stop
+        (default ``e^5``).
 
     Returns
     -------
@@ -896,15 +1001,56 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True,
     Raises
     ------
     InputError
-        A wavelength, speed or friction outside its range, both bodies
-        non-conducting, an unknown material; the message is one line naming the
-        parameter.
+        Any input outside its range (a wavelength, speed, friction, a thickness that
+        is not a positive length, an empty or non-integer hot-spot range, a stop
+        that ends above its start, a non-conducting disc on non-conducting pads, an
+        unknown material); the message is one line naming the parameter.  Raised
+        before any computation.
     """
-    from .studies.tei import analyse
+    from .problem.validation import check_choice, check_flag, check_integer
 
-    s, c = _materials(slider, counterface, materials)
-    return analyse(s, c, friction, _quantity("wavelength", wavelength, "m"),
-                   speed=_quantity("speed", speed, "m/s"), dundurs=check_flag("dundurs", dundurs))
+    s, c = _materials(slider, counterface, materials, names=("slider", "counterface"))
+    dundurs = check_flag("dundurs", dundurs)
+    plane = "stress" if check_flag("plane_stress", plane_stress) else "strain"
+    wl = _quantity("wavelength", wavelength, "m")
+    v = _quantity("speed", speed, "m/s")
+    d = _length("slider_thickness", slider_thickness)
+    faces = check_integer("faces", faces, 1, 2)
+    h = _length("counterface_thickness", counterface_thickness)
+    from .studies.tei import BACKINGS
+
+    backing = check_choice("backing", backing, BACKINGS)
+    sep, sep_t = _separator(separator, materials)
+    if sep is not None and (d is None or h is None):
+        raise InputError("separator (a clutch pack) needs slider_thickness (the friction "
+                         "disc's core) and counterface_thickness (its facings)",
+                         parameters=("separator", "slider_thickness", "counterface_thickness"))
+    radius = _length("disc_radius", disc_radius)
+    if hot_spots is not None and radius is None:
+        raise InputError("hot_spots needs disc_radius", parameters=("hot_spots", "disc_radius"))
+    spots = None if radius is None else _hot_spots("1:60" if hot_spots is None else hot_spots)
+    history = None
+    if stop is not None or stop_history is not None:
+        from .studies.brake_stop import stop_history as make_history
+
+        if radius is None:
+            raise InputError("stop needs disc_radius (its amplification is per number of "
+                             "hot spots)", parameters=("stop", "disc_radius"))
+        history = make_history(stop, stop_history, stop_threshold)
+    from threadpoolctl import threadpool_limits
+
+    from .studies.tei import analyse, check_geometry
+
+    # The problem statement checked whole before any work (two non-conductors
+    # sliding on each other refused).
+    check_geometry(s, c, slider_thickness=d, faces=faces, counterface_thickness=h,
+                   backing=backing, separator=sep, separator_thickness=sep_t)
+    # Small matrices: one BLAS thread is faster than several competing for the cores.
+    with threadpool_limits(limits=1, user_api="blas"):
+        return analyse(s, c, friction, wl, speed=v, dundurs=dundurs, plane=plane,
+                       slider_thickness=d, faces=faces, counterface_thickness=h,
+                       backing=backing, separator=sep, separator_thickness=sep_t,
+                       disc_radius=radius, hot_spots=spots, stop=history)
 
 
 def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,

@@ -1,29 +1,38 @@
-"""A second method for the sliding half-planes' instability: a discretisation in depth.
+"""A second method for the thermoelastic instability: discretisations in depth.
 
-Each conducting body's temperature amplitude ``T(eta)`` (``eta`` the depth below its
-surface) is collocated at Chebyshev–Lobatto points of ``xi`` in ``[-1, 1]`` mapped
-onto the whole depth, ``eta = l (1 + xi)/(1 - xi)`` (``xi = 1`` is ``eta = inf``,
-where ``T = 0``).  The heat equation with convection (H1), temperature continuity
-and the heat balance at the interface (H5), with the pressure given by the contact
-condition (H6) and each body's thermal displacement by Maysel's integral
-``2 alpha (1 + nu) int T e^{-m eta} d eta`` (D3; Clenshaw–Curtis weights), make a
-linear generalised eigenproblem ``L x = b M x`` for the growth rate ``b``.
+:func:`depth_modes`, for two sliding half-planes: each conducting body's temperature
+amplitude ``T(eta)`` (``eta`` the depth below its surface) is collocated at
+Chebyshev–Lobatto points of ``xi`` in ``[-1, 1]`` mapped onto the whole depth,
+``eta = l (1 + xi)/(1 - xi)`` (``xi = 1`` is ``eta = inf``, where ``T = 0``).  The heat
+equation with convection (H1), temperature continuity and the heat balance at the
+interface (H5), with the pressure given by the contact condition (H6) and each body's
+thermal displacement by Maysel's integral ``2 alpha (1 + nu) int T e^{-m eta} d eta``
+(D3; Clenshaw–Curtis weights), make a linear generalised eigenproblem ``L x = b M x``
+for the growth rate ``b``.  It shares nothing with the root search of
+:mod:`thermocontact.physics.tei` but the material constants.
 
-It shares nothing with the root search of :mod:`thermocontact.physics.tei` but the
-material constants: neither the closed-form kernels (H3, H4) nor the polynomial
-(H8).  Its eigenvalues converge spectrally in the number of points; the continuous
+:func:`layup_operator` and :func:`layup_modes`, for any layup of
+:mod:`thermocontact.physics.tei_layers` (L14): every body's temperature and both
+displacements collocated, the heat and Navier equations in the plane asked for written
+directly, and the face conditions of
+:func:`~thermocontact.physics.tei_layers.condition_matrix` (the one statement of them)
+applied to the discretised face fields; the statics eliminated, ``dT/dt = A T``.
+
+Eigenvalues converge spectrally in the number of points; a half-plane's continuous
 spectrum (``Re b <= -kappa m^2``) appears as a cloud of eigenvalues to be ignored.
 """
 
 from __future__ import annotations
 
 
+import math
+
 import numpy as np
 import scipy.linalg
 
 from ..physics.tei import SlidingPair
 
-__all__ = ["depth_modes"]
+__all__ = ["depth_modes", "layup_modes", "layup_operator"]
 
 
 def _chebyshev(n):
@@ -115,3 +124,229 @@ def depth_modes(pair: SlidingPair, wavenumber, velocity, n=48):
     b = scipy.linalg.eigvals(L, M)
     b = b[np.isfinite(b)]
     return b[np.argsort(-b.real, kind="stable")]
+
+
+def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
+    """One body's collocation: the interior rows (heat, then Navier's two equations),
+    the rows that hold its fields at zero at infinity (a half-plane), its face fields
+    as linear maps of its nodal unknowns, and which unknowns are the interior
+    temperatures.
+
+    Unknowns ``[T, u_x, u_y]`` at the points (``T`` only for a conductor).  The
+    elastic law is written in the plane asked for, directly: plane strain
+    ``lambda = 2 mu nu/(1 - 2 nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - 2 nu)``;
+    plane stress ``lambda = 2 mu nu/(1 - nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - nu)``.
+    """
+    mat = body.material
+    x, d, _ = _chebyshev(n)
+    mu = mat.mu
+    if plane == "strain":
+        lam = 2.0 * mu * mat.nu / (1.0 - 2.0 * mat.nu)
+        beta = 2.0 * mu * (1.0 + mat.nu) * mat.alpha / (1.0 - 2.0 * mat.nu)
+    else:
+        lam = 2.0 * mu * mat.nu / (1.0 - mat.nu)
+        beta = 2.0 * mu * (1.0 + mat.nu) * mat.alpha / (1.0 - mat.nu)
+    U = speed if body.moving else 0.0
+    if body.thickness is not None:
+        # y = h (1 - x)/2: x = 1 the bottom face (point 0), x = -1 the top (point n).
+        d1 = -(2.0 / body.thickness) * d
+        faces = {0: 0, 1: n}
+        infinity = None
+    else:
+        pe = abs(speed) / (mat.k * m) if mat.K > 0.0 and not split else 0.0
+        ell = 1.0 / (m * (1.0 + pe) ** 0.25)
+        with np.errstate(divide="ignore"):
+            jac = (1.0 - x) ** 2 / (2.0 * ell)          # d xi/d eta, eta the depth
+        d1 = jac[:, None] * d * (1.0 if upper else -1.0)  # d/dy = +-d/d eta
+        faces = {0: n, 1: n}
+        infinity = 0
+    d2 = d1 @ d1
+    npt = n + 1
+    eye = np.eye(npt)
+    conducts = mat.K > 0.0
+    nf = 3 if conducts else 2
+    o_t, o_x, o_y = (0, npt, 2 * npt) if conducts else (None, 0, npt)
+    cols = nf * npt
+    inner = np.array([i for i in range(npt) if i not in set(faces.values()) and i != infinity])
+    k = inner.size
+    E = eye[inner]
+    # Navier's equations at the interior points, x then y, interleaved as (x, y) pairs.
+    nav = np.zeros((k, 2, cols), dtype=complex)
+    nav[:, 0, o_x:o_x + npt] = mu * d2[inner] - (lam + 2.0 * mu) * m * m * E
+    nav[:, 0, o_y:o_y + npt] = 1j * m * (lam + mu) * d1[inner]
+    nav[:, 1, o_y:o_y + npt] = (lam + 2.0 * mu) * d2[inner] - mu * m * m * E
+    nav[:, 1, o_x:o_x + npt] = 1j * m * (lam + mu) * d1[inner]
+    rows = [nav.reshape(2 * k, cols)]
+    mass = []
+    if conducts:
+        nav[:, 0, o_t:o_t + npt] = -1j * m * beta * E
+        nav[:, 1, o_t:o_t + npt] = -beta * d1[inner]
+        heat = np.zeros((k, cols), dtype=complex)
+        heat[:, o_t:o_t + npt] = mat.k * (d2[inner] - m * m * E) - 1j * m * U * E
+        rows = [heat, nav.reshape(2 * k, cols)]
+        mass = list(o_t + inner)
+    rows = list(np.concatenate(rows))
+    zero_rows = []
+    if infinity is not None:
+        for o in ([o_t] if conducts else []) + [o_x, o_y]:
+            r = np.zeros(cols, dtype=complex)
+            r[o + infinity] = 1.0
+            zero_rows.append(r)
+    mu_ref, a_ref, K_ref = refs
+    F = np.zeros((2, 6, cols), dtype=complex)
+    for f, i in faces.items():
+        F[f, 0, o_x + i] = 2.0 * mu_ref * m
+        F[f, 1, o_y + i] = 2.0 * mu_ref * m
+        F[f, 2, o_x:o_x + npt] = mu * d1[i]
+        F[f, 2, o_y + i] += 1j * m * mu
+        F[f, 3, o_y:o_y + npt] = (lam + 2.0 * mu) * d1[i]
+        F[f, 3, o_x + i] += 1j * m * lam
+        if conducts:
+            F[f, 3, o_t + i] -= beta
+            F[f, 4, o_t + i] = 2.0 * mu_ref * a_ref
+            F[f, 5, o_t:o_t + npt] = -mat.K * d1[i] * 2.0 * mu_ref * a_ref / (K_ref * m)
+    return np.array(rows + zero_rows), F, mass, cols, len(rows)
+
+
+def _split(layup, m, speed):
+    """The layup with each conductor's thermal boundary layers as bodies of their own,
+    bonded to the rest of it: at a Péclet number ``P = V/(kappa m)`` the temperature
+    varies over ``1/(m sqrt(1 + P))`` near a sliding face, the displacements over
+    ``1/m``; one Chebyshev grid would need both.  The skins are 25 such lengths
+    thick (the temperature falls by ``e^{-17}`` or more across), at the faces that
+    slide, and a layer less than 1.5 times as thick as its skins and the rest is kept
+    whole.  A layer thicker than ``8/m`` is cut into pieces (at most 16) no thicker,
+    the elastic fields' scale."""
+    from ..physics.tei_layers import Body, Layup
+
+    bodies, interfaces = [], []
+    last = len(layup.bodies) - 1
+    bottom, top = layup.bottom, layup.top
+    for j, body in enumerate(layup.bodies):
+        mat = body.material
+        end = last > 0 and j in (0, last) and layup.bottom != "periodic"
+        if end and body.thickness is not None and m * body.thickness > 40.0:
+            # An end layer thicker than 40/m: its far face is e^{-40} away, and the
+            # half-plane's mapped grid carries its fields better than a stack of pieces
+            # (a thick layer's dense thermal modes blur the ones near them).
+            body = Body(mat, None, body.moving)
+            if j == 0:
+                bottom = "infinite"
+            else:
+                top = "infinite"
+        pe = abs(speed) / (mat.k * m) if mat.K > 0.0 else 0.0
+        skin = 25.0 / (m * np.sqrt(1.0 + pe))
+        h = body.thickness
+        # Skins at the faces that slide: the others carry no thin thermal layer.
+        periodic = layup.bottom == "periodic"       # the cells slide on each other
+        below = (j > 0 and layup.interfaces[j - 1] == "sliding") or (j == 0 and periodic)
+        above = (j < last and layup.interfaces[j] == "sliding") or (j == last and periodic)
+        if pe < 100.0:
+            parts = [h]
+        elif h is None:
+            parts = [skin, None] if j == last else [None, skin]
+        elif h < (1 + below + above) * 1.5 * skin:
+            parts = [h]
+        else:
+            parts = [skin] * below + [h - (below + above) * skin] + [skin] * above
+        if h is not None:
+            # The elastic fields vary over 1/m: a layer thicker than 8/m in pieces.
+            cut = [min(16, math.ceil(m * p / 8.0)) for p in parts]
+            parts = [p / k for p, k in zip(parts, cut) for _ in range(k)]
+        if j > 0:
+            interfaces.append(layup.interfaces[j - 1])
+        for k, t in enumerate(parts):
+            if k:
+                interfaces.append("bonded")
+            bodies.append(Body(mat, t, body.moving))
+    return Layup(tuple(bodies), tuple(interfaces), bottom, top, layup.friction,
+                 layup.dundurs, layup.plane, layup.floquet)
+
+
+def layup_modes(layup, wavenumber, speed, n=32, count=None):
+    """Growth rates ``b`` (1/s, in the frame of the bodies at rest) of a layup,
+    discretised in depth: the second method of the layered TEI, the eigenvalues of
+    :func:`layup_operator`.
+
+    Parameters
+    ----------
+    layup : thermocontact.physics.tei_layers.Layup
+    wavenumber : float
+        ``m > 0``, 1/m.
+    speed : float
+        Sliding velocity ``U`` of the moving bodies, m/s.
+    n : int, optional
+        Chebyshev intervals per body.
+    count : int, optional
+        Return only this many, the largest real parts.
+
+    Returns
+    -------
+    ndarray of complex
+        Eigenvalues by decreasing real part.
+    """
+    # NumPy's LAPACK: the one whose threads the package limits (cli.main, api.tei).
+    b = np.linalg.eigvals(layup_operator(layup, wavenumber, speed, n))
+    b = b[np.argsort(-b.real, kind="stable")]
+    return b if count is None else b[:count]
+
+
+def layup_operator(layup, wavenumber, speed, n=32):
+    """The layup's linearised equations discretised in depth: ``dT/dt = A T`` for the
+    temperatures at the interior points (the second method of the layered TEI).
+
+    Each body's temperature and displacements are collocated at ``n + 1``
+    Chebyshev-Lobatto points (a layer's thickness, or a half-plane's depth mapped
+    as for :func:`depth_modes`; a thin thermal boundary layer made a body of its
+    own, :func:`_split`); the rows are the heat equation with convection (L1),
+    Navier's equations with the thermal load in the plane of the layup (written
+    directly, not through the plane-stress substitution), and the face conditions
+    of :func:`thermocontact.physics.tei_layers.condition_matrix` applied to the
+    discretised face fields.  The displacements and face temperatures are
+    eliminated (the elastic problem is static).  It shares with the root search
+    only the statement of the face conditions.
+
+    Returns
+    -------
+    ndarray, complex, square
+        ``A``, 1/s, at one speed (the speed enters through the convection and the
+        frictional heat).
+    """
+    from ..physics.tei_layers import condition_matrix, heat_coefficient
+
+    m = float(wavenumber)
+    refs = layup.references()          # the scales of the face fields: the layup's own
+    heat = heat_coefficient(layup, m, speed)
+    whole = len(layup.bodies)
+    layup = _split(layup, m, speed)
+    split = len(layup.bodies) > whole
+    last = len(layup.bodies) - 1
+    parts = [_body_operators(body, n, m, speed, layup.plane, j == last, refs, split)
+             for j, body in enumerate(layup.bodies)]
+    offsets = np.cumsum([0] + [p[3] for p in parts])
+    size = int(offsets[-1])
+    C0, C1 = condition_matrix(layup)
+    C = C0 + heat * C1
+    L = np.zeros((size, size), dtype=complex)
+    dyn = []
+    r0 = 0
+    cond_rows = np.zeros((C.shape[0], size), dtype=complex)
+    for j, (rows, F, mass, cols, ninner) in enumerate(parts):
+        o = offsets[j]
+        L[r0:r0 + rows.shape[0], o:o + cols] = rows
+        dyn.extend(r0 + k for k in range(len(mass)))          # heat rows come first
+        r0 += rows.shape[0]
+        cond_rows[:, o:o + cols] = np.einsum("rfk,fkc->rc", C[:, j], F)
+    L[r0:] = cond_rows
+    dyn_cols = [offsets[j] + c for j, p in enumerate(parts) for c in p[2]]
+    dyn_rows = np.array(dyn)
+    dyn_cols = np.array(dyn_cols)
+    st_rows = np.setdiff1d(np.arange(size), dyn_rows)
+    st_cols = np.setdiff1d(np.arange(size), dyn_cols)
+    # The static rows are equations = 0: each scaled to unit size (their magnitudes
+    # span 20 decades, and LU then slows on subnormal numbers).
+    scale = 1.0 / np.max(np.abs(L[st_rows]), axis=1, keepdims=True)
+    Lss = L[np.ix_(st_rows, st_cols)] * scale
+    Lsd = L[np.ix_(st_rows, dyn_cols)] * scale
+    return (L[np.ix_(dyn_rows, dyn_cols)]
+            - L[np.ix_(dyn_rows, st_cols)] @ np.linalg.solve(Lss, Lsd))

@@ -1,5 +1,10 @@
 """Limiting cases with independent solutions, used to check the main solver.
 
+Besides the contact's two limits below, :func:`layer_neutral_speed` gives the
+thermoelastic instability of a conducting layer between non-conducting pads in
+closed form (derivation, "Thermoelastic instability of layers", L11), an
+independent check of the layered dispersion relation.
+
 Two limits are provided, in the dimensionless contact coordinate ``-1 < s < 1``
 with the pressure ``phat(s) >= 0`` (compressive) normalised to unit integral:
 
@@ -36,7 +41,8 @@ import numpy as np
 from ..io.results import Result
 from ..problem.validation import check_integer, check_nonnegative
 
-__all__ = ["BarberSolution", "barber_insulated", "hertz_pressure"]
+__all__ = ["BarberSolution", "barber_insulated", "hertz_pressure", "layer_compliance",
+           "layer_neutral_speed", "layer_thermal_displacement"]
 
 #: Default number of sine terms.  ``L`` converges like ``n**-6`` (measured), so
 #: it is at round-off here for ``F <= 5``; the pressure converges like ``n**-3``
@@ -238,3 +244,80 @@ def barber_insulated(fhpe, n=DEFAULT_TERMS):
     coefficients[1::2] = b_odd
     coefficients.setflags(write=False)
     return BarberSolution(F, load_ratio, sigma, coefficients, n)
+
+
+def layer_compliance(layer, thickness, m, family):
+    """Inward displacement of a free layer's faces per unit pressure ``P e^{imx}`` on
+    both faces, m/Pa (L11a; plane strain, no shear on the faces): with
+    ``x = m d/2``,
+
+    * symmetric (equal pressures, the thickness compressed):
+      ``(1 - nu)/(mu m) sinh^2 x/(x + sinh x cosh x)``;
+    * antisymmetric (opposite pressures, the layer bent):
+      ``(1 - nu)/(mu m) cosh^2 x/(sinh x cosh x - x)``.
+
+    Both tend to the half-plane's ``(1 - nu)/(mu m)`` for a thick layer; the
+    antisymmetric one to the plate's ``12 (1 - nu)/(mu m^4 d^3)`` for a thin one.
+    From Airy's stress function ``cosh``/``y sinh`` (symmetric) or
+    ``sinh``/``y cosh`` (antisymmetric) in ``y``.
+    """
+    x = 0.5 * m * thickness
+    sh, ch = math.sinh(x), math.cosh(x)
+    base = (1.0 - layer.nu) / (layer.mu * m)
+    if family == "symmetric":
+        return base * sh * sh / (x + sh * ch)
+    return base * ch * ch / (sh * ch - x)
+
+
+def layer_thermal_displacement(layer, thickness, m, family):
+    """Outward displacement of a free layer's faces per unit face temperature, m/K,
+    for the steady temperature ``cosh(m y)/cosh(m d/2)`` (symmetric) or
+    ``sinh(m y)/sinh(m d/2)`` (antisymmetric) about the mid-plane ``y = 0``
+    (L11b, plane strain).
+
+    The displacement potential ``Omega = a y sinh(m y)/(2 m cosh(m d/2))`` (or with
+    ``cosh`` and ``sinh`` exchanged), ``a = alpha (1 + nu)/(1 - nu)``, leaves
+    tractions at the faces that Airy's stress function ``F`` cancels, with
+    ``F = 2 mu Omega`` and ``dF/dy = 2 mu dOmega/dy`` there.  The face's
+    displacement is ``dOmega/dy`` plus Airy's,
+    ``-F_y/mu + ((1 - nu) F_yyy + nu m^2 F_y)/(2 mu m^2)``.
+    """
+    mu, nu = layer.mu, layer.nu
+    pot = layer.alpha * (1.0 + nu) / (1.0 - nu)
+    c = 0.5 * thickness
+    x = m * c
+    sh, ch = math.sinh(x), math.cosh(x)
+    if family == "symmetric":
+        om, dom = c * sh / (2.0 * m * ch), (sh + x * ch) / (2.0 * m * ch)
+        Fc, Fp = 2.0 * mu * pot * om, 2.0 * mu * pot * dom
+        det = sh * ch + x
+        A = (Fc * (sh + x * ch) - c * sh * Fp) / det      # F = A cosh + B y sinh
+        B = (ch * Fp - m * sh * Fc) / det
+        F3 = A * m**3 * sh + B * (3.0 * m * m * sh + m**3 * c * ch)
+    else:
+        om, dom = c * ch / (2.0 * m * sh), (ch + x * sh) / (2.0 * m * sh)
+        Fc, Fp = 2.0 * mu * pot * om, 2.0 * mu * pot * dom
+        det = sh * ch - x
+        A = (Fc * (ch + x * sh) - c * ch * Fp) / det      # F = A sinh + B y cosh
+        B = (sh * Fp - m * ch * Fc) / det
+        F3 = A * m**3 * ch + B * (3.0 * m * m * ch + m**3 * c * sh)
+    return pot * dom - Fp / mu + ((1.0 - nu) * F3 + nu * m * m * Fp) / (2.0 * mu * m * m)
+
+
+def layer_neutral_speed(layer, thickness, m, friction, family, pad=None):
+    """The neutral speed of a conducting layer (full thickness ``d``) rubbing on both
+    faces against non-conducting pads, m/s (L11): all the frictional heat enters the
+    layer, the pads only yield elastically, and the neutral mode is at rest on the
+    layer, where the temperature is steady (``gamma = m``):
+
+    ``V = K m t (C_layer + C_pad)/(f W)``,
+
+    ``t = tanh(m d/2)`` (symmetric) or ``coth(m d/2)`` (antisymmetric), ``C_layer``
+    of :func:`layer_compliance`, ``C_pad = (1 - nu_p)/(mu_p m)`` of an elastic
+    half-plane pad (0 for a rigid one, ``pad=None``) and ``W`` of
+    :func:`layer_thermal_displacement`.  Plane strain, no Dundurs term."""
+    x = 0.5 * m * thickness
+    t = math.tanh(x) if family == "symmetric" else 1.0 / math.tanh(x)
+    c_pad = 0.0 if pad is None else (1.0 - pad.nu) / (pad.mu * m)
+    return (layer.K * m * t * (layer_compliance(layer, thickness, m, family) + c_pad)
+            / (friction * layer_thermal_displacement(layer, thickness, m, family)))

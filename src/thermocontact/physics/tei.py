@@ -32,6 +32,8 @@ from ..problem.validation import InputError, check_nonnegative
 __all__ = [
     "SlidingPair",
     "dispersion",
+    "high_speed_limit",
+    "high_speed_roots",
     "high_speed_unstable",
     "modes",
     "speed_lower_bound",
@@ -281,15 +283,24 @@ def modes(pair: SlidingPair, wavenumber, velocity, *, polish=True):
     return np.array(found, dtype=complex)
 
 
-def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
-    """Whether a mode grows at every large enough speed (the limit V -> inf, H10).
+def high_speed_roots(pair: SlidingPair, direction: float = 1.0) -> np.ndarray:
+    """The growth rates at infinite speed, ``X = b/(V m)`` (the limit V -> inf, H10).
 
     With ``b = V m X``, each body's field becomes a one-dimensional transient one
     (``gamma_2 ~ sqrt(V X/(kappa_2 m))``, ``gamma_1 ~ sqrt(V (X + i s)/(kappa_1 m))``,
     ``s = sgn U``) and the relation ``h1/zeta1 + h2/zeta2 = c (e1 zeta1 + e2 zeta2)``,
     ``zeta2 = sqrt(X)``, ``zeta1 = sqrt(X + i s)``, ``h = 2 f alpha (1 + nu)
     sqrt(kappa)/A``, ``e = K/sqrt(kappa)``, no longer depends on ``V``.  Squared, it
-    is the cubic ``(X + i s)(h2 - c e2 X)^2 = X (c e1 (X + i s) - h1)^2``.
+    is the cubic ``(X + i s)(h2 - c e2 X)^2 = X (c e1 (X + i s) - h1)^2``.  Each root
+    is polished by Newton's method on the unsquared relation in the smaller of
+    ``zeta1``, ``zeta2`` (a mode nearly at rest on a body has its ``zeta`` small, and
+    ``X`` from the cubic alone would lose the digits of its real part) and kept if
+    both ``Re zeta > 0`` and the relation holds to 1e-10.
+
+    Returns
+    -------
+    ndarray of complex
+        The roots ``X`` (none without friction).
     """
     s = math.copysign(1.0, direction)
     c = pair.dundurs_factor(s)
@@ -303,22 +314,65 @@ def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
 
     (h1, e1), (h2, e2) = he(pair.slider), he(pair.counterface)
     if pair.friction == 0.0:
-        return False
+        return np.array([], dtype=complex)
     if e1 == 0.0 or e2 == 0.0:
-        # One conductor: X = h/(c e) (- i s for the slider); Re X = (h/e)/|c|^2 > 0.
-        return True
+        # One conductor: zeta = h/(c e), X = zeta^2 (- i s for the slider).
+        z = (h1 / (c * e1)) if e2 == 0.0 else (h2 / (c * e2))
+        return np.array([z * z - (1j * s if e2 == 0.0 else 0.0)])
     conv = np.convolve  # lowest degree first
     left = conv([1j * s, 1.0], conv([h2, -c * e2], [h2, -c * e2]))
     inner = [c * e1 * 1j * s - h1, c * e1]
     right = conv([0.0, 1.0], conv(inner, inner))
+    sqrt = cmath.sqrt
+    out = []
     for x in np.roots(_padd(left, -right)[::-1]):
-        z2, z1 = _root(x), _root(x + 1j * s)
-        if z2.real <= 0.0 or z1.real <= 0.0:
+        x = complex(x)
+        # u is the smaller zeta; the other is sqrt(u^2 -+ i s).
+        first = abs(x + 1j * s) < abs(x)
+        shift = -1j * s if first else 1j * s
+        u = sqrt(x + 1j * s) if first else sqrt(x)
+        for _ in range(60):
+            v = sqrt(u * u + shift)
+            z1, z2 = (u, v) if first else (v, u)
+            f = h1 / z1 + h2 / z2 - c * (e1 * z1 + e2 * z2)
+            dv = u / v if v != 0 else 0.0
+            dz1, dz2 = (1.0, dv) if first else (dv, 1.0)
+            df = (-h1 / z1**2 - c * e1) * dz1 + (-h2 / z2**2 - c * e2) * dz2
+            if df == 0 or not cmath.isfinite(df):
+                break
+            step = f / df
+            u -= step
+            if abs(step) <= 1e-16 * abs(u):
+                break
+        v = sqrt(u * u + shift)
+        z1, z2 = (u, v) if first else (v, u)
+        if z1.real <= 0.0 or z2.real <= 0.0:
             continue
-        lhs = h1 / z1 + h2 / z2
-        rhs = c * (e1 * z1 + e2 * z2)
-        # Identical materials below their threshold have X on the imaginary axis
-        # exactly (neutral at leading order, decaying at the next): rounding is no growth.
-        if abs(lhs - rhs) <= 1e-8 * (abs(lhs) + abs(rhs)) and x.real > 1e-10 * max(1.0, abs(x)):
-            return True
-    return False
+        lhs, rhs = h1 / z1 + h2 / z2, c * (e1 * z1 + e2 * z2)
+        if abs(lhs - rhs) > 1e-10 * (abs(lhs) + abs(rhs)):
+            continue  # a root of the squared relation only
+        # X = zeta2^2 = zeta1^2 - i s: the real part exactly from the smaller zeta.
+        X = complex((u * u).real, (z2 * z2).imag) if first else u * u
+        if all(abs(X - y) > 1e-12 * max(1.0, abs(X)) for y in out):
+            out.append(X)
+    return np.array(out, dtype=complex)
+
+
+def high_speed_limit(pair: SlidingPair, direction: float = 1.0) -> str:
+    """What the modes do as ``V -> inf`` at a fixed wavelength (H10): "grows" if a root
+    of :func:`high_speed_roots` has ``Re X > 1e-10 |X|`` (a mode grows at every
+    large enough speed, at a rate ``~ V m Re X``), "decays" if every root has
+    ``Re X < -1e-10 |X|``, else "neutral" (undecided at leading order: identical
+    materials put theirs on the imaginary axis, H11b)."""
+    X = high_speed_roots(pair, direction)
+    tol = 1e-10 * np.maximum(1.0, np.abs(X))
+    if np.any(X.real > tol):
+        return "grows"
+    if np.all(X.real < -tol):
+        return "decays"
+    return "neutral"
+
+
+def high_speed_unstable(pair: SlidingPair, direction: float = 1.0) -> bool:
+    """Whether a mode grows at every large enough speed (:func:`high_speed_limit`)."""
+    return high_speed_limit(pair, direction) == "grows"

@@ -44,9 +44,26 @@ def _real(name: str, value, allowed: str) -> float:
         x = float(value) + 0.0
     except (TypeError, ValueError):
         _fail(name, allowed, value)
-    if not math.isfinite(x):
+    if not math.isfinite(x) or (x == 0.0 and isinstance(value, str) and _underflows(value)):
         _fail(name, allowed, value)
     return x
+
+
+def _underflows(text: str) -> bool:
+    """Whether a number written as text is not 0 but rounds to 0.0 (``"1e-400"``)."""
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        return Decimal(text.strip()) != 0
+    except InvalidOperation:
+        return False
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is a bool (NumPy's too): a flag is not any truthy value."""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return bool(value)
+    _fail(name, "True or False", value)
 
 
 def check_finite(name: str, value) -> float:

@@ -1,9 +1,12 @@
-"""Thermoelastic instability of sliding half-planes: critical speed, modes, the most
-unstable wavelength (``thermocontact tei``).
+"""Thermoelastic instability of sliding bodies: critical speed, modes, the most
+unstable wavelength (``thermocontact tei``), for two half-planes and for every layup of
+layers (brake discs, pads, clutch packs; :mod:`thermocontact.studies.tei_layers`),
+each family's minimum over the wavelength and the hot-spot table.
 
-The dispersion relation and its root search are :mod:`thermocontact.physics.tei`;
-the derivation is the section "Thermoelastic instability of sliding half-planes" of
-``docs/derivation.md`` (H1-H12).  For two half-planes the wavelength enters only
+The half-planes' dispersion relation and its root search are
+:mod:`thermocontact.physics.tei`; the derivation is the section "Thermoelastic
+instability of sliding half-planes" of ``docs/derivation.md`` (H1-H12), and for layers
+"Thermoelastic instability of layers" (L1-L14).  For two half-planes the wavelength enters only
 through the Péclet number ``V/(kappa m)``, so the critical speed is proportional to
 the wavenumber (H11): longer waves go unstable first, and at a given speed the growth
 rate has a maximum over the wavelength.
@@ -26,12 +29,15 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from ..io.results import Result
-from ..physics.tei import SlidingPair, high_speed_unstable, modes, speed_lower_bound
+from ..physics.tei_layers import BACKINGS
+from ..physics.tei import (SlidingPair, high_speed_limit, high_speed_roots, modes,
+                          speed_lower_bound)
 from ..problem.validation import check_range, check_zero_or_range
 
-__all__ = ["FRICTION_RANGE", "SPEED_RANGE", "TEIMode", "TEIResult", "WAVELENGTH_RANGE",
-           "analyse", "critical_speed", "critical_speeds", "growth_rate",
-           "most_unstable_wavelength", "tei_modes"]
+__all__ = ["BACKINGS", "FRICTION_RANGE", "HalfPlanes", "HotSpot", "SPEED_RANGE", "TEIFamily", "TEIMode",
+           "TEIResult", "WAVELENGTH_RANGE", "analyse", "critical_speed", "critical_speeds",
+           "check_geometry", "family_minimum", "growth_rate", "hot_spot_table", "most_unstable_wavelength",
+           "stable_at_all_speeds", "tei_modes"]
 
 #: Speeds scanned per factor 2 above the lower bound (H9) before Brent's method.
 _PER_OCTAVE = 4
@@ -65,17 +71,65 @@ class TEIMode(Result):
     migration_speed : float
         The pattern's speed relative to the counterface, m/s, positive in the
         direction the slider moves (``V`` for a pattern fixed on the slider).
+    family : str
+        The family of modes it belongs to ("all" where the layup has no symmetry
+        to split them; docs/tei.md).
     """
 
     growth_rate: float
     frequency: float
     migration_speed: float
+    family: str = "all"
 
 
-def _mode(b: complex, wavenumber: float) -> TEIMode:
+def _mode(b: complex, wavenumber: float, family: str = "all") -> TEIMode:
     # The slider moves toward +x in the frame of the dispersion relation (U = +V).
     speed = -b.imag / wavenumber
-    return TEIMode(float(b.real), float(speed * wavenumber / (2.0 * math.pi)), float(speed))
+    return TEIMode(float(b.real), float(speed * wavenumber / (2.0 * math.pi)), float(speed),
+                   family)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class TEIFamily(Result):
+    """One family of modes: its critical speed at the wavelength asked for and its
+    minimum over the wavelength.
+
+    Attributes
+    ----------
+    family : str
+        "antisymmetric" or "symmetric" about a disc's mid-plane, a clutch pack's
+        families (:data:`~thermocontact.physics.tei_layers.CLUTCH_FAMILIES`), or
+        "all".
+    critical_speed : float or None
+        m/s, at the result's wavelength; None where no mode of the family grows
+        below :data:`SPEED_RANGE`'s end (or, for half-planes, at any speed).
+    migration_speed : float or None
+        The neutral mode's speed relative to the counterface, m/s, positive in the
+        slider's direction.
+    minimum_critical_speed : float or None
+        The lowest critical speed over the wavelengths of ``wavelength_range``, m/s
+        (None for two half-planes, whose critical speed falls as ``1/L`` without
+        end).
+    minimum_wavelength : float or None
+        The wavelength where it occurs, m.
+    """
+
+    family: str
+    critical_speed: float | None
+    migration_speed: float | None
+    minimum_critical_speed: float | None = None
+    minimum_wavelength: float | None = None
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class HotSpot(Result):
+    """The critical speed of ``n`` hot spots round a disc (wavelength ``2 pi R/n``), m/s,
+    and the family that goes unstable first."""
+
+    n: int
+    wavelength: float
+    critical_speed: float | None
+    family: str | None
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -109,9 +163,39 @@ class TEIResult(Result):
         wavelength is stable at every speed, or without friction or speed).
     most_unstable_growth_rate : float or None
         Its growth rate, 1/s.
+    plane : str
+        "strain" or "stress".
+    slider_thickness, counterface_thickness, separator_thickness : float or None
+        The disc's full thickness, the pads' (or facings') thickness and the
+        separator plates' thickness, m; None for half-planes.
+    faces : int
+        Faces of the disc that rub: 2 (between identical pads) or 1.
+    backing : str or None
+        The pad layers' backing plate.
+    separator : str or None
+        The separator plates' material (a clutch pack).
+    families : tuple of TEIFamily
+        Every family of modes; ``critical_speed`` above is the lowest of theirs.
+    wavelength_range : tuple of float or None
+        The wavelengths over which the families' minima were sought, m.
+    disc_radius : float or None
+        ``R``, m, of ``hot_spots``.
+    hot_spots : tuple of HotSpot
+        ``n = N1 ... N2`` round the disc.
+    governing_hot_spots : int or None
+        The ``n`` of lowest critical speed.
+    stop : BrakeStop or None
+        The amplification of each hot-spot number over a stop.
     pair : SlidingPair
         The problem itself (materials, friction, Dundurs term), for further studies
         such as the critical speed at other wavelengths.
+    systems : tuple
+        The families as studied (:class:`HalfPlanes` or
+        :class:`~thermocontact.studies.tei_layers.Layered`), for pictures and
+        further studies.
+    half_planes : HalfPlanes or None
+        For layers: two half-planes of the same materials, the reference line of
+        the pictures.
     """
 
     slider: str
@@ -121,16 +205,31 @@ class TEIResult(Result):
     dundurs: bool
     beta: float
     critical_speed: float | None
-    stable_at_all_speeds: bool
+    stable_at_all_speeds: bool | None
     migration_speed: float | None
     speed: float | None = None
     modes: tuple = field(default=())
     most_unstable_wavelength: float | None = None
     most_unstable_growth_rate: float | None = None
+    plane: str = "strain"
+    slider_thickness: float | None = None
+    faces: int = 2
+    counterface_thickness: float | None = None
+    backing: str | None = None
+    separator: str | None = None
+    separator_thickness: float | None = None
+    families: tuple = field(default=())
+    wavelength_range: tuple | None = None
+    disc_radius: float | None = None
+    hot_spots: tuple = field(default=())
+    governing_hot_spots: int | None = None
+    stop: object = None
     pair: SlidingPair | None = field(default=None, repr=False)
+    systems: tuple = field(default=(), repr=False)
+    half_planes: object = field(default=None, repr=False)
 
     def _summary(self) -> str:
-        vc = ("stable_at_all_speeds=True" if self.critical_speed is None
+        vc = (f"stable_at_all_speeds={self.stable_at_all_speeds}" if self.critical_speed is None
               else f"critical_speed={self.critical_speed:.6g}")
         at = "" if self.speed is None else f", speed={self.speed:.6g}, modes={len(self.modes)}"
         return (f"{self.slider} on {self.counterface}, friction={self.friction:g}, "
@@ -144,11 +243,23 @@ class TEIResult(Result):
                "dundurs": self.dundurs, "beta": self.beta,
                "critical_speed": self.critical_speed,
                "stable_at_all_speeds": self.stable_at_all_speeds,
-               "migration_speed": self.migration_speed}
+               "migration_speed": self.migration_speed,
+               "plane": self.plane, "slider_thickness": self.slider_thickness,
+               "faces": self.faces, "counterface_thickness": self.counterface_thickness,
+               "backing": self.backing, "separator": self.separator,
+               "separator_thickness": self.separator_thickness,
+               "families": list(self.families),
+               "wavelength_range": (None if self.wavelength_range is None
+                                    else list(self.wavelength_range))}
         if self.speed is not None:
             out.update(speed=self.speed, modes=list(self.modes),
                        most_unstable_wavelength=self.most_unstable_wavelength,
                        most_unstable_growth_rate=self.most_unstable_growth_rate)
+        if self.disc_radius is not None:
+            out.update(disc_radius=self.disc_radius, hot_spots=list(self.hot_spots),
+                       governing_hot_spots=self.governing_hot_spots)
+        if self.stop is not None:
+            out.update(stop=self.stop)
         return out
 
 
@@ -159,14 +270,22 @@ def growth_rate(pair: SlidingPair, wavenumber: float, speed: float) -> float:
     return float(b[0].real) if b.size else -math.inf
 
 
+def _asymptotic(pair: SlidingPair, wavenumber: float, speed: float) -> bool:
+    """Whether the modes at ``speed`` are those of the high-speed limit (H10): every
+    ``b/(V m)`` within 1e-3 of a root ``X`` of :func:`high_speed_roots`."""
+    X = high_speed_roots(pair)
+    b = modes(pair, wavenumber, speed) / (speed * wavenumber)
+    return bool(X.size) and all(np.min(np.abs(X - x)) <= 1e-3 * max(1.0, abs(x)) for x in b)
+
+
 def critical_speed(pair: SlidingPair, wavenumber: float):
     """The lowest speed at which a mode of wavenumber ``m`` grows, and that mode.
 
     No mode grows below the bound (H9); the speeds above it are scanned
     geometrically until the largest growth rate changes sign, which Brent's method
     then locates to 1e-13 relative.  Without a sign change up to 1e6 times the
-    bound, the high-speed limit (H10) decides between a later crossing and
-    stability at every speed.
+    bound, the high-speed limit (H10) decides: where a mode grows there, the scan
+    goes on (to 1e15 times the bound).
 
     Returns
     -------
@@ -191,12 +310,38 @@ def critical_speed(pair: SlidingPair, wavenumber: float):
             break
         v_prev = v
         if v > last * low:
-            if last == _LAST_FACTOR or not high_speed_unstable(pair):
+            if last == _LAST_FACTOR or high_speed_limit(pair) != "grows":
                 return None, None
             last = _LAST_FACTOR
     vc = brentq(sigma, v_prev, v, xtol=1e-300, rtol=1e-13, maxiter=200)
     b = modes(pair, wavenumber, vc)
     return float(vc), _mode(b[0], wavenumber)
+
+
+def stable_at_all_speeds(pair: SlidingPair, wavenumber: float):
+    """For a wavelength with no critical speed up to the scan's end: True where that
+    is proven, None where it is not claimed.
+
+    Proven: no mode grows below the bound (H9); the scan finds none up to 1e6 (or
+    1e15) times it; and beyond, either every root of the high-speed limit decays
+    (H10), with the modes at the scan's end already those of the limit (each
+    ``b/(V m)`` within 1e-3 of a root), or the bodies are of one material, whose
+    threshold (H11b) is exact.  Otherwise (a limit neutral at leading order between
+    dissimilar bodies, or a scan that has not reached the limit) no claim is made.
+    """
+    if pair.friction == 0.0 or not math.isfinite(speed_lower_bound(pair, wavenumber)):
+        return True     # no frictional heat, or no body distorts: nothing can grow
+    limit = high_speed_limit(pair)
+    one = pair.slider.E == pair.counterface.E and pair.slider.nu == pair.counterface.nu and (
+        pair.slider.alpha == pair.counterface.alpha and pair.slider.K == pair.counterface.K
+        and pair.slider.k == pair.counterface.k)
+    if limit == "neutral" and one:
+        return True
+    if limit != "decays":
+        return None
+    low = speed_lower_bound(pair, wavenumber)
+    return True if any(_asymptotic(pair, wavenumber, f * low)
+                       for f in (_SCAN_FACTOR, _LAST_FACTOR)) else None
 
 
 def critical_speeds(pair: SlidingPair, wavelengths) -> np.ndarray:
@@ -250,9 +395,168 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
     return 2.0 * math.pi / math.exp(res.x), float(-res.fun)
 
 
-def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True) -> TEIResult:
-    """The critical speed at one wavelength and, at a speed, the modes and the most
-    unstable wavelength: the study behind :func:`thermocontact.tei`.
+@dataclass(frozen=True)
+class HalfPlanes:
+    """Two sliding half-planes as a family of modes, with the interface of
+    :class:`~thermocontact.studies.tei_layers.Layered`: every mode by the polynomial
+    root search (H8), critical speeds by (H9-H11)."""
+
+    name: str
+    pair: SlidingPair
+
+    def scale(self, m) -> float:
+        return min(b.k for b in self.pair.bodies if b.K > 0.0) * m * m
+
+    def modes(self, m, speed, count=None):
+        b = modes(self.pair, m, speed)
+        return b if count is None else b[:count]
+
+    def dispersion(self, b, m, speed):
+        from ..physics.tei import dispersion
+
+        return dispersion(self.pair, b, m, speed)
+
+    def critical(self, m):
+        vc, mode = critical_speed(self.pair, m)
+        return (None, None) if vc is None else (vc, -1j * mode.migration_speed * m)
+
+    def curve(self, wavenumbers, anchor=None):
+        """Exact: only ``V/(kappa m)`` enters (H11), ``V_c`` and the neutral
+        frequency in units of ``kappa m^2`` are fixed multiples."""
+        ms = np.asarray(wavenumbers, dtype=float)
+        if anchor is not None:
+            m0, vc, w = anchor
+            return vc * ms / m0, w * (ms / m0) ** 2
+        m0 = float(np.exp(np.mean(np.log(ms))))
+        vc, b = self.critical(m0)
+        if vc is None:
+            return np.full(ms.shape, np.nan), np.full(ms.shape, np.nan)
+        return vc * ms / m0, b.imag * (ms / m0) ** 2
+
+
+def _systems(pair, layups_):
+    from .tei_layers import Layered
+
+    if not layups_:
+        return (HalfPlanes("all", pair),)
+    return tuple(Layered(name, lay) for name, lay in layups_.items())
+
+
+def _wavelength_range(thicknesses, radius):
+    """Where a layup's families' minima are sought, m: from the thinnest layer's
+    thickness (shorter waves see half-planes, whose critical speed rises as 1/L) to
+    the disc's circumference (one hot spot) or 200 times the thickest layer."""
+    lo = min(thicknesses)
+    hi = 2.0 * math.pi * radius if radius is not None else 200.0 * max(thicknesses)
+    return max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
+
+
+#: Wavelengths of the curve on which each family's minimum is bracketed.
+MINIMUM_POINTS = 40
+
+
+def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
+    """The lowest critical speed over ``wl_range`` and its wavelength, (m/s, m): the
+    curve on ``points`` wavelengths (continued, :func:`~thermocontact.studies.tei_layers.
+    continue_neutral`), its least point refined by golden-section search in ``ln m``
+    (each point a neutral point continued from the nearest).  ``(None, None)`` where
+    the family is stable throughout."""
+    from scipy.optimize import minimize_scalar
+
+    from .tei_layers import continue_step
+
+    ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], points)
+    V, W = system.curve(ms, anchor)
+    if not np.isfinite(V).any():
+        return None, None
+    i = int(np.nanargmin(V))
+    if i in (0, points - 1) or not (np.isfinite(V[i - 1]) and np.isfinite(V[i + 1])):
+        return float(V[i]), float(2.0 * math.pi / ms[i])
+    anchor = (float(ms[i]), (float(V[i]), float(W[i])))
+
+    def vc(x):
+        p = continue_step(system, anchor[0], anchor[1], math.exp(x))
+        return math.inf if p is None else p[0]
+
+    res = minimize_scalar(vc, bracket=(math.log(ms[i - 1]), math.log(ms[i]),
+                                       math.log(ms[i + 1])), tol=1e-10)
+    if not res.fun <= V[i]:
+        return float(V[i]), float(2.0 * math.pi / ms[i])
+    return float(res.fun), float(2.0 * math.pi / math.exp(res.x))
+
+
+def hot_spot_table(systems, radius, n1, n2, anchors=None):
+    """``HotSpot`` for ``n = n1 ... n2`` round a disc of radius ``radius``, and the
+    governing ``n`` (lowest critical speed; None if none goes unstable).
+    ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None."""
+    ns = np.arange(n1, n2 + 1)
+    ms = ns / radius                                  # m = 2 pi/(2 pi R/n)
+    anchors = anchors or [None] * len(systems)
+    speeds = np.array([system.curve(ms, a)[0] for system, a in zip(systems, anchors)])
+    table = []
+    for k, n in enumerate(ns):
+        col = speeds[:, k]
+        j = int(np.nanargmin(col)) if np.isfinite(col).any() else None
+        table.append(HotSpot(int(n), float(2.0 * math.pi * radius / n),
+                             None if j is None else float(col[j]),
+                             None if j is None else systems[j].name))
+    finite = [h for h in table if h.critical_speed is not None]
+    governing = min(finite, key=lambda h: h.critical_speed).n if finite else None
+    return tuple(table), governing
+
+
+def _growing(system, m, speed):
+    """At ``speed``: every growing mode of a family, or its least stable if none grows."""
+    b = system.modes(m, speed)
+    grow = b[b.real > 0.0]
+    return grow if grow.size else b[:1]
+
+
+def _most_unstable(systems, speed, wl_range):
+    """Over the layups' wavelengths: the largest growth rate at ``speed`` and its
+    wavelength, from 24 wavelengths refined by Brent's method in ``ln m``."""
+    from scipy.optimize import minimize_scalar
+
+    ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], 24)
+    best = (-math.inf, None, None)
+    for system in systems:
+        rates = np.array([_rate(system, m, speed) for m in ms])
+        i = int(np.argmax(rates))
+        if rates[i] > best[0]:
+            best = (rates[i], i, system)
+    rate, i, system = best
+    if system is None or rate <= 0.0:
+        return None, None
+    if i in (0, ms.size - 1):
+        return float(2.0 * math.pi / ms[i]), float(rate)
+    res = minimize_scalar(lambda x: -_rate(system, math.exp(x), speed),
+                          bracket=(math.log(ms[i - 1]), math.log(ms[i]), math.log(ms[i + 1])),
+                          tol=1e-8)
+    return float(2.0 * math.pi / math.exp(res.x)), float(-res.fun)
+
+
+def _rate(system, m, speed):
+    b = system.modes(m, speed)
+    return float(b[0].real) if len(b) else -math.inf
+
+
+def check_geometry(slider, counterface, **geometry):
+    """The layups of a geometry built, so that their checks run before any work
+    (:func:`~thermocontact.physics.tei_layers.layups`); two half-planes: the pair's."""
+    from ..physics.tei_layers import layups
+
+    if not layups(slider, counterface, 0.0, **geometry):
+        SlidingPair(slider, counterface, 0.0)
+
+
+def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True, *,
+            plane="strain", slider_thickness=None, faces=2, counterface_thickness=None,
+            backing="slip-insulated", separator=None, separator_thickness=None,
+            disc_radius=None, hot_spots=None, stop=None) -> TEIResult:
+    """The critical speed of every family at one wavelength, its minimum over the
+    wavelength, and at a speed the modes and the most unstable wavelength; with a
+    disc radius, the hot-spot table; with a stop, its amplifications: the study
+    behind :func:`thermocontact.tei`.
 
     Parameters
     ----------
@@ -266,22 +570,96 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True)
         Sliding speed ``V``: 0 or in :data:`SPEED_RANGE`, m/s.
     dundurs : bool, optional
         Keep the Dundurs term (default).
+    plane : {"strain", "stress"}
+    slider_thickness, faces, counterface_thickness, backing, separator,
+    separator_thickness
+        The geometry (:func:`~thermocontact.physics.tei_layers.layups`; lengths in m,
+        already checked).
+    disc_radius : float, optional
+        ``R``, m, with ``hot_spots = (n1, n2)``.
+    stop : StopHistory, optional
+        A speed history (:func:`thermocontact.studies.brake_stop.stop_history`), with
+        ``disc_radius`` and ``hot_spots``: each hot-spot number's amplification.
 
     Returns
     -------
     TEIResult
     """
+    from ..physics.tei_layers import layups, plane_stress_material
+
     friction = check_zero_or_range("friction", friction, *FRICTION_RANGE)
     wl = check_range("wavelength", wavelength, *WAVELENGTH_RANGE)
+    v = None if speed is None else check_zero_or_range("speed", speed, *SPEED_RANGE)
     pair = SlidingPair(slider, counterface, friction, dundurs=dundurs)
+    if plane == "stress":
+        pair = SlidingPair(plane_stress_material(slider), plane_stress_material(counterface),
+                           friction, dundurs=dundurs)
+    lay = layups(slider, counterface, friction, dundurs=dundurs, plane=plane,
+                 slider_thickness=slider_thickness, faces=faces,
+                 counterface_thickness=counterface_thickness, backing=backing,
+                 separator=separator, separator_thickness=separator_thickness)
+    systems = _systems(pair, lay)
+    thick = [t for t in (slider_thickness, counterface_thickness, separator_thickness)
+             if t is not None]
+    wl_range = _wavelength_range(thick, disc_radius) if thick else None
     m = 2.0 * math.pi / wl
-    vc, neutral = critical_speed(pair, m)
+    fams, anchors = [], []
+    for system in systems:
+        if friction == 0.0:
+            fams.append(TEIFamily(system.name, None, None))
+            anchors.append(None)
+            continue
+        vc, b = system.critical(m)
+        anchor = None if vc is None else (m, vc, b.imag)
+        low, at = ((None, None) if wl_range is None
+                   else family_minimum(system, wl_range, anchor=anchor))
+        fams.append(TEIFamily(system.name, vc, None if vc is None else -b.imag / m, low, at))
+        anchors.append(anchor)
+    found = [f for f in fams if f.critical_speed is not None]
+    first = min(found, key=lambda f: f.critical_speed) if found else None
+    if first is not None:
+        stable = False
+    elif friction == 0.0:
+        stable = True
+    elif lay:
+        stable = None          # a layup: stable below the scan's end, nothing claimed beyond
+    else:
+        stable = stable_at_all_speeds(pair, m)
     extra = {}
-    if speed is not None:
-        v = check_zero_or_range("speed", speed, *SPEED_RANGE)
-        mw, rate = (None, None) if vc is None else most_unstable_wavelength(pair, v, m, vc)
-        extra = dict(speed=v, modes=tei_modes(pair, m, v) if v > 0.0 else (),
-                     most_unstable_wavelength=mw, most_unstable_growth_rate=rate)
+    if v is not None:
+        mw = rate = None
+        if v > 0.0 and first is not None:
+            if lay:
+                mw, rate = _most_unstable(systems, v, wl_range)
+            else:
+                mw, rate = most_unstable_wavelength(pair, v, m, first.critical_speed)
+        found_modes = []
+        if v > 0.0 and friction > 0.0:
+            for system in systems:
+                bs = system.modes(m, v) if not lay else _growing(system, m, v)
+                found_modes.extend(_mode(complex(b), m, system.name) for b in bs)
+        elif v > 0.0 and not lay:
+            found_modes = list(tei_modes(pair, m, v))
+        found_modes.sort(key=lambda x: -x.growth_rate)
+        extra = dict(speed=v, modes=tuple(found_modes), most_unstable_wavelength=mw,
+                     most_unstable_growth_rate=rate)
+    if disc_radius is not None and friction > 0.0:
+        table, governing = hot_spot_table(systems, disc_radius, *hot_spots, anchors=anchors)
+        extra.update(disc_radius=disc_radius, hot_spots=table, governing_hot_spots=governing)
+    elif disc_radius is not None:
+        extra.update(disc_radius=disc_radius)
+    if stop is not None:
+        from .brake_stop import stop_amplification
+
+        extra.update(stop=stop_amplification(systems, disc_radius, hot_spots, stop))
     return TEIResult(pair.slider.name, pair.counterface.name, pair.friction, wl, pair.dundurs,
-                     pair.beta, vc, vc is None,
-                     None if neutral is None else neutral.migration_speed, **extra, pair=pair)
+                     pair.beta, None if first is None else first.critical_speed, stable,
+                     None if first is None else first.migration_speed, **extra,
+                     plane=plane, slider_thickness=slider_thickness,
+                     faces=faces if slider_thickness is not None else 2,
+                     counterface_thickness=counterface_thickness,
+                     backing=backing if counterface_thickness is not None else None,
+                     separator=None if separator is None else separator.name,
+                     separator_thickness=separator_thickness, families=tuple(fams),
+                     wavelength_range=wl_range, pair=pair, systems=systems,
+                     half_planes=HalfPlanes("half-planes", pair) if lay else None)

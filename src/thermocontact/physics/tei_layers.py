@@ -1,0 +1,574 @@
+"""Thermoelastic instability of layered sliding systems: one dispersion relation for
+every stack of layers and half-planes (brake discs between pads, pads on backing
+plates, clutch packs).
+
+A *layup* is a stack of bodies along ``y`` (bottom first), each a layer of given
+thickness or a half-plane at either end, each elastic and heat-conducting (or a
+non-conductor, ``K = 0``) with its material moving along ``x`` at the sliding
+velocity ``U`` (the slider's bodies) or at rest (the counterface's).  Neighbouring
+bodies slide on each other (Coulomb friction, frictional heat, perfect thermal
+contact) or are bonded; the outer faces of the end layers carry one of
+:data:`FACE_CONDITIONS` (a free face, a rigid backing plate, a plane of symmetry).
+
+Every field of a perturbation is ``exp(b t + i m x)`` times a function of ``y``.  In
+each body it is a combination of closed-form solutions decaying away from either
+face (derivation, "Thermoelastic instability of layers", L1-L12): two of the heat
+equation with convection, ``kappa (T'' - m^2 T) = (b + i m U) T`` (L1), their
+thermoelastic displacements from a displacement potential (L3, divided differences
+that stay regular as ``gamma -> m``), and four isothermal Papkovich-Neuber solutions
+(L2).  The face conditions (L5-L7) are linear combinations of six fields at the
+faces (``u_x, u_y, sigma_xy, sigma_yy, T, q``); stacked, they make a square matrix
+``M(b)``, and ``det M(b) = 0`` is the dispersion relation of every layup (L8).  A
+half-plane keeps only its decaying solutions, so two half-planes give the relation
+(H7) of :mod:`thermocontact.physics.tei`.
+
+The conditions are written once, as coefficients of face fields
+(:func:`condition_matrix`); the second method
+(:func:`thermocontact.discretisation.tei_depth.layup_operator`, L14) supplies its own
+face fields from a Chebyshev discretisation in depth.  :func:`layups` builds the
+families of a brake disc, pads on backing plates and a clutch pack (L12).
+
+Plane stress is plane strain with ``nu -> nu/(1 + nu)``,
+``E -> E (1 + 2 nu)/(1 + nu)^2`` and ``alpha -> alpha (1 + nu)/(1 + 2 nu)`` (L9,
+:func:`plane_stress_material`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..problem.materials import Material
+from ..problem.validation import InputError
+
+__all__ = [
+    "BACKINGS",
+    "Body",
+    "CLUTCH_FAMILIES",
+    "FACE_CONDITIONS",
+    "FIELDS",
+    "Layup",
+    "body_fields",
+    "condition_matrix",
+    "dispersion_matrix",
+    "face_fields",
+    "layup_dispersion",
+    "layups",
+    "mode_shape",
+    "plane_stress_material",
+]
+
+#: Conditions at an outer face of an end layer: the faces' elastic and thermal
+#: constraints (derivation, L7).  "free": no traction, no heat; "slip-insulated":
+#: a rigid backing plate on which the layer slips freely, no heat through it;
+#: "bonded-insulated": bonded to the rigid plate, no heat; "slip-isothermal": slips
+#: on a plate held at its initial temperature; "symmetric" and "antisymmetric":
+#: the mid-plane of a layer of twice the thickness, for the modes even and odd in
+#: the temperature about it.
+FACE_CONDITIONS = {
+    "free": (("sxy", "syy"), "q"),
+    "slip-insulated": (("uy", "sxy"), "q"),
+    "bonded-insulated": (("ux", "uy"), "q"),
+    "slip-isothermal": (("uy", "sxy"), "T"),
+    "symmetric": (("uy", "sxy"), "q"),
+    "antisymmetric": (("ux", "syy"), "T"),
+}
+#: The face fields, in this order: displacements, the tractions on planes y =
+#: const, temperature and heat flux along +y (scaled: see :func:`face_fields`).
+FIELDS = ("ux", "uy", "sxy", "syy", "T", "q")
+_F = {name: i for i, name in enumerate(FIELDS)}
+_INTERFACES = ("sliding", "bonded")
+
+
+def plane_stress_material(mat: Material) -> Material:
+    """The plane-strain stand-in of ``mat`` in plane stress (L9).
+
+    ``nu' = nu/(1 + nu)``, ``E' = E (1 + 2 nu)/(1 + nu)^2`` (the shear modulus
+    unchanged) and ``alpha' = alpha (1 + nu)/(1 + 2 nu)``: with these, the plane-strain
+    equations are those of plane stress (``(1 - nu')/mu = 2/E``,
+    ``alpha'(1 + nu') = alpha``).  Thermal properties are unchanged.
+    """
+    nu = mat.nu
+    return Material(mat.name, mat.E * (1.0 + 2.0 * nu) / (1.0 + nu) ** 2, nu / (1.0 + nu),
+                    mat.alpha * (1.0 + nu) / (1.0 + 2.0 * nu), mat.K, mat.k)
+
+
+@dataclass(frozen=True)
+class Body:
+    """One body of a layup.
+
+    Parameters
+    ----------
+    material : Material
+        In plane strain (see :func:`plane_stress_material`).
+    thickness : float or None
+        Layer thickness, m; None for a half-plane (only at an end of the stack).
+    moving : bool
+        Whether its material moves at the sliding velocity ``U`` (a part of the
+        slider) or rests (a part of the counterface).
+    """
+
+    material: Material
+    thickness: float | None
+    moving: bool
+
+    @property
+    def conducts(self) -> bool:
+        return self.material.K > 0.0
+
+    @property
+    def columns(self) -> int:
+        """Unknown amplitudes: 2 elastic and 1 thermal per decaying direction."""
+        per = 3 if self.conducts else 2
+        return per if self.thickness is None else 2 * per
+
+
+@dataclass(frozen=True)
+class Layup:
+    """A stack of bodies, bottom first, and how they touch.
+
+    Parameters
+    ----------
+    bodies : tuple of Body
+        A half-plane only first (extending to ``y = -inf``) or last (``+inf``).
+    interfaces : tuple of str
+        Between bodies ``i`` and ``i + 1``: "sliding" (friction, frictional heat,
+        perfect thermal contact, free slip) or "bonded".
+    bottom, top : str
+        The outer faces' conditions, one of :data:`FACE_CONDITIONS`; "infinite" for
+        a half-plane's end; "periodic" (both) for a cell of a periodic stack.
+    friction : float
+        Coulomb coefficient ``f`` at every sliding interface.
+    dundurs : bool
+        Keep the friction traction's elastic effect (the Dundurs term of the
+        half-planes); False: the sliding interfaces carry no shear elastically.
+    plane : str
+        "strain" or "stress" (the bodies' materials are given as they are; plane
+        stress is applied through :func:`plane_stress_material`).
+    floquet : float or None
+        With ``bottom = top = "periodic"``: the stack repeats the bodies as one cell,
+        the fields of the next cell ``e^{i floquet}`` times this one's (L7); the
+        last body's top face slides on the next cell's first body.
+    """
+
+    bodies: tuple
+    interfaces: tuple
+    bottom: str
+    top: str
+    friction: float
+    dundurs: bool = True
+    plane: str = "strain"
+    floquet: float | None = None
+
+    def __post_init__(self):
+        n = len(self.bodies)
+        if n < 1 or len(self.interfaces) != n - 1:
+            raise InputError("a layup needs one interface between each pair of bodies",
+                             parameters=("interfaces",))
+        for kind in self.interfaces:
+            if kind not in _INTERFACES:
+                raise InputError(f"interface must be one of {list(_INTERFACES)}, got {kind!r}",
+                                 parameters=("interfaces",))
+        periodic = (self.bottom == "periodic", self.top == "periodic")
+        if any(periodic) and (not all(periodic) or self.floquet is None):
+            raise InputError("a periodic stack has bottom = top = 'periodic' and a floquet "
+                             "phase", parameters=("floquet",))
+        for end, body, name in ((self.bottom, self.bodies[0], "bottom"),
+                                (self.top, self.bodies[-1], "top")):
+            if end == "periodic" and body.thickness is not None:
+                continue
+            if (end == "infinite") != (body.thickness is None):
+                raise InputError(f"{name}: 'infinite' exactly when the end body is a "
+                                 f"half-plane", parameters=(name,))
+            if end != "infinite" and end not in FACE_CONDITIONS:
+                raise InputError(f"{name} must be one of {sorted(FACE_CONDITIONS)}, got "
+                                 f"{end!r}", parameters=(name,))
+        if self.plane not in ("strain", "stress"):
+            raise InputError(f"plane must be 'strain' or 'stress', got {self.plane!r}",
+                             parameters=("plane",))
+        for body in self.bodies[1:-1]:
+            if body.thickness is None:
+                raise InputError("only an end body may be a half-plane",
+                                 parameters=("bodies",))
+        for i, kind in enumerate(self.interfaces):
+            a, b = self.bodies[i], self.bodies[i + 1]
+            if kind == "sliding" and not (a.conducts or b.conducts):
+                raise InputError("slider and counterface must not both be non-conducting "
+                                 f"(K = 0): the frictional heat at the interface of "
+                                 f"{a.material.name} and {b.material.name} would enter neither",
+                                 parameters=("slider", "counterface"))
+
+    @property
+    def columns(self) -> int:
+        return sum(b.columns for b in self.bodies)
+
+    def elastic(self, body: Body) -> Material:
+        """The body's material as the plane-strain equations take it (L9)."""
+        return body.material if self.plane == "strain" else plane_stress_material(body.material)
+
+    @lru_cache(maxsize=64)  # noqa: B019 (a frozen, hashable problem statement)
+    def references(self):
+        """``(mu, a, K)``: the scales of stress, thermal expansion ``alpha (1 + nu)/(1 -
+        nu)`` and conductivity by which the face fields are made dimensionless
+        (geometric means; the conductors' only for ``a`` and ``K``)."""
+        mats = [self.elastic(b) for b in self.bodies]
+        cond = [m for m in mats if m.K > 0.0] or mats
+        mu = math.exp(np.mean([math.log(m.mu) for m in mats]))
+        a = math.exp(np.mean([math.log(_potential(m)) for m in cond]))
+        K = math.exp(np.mean([math.log(m.K) for m in cond if m.K > 0.0] or [0.0]))
+        return mu, a, K
+
+
+def _potential(mat: Material) -> float:
+    """``alpha (1 + nu)/(1 - nu)``, 1/K: the source of the thermoelastic displacement
+    potential, ``lap Omega = alpha (1 + nu)/(1 - nu) T`` (L3)."""
+    return mat.alpha * (1.0 + mat.nu) / (1.0 - mat.nu)
+
+
+def _sinhc(z):
+    """``sinh(z)/z`` (1 at 0), accurate at small ``|z|`` where ``(e^z - 1)/z`` cancels."""
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return np.where(z == 0, 1.0, np.sinh(z) / np.where(z == 0, 1.0, z))
+
+
+def _potential_profile(G, tau):
+    """``(D, D')`` of ``D = (e^{-G tau} - e^{-tau})/(G^2 - 1)`` at ``tau >= 0`` (L3):
+    the displacement potential, in units of ``1/m^2``, of a temperature ``e^{-G tau}``
+    (``tau = m`` times the distance from the face), and its derivative in ``tau``.
+    Regular at ``G = 1``: near it ``D = -tau e^{-(1 + G) tau/2} sinhc((1 - G) tau/2)/(G + 1)``,
+    a divided difference without cancellation."""
+    G = np.asarray(G, dtype=complex)
+    tau = np.asarray(tau, dtype=float)
+    d = G - 1.0
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+        e_t = np.exp(-tau)
+        near = np.abs(d * tau) < 1.0
+        direct = (np.exp(-G * tau) - e_t) / np.where(near, 1.0, G * G - 1.0)
+        dd = np.where(near, d, 0.0)
+        close = -tau * np.exp(-0.5 * (1.0 + G) * tau) * _sinhc(-0.5 * dd * tau) / (G + 1.0)
+    D = np.where(near, close, direct)
+    return D, -G * D - e_t / (G + 1.0)
+
+
+def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None):
+    """The six face fields of each of a body's solutions (L2-L4).
+
+    Parameters
+    ----------
+    body : Body
+    b, wavenumber, velocity : array_like
+        Growth rates (complex, 1/s), wavenumbers ``m > 0`` (1/m) and sliding
+        velocities ``U`` (m/s; a body at rest ignores it), broadcast to one shape
+        ``S``.
+    refs : tuple
+        ``(mu, a, K)`` of :meth:`Layup.references`.
+    upper : bool, optional
+        For a half-plane: whether it lies above the stack (decaying toward
+        ``y = +inf``, its face the bottom one) or below it.
+    mat : Material, optional
+        The body's material as the plane-strain equations take it (default: its own).
+
+    Returns
+    -------
+    ndarray, shape ``S + (2, 6, columns)``
+        ``[..., face, field, column]``: the faces bottom (0) and top (1), the fields
+        of :data:`FIELDS` made dimensionless, ``2 mu m u``, ``sigma``,
+        ``2 mu a T`` and ``2 mu a q/(K m)`` with the reference scales; a
+        half-plane's one face is repeated.  Columns: the elastic solutions decaying
+        from the bottom face (a harmonic ``phi`` and a ``psi``), then from the top,
+        then the thermal solutions in the same order (conductors only); a
+        half-plane above the stack has only the bottom's, one below only the top's.
+    """
+    if body.thickness is None:
+        out = body_fields(body, b, wavenumber, velocity, refs, [0.0], upper, mat)
+        return np.concatenate([out, out], axis=-3)
+    return body_fields(body, b, wavenumber, velocity, refs, [0.0, body.thickness], upper, mat)
+
+
+def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, mat=None):
+    """The six fields of each of a body's solutions at ``depths`` (L2-L4): as
+    :func:`face_fields`, at the distances ``depths`` (m) above a layer's bottom face
+    or from a half-plane's face into it.
+
+    Returns
+    -------
+    ndarray, shape ``S + (len(depths), 6, columns)``
+    """
+    mat = body.material if mat is None else mat
+    b, m, U = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
+                                  np.asarray(velocity, float))
+    if not body.moving:
+        U = np.zeros(U.shape)
+    mu_ref, a_ref, K_ref = refs
+    r = mu_ref / mat.mu
+    nu = mat.nu
+    layer = body.thickness is not None
+    # Each solution starts from a face (s = -1 the bottom, +1 the top) and decays
+    # away from it; t = m (y - y_start) at each point, s t <= 0.
+    starts = (-1, 1) if layer else ((-1,) if upper else (1,))
+    depths = np.asarray(depths, dtype=float)
+    tau = m[..., None] * depths                        # S + (points,)
+    H = (m * body.thickness)[..., None] if layer else 0.0
+    out = np.zeros(b.shape + (depths.size, 6, body.columns), dtype=complex)
+    ux, uy, sxy, syy, T, q = range(6)
+
+    def offset(s):
+        if layer:
+            return tau if s < 0 else tau - H
+        return tau if upper else -tau
+
+    col = 0
+    for s in starts:
+        t = offset(s)
+        with np.errstate(under="ignore"):
+            g = np.exp(s * t)
+        # phi-type: 2 mu u = grad phi, phi = g/m^2 (L2).
+        o = out[..., col]
+        o[..., ux], o[..., uy], o[..., sxy], o[..., syy] = 1j * r * g, s * r * g, 1j * s * g, g
+        # psi-type: 2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y, psi = g/m.
+        o = out[..., col + 1]
+        o[..., ux] = 1j * t * r * g
+        o[..., uy] = (s * t - 3.0 + 4.0 * nu) * r * g
+        o[..., sxy] = 1j * (s * t - 1.0 + 2.0 * nu) * g
+        o[..., syy] = (t - 2.0 * (1.0 - nu) * s) * g
+        col += 2
+    if body.conducts:
+        G = np.sqrt(1.0 + (b + 1j * m * U) / (mat.k * m * m))[..., None]   # gamma/m (L1)
+        pot = _potential(mat) / a_ref
+        kr = mat.K / K_ref
+        for s in starts:
+            dist = np.abs(offset(s))       # m times the distance from the start face
+            with np.errstate(under="ignore"):
+                e = np.exp(-G * dist)
+            D, dD = _potential_profile(G, dist)
+            dy = -s                        # d/dy = -s d/d(distance)
+            o = out[..., col]
+            o[..., ux] = 1j * pot * D
+            o[..., uy] = pot * dy * dD
+            o[..., sxy] = 1j * pot * dy * dD / r
+            o[..., syy] = pot * D / r
+            o[..., T] = e
+            o[..., q] = -s * kr * G * e        # q = -K dT/dy
+            col += 1
+    return out
+
+
+@lru_cache(maxsize=64)
+def condition_matrix(layup: Layup):
+    """The face conditions as coefficients of the face fields (L5-L7).
+
+    Returns
+    -------
+    (C0, C1) : ndarrays, shape ``(rows, bodies, 2, 6)``
+        Row ``r`` says ``sum (C0 + h C1)[r, j, face, field] * field(body j, face) = 0``
+        in the dimensionless fields of :func:`face_fields`, with
+        ``h = 2 mu a f V/(K m)`` the frictional heat's coefficient (the
+        references' scales).  Rows: each interface's from the bottom up, then the
+        bottom's and the top's outer face.
+    """
+    nb = len(layup.bodies)
+    rows0, rows1 = [], []
+    links = [(i, i + 1, kind, 1.0) for i, kind in enumerate(layup.interfaces)]
+    if layup.bottom == "periodic":
+        # The next cell's first body, its fields e^{i phase} times this cell's.
+        links.append((nb - 1, 0, "sliding", complex(np.exp(1j * layup.floquet))))
+
+    def row(*terms, heat=()):
+        c0 = np.zeros((nb, 2, 6), dtype=complex)
+        c1 = np.zeros((nb, 2, 6), dtype=complex)
+        for j, face, name, coef in terms:
+            c0[j, face, _F[name]] += coef * (phase if j == a and face == 0 else 1.0)
+        for j, face, name, coef in heat:
+            c1[j, face, _F[name]] += coef * (phase if j == a and face == 0 else 1.0)
+        rows0.append(c0)
+        rows1.append(c1)
+
+    for bb, a, kind, phase in links:
+        # a: the body above (its bottom face 0); bb: the body below (its top face 1).
+        lo, hi = layup.bodies[bb], layup.bodies[a]
+        row((a, 0, "uy", 1.0), (bb, 1, "uy", -1.0))
+        row((a, 0, "syy", 1.0), (bb, 1, "syy", -1.0))
+        row((a, 0, "sxy", 1.0), (bb, 1, "sxy", -1.0))
+        if kind == "bonded":
+            row((a, 0, "ux", 1.0), (bb, 1, "ux", -1.0))
+            if hi.conducts and lo.conducts:
+                row((a, 0, "T", 1.0), (bb, 1, "T", -1.0))
+                row((a, 0, "q", 1.0), (bb, 1, "q", -1.0))
+            elif hi.conducts:
+                row((a, 0, "q", 1.0))
+            elif lo.conducts:
+                row((bb, 1, "q", 1.0))
+            continue
+        # Sliding: sigma_xy = s f P on both sides, P = -sigma_yy, s the sign of the
+        # upper body's velocity relative to the lower's (L5).
+        s = float(hi.moving) - float(lo.moving)
+        shear = layup.friction * s if layup.dundurs else 0.0
+        row((a, 0, "sxy", 1.0), (a, 0, "syy", shear))
+        # Heat (L6): q into the upper body + q into the lower = f |U_rel| P.
+        terms = ([(a, 0, "q", 1.0)] if hi.conducts else []) + (
+            [(bb, 1, "q", -1.0)] if lo.conducts else [])
+        row(*terms, heat=[(a, 0, "syy", abs(s))])
+        if hi.conducts and lo.conducts:
+            row((a, 0, "T", 1.0), (bb, 1, "T", -1.0))
+    a, phase = -1, 1.0
+    for j, face, end in ((0, 0, layup.bottom), (nb - 1, 1, layup.top)):
+        if end in ("infinite", "periodic"):
+            continue
+        elastic, thermal = FACE_CONDITIONS[end]
+        for name in elastic:
+            row((j, face, name, 1.0))
+        if layup.bodies[j].conducts:
+            row((j, face, thermal, 1.0))
+    return np.array(rows0), np.array(rows1)
+
+
+def heat_coefficient(layup: Layup, wavenumber, speed):
+    """``h = 2 mu a f |V|/(K m)`` of :func:`condition_matrix`, dimensionless."""
+    mu_ref, a_ref, K_ref = layup.references()
+    return (2.0 * mu_ref * a_ref * layup.friction / K_ref) * np.abs(speed) / wavenumber
+
+
+def dispersion_matrix(layup: Layup, b, wavenumber, speed):
+    """``M(b)``: the face conditions applied to every body's solutions (L8).
+
+    Parameters
+    ----------
+    layup : Layup
+    b, wavenumber, speed : array_like
+        Growth rates in the frame of the bodies at rest (complex, 1/s), wavenumbers
+        (1/m) and the moving bodies' velocity ``U`` (m/s), broadcast to a shape
+        ``S``.
+
+    Returns
+    -------
+    ndarray, shape ``S + (n, n)``
+        Square; ``n`` the unknown amplitudes of all bodies.
+    """
+    refs = layup.references()
+    C0, C1 = condition_matrix(layup)
+    b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
+                                  np.asarray(speed, float))
+    h = heat_coefficient(layup, m, V)[..., None, None]
+    last = len(layup.bodies) - 1
+    blocks = []
+    for j, body in enumerate(layup.bodies):
+        F = face_fields(body, b, m, V, refs, upper=j == last, mat=layup.elastic(body))
+        F = F.reshape(F.shape[:-3] + (12, F.shape[-1]))          # (face, field) as one axis
+        blocks.append(C0[:, j].reshape(-1, 12) @ F + h * (C1[:, j].reshape(-1, 12) @ F))
+    return np.concatenate(blocks, axis=-1)
+
+
+def layup_dispersion(layup: Layup, b, wavenumber, speed):
+    """The dispersion function ``det M(b) / prod gamma_j/m``, zero at a mode (L8);
+    analytic in ``b`` to the right of the continuous spectra ``Re b <= -kappa m^2`` of
+    the half-planes.
+
+    A conducting layer's two thermal solutions ``e^{-gamma eta}``, ``e^{-gamma zeta}``
+    become one as ``gamma -> 0``: ``det M`` then has a zero that is no mode, at
+    ``b = -i m U - kappa m^2``, next to the neutral modes fixed on the layer.  In the
+    basis ``cosh``, ``sinh(gamma .)/gamma`` about the mid-plane, which stays
+    independent, the determinant is ``det M`` divided by ``2 (gamma/m) e^{-gamma h}``
+    per layer; dividing by ``gamma/m`` alone removes that zero and adds none."""
+    b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
+                                  np.asarray(speed, float))
+    d = np.linalg.det(dispersion_matrix(layup, b, m, V))
+    for body in layup.bodies:
+        if body.thickness is not None and body.conducts:
+            U = V if body.moving else 0.0
+            d = d / np.sqrt(1.0 + (b + 1j * m * U) / (body.material.k * m * m))
+    return d
+
+
+#: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).
+BACKINGS = ("slip-insulated", "bonded-insulated", "slip-isothermal")
+#: A clutch pack's families: the friction disc's mid-plane's symmetry, and whether
+#: neighbouring cells (separator plate and friction disc) move in phase (the
+#: separator's mid-plane of the same symmetry) or in anti-phase (the other).
+CLUTCH_FAMILIES = {
+    "symmetric in-phase": ("symmetric", "symmetric"),
+    "antisymmetric in-phase": ("antisymmetric", "antisymmetric"),
+    "symmetric anti-phase": ("symmetric", "antisymmetric"),
+    "antisymmetric anti-phase": ("antisymmetric", "symmetric"),
+}
+
+
+def layups(slider: Material, counterface: Material, friction, *, dundurs=True,
+           plane="strain", slider_thickness=None, faces=2, counterface_thickness=None,
+           backing="slip-insulated", separator=None, separator_thickness=None) -> dict:
+    """The families of modes of a brake or clutch, each as a :class:`Layup` (L12).
+
+    * Two half-planes (no thickness given): ``{}`` (the relation of
+      :mod:`thermocontact.physics.tei`).
+    * A disc (``slider_thickness`` d) rubbing on ``faces = 2`` identical pads: the
+      half-disc on a pad, its mid-plane "symmetric" or "antisymmetric" (the two
+      families); on one pad (``faces = 1``), the other face free and insulated: one
+      family, "all".  A half-plane slider on a pad layer: "all".
+    * Pads: half-planes, or layers of thickness ``counterface_thickness`` on a rigid
+      backing plate (:data:`BACKINGS`).
+    * A clutch pack (``separator`` given): the cell of half a separator plate (at
+      rest), a facing (the counterface's material and thickness) and half the
+      friction disc's core (the slider's), both moving; the four families of
+      :data:`CLUTCH_FAMILIES`.
+
+    The counterface lies below the slider, as for two half-planes.
+    """
+    if separator is not None:
+        cell = (Body(separator, 0.5 * separator_thickness, False),
+                Body(counterface, counterface_thickness, True),
+                Body(slider, 0.5 * slider_thickness, True))
+        return {name: Layup(cell, ("sliding", "bonded"), sep, core, friction, dundurs, plane)
+                for name, (core, sep) in CLUTCH_FAMILIES.items()}
+    if slider_thickness is None and counterface_thickness is None:
+        return {}
+    pad = Body(counterface, counterface_thickness, False)
+    bottom = "infinite" if counterface_thickness is None else backing
+    if slider_thickness is None:
+        return {"all": Layup((pad, Body(slider, None, True)), ("sliding",), bottom,
+                             "infinite", friction, dundurs, plane)}
+    if faces == 1:
+        return {"all": Layup((pad, Body(slider, slider_thickness, True)), ("sliding",),
+                             bottom, "free", friction, dundurs, plane)}
+    half = Body(slider, 0.5 * slider_thickness, True)
+    return {name: Layup((pad, half), ("sliding",), bottom, name, friction, dundurs, plane)
+            for name in ("antisymmetric", "symmetric")}
+
+
+def mode_shape(layup: Layup, b, wavenumber, speed, points=41):
+    """A mode's temperature, normal displacement and normal stress through every
+    body (L8): the null vector of ``M(b)`` (the last right singular vector), its
+    solutions summed at ``points`` depths per body.
+
+    Returns
+    -------
+    list of (y, T, u_y, sigma_yy) per body, bottom first
+        ``y`` in m from the first interface (a half-plane over ``3/m``);
+        complex amplitudes, the temperature's largest modulus made 1 (K),
+        ``u_y`` in m/K and ``sigma_yy`` in Pa/K per unit of it.
+    """
+    m = float(wavenumber)
+    refs = layup.references()
+    mu_ref, a_ref, _ = refs
+    M = dispersion_matrix(layup, complex(b), m, speed)
+    coef = np.linalg.svd(M)[2][-1].conj()
+    out, col, base = [], 0, 0.0
+    last = len(layup.bodies) - 1
+    for j, body in enumerate(layup.bodies):
+        h = body.thickness
+        depths = np.linspace(0.0, 3.0 / m if h is None else h, points)
+        F = body_fields(body, complex(b), m, speed, refs, depths, upper=j == last,
+                        mat=layup.elastic(body))
+        vals = F @ coef[col:col + body.columns]
+        col += body.columns
+        if h is None and j == 0:
+            y = -depths[::-1]
+            vals = vals[::-1]
+        else:
+            y = base + depths
+            base += 0.0 if h is None else h
+        out.append([y, vals[:, 4] / (2.0 * mu_ref * a_ref), vals[:, 1] / (2.0 * mu_ref * m),
+                    vals[:, 3]])
+    peak = max(np.max(np.abs(o[1])) for o in out) or 1.0
+    return [(y, T / peak, u / peak, s / peak) for y, T, u, s in out]

@@ -1,0 +1,544 @@
+"""Thermoelastic instability of layers (docs/derivation.md, "Thermoelastic instability of
+layers", L1-L13): the half-plane limit, the closed form of a layer between non-conducting
+pads, two methods for every geometry, a count of the unstable roots, exact scalings,
+plane stress, the brake stop against a time integration, the call and the command."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+from scipy.optimize import minimize_scalar
+
+from thermocontact.api import tei
+from thermocontact.cli import main
+from thermocontact.discretisation.tei_depth import layup_modes, layup_operator
+from thermocontact.physics.reference_solutions import (layer_compliance, layer_neutral_speed,
+                                                        layer_thermal_displacement)
+from thermocontact.physics.tei import SlidingPair, modes
+from thermocontact.physics.tei_layers import (layup_dispersion, layups, plane_stress_material)
+from thermocontact.problem.materials import Material, get_material
+from thermocontact.problem.validation import InputError
+from thermocontact.studies.tei import critical_speed, family_minimum
+from thermocontact.studies.tei_layers import Layered, neutral_point, newton_roots
+
+STEEL = get_material("steel")
+IRON = get_material("cast-iron")
+PAD = get_material("organic-composite-brake-block")
+SINTERED = get_material("sintered-brake-material")
+#: Non-conducting pads: the organic pad with K -> 0, and a rigid one.
+NC_PAD = Material("nc-pad", PAD.E, PAD.nu, PAD.alpha, 0.0, 0.0)
+RIGID = Material("rigid", 1e30, 0.3, 1e-5, 0.0, 0.0)
+M = 2.0 * math.pi / 0.05
+
+
+def _family(name, slider, counterface, friction=0.4, **kw):
+    return Layered(name, layups(slider, counterface, friction, **kw)[name])
+
+
+def _rel(a, b):
+    return abs(a - b) / abs(b)
+
+
+# --- the solutions of a layer (L1-L3) -------------------------------------------------
+
+@pytest.mark.parametrize("plane", ["strain", "stress"])
+def test_solutions_satisfy_the_discretised_equations(plane):
+    """Each closed-form solution of a moving layer (L2, L3; at Gamma near 1 too, where
+    (L3) is a divided difference), sampled at the Chebyshev points of the second method,
+    satisfies its discretised heat and Navier equations, and its face fields are those
+    of the discretisation's differentiation, to 1e-9 of the terms."""
+    from thermocontact.discretisation.tei_depth import _body_operators, _chebyshev
+    from thermocontact.physics.tei_layers import Body, body_fields
+
+    mat = IRON if plane == "strain" else plane_stress_material(IRON)
+    body = Body(IRON, 0.02, True)
+    refs = (IRON.mu, IRON.alpha * (1 + IRON.nu) / (1 - IRON.nu), IRON.K)
+    m, V, n = 84.0, 20.0, 40
+    rows, F, mass, cols, ninner = _body_operators(body, n, m, V, plane, True, refs)
+    x = _chebyshev(n)[0]
+    depths = 0.02 * (1 - x) / 2
+    for b in (0.3 - 1600j, -1j * m * V + 1e-9 * IRON.k * m * m):
+        fields = body_fields(body, b, m, V, refs, depths, mat=mat)
+        faces = body_fields(body, b, m, V, refs, [0.0, 0.02], mat=mat)
+        for c in range(body.columns):
+            T = fields[:, 4, c] / (2 * refs[0] * refs[1])
+            X = np.concatenate([T, fields[:, 0, c], fields[:, 1, c]]) / np.repeat(
+                [1.0, 2 * refs[0] * m, 2 * refs[0] * m], n + 1)
+            res = rows @ X
+            res[:len(mass)] -= b * T[1:-1]
+            terms = np.abs(rows) @ np.abs(X)          # each row's largest possible sum
+            assert np.all(np.abs(res) <= 1e-9 * np.max(terms)), (b, c)
+            assert np.max(np.abs(F @ X - faces[:, :, c])) <= 1e-9 * np.max(np.abs(faces[:, :, c]))
+
+
+# --- every thickness to infinity: the half-planes ------------------------------------
+
+@pytest.mark.parametrize("dundurs", [True, False])
+@pytest.mark.parametrize("geometry", [
+    dict(slider_thickness=1.0), dict(slider_thickness=1.0, faces=1),
+    dict(counterface_thickness=1.0),
+    dict(slider_thickness=1.0, counterface_thickness=1.0, backing="bonded-insulated")])
+def test_thick_layers_are_half_planes(geometry, dundurs):
+    """m d/2 = 63: the layers' modes are the half-planes' (H7) to 1e-10, the Dundurs
+    term included, for every family and backing."""
+    pair = SlidingPair(STEEL, PAD, 0.4, dundurs)
+    vc, mode = critical_speed(pair, M)
+    b = modes(pair, M, 60.0)[0]
+    for name, lay in layups(STEEL, PAD, 0.4, dundurs=dundurs, **geometry).items():
+        fam = Layered(name, lay)
+        V, w, ok = neutral_point(fam, M, vc * 1.001, -mode.migration_speed * M)
+        assert ok and _rel(V, vc) < 1e-10
+        assert abs(-w / M - mode.migration_speed) < 1e-10 * vc
+        root, ok = newton_roots(lambda z, _: fam.dispersion(z, M, 60.0), [b * (1 + 1e-6)],
+                                fam.scale(M))
+        assert ok[0] and abs(root[0] - b) < 1e-10 * abs(b)
+
+
+def test_thick_disc_scan_finds_the_half_planes_critical_speed():
+    vc, _ = critical_speed(SlidingPair(STEEL, PAD, 0.4), M)
+    # m d/2 = 19: the faces see each other through e^{-2 m d/2} = 4e-17.
+    got, b = _family("antisymmetric", STEEL, PAD, slider_thickness=0.3).critical(M)
+    assert _rel(got, vc) < 1e-10 and abs(b.real) < 1e-9 * abs(b)
+
+
+# --- a layer between non-conducting pads: the closed form (L11) -----------------------
+
+@pytest.mark.parametrize("family", ["symmetric", "antisymmetric"])
+@pytest.mark.parametrize("pad, pad_model", [(NC_PAD, NC_PAD), (RIGID, None)])
+def test_layer_between_non_conducting_pads_closed_form(family, pad, pad_model):
+    """The neutral speed K m t (C_layer + C_pad)/(f W), the mode at rest on the layer,
+    to 1e-10; the first crossing of the scan at m = 84/m."""
+    fam = _family(family, IRON, pad, dundurs=False, slider_thickness=0.012)
+    for k, m in enumerate((20.0, 84.0, 300.0)):
+        exact = layer_neutral_speed(IRON, 0.012, m, 0.4, family, pad_model)
+        if k == 1:
+            V, b = fam.critical(m)
+            w = b.imag
+        else:
+            V, w, ok = neutral_point(fam, m, 1.2 * exact, -1.2 * exact * m)
+            assert ok
+        assert _rel(V, exact) < 1e-10
+        assert abs(w + m * V) < 1e-10 * m * V          # at rest on the layer
+
+
+def test_closed_form_limits():
+    """The layer's compliances tend to the half-plane's for a thick layer and to the
+    plate's 12 (1 - nu)/(mu m^4 d^3) for a thin one; a pad on a frictionless backing is
+    the symmetric half of a free layer twice as thick."""
+    half = (1 - IRON.nu) / (IRON.mu * 84.0)
+    for fam in ("symmetric", "antisymmetric"):
+        assert _rel(layer_compliance(IRON, 1.0, 84.0, fam), half) < 1e-14
+    plate = 12 * (1 - IRON.nu) / (IRON.mu * 84.0**4 * 1e-5**3)
+    # The plate's relative error is of order (m d)^2 = 7e-7 (shear).
+    assert _rel(layer_compliance(IRON, 1e-5, 84.0, "antisymmetric"), plate) < 1e-5
+    # Thermal: a thick layer's face moves out as the half-plane's 2 alpha (1 + nu)/(2 m).
+    W = layer_thermal_displacement(IRON, 1.0, 84.0, "symmetric")
+    assert _rel(W, IRON.alpha * (1 + IRON.nu) / 84.0) < 1e-12
+
+
+def test_pad_layer_on_a_slipping_backing_closed_form():
+    """A non-conducting pad layer on a rigid plate it slips on: its compliance is the
+    symmetric one of a free layer of twice its thickness (the plate a plane of
+    symmetry), so V = K m t (C_layer + C_S(2h))/(f W)."""
+    h = 0.004
+    for family in ("symmetric", "antisymmetric"):
+        fam = _family(family, IRON, NC_PAD, dundurs=False, slider_thickness=0.012,
+                      counterface_thickness=h)
+        m = 84.0
+        t = math.tanh(0.006 * m) if family == "symmetric" else 1 / math.tanh(0.006 * m)
+        exact = (IRON.K * m * t * (layer_compliance(IRON, 0.012, m, family)
+                                   + layer_compliance(NC_PAD, 2 * h, m, "symmetric"))
+                 / (0.4 * layer_thermal_displacement(IRON, 0.012, m, family)))
+        V, w, ok = neutral_point(fam, m, 1.2 * exact, -1.2 * exact * m)
+        assert ok and _rel(V, exact) < 1e-10
+
+
+def test_antisymmetric_minimum_over_wavelength_closed_form():
+    """The family's minimum over the wavelength (the curve bracketed on 40 wavelengths,
+    refined by golden-section search) against the closed form's, to 1e-10 in speed."""
+    fam = _family("antisymmetric", IRON, NC_PAD, dundurs=False, slider_thickness=0.012)
+    got, wl = family_minimum(fam, (0.0024, 2.0))
+    res = minimize_scalar(lambda x: layer_neutral_speed(IRON, 0.012, math.exp(x), 0.4,
+                                                        "antisymmetric", NC_PAD),
+                          bracket=(3.0, 4.0, 5.0), tol=1e-12)
+    assert _rel(got, res.fun) < 1e-10
+    assert _rel(2 * math.pi / wl, math.exp(res.x)) < 1e-4
+
+
+# --- two methods for every geometry ---------------------------------------------------
+
+TWO_METHODS = [
+    # (slider, counterface, dundurs, geometry, family, speed)
+    (IRON, SINTERED, False, dict(slider_thickness=0.012), "antisymmetric", 28.2),
+    (IRON, SINTERED, True, dict(slider_thickness=0.012), "symmetric", 19.9),
+    (IRON, SINTERED, True, dict(slider_thickness=0.012, faces=1), "all", 68.5),
+    (IRON, SINTERED, True, dict(slider_thickness=0.012, counterface_thickness=0.008),
+     "antisymmetric", 4.2),
+    (IRON, SINTERED, False, dict(slider_thickness=0.012, counterface_thickness=0.008,
+                                 backing="bonded-insulated"), "antisymmetric", 10.0),
+    (IRON, SINTERED, True, dict(slider_thickness=0.012, counterface_thickness=0.008,
+                                backing="slip-isothermal"), "symmetric", 508.0),
+    (IRON, SINTERED, True, dict(counterface_thickness=0.008), "all", 9.8),
+    (IRON, SINTERED, True, dict(slider_thickness=0.012, plane="stress"), "antisymmetric",
+     34.0),
+] + [(STEEL, SINTERED, True, dict(slider_thickness=0.002, counterface_thickness=0.001,
+                                   separator=STEEL, separator_thickness=0.002), name, 20.0)
+     for name in ("symmetric in-phase", "antisymmetric in-phase", "symmetric anti-phase",
+                  "antisymmetric anti-phase")]
+
+
+@pytest.mark.parametrize("slider, counterface, dundurs, geometry, family, speed", TWO_METHODS,
+                         ids=[f"{c[4]}-{'-'.join(map(str, c[3].values()))}"[:60]
+                              for c in TWO_METHODS])
+def test_root_search_against_depth_discretisation(slider, counterface, dundurs, geometry,
+                                                  family, speed):
+    """The rightmost mode by Newton's method on det M(b) and the eigenvalue of the
+    Chebyshev discretisation in depth (elasticity and heat collocated, plane stress
+    written directly) agree to 1e-8 of |b| + kappa m^2 at n = 64, the error falling
+    tenfold or more from n = 32."""
+    fam = _family(family, slider, counterface, dundurs=dundurs, **geometry)
+    b = fam.modes(M, speed)
+    assert b.size
+    scale = abs(b[0]) + fam.scale(M)
+    errs = [np.min(np.abs(layup_modes(fam.layup, M, speed, n) - b[0])) / scale
+            for n in (32, 64)]
+    assert errs[1] < 1e-8 and (errs[1] < errs[0] / 10 or errs[0] < 1e-9)
+
+
+def test_plane_stress_substitution():
+    """(L9): with nu' = nu/(1 + nu), E' = E(1 + 2 nu)/(1 + nu)^2, alpha' = alpha(1 + nu)/
+    (1 + 2 nu), the plane-strain compliance and expansion are plane stress's 2/E and
+    alpha; the shear modulus is unchanged."""
+    s = plane_stress_material(IRON)
+    assert _rel(s.compliance, 2 / IRON.E) < 1e-15
+    assert _rel(s.alpha * (1 + s.nu), IRON.alpha) < 1e-15
+    assert _rel(s.mu, IRON.mu) < 1e-15
+    stress = _family("antisymmetric", IRON, SINTERED, slider_thickness=0.012, plane="stress")
+    strain = _family("antisymmetric", IRON, SINTERED, slider_thickness=0.012)
+    assert stress.critical(M)[0] > 1.5 * strain.critical(M)[0]
+
+
+# --- no unstable root below the critical speed: the argument principle ------------------
+
+def _count_zeros(func, re_max, im_lo, im_hi, n=800):
+    """Zeros of ``func`` in the rectangle [0, re_max] x [im_lo, im_hi], by the winding
+    of its argument along the boundary (each side on n points, refined where the
+    argument jumps by more than 1)."""
+    corners = [0 + 1j * im_lo, re_max + 1j * im_lo, re_max + 1j * im_hi, 0 + 1j * im_hi]
+    total = 0.0
+    for a, b in zip(corners, corners[1:] + corners[:1]):
+        z = a + (b - a) * np.linspace(0.0, 1.0, n)
+        for _ in range(6):
+            ph = np.angle(func(z))
+            jump = np.abs(np.diff(np.unwrap(ph)))
+            if jump.max() < 1.0:
+                break
+            bad = np.repeat(jump > 0.5, 1)
+            mids = 0.5 * (z[:-1] + z[1:])[bad]
+            z = np.sort_complex(np.concatenate([z, mids])) if a.imag == b.imag else \
+                np.concatenate([z, mids])[np.argsort(np.abs(np.concatenate([z, mids]) - a))]
+        total += np.sum(np.diff(np.unwrap(np.angle(func(z)))))
+    return total / (2 * math.pi)
+
+
+def test_no_unstable_root_below_the_critical_speed():
+    """The winding number of det M over a box of the right half-plane (growth rates to
+    10 V m, frequencies within 3 V m of either body's frame) is 0 just below the
+    critical speed and 1 just above it."""
+    fam = _family("antisymmetric", IRON, SINTERED, slider_thickness=0.012)
+    vc, b = fam.critical(M)
+    for factor, expect in ((0.99, 0), (1.01, 1)):
+        V = factor * vc
+
+        def D(z):
+            return fam.dispersion(z, M, V)
+
+        count = _count_zeros(D, 10 * V * M, -4 * V * M, 3 * V * M)
+        assert abs(count - expect) < 1e-6, (factor, count)
+
+
+# --- exact scalings ------------------------------------------------------------------
+
+def test_scalings_at_fixed_m_d():
+    """Only m d, m h and V/(kappa m) enter once b is scaled by kappa m^2: halving every
+    thickness and doubling m doubles the critical speed and quadruples the growth
+    rate at twice the speed."""
+    a = _family("antisymmetric", IRON, SINTERED, slider_thickness=0.012,
+                counterface_thickness=0.008)
+    b = _family("antisymmetric", IRON, SINTERED, slider_thickness=0.006,
+                counterface_thickness=0.004)
+    v1, b1 = a.critical(M)
+    v2, w2, ok = neutral_point(b, 2 * M, 2 * v1, 4 * b1.imag)
+    assert ok and _rel(v2, 2 * v1) < 1e-10
+    r1 = a.modes(M, 1.5 * v1)[0]
+    r2 = b.modes(2 * M, 3 * v1)[0]
+    assert abs(r2 - 4 * r1) < 1e-10 * abs(4 * r1)
+
+
+# --- the brake stop against a time integration ----------------------------------------
+
+def test_stop_amplification_against_time_integration():
+    """A slow stop of a disc between non-conducting pads (no thermal layer to
+    re-grid): the frozen-coefficient log amplification (L13) of the most amplified
+    hot-spot number against the linearised equations discretised in depth and
+    integrated in time with the speed falling (exponential midpoint steps), started
+    from the mode at the top speed: to 1e-3 of the log amplification."""
+    from thermocontact.studies.brake_stop import stop_amplification, stop_history
+
+    radius, n = 0.12, 7
+    lay = layups(IRON, NC_PAD, 0.4, dundurs=False, slider_thickness=0.012)
+    systems = tuple(Layered(k, v) for k, v in lay.items())
+    # From 3 to 2 m/s (above every critical speed of n = 7) in 40 s: the growth rate
+    # falls from 2.8 to 1.7 1/s, the mode's shape changes by a few per cent (the part
+    # of the amplification that the frozen coefficients leave out).
+    t_end = 40.0
+    hist = stop_history("3:0.025", None, None)
+    hist = type(hist)(np.array([0.0, t_end]), np.array([3.0, 2.0]), hist.threshold)
+    got = stop_amplification(systems, radius, (n, n), hist).log_amplification[0]
+    m = n / radius
+    A_of = {}
+
+    def A(v):
+        if v not in A_of:
+            A_of[v] = layup_operator(lay["antisymmetric"], m, v, 24)
+        return A_of[v]
+
+    w, vecs = np.linalg.eig(A(3.0))
+    x = vecs[:, np.argmax(w.real)]
+    logs = []
+    for steps in (100, 200):
+        y = x.copy()
+        h = t_end / steps
+        log = 0.0
+        for k in range(steps):
+            y = expm(h * A(3.0 - (k + 0.5) * h / t_end)) @ y
+            s = np.linalg.norm(y)
+            log += math.log(s)
+            y /= s
+        logs.append(log)
+    assert abs(logs[1] - logs[0]) < 1e-4 * abs(logs[1])     # converged in the step
+    assert got > 50.0 and abs(got - logs[1]) < 1e-3 * abs(logs[1]), (got, logs)
+
+
+# --- the call and the command ----------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def disc():
+    return tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm", speed=10,
+               dundurs=False, slider_thickness="12mm", disc_radius="120mm", hot_spots="4:10",
+               stop="3:1")
+
+
+def test_disc_record(disc):
+    d = disc.to_dict()
+    json.dumps(d, allow_nan=False)
+    assert [f["family"] for f in d["families"]] == ["antisymmetric", "symmetric"]
+    assert d["critical_speed"] == min(f["critical_speed"] for f in d["families"])
+    for f in d["families"]:
+        assert f["minimum_critical_speed"] <= f["critical_speed"]
+    assert {m["family"] for m in d["modes"]} <= {"antisymmetric", "symmetric"}
+    assert all(m["growth_rate"] > 0 for m in d["modes"])     # 10 m/s: growing ones only
+    spots = d["hot_spots"]
+    assert [h["n"] for h in spots] == list(range(4, 11))
+    best = min(spots, key=lambda h: h["critical_speed"])
+    assert d["governing_hot_spots"] == best["n"] == 7
+    # The table's continuation against a scan at one n.
+    fam = next(s for s in disc.systems if s.name == spots[5]["family"])
+    vc, _ = fam.critical(9 / 0.12)
+    assert _rel(spots[5]["critical_speed"], vc) < 1e-9
+    assert _rel(spots[5]["wavelength"], 2 * math.pi * 0.12 / 9) < 1e-15
+    stop = d["stop"]
+    assert [a["n"] for a in stop["amplification"]] == list(range(4, 11))
+    assert stop["threshold"] == math.exp(5.0)
+
+
+def test_command_json_is_the_record(capsys, disc):
+    """The command prints the call's record (a disc rubbing on one face: one family),
+    and its text report the numbers of the record."""
+    from thermocontact.cli.tei import report_lines
+
+    args = ["tei", "--slider", "cast-iron", "--counterface", "organic-composite-brake-block",
+            "--friction", "0.4", "--wavelength", "75mm", "--no-dundurs", "--faces", "1",
+            "--slider-thickness", "12mm", "--plane-stress", "--json"]
+    assert main(args) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec == tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm",
+                      dundurs=False, faces=1, slider_thickness="12mm",
+                      plane_stress=True).to_dict()
+    assert rec["plane"] == "stress" and [f["family"] for f in rec["families"]] == ["all"]
+    out = "\n".join(report_lines(disc))
+    assert "antisymmetric: 2.5913 m/s; minimum 1.936" in out and "governing n = 7" in out
+    assert "stop from 3 m/s in 3 s" in out and "most unstable wavelength" in out
+
+
+def test_pictures(tmp_path, disc):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from thermocontact.plotting.tei import modes_figure, plot_hot_spots, plot_tei, tei_figure
+
+    ax = plot_tei(disc, ax=Figure().subplots(), wavelengths=[0.05, 0.075, 0.1])
+    assert len(ax.get_lines()) >= 3
+    ax = plot_hot_spots(disc, ax=Figure().subplots())
+    assert ax.get_lines()
+    tei_figure(disc, str(tmp_path / "a.png"), wavelengths=[0.05, 0.075, 0.1])
+    modes_figure(disc, str(tmp_path / "b.png"))
+    for name in ("a.png", "b.png"):
+        assert (tmp_path / name).stat().st_size > 1000
+
+
+def test_bad_input_before_any_work():
+    with pytest.raises(InputError, match="slider must be a material name") as err:
+        tei(None, "steel", 0.3, 0.05)
+    assert err.value.parameters == ("slider",)
+    with pytest.raises(InputError, match="dundurs must be True or False"):
+        tei("steel", "steel", 0.3, 0.05, dundurs="no")
+    with pytest.raises(InputError, match="plane_stress must be True or False"):
+        tei("steel", "steel", 0.3, 0.05, plane_stress="yes")
+    with pytest.raises(InputError, match="friction must be 0 or in"):
+        tei("steel", "steel", "1e-400", 0.05)
+    with pytest.raises(InputError, match="not end above its start"):
+        import tempfile
+
+        with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+            f.write("time,speed\n0,10\n1,12\n")
+        tei("steel", "steel", 0.3, 0.05, slider_thickness=0.01, disc_radius=0.1,
+            stop_history=f.name)
+    with pytest.raises(InputError, match="faces must be an integer in"):
+        tei("steel", "steel", 0.3, 0.05, slider_thickness=0.01, faces=3)
+
+
+def test_stable_at_all_speeds_is_a_claim_it_can_prove():
+    """Issue: steel on the organic pad, f = 0.01, no Dundurs term, L = 1 km was called
+    stable at all speeds while a mode grows at 1e4 m/s.  The high-speed limit (H10)
+    has a growing root there (Re X = 1.5e-8, the mode nearly at rest on the steel),
+    so the scan goes on and finds the critical speed."""
+    r = tei("steel", "organic-composite-brake-block", 0.01, "1km", speed=1e4, dundurs=False)
+    assert r.modes[0].growth_rate > 0
+    assert r.stable_at_all_speeds is False and r.critical_speed < 1e4
+    assert tei("steel", "organic-composite-brake-block", 0.01, "1km", speed=0.999 *
+               r.critical_speed, dundurs=False).modes[0].growth_rate < 0
+
+
+def test_a_root_at_the_rounding_of_the_determinant_is_kept():
+    """A clutch's antisymmetric in-phase mode: Newton's steps on det M stall at 7e-11
+    (4e-13 of |b|), above 1e-13 |b|; the root is kept (it was dropped, and the scan
+    then missed the first crossing).  The critical speed found is the crossing: decaying
+    just below, growing just above."""
+    fam = _family("antisymmetric in-phase", STEEL, get_material("paper-based-clutch-facing"),
+                  0.12, slider_thickness=0.0012, counterface_thickness=0.0005,
+                  separator=STEEL, separator_thickness=0.0016)
+    b = fam.modes(M, 1060.0)
+    assert b.size and b[0].real > 0.5
+    vc, w = fam.critical(M)
+    assert fam.modes(M, 0.999 * vc)[0].real < 0 < fam.modes(M, 1.001 * vc)[0].real
+
+
+def test_stop_history_file_is_the_same_stop(tmp_path, disc):
+    """A CSV history of the same stop (3 m/s to rest in 3 s, a header line) gives the
+    amplifications of --stop 3:1."""
+    from thermocontact.studies.brake_stop import stop_amplification, stop_history
+
+    path = tmp_path / "stop.csv"
+    path.write_text("time,speed\n0,3\n1.5,1.5\n3,0\n")
+    hist = stop_history(None, str(path), None)
+    got = stop_amplification(disc.systems, 0.12, (4, 10), hist)
+    assert np.allclose(got.log_amplification, disc.stop.log_amplification, rtol=1e-9,
+                       atol=1e-9)
+    assert got.first_unstable == disc.stop.first_unstable
+
+
+def test_the_command_offers_the_backings_of_the_physics():
+    from thermocontact.cli.tei import tei_cmd
+    from thermocontact.physics.tei_layers import BACKINGS, FACE_CONDITIONS
+
+    choice = next(p for p in tei_cmd.params if p.name == "backing").type.choices
+    assert tuple(choice) == BACKINGS and set(BACKINGS) <= set(FACE_CONDITIONS)
+
+
+@pytest.mark.parametrize("dundurs", [False, True])
+def test_whole_disc_is_its_two_families(dundurs):
+    """The whole disc between a pad below and a pad above (no symmetry used: the upper
+    interface's sliding sign and shear the other way) has the modes of both families
+    (L7): its critical speed is the lower of theirs, and each family's neutral mode is
+    one of its zeros, to 1e-10."""
+    from thermocontact.physics.tei_layers import Body, Layup
+
+    whole = Layered("whole", Layup(
+        (Body(SINTERED, None, False), Body(IRON, 0.012, True), Body(SINTERED, None, False)),
+        ("sliding", "sliding"), "infinite", "infinite", 0.4, dundurs))
+    speeds = []
+    for name in ("symmetric", "antisymmetric"):
+        fam = _family(name, IRON, SINTERED, dundurs=dundurs, slider_thickness=0.012)
+        vc, b = fam.critical(M)
+        if vc is None:
+            continue
+        V, w, ok = neutral_point(whole, M, vc * (1 + 1e-6), b.imag)
+        assert ok and _rel(V, vc) < 1e-10 and abs(w - b.imag) < 1e-9 * abs(b.imag)
+        speeds.append(vc)
+    vc, _ = whole.critical(M)
+    assert _rel(vc, min(speeds)) < 1e-10
+
+
+def test_clutch_cell_with_any_floquet_phase():
+    """A whole clutch cell (separator, facing, core, facing), the next cell's fields
+    e^{i phi} times its own (L7): at phi = 0 its critical speed is the lower of the two
+    in-phase families', at phi = pi of the two anti-phase ones', to 1e-10; at phi = pi/2
+    it is stable below the lowest of the four (observed over phi = 0, pi/4, pi/2,
+    3 pi/4, pi: 81.79, 138.5, 133.4, 132.5, 132.3 m/s at L = 50 mm), and the depth
+    discretisation agrees with the root search on the periodic cell to 1e-8."""
+    from thermocontact.physics.tei_layers import Body, Layup
+
+    facing = get_material("paper-based-clutch-facing")
+    kw = dict(slider_thickness=0.0012, counterface_thickness=0.0005, separator=STEEL,
+              separator_thickness=0.0016)
+    crit = {name: _family(name, STEEL, facing, 0.12, **kw).critical(M)[0]
+            for name in ("symmetric in-phase", "antisymmetric in-phase",
+                         "symmetric anti-phase", "antisymmetric anti-phase")}
+
+    def cell(phi):
+        bodies = (Body(STEEL, 0.0016, False), Body(facing, 0.0005, True),
+                  Body(STEEL, 0.0012, True), Body(facing, 0.0005, True))
+        return Layered("cell", Layup(bodies, ("sliding", "bonded", "bonded"), "periodic",
+                                     "periodic", 0.12, True, "strain", phi))
+
+    finite = [v for v in crit.values() if v is not None]
+    in_phase = min(v for k, v in crit.items() if "in-phase" in k and v is not None)
+    anti = min(v for k, v in crit.items() if "anti-phase" in k and v is not None)
+    assert _rel(cell(0.0).critical(M)[0], in_phase) < 1e-10
+    assert _rel(cell(math.pi).critical(M)[0], anti) < 1e-10
+    fam = cell(math.pi / 2)
+    assert fam.modes(M, 0.99 * min(finite))[0].real < 0
+    b = fam.modes(M, 1.3 * in_phase)[0]
+    got = np.min(np.abs(layup_modes(fam.layup, M, 1.3 * in_phase, 32) - b))
+    assert got < 1e-8 * (abs(b) + fam.scale(M))
+
+
+def test_most_unstable_wavelength_is_a_maximum(disc):
+    """At 10 m/s the disc's most unstable wavelength has the largest growth rate of its
+    neighbours 5 % shorter and longer."""
+    wl, rate = disc.most_unstable_wavelength, disc.most_unstable_growth_rate
+    assert rate > 0
+
+    def best(m):
+        return max(s.modes(m, 10.0)[0].real for s in disc.systems if len(s.modes(m, 10.0)))
+
+    m = 2 * math.pi / wl
+    assert _rel(best(m), rate) < 1e-9
+    assert best(0.95 * m) < rate and best(1.05 * m) < rate
+
+
+def test_plane_stress_half_planes_are_thick_layers_in_plane_stress():
+    """Two half-planes in plane stress (the substituted materials in H7) and a thick disc
+    in plane stress (the layers' solutions with the substituted constants) agree to
+    1e-10: the substitution is made the same way in both."""
+    r = tei(STEEL, PAD, 0.4, 0.05, plane_stress=True)
+    fam = _family("antisymmetric", STEEL, PAD, slider_thickness=1.0, plane="stress")
+    V, w, ok = neutral_point(fam, M, r.critical_speed, -r.migration_speed * M)
+    assert ok and _rel(V, r.critical_speed) < 1e-10
+    assert _rel(fam.critical(M)[0], r.critical_speed) < 1e-10
+    assert r.critical_speed > tei(STEEL, PAD, 0.4, 0.05).critical_speed
