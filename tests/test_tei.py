@@ -237,7 +237,8 @@ def test_result_record_equality_pickle_repr():
                       "modes", "most_unstable_wavelength", "most_unstable_growth_rate",
                       "plane", "slider_thickness", "faces", "counterface_thickness",
                       "backing", "separator", "separator_thickness", "families",
-                      "wavelength_range"}
+                      "wavelength_range", "status", "message", "success", "units"}
+    assert d["status"] == "solved" and d["success"] and d["units"]["critical_speed"] == "m/s"
     assert d["plane"] == "strain" and d["families"] == [
         {"family": "all", "critical_speed": d["critical_speed"],
          "migration_speed": d["migration_speed"], "minimum_critical_speed": None,

@@ -328,7 +328,7 @@ def test_stop_amplification_against_time_integration():
 def disc():
     return tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm", speed=10,
                dundurs=False, slider_thickness="12mm", disc_radius="120mm", hot_spots="4:10",
-               stop="3:1")
+               brake_stop="3:1")
 
 
 def test_disc_record(disc):

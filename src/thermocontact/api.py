@@ -926,7 +926,8 @@ def _separator(value, materials):
 def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, materials=None,
         *, slider_thickness=None, faces=2, counterface_thickness=None,
         backing="slip-insulated", separator=None, plane_stress=False, disc_radius=None,
-        hot_spots=None, stop=None, stop_history=None, stop_threshold=None) -> TEIResult:
+        hot_spots=None, brake_stop=None, stop_history=None,
+        stop_threshold=None) -> TEIResult:
     """Thermoelastic instability of sliding bodies (``thermocontact tei``): two
     half-planes, a brake disc of finite thickness between pads, pads as layers on a
     backing plate, a clutch pack.
@@ -984,11 +985,11 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         ``2 pi R/n``, for ``hot_spots``.
     hot_spots : str or (int, int), optional
         ``"N1:N2"`` (default ``"1:60"`` with a radius).
-    stop : str or (float, float), optional
+    brake_stop : str or (float, float), optional
         ``"V0:DECEL"``: a stop from ``V0`` (m/s) at a constant deceleration (m/s^2),
         with ``disc_radius``: each hot-spot number's amplification.
     stop_history : str or os.PathLike, optional
-        Instead of ``stop``: a CSV file of time (s) and speed (m/s).
+        Instead of ``brake_stop``: a CSV file of time (s) and speed (m/s).
     stop_threshold : float, optional
         The amplification that marks a hot-spot number unstable over the stop
         (default ``e^5``).
@@ -1030,13 +1031,13 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         raise InputError("hot_spots needs disc_radius", parameters=("hot_spots", "disc_radius"))
     spots = None if radius is None else _hot_spots("1:60" if hot_spots is None else hot_spots)
     history = None
-    if stop is not None or stop_history is not None:
+    if brake_stop is not None or stop_history is not None:
         from .studies.brake_stop import stop_history as make_history
 
         if radius is None:
-            raise InputError("stop needs disc_radius (its amplification is per number of "
-                             "hot spots)", parameters=("stop", "disc_radius"))
-        history = make_history(stop, stop_history, stop_threshold)
+            raise InputError("brake_stop needs disc_radius (its amplification is per number "
+                             "of hot spots)", parameters=("brake_stop", "disc_radius"))
+        history = make_history(brake_stop, stop_history, stop_threshold)
     from threadpoolctl import threadpool_limits
 
     from .studies.tei import analyse, check_geometry

@@ -116,6 +116,7 @@ def _refuse_repeated_options(args):
 #: Python names of the library's parameters whose flag is not their click name.
 _FLAG_ALIASES = {"sigma_over_delta": "--sigma", "materials": "--materials", "x": "--x",
                  "y": "--y", "start": "--from", "stop": "--to", "initial": "--start",
+                 "brake_stop": "--stop",
                  "sink_distance_over_delta": "--sink-distance",
                  "T1": "--bulk-temperatures", "T2": "--bulk-temperatures"}
 

@@ -87,7 +87,7 @@ def tei_cmd(slider, counterface, friction, wavelength, speed, dundurs, slider_th
               materials=materials_file, slider_thickness=slider_thickness, faces=faces,
               counterface_thickness=counterface_thickness, backing=backing,
               separator=separator, plane_stress=plane_stress, disc_radius=disc_radius,
-              hot_spots=hot_spots, stop=stop, stop_history=stop_history,
+              hot_spots=hot_spots, brake_stop=stop, stop_history=stop_history,
               stop_threshold=stop_threshold)
     if plot_file is not None:
         from ..plotting.tei import tei_figure

@@ -58,6 +58,18 @@ VOCABULARY = {
     "friction": ("1", "Coulomb coefficient f"),
     "dundurs": ("", "keep the Dundurs term of the friction traction (flag)"),
     "wavelength": ("m", "a perturbation's wavelength (TEI)"),
+    "slider_thickness": ("m", "a brake disc's full thickness (TEI; none: a half-plane)"),
+    "faces": ("", "the disc's faces that rub: 2 or 1"),
+    "counterface_thickness": ("m", "the pads' (or facings') thickness on their backing"),
+    "backing": ("", "the pads' backing plate: slip-insulated, bonded-insulated or "
+                    "slip-isothermal"),
+    "separator": ("", "a clutch pack's separator plates, material:thickness"),
+    "plane_stress": ("", "plane stress instead of plane strain (flag)"),
+    "disc_radius": ("m", "a disc's radius, for the hot spots round it"),
+    "hot_spots": ("", "the numbers of hot spots round the disc, N1:N2"),
+    "brake_stop": ("", "a brake stop V0:DECEL, m/s and m/s^2"),
+    "stop_history": ("", "a CSV file of time (s) and speed (m/s) of a stop"),
+    "stop_threshold": ("1", "the amplification over a stop that marks a hot-spot number"),
     "duration": ("s", "time computed by a transient contact"),
     "temperature_difference": ("K", "T2 - T1, followed by a physical path"),
     # Materials (problem/materials.py).

@@ -57,7 +57,8 @@ def stop_history(stop=None, path=None, threshold=None) -> StopHistory:
     from .tei import SPEED_RANGE
 
     if (stop is None) == (path is None):
-        raise InputError("give exactly one of stop and stop_history", parameters=("stop",))
+        raise InputError("give exactly one of brake_stop and stop_history",
+                         parameters=("brake_stop", "stop_history"))
     thr = DEFAULT_THRESHOLD if threshold is None else check_range(
         "stop_threshold", threshold, 1.0, 1e300, open_low=True)
     if stop is not None:
@@ -65,10 +66,10 @@ def stop_history(stop=None, path=None, threshold=None) -> StopHistory:
         try:
             v0, decel = parts
         except (TypeError, ValueError):
-            raise InputError(f"stop must be V0:DECEL (m/s and m/s^2), got {stop!r}",
-                             parameters=("stop",)) from None
-        v0 = check_range("stop", v0, SPEED_RANGE[0], SPEED_RANGE[1])
-        decel = check_range("stop", decel, 1e-9, 1e6)
+            raise InputError(f"brake_stop must be V0:DECEL (m/s and m/s^2), got {stop!r}",
+                             parameters=("brake_stop",)) from None
+        v0 = check_range("brake_stop", v0, SPEED_RANGE[0], SPEED_RANGE[1])
+        decel = check_range("brake_stop", decel, 1e-9, 1e6)
         t = np.linspace(0.0, v0 / decel, 2)
         return StopHistory(t, v0 - decel * t, thr)
     try:

@@ -228,6 +228,41 @@ class TEIResult(Result):
     systems: tuple = field(default=(), repr=False)
     half_planes: object = field(default=None, repr=False)
 
+    STATUSES = {"solved": "a mode of this wavelength grows above the critical speed found",
+                "stable at all speeds": "no mode of this wavelength grows at any speed "
+                                        "(proven from the high-speed limit, H10)",
+                "no critical speed found": "no mode grows at the speeds searched; beyond "
+                                           "them stability is not proven (message says "
+                                           "how far)"}
+    SUCCESS = frozenset({"solved", "stable at all speeds"})
+    UNITS = {"wavelength": "m", "critical_speed": "m/s", "migration_speed": "m/s",
+             "speed": "m/s", "growth_rate": "1/s", "frequency": "Hz",
+             "most_unstable_wavelength": "m", "most_unstable_growth_rate": "1/s",
+             "minimum_critical_speed": "m/s", "minimum_wavelength": "m",
+             "wavelength_range": "m", "slider_thickness": "m", "counterface_thickness": "m",
+             "separator_thickness": "m", "disc_radius": "m", "log_amplification": "1",
+             "threshold": "1"}
+
+    @property
+    def status(self) -> str:
+        """One of :attr:`STATUSES`."""
+        if self.critical_speed is not None:
+            return "solved"
+        return "stable at all speeds" if self.stable_at_all_speeds else "no critical speed found"
+
+    @property
+    def message(self) -> str:
+        """How the search ended, in one line."""
+        if self.critical_speed is not None:
+            return (f"critical speed {self.critical_speed:.6g} m/s at wavelength "
+                    f"{self.wavelength:.6g} m (the lowest of {max(1, len(self.families))} "
+                    f"famil{'ies' if len(self.families) > 1 else 'y'})")
+        if self.stable_at_all_speeds:
+            return (f"no mode of wavelength {self.wavelength:.6g} m grows at any speed "
+                    f"(the high-speed limit decides)")
+        return (f"no mode of wavelength {self.wavelength:.6g} m grows below "
+                f"{SPEED_RANGE[1]:g} m/s, the speeds searched")
+
     def _summary(self) -> str:
         vc = (f"stable_at_all_speeds={self.stable_at_all_speeds}" if self.critical_speed is None
               else f"critical_speed={self.critical_speed:.6g}")
