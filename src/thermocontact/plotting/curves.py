@@ -177,7 +177,9 @@ def plot_branch(branch, problem, axes=None, label=None):
 
     The abscissa is ``s = (x - offset)/Delta`` of the branch, so a branch far
     narrower than Hertz's is drawn as clearly as a wide one; the pressure is in
-    units of the Hertz peak pressure ``p0`` of the load.
+    units of the Hertz peak pressure ``p0`` of the load; the temperature is the
+    surfaces' rise above the cylinder's incoming temperature, K, or their absolute
+    temperature where the bulk temperatures were given.
 
     Parameters
     ----------
@@ -196,10 +198,14 @@ def plot_branch(branch, problem, axes=None, label=None):
                     f"({'valid' if branch.valid else 'invalid'})")
     line, = ax1.plot(s, branch.pressure / problem.hertz_peak_pressure,
                      "-" if branch.valid else "--", label=tag)
-    ax2.plot(s, branch.temperature_cylinder, color=line.get_color())
+    # With the bulk temperatures given, the surfaces' absolute temperature (the
+    # cylinder's incoming one plus the rise); else the rise above it.
+    base = 0.0 if branch.bulk_temperatures is None else branch.bulk_temperatures[0]
+    ax2.plot(s, base + branch.temperature_cylinder, color=line.get_color())
     # Plain-text labels: mathtext's parser would double the picture's cost.
     ax1.set_ylabel("pressure / Hertz peak p₀")
-    ax2.set_ylabel("surface temperature rise, K\n(both surfaces, in contact)")
+    ax2.set_ylabel(("surface temperature rise, K" if branch.bulk_temperatures is None
+                    else "surface temperature, K") + "\n(both surfaces, in contact)")
     ax2.set_xlabel("(x − offset)/Δ of each branch "
                    "(cylinder surface moves toward -x)")
     return ax1, ax2
