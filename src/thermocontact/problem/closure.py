@@ -149,7 +149,7 @@ class HeatPartition:
 
     ``lam`` in [-1, 1] when both bodies take a share of the frictional heat; beyond it
     (to 1e6) one body gives heat through the contact, as a hot body does (the bulk
-    temperatures then make |lam| > 1).
+    temperatures then make ``abs(lam) > 1``).
     """
 
     lam: float
