@@ -8,6 +8,8 @@ import json
 
 import click
 
+from ..problem.errors import InputError
+
 __all__ = ["report_lines", "tei_cmd"]
 
 
@@ -81,8 +83,8 @@ def tei_cmd(slider, counterface, friction, wavelength, speed, dundurs, slider_th
         modes_file = check_output_file("--plot-modes", modes_file,
                                        suffixes=(".png", ".svg", ".pdf"))
         if slider_thickness is None and counterface_thickness is None:
-            raise click.UsageError("--plot-modes needs a layer (--slider-thickness or "
-                                   "--counterface-thickness)")
+            raise InputError("--plot-modes needs a layer (--slider-thickness or "
+                             "--counterface-thickness)")
     res = tei(slider, counterface, friction, wavelength, speed=speed, dundurs=dundurs,
               materials=materials_file, slider_thickness=slider_thickness, faces=faces,
               counterface_thickness=counterface_thickness, backing=backing,
