@@ -57,7 +57,7 @@ _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
 #: Points sharing one rule in ``phi`` (sorted by side and ``|u|``).
-_GROUP = 32
+_GROUP = 256
 
 
 def _parameters(c, b):
