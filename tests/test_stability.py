@@ -9,7 +9,10 @@
   diverging temperature constant ``l(b)`` (T6) apart; ``M(conj b) = conj M(b)``.
 * ``det M(0)`` vanishes where the load along a ray of growing load has a fold, located
   by Brent's method on the steady solver's load.
-* Beyn's method and Newton's method on a nonlinear eigenproblem with known eigenvalues.
+* The kernels' tabulated moments against the moment engine's.
+* The count by the argument principle, Beyn's method and Newton's method on a nonlinear
+  eigenproblem with known eigenvalues; on the contact, the count against the roots
+  Beyn's method finds inside a different contour.
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ from thermocontact import Model, StabilityResult
 from thermocontact.discretisation.linearised import LinearisedContact, projections
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
 from thermocontact.problem.validation import InputError
-from thermocontact.solvers.stability import beyn, inside, linearised, newton
+from thermocontact.solvers.stability import (Winding, beyn, half_disc, linearised, newton,
+                                             stability_of)
 
 
 def _steady(pe, K, fhpe, lam, n):
@@ -136,9 +140,10 @@ def test_det_M0_vanishes_at_the_fold_of_the_load():
 
 
 def _known_problem(roots):
-    """``M(b) = (b - A)(1 + 0.2 sin(b/8) C)`` with real ``A`` whose eigenvalues are
+    """``M(b) = (b - A)(1 + 0.6 C/(b + 3))`` with real ``A`` whose eigenvalues are
     ``roots`` (closed under conjugation) and real ``C`` of unit norm:
-    ``M(conj b) = conj M(b)``, and the second factor is regular for ``|Im b| < 4``."""
+    ``M(conj b) = conj M(b)``, and the second factor is regular and invertible for
+    ``Re b > -2.4``."""
     rng = np.random.default_rng(3)
     blocks = []
     for r in roots:
@@ -156,33 +161,87 @@ def _known_problem(roots):
     A = Q @ J @ np.linalg.inv(Q)
     C = rng.standard_normal((size, size))
     C /= np.linalg.norm(C, 2)
-    return lambda b: (b * np.eye(size) - A) @ (np.eye(size) + 0.2 * np.sin(b / 8) * C)
+    return lambda b: (b * np.eye(size) - A) @ (np.eye(size) + 0.6 * C / (b + 3.0))
+
+
+class _Stand:
+    """A stand-in for the linearised contact: the known problem, its last row taken
+    for the temperature's (``n = size - 4``), the same at every ``n``."""
+
+    def __init__(self, roots):
+        self._M = _known_problem(roots)
+        self.n = self._M(1.0).shape[0] - 4
+
+    def matrix(self, b, split=False):
+        M = self._M(b)
+        return (M, 0.0, M[self.n + 3].copy()) if split else M
+
+
+ROOTS = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j,
+         2e-4 + 0j, 0.3 + 40.0j, 0.3 - 40.0j]
+
+
+def _order(r):
+    return (round(r.real, 6), round(r.imag, 6))
+
+
+def test_the_argument_principle_counts_known_roots():
+    """The winding of ``det M`` along Re b = b_min and the arc |b| = R counts the roots
+    of the known problem in the region, with multiplicity, and none outside it: the
+    pair at 0.3 +- 40i only once R passes 40, the root at 2e-4 never (below b_min),
+    -1 never (left of the line)."""
+    winding = Winding(_known_problem(ROOTS), 1e-3)
+    assert winding.count(30.0) == (6, None)
+    assert winding.count(1e4) == (8, None)
+    assert Winding(_known_problem(ROOTS), 1e-4).count(1e4) == (9, None)
+    # A double root counts twice.
+    assert Winding(_known_problem([2.0 + 0j, 2.0 + 0j]), 1e-3).count(100.0) == (2, None)
+
+
+def test_a_root_on_the_contour_is_not_counted_but_said():
+    winding = Winding(_known_problem([1e-3 + 0.5j, 1e-3 - 0.5j]), 1e-3)
+    count, why = winding.count(10.0)
+    assert count is None and "contour" in why
 
 
 def test_beyn_and_newton_find_known_eigenvalues():
-    roots = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j]
-    M = _known_problem(roots)
-    found, rank = beyn(M, (0.1, 6.0, 4.0), points=64)
+    M = _known_problem(ROOTS)
+    found, rank = beyn(M, half_disc(1e-3, 8.0), rank=5, probes=8)
     assert rank == 5
-    def order(r):
-        return (round(r.real, 6), round(r.imag, 6))
-    inside = sorted(roots[:3] + roots[4:6], key=order)
-    np.testing.assert_allclose(sorted(found, key=order), inside, atol=1e-9)
+    inside = sorted([r for r in ROOTS if r.real >= 1e-3 and abs(r) <= 8.0], key=_order)
+    np.testing.assert_allclose(sorted(found, key=_order), inside, atol=1e-8)
     for r in inside:
         b, step = newton(M, r + 0.05 - 0.03j)
         assert abs(b - r) < 1e-12
 
 
+def test_newton_stays_on_the_sheet():
+    """A Newton step that would cross ``Re b = floor`` (the cut of the stationary
+    half-plane's kernels lies beyond it) is halved: the iterates stay right of it, and
+    an iteration that cannot stay says so (step inf) instead of evaluating ``M`` there."""
+    M = _known_problem([-1.0 + 0.1j, -1.0 - 0.1j])
+
+    def guarded(b):
+        assert b.real > 1e-3, b
+        return M(b)
+    b, step = newton(guarded, 0.05 + 0.1j, floor=1e-3)
+    assert b.real > 1e-3 and not step < 1e-8
+
+
 def test_the_contour_tells_its_progress(monkeypatch):
-    """beyn tells each evaluation of M (the analysis' cost, a second each at n = 12);
-    classify tells them over all its events as one stage."""
+    """stability_of tells each evaluation of M; classify tells them over all its
+    events as one stage."""
+    import thermocontact.solvers.stability as st
     from thermocontact.studies import event_kinds
     from thermocontact.studies.boundaries import Event, Path
 
     told = []
-    beyn(_known_problem([1.5 + 2.0j, 1.5 - 2.0j]), (0.1, 6.0, 4.0), points=16,
-         progress=lambda done, total: told.append((done, total)))
-    assert told == [(j, 8) for j in range(1, 9)]
+    monkeypatch.setattr(st, "linearised", lambda sol: _Stand(ROOTS[:2]))
+    res = st.stability_of(lambda n: n, n=12, modulus_bound=100.0,
+                          progress=lambda done, total: told.append((done, total)))
+    assert [d for d, _ in told] == list(range(1, res.evaluations + 1))
+    assert all(d <= t for d, t in told)
+    assert res.unstable_modes == 2 and res.evaluations > 10
 
     events = tuple(Event(at=a, inequality="gap", edge="leading", valid_before=True,
                          valid_after=False) for a in (0.2, 0.3))
@@ -212,13 +271,28 @@ def test_stability_refuses_what_it_does_not_model():
         linearised(sol)
 
 
+def _verdict(eigenvalues, stable="counted", count="located", reason=None):
+    eigenvalues = np.array(eigenvalues, dtype=complex)
+    count = len(eigenvalues) if count == "located" else count
+    return StabilityResult(
+        eigenvalues=eigenvalues, unstable_modes=count,
+        stable=(count == 0) if stable == "counted" else stable, reason=reason,
+        growth_rate=float(eigenvalues.real.max()) if eigenvalues.size else None,
+        region=(1e-3, 1e4), count_method="argument principle", error_estimate=None,
+        fold=0.1, slow_root=None, evaluations=40, n=8)
+
+
 def test_stability_result_record():
-    res = StabilityResult(eigenvalues=np.array([1.0 + 2.0j, 1.0 - 2.0j]), stable=False,
-                          error_estimate=1e-3, newton_change=1e-6,
-                          region=(0.02, 10.0, 10.0), n=8)
+    res = _verdict([1.0 + 2.0j, 1.0 - 2.0j])
     record = json.loads(json.dumps(res.to_dict(), allow_nan=False))
-    assert record["stable"] is False
+    assert record["stable"] is False and record["unstable_modes"] == 2
     assert record["eigenvalues"] == [[1.0, 2.0], [1.0, -2.0]]
+    assert record["growth_rate"] == 1.0
+    assert record["region"] == {"b_min": 1e-3, "modulus_bound": 1e4}
+    uncertified = _verdict([], stable=None, count=None, reason="a root on the contour")
+    record = json.loads(json.dumps(uncertified.to_dict(), allow_nan=False))
+    assert record["stable"] is None and record["unstable_modes"] is None
+    assert record["reason"] == "a root on the contour"
     assert pickle.loads(pickle.dumps(res)) == res
     assert "stable=False" in repr(res)
 
@@ -243,9 +317,7 @@ def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
         # The command shows the contour's progress (a second a point).
         progress(1, 1)
         seen.append(sol)
-        return StabilityResult(eigenvalues=np.array([0.5 + 1.0j, 0.5 - 1.0j]), stable=False,
-                               error_estimate=2e-3, newton_change=1e-9,
-                               region=(0.02, 10.0, 10.0), n=8)
+        return _verdict([0.5 + 1.0j, 0.5 - 1.0j])
     monkeypatch.setattr(api, "stability", stand_in)
     args = ["solve", "--pe", "1", "--fhpe", "0.3", "--K2-over-K1", "1", "--lam", "-1",
             "-n", "16", "--stability"]
@@ -259,10 +331,7 @@ def test_solve_command_adds_the_stability_record(capsys, monkeypatch):
 
 
 def _result(eigenvalues):
-    eigenvalues = np.array(eigenvalues, dtype=complex)
-    return StabilityResult(eigenvalues=eigenvalues, stable=not np.any(eigenvalues.real > 0),
-                           error_estimate=None, newton_change=None,
-                           region=(0.02, 10.0, 10.0), n=8)
+    return _verdict(eigenvalues)
 
 
 def test_kinds_of_events(monkeypatch):
@@ -275,6 +344,8 @@ def test_kinds_of_events(monkeypatch):
     assert event_kinds.kind_of(_result([])) == "grazing"
     assert event_kinds.kind_of(_result([0.3, 0.1 + 2j, 0.1 - 2j])) == "fold"
     assert event_kinds.kind_of(_result([0.3 + 1j, 0.3 - 1j, 0.2])) == "hopf"
+    assert event_kinds.kind_of(_verdict([], stable=False, count=2)) == "unstable"
+    assert event_kinds.kind_of(_verdict([], stable=None, count=None)) == "uncertified"
     events = tuple(Event(at=a, inequality="gap", edge="leading", valid_before=True,
                          valid_after=False) for a in (0.2, 0.3, 0.4))
     path = Path(along="fhpe", fixed={"pe": 1.0, "K2_over_K1": 1.0, "lam": 0.5},
@@ -319,7 +390,6 @@ def test_a_growing_pair_past_a_fold():
     root, step = newton(lambda z: M if z == b else lin.matrix(z), b, steps=1)
     assert step < 1e-10 * abs(b) and abs(root - b) < 1e-10 * abs(b)
     np.testing.assert_array_equal(lin.matrix(np.conj(b)), np.conj(M))
-    assert inside(b, (0.5, 10.0, 10.0))
     assert abs(at[12] - b) > 1e-2
     sv = np.linalg.svd(linearised(_steady(1.5, 1.0, 1.5, 1.0, 12)).matrix(at[12]),
                        compute_uv=False)
@@ -378,28 +448,31 @@ def test_physical_contact_rates_in_per_second(monkeypatch, closure):
 
 
 def test_stability_of_orders_pairs_and_estimates(monkeypatch):
-    """The driver on known problems standing in for ``M(b)`` at ``n`` and ``n/2``: both
-    members of each pair, largest real part first, only what lies in the region, the
-    change to ``n/2`` as the error estimate, and rates in 1/s with ``rate_unit``."""
+    """The driver on known problems standing in for ``M(b)`` at ``n`` and ``n/2``: the
+    count of the region's roots, both members of each pair, largest real part first,
+    only what lies in the region, the change to ``n/2`` as the error estimate, and
+    rates in 1/s with ``rate_unit``."""
     import thermocontact.solvers.stability as st
 
-    fine = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j]
+    fine = ROOTS
     coarse = [r + 1e-3 for r in fine]
-
-    class Stand:
-        def __init__(self, roots):
-            self.matrix = _known_problem(roots)
-    monkeypatch.setattr(st, "linearised", lambda n: Stand(fine if n == 12 else coarse))
-    res = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0, points=64)
-    np.testing.assert_allclose(res.eigenvalues, [4.0 + 0.5j, 4.0 - 0.5j, 1.5 + 2.0j,
-                                                 1.5 - 2.0j, 0.7], atol=1e-9)
-    assert not res.stable
+    monkeypatch.setattr(st, "linearised", lambda n: _Stand(fine if n == 12 else coarse))
+    res = st.stability_of(lambda n: n, n=12, modulus_bound=30.0)
+    expected = [12.0, 4.0 + 0.5j, 4.0 - 0.5j, 1.5 + 2.0j, 1.5 - 2.0j, 0.7]
+    assert res.unstable_modes == 6 and res.stable is False and res.reason is None
+    np.testing.assert_allclose(res.eigenvalues, expected, atol=1e-9)
+    assert res.growth_rate == pytest.approx(12.0, abs=1e-9)
     # The root 0.7 moves by 1e-3, relative to max(|b|, 1) = 1.
     assert res.error_estimate == pytest.approx(1e-3, rel=1e-6)
-    per_second = st.stability_of(lambda n: n, n=12, re_min=0.1, re_max=6.0, im_max=4.0,
-                                 points=64, rate_unit=2.0)
+    per_second = st.stability_of(lambda n: n, n=12, modulus_bound=30.0, rate_unit=2.0)
     np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
-    assert per_second.units == "1/s" and per_second.region == (0.2, 12.0, 8.0)
+    assert per_second.units == "1/s" and per_second.region == (2e-3, 60.0)
+    # With the pair at 0.3 +- 40i inside: eight, the pair located too.
+    wide = st.stability_of(lambda n: n, n=12, modulus_bound=100.0)
+    assert wide.unstable_modes == 8 and len(wide.eigenvalues) == 8
+    for bad in (dict(b_min=0.0), dict(modulus_bound=1e-3), dict(n=13), dict(n="12")):
+        with pytest.raises(InputError):
+            st.stability_of(lambda n: n, **bad)
 
 
 def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
@@ -414,7 +487,7 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
     from thermocontact.studies import event_kinds
 
     answers = iter([_result([]), _result([0.25 + 1j, 0.25 - 1j, 0.75]), _result([0.5]),
-                    _result([])])
+                    _verdict([], stable=None, count=None, reason="a root on the contour")])
     seen = []
 
     def stand_in(solve_at, n, **region):
@@ -425,7 +498,8 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
                           K2_over_K1=10, lam=0.5, tol=1e-4, stability=True)
     # Each point's solve at the map's n: the map's own solution.
     seen = [solve_at(n) for solve_at, n in zip(seen, ds["n"].values.ravel())]
-    assert ds["stable"].values.tolist() == [[1, 0], [0, 1]]
+    assert ds["stable"].values.tolist() == [[1, 0], [0, -2]]
+    assert ds["unstable_modes"].values.tolist() == [[0, 3], [1, -1]]
     rate = ds["growth_rate"].values
     assert np.isnan(rate[[0, 1], [0, 1]]).all() and rate[0, 1] == 0.75 and rate[1, 0] == 0.5
     assert ds["growth_rate"].attrs["units"] == "k2/Delta^2"
@@ -531,3 +605,136 @@ def test_a_finished_map_without_its_stability_is_not_passed_off_as_analysed(tmp_
     assert len(err) == 1 and "without its eigenvalues" in err[0] and "--stability" in err[0]
     assert main(args) == 0
     assert "nothing to compute" in capsys.readouterr().out
+
+
+# --- The verdict on real contacts (shared: each a few seconds) ------------------------
+
+@pytest.fixture(scope="module")
+def growing_pair():
+    """The steady contact past the fold (Pe = fHPe = 1.5, K2/K1 = 1, lam = 1) at n = 12,
+    its linearised contact and its verdict with the defaults."""
+    sol = _steady(1.5, 1.0, 1.5, 1.0, 12)
+    return sol, linearised(sol), stability_of(lambda m: _steady(1.5, 1.0, 1.5, 1.0, m))
+
+
+def test_the_growing_pair_is_counted_and_located(growing_pair):
+    """The pair the ellipse of Re b in [0.5, 10], |Im b| <= 10 once missed
+    (docs/stability.md): counted (2 eigenvalues with Re b >= 1e-3, |b| <= 1e4), located
+    and confirmed at the stored n = 12 root (tests/data/stability_convergence.json) to
+    1e-9; not stable."""
+    _, levels = _convergence()
+    stored = complex(*[r["b"] for r in levels if r["n"] == 12][0])
+    _, _, res = growing_pair
+    assert res.stable is False and res.unstable_modes == 2 and res.reason is None
+    np.testing.assert_allclose(res.eigenvalues, [stored, np.conj(stored)], rtol=1e-9)
+    assert res.growth_rate == pytest.approx(stored.real, rel=1e-9)
+    assert res.region == (1e-3, 1e4)
+
+
+def test_the_count_against_beyn_on_another_contour(growing_pair):
+    """A second method: the rank of Beyn's zeroth moment (its singular values, not the
+    winding) on a different contour, the boundary of Re b >= 0.2, |b| <= 3, finds two
+    eigenvalues, Newton's method takes them to the verdict's; the winding on that
+    contour counts two as well."""
+    _, lin, res = growing_pair
+    found, rank = beyn(lin.matrix, half_disc(0.2, 3.0, nodes=6, panels_per_unit=0.5),
+                       probes=6, tol=1e-6)
+    assert rank == 2
+    polished = sorted((newton(lin.matrix, b, floor=0.1)[0] for b in found), key=_order)
+    np.testing.assert_allclose(polished, sorted(res.eigenvalues, key=_order), rtol=1e-9)
+    assert Winding(lin.matrix, 0.2).count(3.0) == (2, None)
+
+
+@pytest.fixture(scope="module")
+def fig4_contact():
+    """A valid steady contact of the paper's Fig. 4 (Pe = 5, fHPe = 0.2, K2/K1 = 10,
+    lam = -1) at n = 12 and its verdict."""
+    model = Model(5.0, 10.0)
+
+    def solve_at(m):
+        return model.solve_at(m, 0.2, lam=-1.0, check_validity=False)
+    return model.solve_at(12, 0.2, lam=-1.0), stability_of(solve_at)
+
+
+def test_a_valid_contact_of_the_paper_is_stable(fig4_contact):
+    """No eigenvalue with Re b >= 1e-3 anywhere within |b| <= 1e4; Beyn's rank on the
+    boundary of Re b >= 0.05, |b| <= 4 is 0 too (the second method)."""
+    sol, res = fig4_contact
+    assert sol.validity.valid
+    assert res.stable is True and res.unstable_modes == 0 and res.reason is None
+    assert len(res.eigenvalues) == 0 and res.growth_rate is None
+    _, rank = beyn(linearised(sol).matrix, half_disc(0.05, 4.0, nodes=6, panels_per_unit=0.5),
+                   probes=6, tol=1e-6)
+    assert rank == 0
+
+
+def test_no_eigenvalue_beyond_the_modulus_bound(fig4_contact, growing_pair):
+    """The large-|b| behaviour (derivation S11): along rays out to |b| = 1e7 the
+    temperature-scaled M(b) keeps its smallest singular value within a factor 10 of its
+    value at |b| = 1e4, far from 0 (no root there), for both contacts."""
+    for lin in (linearised(fig4_contact[0]), growing_pair[1]):
+        n = lin.n
+        for angle in (0.0, 0.3 * np.pi, 0.49 * np.pi):
+            smallest = []
+            for modulus in (1e4, 1e5, 1e7):
+                b = modulus * np.exp(1j * angle)
+                M = lin.matrix(b)
+                M[n + 3:] *= np.sqrt(1.0 + b)
+                smallest.append(np.linalg.svd(M, compute_uv=False)[-1])
+            assert min(smallest) > 0.1 * smallest[0] > 0.0
+
+
+def test_stability_refuses_what_is_not_a_steady_single_patch():
+    """``stability(None)``, a string or a dict: one InputError naming ``solution``
+    (they were tracebacks)."""
+    import thermocontact as tc
+
+    for bad in (None, "x", {"pe": 1.0}):
+        with pytest.raises(InputError, match="solution must be") as err:
+            tc.stability(bad)
+        assert err.value.parameters == ("solution",)
+
+
+def test_stability_flags_are_booleans(monkeypatch):
+    """``parameter_map(..., stability='yes')`` and ``boundary(..., stability='yes')``
+    are refused before any work (they started the analysis); True and False pass."""
+    import thermocontact as tc
+    import thermocontact.studies.maps as maps
+
+    def not_computed(*args, **kw):
+        raise AssertionError("the map was computed")
+    monkeypatch.setattr(maps, "compute_map", not_computed)
+    for value in ("yes", 1, None):
+        with pytest.raises(InputError, match="stability must be True or False") as err:
+            tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                             K2_over_K1=10, lam=0.5, stability=value)
+        assert err.value.parameters == ("stability",)
+        with pytest.raises(InputError, match="stability must be True or False"):
+            tc.boundary("fhpe", 0, 1, pe=5, K2_over_K1=10, lam=1, stability=value)
+    with pytest.raises(AssertionError, match="computed"):
+        tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
+                         K2_over_K1=10, lam=0.5, stability=np.bool_(False))
+
+
+def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
+                                                                        monkeypatch):
+    """``solve --stability --method paper`` (and a moving half-plane, the Dundurs term,
+    a conductance): one line, exit 2, nothing solved (it solved for 17 s, then printed a
+    warning and an error)."""
+    import thermocontact.api as api
+    from thermocontact.cli import main
+
+    def not_solved(*args, **kw):
+        raise AssertionError("solved")
+    monkeypatch.setattr(api, "solve", not_solved)
+    base = ["solve", "--pe", "1.5", "--fhpe", "1.5", "--K2-over-K1", "1", "--lam", "1",
+            "--stability"]
+    for extra, words in ((["--method", "paper"], "edge-graded --method"),
+                         (["--speed-ratio", "0.5"], "--speed-ratio must be 0"),
+                         (["--beta-f", "0.2"], "--beta-f must be 0"),
+                         (["--conductance", "1:0"], "conductance")):
+        assert main(base + extra) == 2
+        captured = capsys.readouterr()
+        err = captured.err.strip().splitlines()
+        assert len(err) == 1 and words in err[0], err
+        assert captured.out == ""

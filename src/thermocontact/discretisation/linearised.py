@@ -53,7 +53,39 @@ from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .representations import EdgeGraded
 
-__all__ = ["LinearisedContact", "logarithm_constant", "projections"]
+__all__ = ["LinearisedContact", "check_modelled", "logarithm_constant", "projections"]
+
+
+def check_modelled(*, speed_ratio=0.0, beta_f=0.0, method="graded", conductance=None,
+                   dundurs=None) -> None:
+    """Refuse, in one line naming the parameter, what the linearised contact does not
+    model (before any work): a moving half-plane, the Dundurs term, a method other
+    than an edge-graded one, an interface conductance.
+
+    ``dundurs`` (a physical contact's flag, True by default there) counts as a Dundurs
+    term where it is not False.
+
+    Raises
+    ------
+    InputError
+    """
+    from .methods import METHODS
+
+    if speed_ratio:
+        raise InputError("stability: speed_ratio must be 0 (the stationary half-plane); "
+                         f"got {speed_ratio!r}", parameters=("speed_ratio",))
+    if beta_f:
+        raise InputError(f"stability: beta_f must be 0, got {beta_f!r}",
+                         parameters=("beta_f",))
+    if dundurs is not None and dundurs is not False:
+        raise InputError("stability: the Dundurs term is not modelled; solve with "
+                         "dundurs=False", parameters=("dundurs",))
+    if method not in METHODS or not METHODS[method].edge_exponents:
+        raise InputError("stability needs an edge-graded method (graded, "
+                         f"graded-collocation), got {method!r}", parameters=("method",))
+    if conductance is not None:
+        raise InputError("stability: an interface conductance is not supported; solve "
+                         "with perfect thermal contact", parameters=("conductance",))
 
 
 def logarithm_constant(b):
@@ -97,15 +129,10 @@ class LinearisedContact:
 
     def __post_init__(self):
         par = self.parameters
-        if par.half_plane_scale:
-            raise InputError("stability: speed_ratio must be 0 (the stationary half-plane); "
-                             f"got {par.speed_ratio!r}", parameters=("speed_ratio",))
-        if par.free_term:
-            raise InputError(f"stability: beta_f must be 0, got {par.beta_f!r}",
-                             parameters=("beta_f",))
-        if not isinstance(self.representation, EdgeGraded):
-            raise InputError("stability needs an edge-graded method (graded, "
-                             "graded-collocation)", parameters=("method",))
+        check_modelled(speed_ratio=par.speed_ratio if par.half_plane_scale else 0.0,
+                       beta_f=par.beta_f if par.free_term else 0.0,
+                       method="graded" if isinstance(self.representation, EdgeGraded)
+                       else type(self.representation).__name__)
 
     @property
     def n(self) -> int:

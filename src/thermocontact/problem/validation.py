@@ -16,6 +16,7 @@ __all__ = [
     "check_choice",
     "check_exactly_one",
     "check_finite",
+    "check_flag",
     "check_integer",
     "check_nonnegative",
     "check_positive",
@@ -120,6 +121,16 @@ def check_integer(name: str, value, low: int, high: int | None = None) -> int:
     if n < low or (high is not None and n > high):
         _fail(name, allowed, value)
     return int(n)
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is a boolean (``True`` or ``False``; NumPy's too): a flag is not
+    any truthy value."""
+    kind = type(value)
+    if isinstance(value, bool) or (kind.__module__ == "numpy" and kind.__name__ in ("bool",
+                                                                                   "bool_")):
+        return bool(value)
+    _fail(name, "True or False", value)
 
 
 def check_choice(name: str, value, choices) -> str:
