@@ -60,33 +60,26 @@ def _panels():
 
 
 def _chebyshev():
-    x = np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
-    w = (-1.0) ** np.arange(NODES) * np.sin(np.pi * (np.arange(NODES) + 0.5) / NODES)
-    return x, w
+    """The Chebyshev points of a panel, descending in ``[-1, 1]``."""
+    return np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
 
 
 def kernel_nodes():
     """The nodes ``u`` (ascending: the negative side's, then the positive side's) at
     which a kernel's values are given to :meth:`KernelTable.moments`."""
     edges = _panels()
-    x, _ = _chebyshev()
+    x = _chebyshev()
     mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])
     pos = np.sort((mid[:, None] + half[:, None] * x[None, :]).ravel())
     return np.concatenate([-pos[::-1], pos])
 
 
-def _lagrange(xq, x, w):
+def _lagrange(xq, x):
     """Values at ``xq`` (any shape, in [-1, 1]) of the Lagrange polynomials of the
-    nodes ``x`` (barycentric weights ``w``), shape ``xq.shape + (len(x),)``."""
-    d = xq[..., None] - x
-    exact = d == 0.0
-    d = np.where(exact, 1.0, d)
-    t = w / d
-    out = t / np.sum(t, axis=-1, keepdims=True)
-    hit = exact.any(axis=-1)
-    if np.any(hit):
-        out[hit] = exact[hit].astype(float)
-    return out
+    Chebyshev nodes ``x``, shape ``xq.shape + (len(x),)``: the Chebyshev series of each
+    (its coefficients the inverse of the nodes' Vandermonde matrix) summed at ``xq``."""
+    cheb = np.polynomial.chebyshev
+    return cheb.chebvander(xq, x.size - 1) @ np.linalg.inv(cheb.chebvander(x, x.size - 1))
 
 
 def _offset_u(tau_k, t_k, d, cmap):
@@ -133,7 +126,7 @@ class KernelTable:
         t_k = stretch(tau_k)
         s_k = np.cos(t_k)
         edges = _panels()
-        xc, wc = _chebyshev()
+        xc = _chebyshev()
         npan = edges.size - 1
         # The innermost interval |u| < edges[0]: the kernel there is
         # a + b ln|u| + c u + d u ln|u| + O(u^2 ln|u|), fitted to the first panel's
@@ -174,13 +167,14 @@ class KernelTable:
             q = np.where(inner, 0, pp)
             mid, half = 0.5 * (edges[q + 1] + edges[q]), 0.5 * (edges[q + 1] - edges[q])
             x = np.clip((u - mid[:, None]) / half[:, None], -1.0, 1.0)
-            lag = _lagrange(x, xc, wc)                      # (I, G, NODES)
+            lag = _lagrange(x, xc)                          # (I, G, NODES)
             lag[inner] = _inner_basis(u[inner]) @ fit
             tq = tau_k[kk][:, None] + nodes
             wb, ws = cmap.weights(tq)
             basis = np.cos(tq[..., None] * np.arange(n))   # (I, G, n)
-            both = np.stack([wb * wts, ws * wts])           # (2, I, G)
-            contrib = np.einsum("wig,igj,igm->wijm", both, basis, lag)
+            # Per interval and weight, (n x G) @ (G x NODES), as stacked products.
+            contrib = np.stack([np.matmul((basis * (wt * wts)[..., None]).transpose(0, 2, 1),
+                                          lag) for wt in (wb, ws)])   # (2, I, n, NODES)
             out = np.zeros((2, tau_k.size, npan, n, NODES))
             np.add.at(out, (slice(None), kk, q), contrib)
             # Panel p's nodes in ascending |u|: Chebyshev x descends.
@@ -198,7 +192,14 @@ class KernelTable:
         trailing axes of ``values``), of the kernels whose values at
         :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``)."""
         values = np.asarray(values)
-        out = self.matrix.reshape(2 * self.shape[0] * self.shape[1], -1) @ values
+        table = self.matrix.reshape(2 * self.shape[0] * self.shape[1], -1)
+        if np.iscomplexobj(values):
+            # A real product on the real and imaginary parts side by side (half the
+            # work of the complex one).
+            flat = np.ascontiguousarray(values.reshape(values.shape[0], -1))
+            out = (table @ flat.view(float)).view(complex)
+        else:
+            out = table @ values.reshape(values.shape[0], -1)
         return out.reshape((2,) + self.shape + values.shape[1:])
 
 
