@@ -748,13 +748,13 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e4, progress=None):
+def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
     """Every growing mode of a steady single patch, counted: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
     perturbation growing as ``exp(b t)`` (docs/derivation.md, section 18):
     ``M(b) c = 0``.  The eigenvalues with ``Re b >= b_min`` and ``|b| <= modulus_bound``
-    (beyond which the large-``|b|`` analysis, S11, leaves none) are counted by the
+    (beyond which the large-``|b|`` analysis, S11, finds none) are counted by the
     argument principle on the boundary of that region, located by Beyn's contour
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
@@ -769,14 +769,15 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e4, progress=None):
         1/s, ``contact(..., dundurs=False)``).
     n : int, optional
         Unknowns per function of the analysis (default 12, even, from 8 to 64; the
-        steady solution is solved again at ``n``, and at ``n/2`` for the error
-        estimate).
+        steady solution is solved again at ``n``, and at ``3n/2`` for the error
+        estimate where eigenvalues are found).
     b_min : float, optional
         The smallest growth rate counted, ``k2/Delta^2`` (> 0: ``b = 0`` is the
         branch point of the stationary half-plane's kernels; a fold's exponentially
         slow real root lies below the default, and the record estimates it).
     modulus_bound : float, optional
-        ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min).
+        ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min; by
+        default ``1e4 max(1, fHPe^2)``, the large-``|b|`` analysis' bound, S11).
     progress : callable, optional
         ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
         estimate).

@@ -10,7 +10,7 @@ followed with steps refined until each changes it by less than ``pi/4``).  Where
 count is positive the roots are located by Beyn's contour integral on the smallest
 half-disc holding them all (:func:`beyn`) and each is confirmed by Newton's method on
 ``det M`` kept on the principal sheet (:func:`newton`); the error estimate is the
-change of the eigenvalues between ``n`` and ``n/2``.
+change of the eigenvalues between ``n`` and ``3n/2``.
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..io.results import Result
 from ..problem.validation import InputError, check_integer, check_positive
 
-__all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "count_roots",
-           "half_disc", "linearised", "newton", "stability_of"]
+__all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
+           "default_modulus_bound", "linearised", "newton", "scaled_matrix", "stability_of"]
 
 #: Unknowns per function of the stability analysis (its own discretisation).
 STABILITY_N = 12
@@ -32,8 +32,19 @@ STABILITY_N = 12
 #: thousand diffusion times across the half-width (a fold's exponentially slow real
 #: root, derivation S8, lies far below it).
 B_MIN = 1e-3
-#: The default modulus bound, ``k2/Delta^2`` (derivation S11).
+#: The default modulus bound at fHPe <= 1, ``k2/Delta^2`` (derivation S11); it grows
+#: like fHPe^2 beyond (:func:`default_modulus_bound`).
 MODULUS_BOUND = 1e4
+
+
+def default_modulus_bound(fhpe) -> float:
+    """The default modulus bound, ``1e4 max(1, fHPe^2)`` (units ``k2/Delta^2``): the
+    heat acts on the pressure through the thermal displacement, which falls like
+    ``|b|^(-1/2)``, so the loop that could make a mode grow weakens like
+    ``fHPe |b|^(-1/2)`` (derivation S11)."""
+    return MODULUS_BOUND * max(1.0, float(fhpe) ** 2)
+
+
 #: The largest change of the determinant's phase accepted between two samples.
 PHASE_STEP = np.pi / 4
 #: Below this step of the contour's parameter a sample interval is not refined further:
@@ -75,11 +86,13 @@ class StabilityResult(Result):
         ``(b_min, modulus_bound)`` in the units of the eigenvalues.
     count_method : str
     error_estimate : float or None
-        The largest change of an eigenvalue between ``n`` and ``n/2`` (relative to
-        ``max(|b|, 1)``), None where there is none.
+        The largest change of an eigenvalue between ``n`` and ``3n/2`` (``n/2`` above
+        ``n = 32``), relative to ``max(|b|, 1)``: an estimate of its error at ``n``;
+        None where there is none.
     fold : float
-        ``M(0)``'s smallest singular value over its largest: near 0 at a fold of the
-        load, where a real root leaves ``b = 0`` exponentially slowly (S8).
+        ``|det M(0)/det M_reg(0)|`` (the two differ in the heat partition's row, S7-S8):
+        0 at a fold of the load, where a real root leaves ``b = 0`` exponentially
+        slowly.
     slow_root : float or None
         The estimate (S8) of that real root, in the eigenvalues' units, where it lies
         on the principal sheet below ``b_min`` (not counted); None otherwise.
@@ -333,6 +346,9 @@ def newton(matrix, b0, *, steps=12, tol=1e-10, h=1e-6, floor=0.0):
     could not stay on the sheet).
     """
     b = complex(b0)
+    if b.real <= floor:
+        # A start off the sheet (an estimate left of the line): moved onto it.
+        b = complex(floor + max(abs(floor), 1e-12), b.imag)
     step = np.inf
     for _ in range(steps):
         e = h * max(abs(b), 1e-300)
@@ -367,24 +383,23 @@ def scaled_matrix(lin):
 
 
 def _fold(lin):
-    """``M(0)``'s smallest singular value over its largest, and the slow real root of
-    (S8): ``b* = 4 exp(-2 gamma_E) exp(2 det M_reg(0)/det M(0))`` where the ratio is
+    """``|det M(0)/det M_reg(0)|`` (0 at a fold of the load, S8) and the slow real root
+    of (S8), ``b* = 4 exp(-2 gamma_E) exp(2 det M_reg(0)/det M(0))``, where the ratio is
     negative (its sign decides whether the root is on the principal sheet)."""
     reg, _, row = lin.matrix(0, split=True)
     M0 = reg.copy()
     M0[lin.n + 3] = row
-    sv = np.linalg.svd(M0, compute_uv=False)
     s0, l0 = np.linalg.slogdet(M0)
     s1, l1 = np.linalg.slogdet(reg)
     if s0 == 0:
         return 0.0, None
+    if s1 == 0:
+        return np.inf, None
     ratio = float(np.real(s1 / s0)) * np.exp(l1 - l0)
     slow = None
-    if ratio < 0 and 2.0 * ratio > -700.0:
-        slow = 4.0 * np.exp(-2.0 * np.euler_gamma) * np.exp(2.0 * ratio)
-    elif ratio < 0:
-        slow = 0.0     # below the smallest double
-    return float(sv[-1] / sv[0]), slow
+    if ratio < 0:
+        slow = 4.0 * np.exp(-2.0 * np.euler_gamma) * np.exp(max(2.0 * ratio, -745.0))
+    return float(np.exp(l0 - l1)), slow
 
 
 def _check_region(b_min, modulus_bound):
@@ -396,7 +411,7 @@ def _check_region(b_min, modulus_bound):
     return b_min, modulus_bound
 
 
-def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
+def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=None,
                  rate_unit=None, progress=None) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
@@ -406,13 +421,14 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         ``solve_at(n)``: the steady solution at ``n`` unknowns per function.
     n : int
         The stability analysis' ``n`` (even, from 8 to 64); the error estimate compares
-        with ``n/2``.
+        with ``3n/2`` (``n/2`` above 32).
     b_min : float
         The smallest growth rate counted, ``k2/Delta^2`` (> 0: ``b = 0`` is the branch
         point of the stationary half-plane's kernels).
-    modulus_bound : float
+    modulus_bound : float, optional
         ``R``: the region is ``Re b >= b_min``, ``|b| <= R`` (derivation S11: no
-        eigenvalue beyond it).
+        eigenvalue beyond it); by default :func:`default_modulus_bound` of the contact's
+        fHPe.
     rate_unit : float, optional
         ``k2/Delta^2`` in 1/s: the eigenvalues and the region are reported in 1/s.
     progress : callable, optional
@@ -427,8 +443,12 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     if n % 2:
         raise InputError(f"n must be an even integer in [8, 64], got {n!r}",
                          parameters=("n",))
-    b_min, R = _check_region(b_min, modulus_bound)
+    b_min = check_positive("b_min", b_min)
+    if modulus_bound is not None:
+        _check_region(b_min, modulus_bound)
     lin = linearised(solve_at(n))
+    b_min, R = _check_region(b_min, default_modulus_bound(lin.parameters.fhpe)
+                             if modulus_bound is None else modulus_bound)
     scaled = scaled_matrix(lin)
     evaluations = [0]
     expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
@@ -446,8 +466,10 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     if N:
         found, reason = _locate(winding, counted, N, b_min, R)
         if found.size:
-            coarse = linearised(solve_at(n // 2))
-            estimate = max(abs(newton(coarse.matrix, b, floor=0.5 * b_min)[0] - b)
+            # The error at n: the change to a finer n (the change to n/2 overstates it
+            # many times: the eigenvalues converge faster than any fixed order).
+            other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
+            estimate = max(abs(newton(other.matrix, b, floor=0.5 * b_min)[0] - b)
                            / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
     if slow is not None and slow >= b_min:
