@@ -50,15 +50,16 @@ PHASE_STEP = np.pi / 4
 #: Below this step of the contour's parameter a sample interval is not refined further:
 #: a root on or against the contour, and the count is not certified.
 SMALLEST_STEP = 1e-9
-#: The line's parameter ``t`` (``b = b_min (1 + i sinh t)``): first samples this far apart.
-_LINE_STEP = 1.0
-#: The arc's first samples (of ``theta`` in ``[0, pi/2]``).
-_ARC_STEPS = 8
+#: The line's parameter ``t`` (``b = b_min (1 + i sinh t)``): first steps this long.
+_LINE_STEP = 4.0
+#: The arc's first steps (of ``theta`` in ``[0, pi/2]``).
+_ARC_STEPS = 2
 
 COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows times "
                 "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
-                "changing it by less than pi/4; roots located by Beyn's contour integral "
-                "and confirmed by Newton's method")
+                "confirmed by its midpoint (both halves change it by less than pi/4 and add "
+                "up to the whole); roots located by Beyn's contour integral and confirmed "
+                "by Newton's method")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -190,43 +191,33 @@ class Winding:
         return complex(self.b_min, self.b_min * np.sinh(t))
 
     def _follow(self, point, t0, t1, steps):
-        """The phase change of ``f`` along ``point(t)``, ``t`` from ``t0`` to ``t1``,
-        each sample step refined until it changes the phase by less than
-        :data:`PHASE_STEP` and no sample is a sharp minimum of ``|f|`` (``log|f|``
-        more than 2 below the chord of its neighbours, both its intervals then
-        halved); None (and why) where a step falls below :data:`SMALLEST_STEP`."""
-        ts = list(np.linspace(t0, t1, steps + 1))
-        vals = [self._at(point(t)) for t in ts]
+        """The phase change of ``f`` along ``point(t)``, ``t`` from ``t0`` to ``t1``.
 
-        def refine(j):
-            tm = 0.5 * (ts[j] + ts[j + 1])
-            ts.insert(j + 1, tm)
-            vals.insert(j + 1, self._at(point(tm)))
-
-        total, i = 0.0, 0
-        while i < len(ts) - 1:
-            (p0, _), (p1, _) = vals[i], vals[i + 1]
-            if p0 == 0 or p1 == 0:
-                return None, f"det M(b) = 0 on the contour (b = {point(ts[i + (p1 == 0)]):.6g})"
-            d = float(np.angle(p1 / p0))
-            if abs(d) > PHASE_STEP:
-                if abs(ts[i + 1] - ts[i]) < SMALLEST_STEP:
-                    return None, (f"a root on or against the contour near "
-                                  f"b = {point(ts[i]):.6g}")
-                refine(i)
+        Each step is accepted only when its midpoint confirms it: both halves change
+        the phase by less than :data:`PHASE_STEP`, their sum agrees with the whole
+        step's change (an alias of a whole turn cannot pass both), and the midpoint is
+        not a sharp minimum of ``|f|`` (``log|f|`` more than 2 below the chord: a root
+        close to the contour); otherwise both halves are examined in turn.  None (and
+        why) where a step falls below :data:`SMALLEST_STEP` or ``f`` vanishes."""
+        edges = np.linspace(t0, t1, steps + 1)
+        stack = [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:])][::-1]
+        total = 0.0
+        while stack:
+            a, b = stack.pop()
+            m = 0.5 * (a + b)
+            (pa, la), (pm, lm), (pb, lb) = (self._at(point(t)) for t in (a, m, b))
+            if pa == 0 or pm == 0 or pb == 0:
+                return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
+            first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
+            whole = float(np.angle(pb / pa))
+            agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
+            if (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP and agree
+                    and lm >= 0.5 * (la + lb) - 2.0):
+                total += first + second
                 continue
-            if i + 2 < len(ts):
-                (_, la), (_, lb), (_, lc) = vals[i:i + 3]
-                w = (ts[i + 1] - ts[i]) / (ts[i + 2] - ts[i])
-                if lb < (1.0 - w) * la + w * lc - 2.0:
-                    if abs(ts[i + 2] - ts[i]) < 2.0 * SMALLEST_STEP:
-                        return None, (f"a root on or against the contour near "
-                                      f"b = {point(ts[i + 1]):.6g}")
-                    refine(i + 1)
-                    refine(i)
-                    continue
-            total += d
-            i += 1
+            if abs(b - a) < SMALLEST_STEP:
+                return None, f"a root on or against the contour near b = {point(m):.6g}"
+            stack += [(m, b), (a, m)]
         return total, None
 
     def count(self, R):
