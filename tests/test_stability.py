@@ -38,10 +38,11 @@ def _steady(pe, K, fhpe, lam, n):
 
 
 def _residual(sol, z):
-    """The steady residual at fixed load and heat partition in the undifferentiated
-    form, at points moving with the contact: ``z = (phi, psi, D, sigma/Delta0,
-    Delta/Delta0)``, lengths in units of the solution's half-width ``Delta0``.  A
-    dilation by ``Delta/Delta0`` is the contact at ``Pe Delta/Delta0`` (section 16)."""
+    """The steady residual at fixed load and heat partition (stationary half-plane) or
+    fixed incoming temperatures (moving half-plane) in the undifferentiated form, at
+    points moving with the contact: ``z = (phi, psi, D, sigma/Delta0, Delta/Delta0)``,
+    lengths in units of the solution's half-width ``Delta0``.  A dilation by
+    ``Delta/Delta0`` is the contact at ``Pe Delta/Delta0`` (section 16)."""
     par, rep, n = sol.parameters, sol.representation, sol.n
     x, pd, pt = projections(n)
     s, aux = rep.projection_points(x)
@@ -49,6 +50,7 @@ def _residual(sol, z):
     wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
     phi, psi, D, sg, dl = z[:n], z[n:2 * n], z[2 * n], z[2 * n + 1], z[2 * n + 2]
     ce = par.cylinder_scale * dl
+    c2 = par.half_plane_scale * dl
 
     def moments(kernel, scale, log=False):
         return rep.integrate(kernel, s, scale=scale, logarithmic=log, aux=aux)
@@ -60,26 +62,33 @@ def _residual(sol, z):
         return 0.5 * (1 - eta) * m[0] @ phi - 0.5 * m[1] @ psi
     lb, _ = moments(lambda u: np.log(np.abs(u)), 1.0, True)
     w1 = moments(lambda u: cylinder_displacement(ce * u) / ce, ce)
-    w2 = moments(lambda u: -0.5 * np.abs(u), 1.0)
+    w2 = (moments(lambda u: cylinder_displacement(c2 * u) / abs(c2), max(1.0, abs(c2)))
+          if c2 else moments(lambda u: -0.5 * np.abs(u), 1.0))
     # Flamant's ln|Delta (s - r)| = ln|s - r| + ln(Delta/Delta0) in units of Delta0.
     disp = (lb @ phi / np.pi + np.log(dl) / np.pi * (wp @ phi)
             + 2 * F * dl * (d * q1(w1) + q2(w2)) + D
             - (sol.load_ratio / np.pi) * (sg + dl * s) ** 2)
     t1 = moments(lambda u: cylinder_temperature(ce * u), ce, True)
-    t2 = moments(lambda u: -np.log(np.abs(u)), 1.0, True)
+    t2 = (moments(lambda u: cylinder_temperature(c2 * u), max(1.0, abs(c2)), True) if c2
+          else moments(lambda u: -np.log(np.abs(u)), 1.0, True))
     out = np.concatenate([pd @ disp, [wp @ phi - 1.0], pt @ (rho * q1(t1) - q2(t2))])
-    # The stationary half-plane's temperature has a free constant: its first
-    # projection is replaced by the heat partition (heat into the half-plane).
-    out[n + 3] = -np.sum(pt[0]) * (0.5 * (1 - eta) * wp @ phi - 0.5 * wq @ psi)
+    if not c2:
+        # The stationary half-plane's temperature has a free constant: its first
+        # projection is replaced by the heat partition (heat into the half-plane).
+        out[n + 3] = -np.sum(pt[0]) * (0.5 * (1 - eta) * wp @ phi - 0.5 * wq @ psi)
     return out
 
 
-@pytest.mark.parametrize("pe, K, fhpe, lam, d", [(5.0, 10.0, 0.2, -1.0, 1.0),
-                                                 (2.0, 1.0, 0.5, 0.5, 0.0),
-                                                 (1.0, 3.0, 0.4, 0.0, 2.0)])
-def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d):
+@pytest.mark.parametrize("pe, K, fhpe, lam, d, R", [(5.0, 10.0, 0.2, -1.0, 1.0, 0.0),
+                                                    (2.0, 1.0, 0.5, 0.5, 0.0, 0.0),
+                                                    (1.0, 3.0, 0.4, 0.0, 2.0, 0.0),
+                                                    (2.0, 3.0, 0.3, 0.2, 1.0, 0.5),
+                                                    (2.0, 3.0, 0.3, 0.2, 0.5, -0.7)])
+def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d, R):
+    """Also for a moving half-plane (R = v2/v1 != 0: its steady kernels, the
+    temperature complete, no partition row; derivation S14)."""
     n = 10
-    sol = Model(pe, K, delta1_over_delta2=d, n=n).solve_at(n, fhpe, lam=lam)
+    sol = Model(pe, K, delta1_over_delta2=d, speed_ratio=R, n=n).solve_at(n, fhpe, lam=lam)
     M0 = linearised(sol).matrix(0)
     z0 = np.concatenate([sol.phi, sol.psi, [0.0, sol.sigma_over_delta, 1.0]])
     J = np.empty_like(M0)
@@ -167,6 +176,8 @@ def _known_problem(roots):
 class _Stand:
     """A stand-in for the linearised contact: the known problem, its last row taken
     for the temperature's (``n = size - 4``), the same at every ``n``."""
+
+    moving = False
 
     def __init__(self, roots):
         self._M = _known_problem(roots)
@@ -260,9 +271,6 @@ def test_the_contour_tells_its_progress(monkeypatch):
 
 
 def test_stability_refuses_what_it_does_not_model():
-    sol = Model(5.0, 10.0, speed_ratio=0.3, n=8).solve_at(8, 0.2, lam=0.0)
-    with pytest.raises(InputError, match="speed_ratio"):
-        linearised(sol)
     sol = Model(5.0, 10.0, beta_f=0.3, n=8).solve_at(8, 0.2, lam=0.0)
     with pytest.raises(InputError, match="beta_f"):
         linearised(sol)
@@ -527,8 +535,7 @@ def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
     def not_computed(*args, **kw):
         raise AssertionError("the map was computed")
     monkeypatch.setattr(maps, "compute_map", not_computed)
-    for kw, words in ((dict(speed_ratio=0.5), "speed_ratio must be 0"),
-                      (dict(beta_f=0.1), "beta_f must be 0"),
+    for kw, words in ((dict(beta_f=0.1), "beta_f must be 0"),
                       (dict(method="galerkin"), "edge-graded method")):
         with pytest.raises(InputError, match=words):
             tc.parameter_map(tc.Axis("fhpe", 0.2, 0.3, 2), tc.Axis("pe", 1.0, 1.2, 2),
@@ -719,9 +726,9 @@ def test_stability_flags_are_booleans(monkeypatch):
 
 def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
                                                                         monkeypatch):
-    """``solve --stability --method paper`` (and a moving half-plane, the Dundurs term,
-    a conductance): one line, exit 2, nothing solved (it solved for 17 s, then printed a
-    warning and an error)."""
+    """``solve --stability --method paper`` (and the Dundurs term, a conductance): one
+    line, exit 2, nothing solved (it solved for 17 s, then printed a warning and an
+    error)."""
     import thermocontact.api as api
     from thermocontact.cli import main
 
@@ -731,7 +738,6 @@ def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
     base = ["solve", "--pe", "1.5", "--fhpe", "1.5", "--K2-over-K1", "1", "--lam", "1",
             "--stability"]
     for extra, words in ((["--method", "paper"], "edge-graded --method"),
-                         (["--speed-ratio", "0.5"], "--speed-ratio must be 0"),
                          (["--beta-f", "0.2"], "--beta-f must be 0"),
                          (["--conductance", "1:0"], "conductance")):
         assert main(base + extra) == 2
@@ -739,3 +745,19 @@ def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
         err = captured.err.strip().splitlines()
         assert len(err) == 1 and words in err[0], err
         assert captured.out == ""
+
+
+def test_the_moving_half_plane_reduces_to_the_stationary_one(growing_pair):
+    """Rolling-sliding (derivation S14): at R = +-1e-12 the pair past the fold is the
+    stationary half-plane's to 1e-10, although the steady offset jumps there (D14c) and
+    the half-plane's kernels are a moving body's, without the stationary one's constants
+    and partition row (the same eigenvalues: the constants are a rigid displacement and
+    a rotation, absorbed by D~ and sigma~)."""
+    _, _, res = growing_pair
+    root = res.eigenvalues[0]
+    for R in (1e-12, -1e-12):
+        lin = linearised(Model(1.5, 1.0, speed_ratio=R).solve_at(12, 1.5, lam=1.0,
+                                                                 check_validity=False))
+        assert lin.moving
+        b, step = newton(lin.matrix, root, floor=1e-4)
+        assert step < 1e-10 and abs(b - root) < 1e-10 * abs(root)

@@ -818,7 +818,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
         # With the bulk temperatures the branch's partition is the one they imply; the
         # perturbation leaves the far field unchanged, so the steady state is the same.
         kw["lam"] = branch.lam
-        check_modelled(dundurs=bool(kw.get("beta_f")), speed_ratio=kw.get("speed_ratio", 0.0))
+        check_modelled(dundurs=bool(kw.get("beta_f")))
         rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
         method = DEFAULT_METHOD
     elif isinstance(solution, ContactSolution):
@@ -827,7 +827,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
                   delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
                   beta_f=p.beta_f, lam=solution.lam)
         method = solution.method
-        check_modelled(speed_ratio=p.speed_ratio, beta_f=p.beta_f, method=method,
+        check_modelled(beta_f=p.beta_f, method=method,
                        conductance=solution.conductance)
     else:
         raise InputError("solution must be a steady single patch of solve() or contact() "

@@ -43,9 +43,8 @@ import numpy as np
 from ..numerics.cache import BoundedCache
 from ..numerics.moment_engine import graded_map
 from ..numerics.tabulated_moments import kernel_nodes, kernel_table
-from ..physics.green_functions import (cylinder_displacement, cylinder_slope,
-                                       cylinder_temperature,
-                                       cylinder_temperature_gradient_regular)
+from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
+                                       cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
                                                  transient_temperature,
                                                  transient_temperature_gradient_regular)
@@ -56,11 +55,10 @@ from .representations import EdgeGraded
 __all__ = ["LinearisedContact", "check_modelled", "logarithm_constant", "projections"]
 
 
-def check_modelled(*, speed_ratio=0.0, beta_f=0.0, method="graded", conductance=None,
-                   dundurs=None) -> None:
+def check_modelled(*, beta_f=0.0, method="graded", conductance=None, dundurs=None) -> None:
     """Refuse, in one line naming the parameter, what the linearised contact does not
-    model (before any work): a moving half-plane, the Dundurs term, a method other
-    than an edge-graded one, an interface conductance.
+    model (before any work): the Dundurs term, a method other than an edge-graded one,
+    an interface conductance.
 
     ``dundurs`` (a physical contact's flag, True by default there) counts as a Dundurs
     term where it is not False.
@@ -71,9 +69,6 @@ def check_modelled(*, speed_ratio=0.0, beta_f=0.0, method="graded", conductance=
     """
     from .methods import METHODS
 
-    if speed_ratio:
-        raise InputError("stability: speed_ratio must be 0 (the stationary half-plane); "
-                         f"got {speed_ratio!r}", parameters=("speed_ratio",))
     if beta_f:
         raise InputError(f"stability: beta_f must be 0, got {beta_f!r}",
                          parameters=("beta_f",))
@@ -129,8 +124,7 @@ class LinearisedContact:
 
     def __post_init__(self):
         par = self.parameters
-        check_modelled(speed_ratio=par.speed_ratio if par.half_plane_scale else 0.0,
-                       beta_f=par.beta_f if par.free_term else 0.0,
+        check_modelled(beta_f=par.beta_f if par.free_term else 0.0,
                        method="graded" if isinstance(self.representation, EdgeGraded)
                        else type(self.representation).__name__)
 
@@ -142,6 +136,13 @@ class LinearisedContact:
     def size(self) -> int:
         return 2 * self.n + 3
 
+    @property
+    def moving(self) -> bool:
+        """Whether the half-plane moves through the contact (``c2 = R Pe != 0``): its
+        kernels are then those of a moving body, ``b = 0`` is not a branch point and
+        its temperature has no free constant (derivation S14)."""
+        return self.parameters.half_plane_scale != 0.0
+
     @cached_property
     def _fixed(self):
         """What does not depend on ``b``: the points, the kernel table, Flamant's
@@ -151,31 +152,41 @@ class LinearisedContact:
         s, aux = rep.projection_points(x)
         table = kernel_table(aux, n, rep.to_cos, graded_map(rep.alpha))
         u = kernel_nodes()
-        c = par.cylinder_scale
+        c, c2 = par.cylinder_scale, par.half_plane_scale
+        # u S_0 and u (G_0 - 1/u) of each body; the stationary half-plane's G_0 is 1/u.
         steady = np.stack([np.log(np.abs(u)),
-                           u * cylinder_slope(c * u), 0.5 * np.abs(u),
-                           u * cylinder_temperature_gradient_regular(u, c)], axis=1)
+                           u * moving_slope(u, c),
+                           u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
+                           u * cylinder_temperature_gradient_regular(u, c),
+                           u * cylinder_temperature_gradient_regular(u, c2) if c2
+                           else np.zeros_like(u)], axis=1)
         mom = table.moments(steady)
         return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
-                    uS0=(mom[..., 1], mom[..., 2]), uG0=(mom[..., 3], None))
+                    uS0=(mom[..., 1], mom[..., 2]),
+                    uG0=(mom[..., 3], mom[..., 4] if c2 else None))
 
     def kernel_values(self, b):
         """The kernels that depend on ``b`` at the table's nodes, shape (nodes, 8):
         per body (cylinder, half-plane) ``W``, ``T``, ``S_b - S_0``, ``G_b - G_0``
-        (``G`` less ``1/u``), each body's rate ``b k2/k_i``; the half-plane's
-        displacement and temperature less their diverging constants ``2/(pi sqrt b)``
-        and ``l(b)`` (T11, T6).  At ``b = 0`` the steady kernels (the differences 0)."""
-        u, c = self._fixed["u"], self.parameters.cylinder_scale
+        (``G`` less ``1/u``), each body's rate ``b k2/k_i``; the stationary
+        half-plane's displacement and temperature less their diverging constants
+        ``2/(pi sqrt b)`` and ``l(b)`` (T11, T6).  At ``b = 0`` the steady kernels
+        (the differences 0)."""
+        par = self.parameters
+        u, c, c2 = self._fixed["u"], par.cylinder_scale, par.half_plane_scale
         if b == 0:
             out = np.zeros((u.size, 8))
-            out[:, 0] = cylinder_displacement(c * u) / c
-            out[:, 1] = cylinder_temperature(c * u)
-            out[:, 4] = -0.5 * np.abs(u)
-            out[:, 5] = -np.log(np.abs(u))
+            for k, scale in ((0, c), (4, c2)):
+                if scale:
+                    out[:, k] = cylinder_displacement(scale * u) / abs(scale)
+                    out[:, k + 1] = cylinder_temperature(scale * u)
+            if not c2:
+                out[:, 4] = -0.5 * np.abs(u)
+                out[:, 5] = -np.log(np.abs(u))
             return out
         b = complex(b)
-        return np.concatenate([_body_values(c, b / self.parameters.k2_over_k1),
-                               _body_values(0.0, b)], axis=1)
+        return np.concatenate([_body_values(c, b / par.k2_over_k1), _body_values(c2, b)],
+                              axis=1)
 
     def matrix(self, b, *, split=False, values=None):
         """``M(b)``, complex, shape ``(2n + 3, 2n + 3)`` (eqs. S3-S8).
@@ -204,7 +215,7 @@ class LinearisedContact:
         if values is None:
             values = self.kernel_values(b)
         bounded, singular = fixed["table"].moments(values)
-        ell = 0.0 if b == 0 else logarithm_constant(b)
+        ell = 0.0 if b == 0 or self.moving else logarithm_constant(b)
         eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
         phi0, psi0 = self.phi, self.psi
         L0, sig0 = self.load_ratio, self.sigma_over_delta
@@ -267,13 +278,16 @@ class LinearisedContact:
         rows[:n + 2] = pd @ disp
         rows[n + 2, :n] = rep.pressure_rule.weights
         rows[n + 3:] = pt @ temp
-        # -l(b) int q2~ dr, a constant: on the temperature's first projection only.
+        # -l(b) int q2~ dr, a constant: on the temperature's first projection only (the
+        # stationary half-plane's; a moving one's temperature has no free constant).
         row = -np.sum(pt[0]) * np.concatenate([share[1][0] * wp, share[1][1] * wq, np.zeros(3)])
+        if self.moving:
+            row = np.zeros_like(row)
         if split:
             return rows, ell, row
-        if b == 0:
+        if b == 0 and not self.moving:
             rows[n + 3] = row
-        else:
+        elif b != 0:
             rows[n + 3] += ell * row
         return rows
 
@@ -298,7 +312,7 @@ def _body_values(c, b):
             T = T - logarithm_constant(b)
             S = S - 0.5 * np.sign(u)
         else:
-            S = S - cylinder_slope(c * u)
+            S = S - moving_slope(u, c)
             dG = dG - cylinder_temperature_gradient_regular(u, c)
         out = np.stack([W, T, S, dG], axis=1).astype(complex)
         out.setflags(write=False)

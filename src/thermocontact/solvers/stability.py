@@ -90,10 +90,10 @@ class StabilityResult(Result):
         The largest change of an eigenvalue between ``n`` and ``3n/2`` (``n/2`` above
         ``n = 32``), relative to ``max(|b|, 1)``: an estimate of its error at ``n``;
         None where there is none.
-    fold : float
+    fold : float or None
         ``|det M(0)/det M_reg(0)|`` (the two differ in the heat partition's row, S7-S8):
         0 at a fold of the load, where a real root leaves ``b = 0`` exponentially
-        slowly.
+        slowly; None for a moving half-plane (``b = 0`` is then no branch point).
     slow_root : float or None
         The estimate (S8) of that real root, in the eigenvalues' units, where it lies
         on the principal sheet below ``b_min`` (not counted); None otherwise.
@@ -111,7 +111,7 @@ class StabilityResult(Result):
     region: tuple
     count_method: str
     error_estimate: float | None
-    fold: float
+    fold: float | None
     slow_root: float | None
     evaluations: int
     n: int
@@ -131,7 +131,8 @@ class StabilityResult(Result):
                 "region": {"b_min": self.region[0], "modulus_bound": self.region[1]},
                 "count_method": self.count_method,
                 "error_estimate": None if est is None else float(est),
-                "fold": float(self.fold), "slow_root": self.slow_root,
+                "fold": None if self.fold is None else float(self.fold),
+                "slow_root": self.slow_root,
                 "evaluations": int(self.evaluations), "n": self.n, "units": self.units}
 
 
@@ -376,7 +377,10 @@ def scaled_matrix(lin):
 def _fold(lin):
     """``|det M(0)/det M_reg(0)|`` (0 at a fold of the load, S8) and the slow real root
     of (S8), ``b* = 4 exp(-2 gamma_E) exp(2 det M_reg(0)/det M(0))``, where the ratio is
-    negative (its sign decides whether the root is on the principal sheet)."""
+    negative (its sign decides whether the root is on the principal sheet); None and
+    None for a moving half-plane, whose kernels are analytic at ``b = 0``."""
+    if getattr(lin, "moving", False):
+        return None, None
     reg, _, row = lin.matrix(0, split=True)
     M0 = reg.copy()
     M0[lin.n + 3] = row

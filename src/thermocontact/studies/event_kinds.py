@@ -97,7 +97,7 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, **region):
 
 def check_map_stability(spec) -> None:
     """Refuse, before the map is computed, a map whose contacts the stability analysis
-    does not model (a moving half-plane, the Dundurs term, a Chebyshev method): the
+    does not model (the Dundurs term, a Chebyshev method): the
     linearised contact's own refusal at the grid's corners (every parameter's range is
     an interval), each solved at n = 8 and lam = 0.
 
