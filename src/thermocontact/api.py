@@ -798,7 +798,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
     Examples
     --------
     >>> import thermocontact as tc
-    >>> res = tc.stability(tc.solve(5, 0.2, 10, lam=-1), n=8)
+    >>> res = tc.stability(tc.solve(2, 0.3, 1, lam=-1), n=8)
     >>> res.stable, res.unstable_modes
     (True, 0)
     """
