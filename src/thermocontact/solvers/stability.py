@@ -347,7 +347,12 @@ def newton(matrix, b0, *, steps=12, tol=1e-10, h=1e-6, floor=0.0):
         e = min(e, 0.5 * (b.real - floor)) if b.real - e <= floor else e
         M = matrix(b)
         dM = (matrix(b + e) - matrix(b - e)) / (2.0 * e)
-        step = 1.0 / np.trace(np.linalg.solve(M, dM))
+        try:
+            step = 1.0 / np.trace(np.linalg.solve(M, dM))
+        except np.linalg.LinAlgError:
+            return b, 0.0       # M singular to rounding: b is a root
+        if not np.isfinite(step):
+            return b, 0.0
         for _ in range(60):
             if (b - step).real > floor:
                 break
