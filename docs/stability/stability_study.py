@@ -3,7 +3,7 @@
 Part 1, the cases: each case (a point of the paper's Figs. 2-5, a ray past a fold, a
 crossing path of docs/zones.md approaching its event) analysed by
 ``thermocontact.stability`` with its defaults (n = 12; eigenvalues with
-Re b >= 1e-3 k2/Delta^2 and |b| <= 1e4 counted by the argument principle, located and
+Re b >= 1e-3 k2/Delta^2 and |b| <= 1e6 counted by the argument principle, located and
 confirmed by Newton's method), and at n = 16 for the count's convergence.  Part 2, the
 maps: ``parameter_map(..., stability=True)`` over fHPe and Pe for several K2/K1 and
 lam, each point valid and stable, valid and unstable, or invalid (the three colours of
@@ -60,8 +60,8 @@ for f in (0.3, 0.5, 0.6, 0.634):
 #: The maps: (name, K2/K1, lam), each over fHPe and Pe.
 MAPS = [("K=10 lam=1", 10.0, 1.0), ("K=10 lam=-1", 10.0, -1.0),
         ("K=1 lam=1", 1.0, 1.0), ("K=1 lam=-1", 1.0, -1.0)]
-MAP_FHPE = (0.05, 2.0, 7)
-MAP_PE = (0.3, 10.0, 7)
+MAP_FHPE = (0.05, 2.0, 6)
+MAP_PE = (0.3, 10.0, 6)
 
 
 def case(pe, K, fhpe, lam, d):

@@ -748,13 +748,13 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                    speed=_quantity("speed", speed, "m/s"), dundurs=bool(dundurs))
 
 
-def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
+def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
     """Every growing mode of a steady single patch, counted: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
     perturbation growing as ``exp(b t)`` (docs/derivation.md, section 18):
     ``M(b) c = 0``.  The eigenvalues with ``Re b >= b_min`` and ``|b| <= modulus_bound``
-    (beyond which the large-``|b|`` analysis, S11, finds none) are counted by the
+    (the region the model holds in, S11) are counted by the
     argument principle on the boundary of that region, located by Beyn's contour
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
@@ -776,8 +776,9 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None, progress=None):
         branch point of the stationary half-plane's kernels; a fold's exponentially
         slow real root lies below the default, and the record estimates it).
     modulus_bound : float, optional
-        ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min; by
-        default ``1e4 max(1, fHPe^2)``, the large-``|b|`` analysis' bound, S11).
+        ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min): a
+        mode beyond it has a thermal layer thinner than ``Delta/sqrt(modulus_bound)``
+        (``Delta/1000`` by default), where the model no longer holds (S11).
     progress : callable, optional
         ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
         estimate).

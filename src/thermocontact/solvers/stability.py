@@ -24,7 +24,7 @@ from ..io.results import Result
 from ..problem.validation import InputError, check_integer, check_positive
 
 __all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
-           "default_modulus_bound", "linearised", "newton", "scaled_matrix", "stability_of"]
+           "linearised", "newton", "scaled_matrix", "stability_of"]
 
 #: Unknowns per function of the stability analysis (its own discretisation).
 STABILITY_N = 12
@@ -32,17 +32,13 @@ STABILITY_N = 12
 #: thousand diffusion times across the half-width (a fold's exponentially slow real
 #: root, derivation S8, lies far below it).
 B_MIN = 1e-3
-#: The default modulus bound at fHPe <= 1, ``k2/Delta^2`` (derivation S11); it grows
-#: like fHPe^2 beyond (:func:`default_modulus_bound`).
-MODULUS_BOUND = 1e4
-
-
-def default_modulus_bound(fhpe) -> float:
-    """The default modulus bound, ``1e4 max(1, fHPe^2)`` (units ``k2/Delta^2``): the
-    heat acts on the pressure through the thermal displacement, which falls like
-    ``|b|^(-1/2)``, so the loop that could make a mode grow weakens like
-    ``fHPe |b|^(-1/2)`` (derivation S11)."""
-    return MODULUS_BOUND * max(1.0, float(fhpe) ** 2)
+#: The default modulus bound, ``k2/Delta^2`` (derivation S11): a mode growing faster has
+#: a thermal layer thinner than ``Delta/1000``, where the surfaces' roughness and the
+#: interface's conductance, not this model, decide.
+MODULUS_BOUND = 1e6
+#: An eigenvalue that changes by more than this (relative) from n to 3n/2 is said to be
+#: unresolved in the record's reason.
+UNRESOLVED = 0.1
 
 
 #: The largest change of the determinant's phase accepted between two samples.
@@ -80,7 +76,8 @@ class StabilityResult(Result):
         True when the count is 0, False when it is positive, None where it could not
         be certified (``reason``).
     reason : str or None
-        Why ``stable`` is None, or what was not located; None otherwise.
+        Why ``stable`` is None, what was not located, or that an eigenvalue is not
+        resolved at ``n`` (its error estimate above 0.1); None otherwise.
     growth_rate : float or None
         The largest real part of an eigenvalue located, None where none.
     region : tuple
@@ -411,7 +408,7 @@ def _check_region(b_min, modulus_bound):
     return b_min, modulus_bound
 
 
-def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=None,
+def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
                  rate_unit=None, progress=None) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
@@ -425,10 +422,9 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=None,
     b_min : float
         The smallest growth rate counted, ``k2/Delta^2`` (> 0: ``b = 0`` is the branch
         point of the stationary half-plane's kernels).
-    modulus_bound : float, optional
-        ``R``: the region is ``Re b >= b_min``, ``|b| <= R`` (derivation S11: no
-        eigenvalue beyond it); by default :func:`default_modulus_bound` of the contact's
-        fHPe.
+    modulus_bound : float
+        ``R``: the region is ``Re b >= b_min``, ``|b| <= R`` (> 10 b_min; derivation
+        S11: a mode beyond it has a thermal layer thinner than ``Delta/sqrt(R)``).
     rate_unit : float, optional
         ``k2/Delta^2`` in 1/s: the eigenvalues and the region are reported in 1/s.
     progress : callable, optional
@@ -443,12 +439,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=None,
     if n % 2:
         raise InputError(f"n must be an even integer in [8, 64], got {n!r}",
                          parameters=("n",))
-    b_min = check_positive("b_min", b_min)
-    if modulus_bound is not None:
-        _check_region(b_min, modulus_bound)
+    b_min, R = _check_region(b_min, modulus_bound)
     lin = linearised(solve_at(n))
-    b_min, R = _check_region(b_min, default_modulus_bound(lin.parameters.fhpe)
-                             if modulus_bound is None else modulus_bound)
     scaled = scaled_matrix(lin)
     evaluations = [0]
     expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
@@ -483,6 +475,10 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=None,
     full = np.array(sorted(full, key=lambda b: (-b.real, -b.imag)), dtype=complex)
     if N is not None and len(full) != N:
         reason = reason or f"{len(full)} of the {N} eigenvalues counted were located"
+    if estimate is not None and estimate > UNRESOLVED:
+        reason = ((reason + "; ") if reason else "") + (
+            f"an eigenvalue changes by {estimate:.2g} of itself from n = {n} to a finer n: "
+            "not resolved at this n (the count is this n's)")
     units, region = "k2/Delta^2", (b_min, R)
     if rate_unit is not None:
         full = full * rate_unit
