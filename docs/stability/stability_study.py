@@ -60,8 +60,8 @@ for f in (0.3, 0.5, 0.6, 0.634):
 #: The maps: (name, K2/K1, lam), each over fHPe and Pe.
 MAPS = [("K=10 lam=1", 10.0, 1.0), ("K=10 lam=-1", 10.0, -1.0),
         ("K=1 lam=1", 1.0, 1.0), ("K=1 lam=-1", 1.0, -1.0)]
-MAP_FHPE = (0.05, 2.0, 6)
-MAP_PE = (0.3, 10.0, 6)
+MAP_FHPE = (0.05, 1.0, 8)
+MAP_PE = (0.3, 10.0, 8)
 
 
 def case(pe, K, fhpe, lam, d):

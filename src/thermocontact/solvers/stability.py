@@ -494,20 +494,14 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
 
 
 def _locate(winding, matrix, N, b_min, R):
-    """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair): on the
-    smallest half-disc ``|b| <= R_j`` (``R_j = 4^j``) holding all ``N`` by the same
-    count, Beyn's method on the samples the count took (trapezoidal weights), then on
-    a Gauss-Legendre rule of that boundary where Newton's method does not confirm all
-    of them from the first estimates; Newton's method from each estimate, kept on the
-    sheet."""
-    radius = R
-    for j in range(1, 40):
-        r = 4.0 ** j
-        if r >= R:
-            break
-        if r > 10.0 * b_min and winding.count(r)[0] == N:
-            radius = r
-            break
+    """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
+    real (the region is symmetric about the real axis), where ``det M`` changes sign
+    between ``b_min`` and ``R``: Brent's method in ``ln b``.  Otherwise the smallest
+    half-disc ``|b| <= R_j`` (``R_j = 4^j``: ``j`` doubled from 1, then bisected, the
+    count growing with the radius) holding all ``N`` by the same count; Beyn's method on
+    the samples the count took (trapezoidal weights), then on a Gauss-Legendre rule of
+    that boundary where Newton's method does not confirm all of them from the first
+    estimates.  Newton's method confirms each, kept on the sheet."""
     roots = []
 
     def confirm(estimates):
@@ -527,6 +521,38 @@ def _locate(winding, matrix, N, b_min, R):
 
     def located():
         return sum(1 if q.imag == 0 else 2 for q in roots)
+
+    if N == 1:
+        from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+        def real_det(x):
+            # det M at b = e^x, real; its size-th root keeps Brent's steps in range.
+            M = matrix(complex(np.exp(x), 0.0))
+            sign, logdet = np.linalg.slogdet(M)
+            return float(np.real(sign)) * np.exp(logdet / M.shape[0])
+        try:
+            confirm([complex(np.exp(brentq(real_det, np.log(b_min), np.log(R),
+                                           xtol=1e-7)), 0.0)])
+        except ValueError:
+            pass     # no sign change seen: Beyn's method below
+        if located() == N:
+            return np.array(roots, dtype=complex), None
+    top = int(np.ceil(np.log(R) / np.log(4.0)))
+
+    def holds(j):
+        r = 4.0 ** j
+        return r >= R or (r > 10.0 * b_min and winding.count(r)[0] == N)
+    # Doubling j from 1 (most roots lie at small |b|), then bisection in the bracket.
+    low, high = 0, 1
+    while high < top and not holds(high):
+        low, high = high, min(2 * high, top)
+    while high - low > 1:
+        mid = (low + high) // 2
+        if holds(mid):
+            high = mid
+        else:
+            low = mid
+    radius = min(4.0 ** high, R)
     stored = winding.matrices
     confirm(beyn(lambda b: stored[b], winding.contour(radius), rank=N, probes=N + 4)[0])
     if located() < N:
