@@ -3,9 +3,11 @@
 Run: ``python bench/bench_stability.py [--map N]``.  A benchmark, not a test: it prints
 tables and asserts nothing.  For each case the steady solution is solved first (not
 timed), then ``thermocontact.stability`` with its defaults (n = 12, Re b >= 1e-3,
-|b| <= 1e4) is timed twice: cold (the per-process caches cleared: the kernel table of
-n = 12 and n = 6 built, every kernel evaluated) and warm (the table and the half-plane's
-kernel values kept, as for the next point of a map or path); wall and CPU time, and the
+|b| <= 1e6) is timed three times: cold (the per-process caches cleared: the kernel
+table built, every kernel evaluated), a neighbour (the point at 1.05 Pe next: the table
+and the half-plane's kernel values kept, the cylinder's evaluated anew, as for the next
+point of a map or path) and warm (the same point again: every kernel value kept, the
+floor: the products, the determinants, Newton's method); wall and CPU time, and the
 evaluations of M(b).  Then an N x N map (default 4 x 4) over fHPe and Pe with and
 without ``stability=True``, in this process, and the ratio of their times.  BLAS is
 limited to one thread (the products are small; threads only compete on a shared
@@ -35,16 +37,18 @@ def timed(func):
 
 
 def one_point():
-    print(f"{'case':44s} {'verdict':>8s} {'modes':>5s} {'evals':>5s} "
-          f"{'cold wall':>9s} {'cold cpu':>8s} {'warm wall':>9s} {'warm cpu':>8s}")
+    print(f"{'case':44s} {'verdict':>7s} {'modes':>5s} {'evals':>5s} {'cold wall/cpu':>14s} "
+          f"{'neighbour wall/cpu':>18s} {'warm wall/cpu':>14s}")
     for name, kw in CASES.items():
         sol = tc.solve(**kw)
+        near = tc.solve(**{**kw, "pe": 1.05 * kw["pe"]})
         tc.clear_caches()
         res, w_cold, c_cold = timed(lambda: tc.stability(sol))
+        _, w_near, c_near = timed(lambda: tc.stability(near))
         _, w_warm, c_warm = timed(lambda: tc.stability(sol))
-        print(f"{name:44s} {str(res.stable):>8s} {res.unstable_modes!s:>5s} "
-              f"{res.evaluations:5d} {w_cold:8.2f}s {c_cold:7.2f}s {w_warm:8.2f}s "
-              f"{c_warm:7.2f}s")
+        print(f"{name:44s} {str(res.stable):>7s} {res.unstable_modes!s:>5s} "
+              f"{res.evaluations:5d} {w_cold:6.2f}s/{c_cold:5.2f}s "
+              f"{w_near:10.2f}s/{c_near:5.2f}s {w_warm:6.2f}s/{c_warm:5.2f}s")
 
 
 def a_map(size):

@@ -812,3 +812,16 @@ def test_a_valid_contact_with_a_fast_mode_at_its_edges():
     change = np.abs(b[:-1] - b[-1]) / b[-1]
     assert change[1] > 1e-2 and change[-1] < 2e-4 and change[-2] < 2e-3
     assert all(r["imag"] == 0.0 and r["smallest_singular_value"] < 1e-17 for r in levels.values())
+
+
+def test_the_api_states_the_solvers_defaults():
+    """``stability``'s defaults, shown in its signature, are the solver's constants."""
+    import inspect
+
+    import thermocontact as tc
+    from thermocontact.solvers import stability as st
+
+    params = inspect.signature(tc.stability).parameters
+    assert params["b_min"].default == st.B_MIN
+    assert params["modulus_bound"].default == st.MODULUS_BOUND
+    assert params["n"].default == st.STABILITY_N

@@ -4,13 +4,14 @@ The contact linearised about a steady solution at fixed load is ``M(b) c = 0``
 (:class:`~thermocontact.discretisation.linearised.LinearisedContact`, derivation
 section 18), a nonlinear eigenproblem in the rate ``b`` (units ``k2/Delta^2``).  The
 verdict is a count: the roots of ``det M`` in the region ``Re b >= b_min``,
-``|b| <= R`` (``R`` the modulus bound of the large-``|b|`` analysis, eq. S11) by the
-argument principle on its boundary (:func:`count_roots`: the phase of the determinant
-followed with steps refined until each changes it by less than ``pi/4``).  Where the
-count is positive the roots are located by Beyn's contour integral on the smallest
-half-disc holding them all (:func:`beyn`) and each is confirmed by Newton's method on
-``det M`` kept on the principal sheet (:func:`newton`); the error estimate is the
-change of the eigenvalues between ``n`` and ``3n/2``.
+``|b| <= R`` (``R`` the modulus bound, the model's range, eq. S11) by the argument
+principle on its boundary (:class:`Winding`: the phase of the determinant followed
+with steps each confirmed by its midpoint, eq. S12).  Where the count is positive the
+roots are located (a single one, real, by Brent's method on the real axis; several by
+Beyn's contour integral on the smallest half-disc holding them all, :func:`beyn`) and
+each is confirmed by Newton's method on ``det M`` kept on the principal sheet
+(:func:`newton`, eq. S13); the error estimate is the change of the eigenvalues between
+``n`` and ``3n/2``.
 """
 
 from __future__ import annotations
@@ -39,8 +40,6 @@ MODULUS_BOUND = 1e6
 #: An eigenvalue that changes by more than this (relative) from n to 3n/2 is said to be
 #: unresolved in the record's reason.
 UNRESOLVED = 0.1
-
-
 #: The largest change of the determinant's phase accepted between two samples.
 PHASE_STEP = np.pi / 4
 #: Below this step of the contour's parameter a sample interval is not refined further:
@@ -54,8 +53,8 @@ _ARC_STEPS = 2
 COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows times "
                 "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
                 "confirmed by its midpoint (both halves change it by less than pi/4 and add "
-                "up to the whole); roots located by Beyn's contour integral and confirmed "
-                "by Newton's method")
+                "up to the whole); roots located by Brent's method (one, real) or Beyn's "
+                "contour integral and confirmed by Newton's method")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
