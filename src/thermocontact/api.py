@@ -758,15 +758,15 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
     argument principle on the boundary of that region, located by Beyn's contour
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
-    stationary half-plane (``speed_ratio = 0``), no Dundurs term and perfect thermal
-    contact only.
+    stationary or a moving half-plane, with or without the Dundurs term; perfect
+    thermal contact only.
 
     Parameters
     ----------
     solution : ContactSolution or PhysicalContact
         From :func:`solve` (edge-graded methods; eigenvalues in units of
         ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
-        1/s, ``contact(..., dundurs=False)``).
+        1/s).
     n : int, optional
         Unknowns per function of the analysis (default 12, even, from 8 to 64; the
         steady solution is solved again at ``n``, and at ``3n/2`` for the error
@@ -792,9 +792,8 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
     Raises
     ------
     InputError
-        A solution of neither kind, a moving half-plane, a Dundurs term, an interface
-        conductance, a Chebyshev method, a physical contact without a branch, or a
-        region out of range.
+        A solution of neither kind, an interface conductance, a Chebyshev method, a
+        physical contact without a branch, or a region out of range.
 
     Examples
     --------
@@ -819,7 +818,6 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
         # With the bulk temperatures the branch's partition is the one they imply; the
         # perturbation leaves the far field unchanged, so the steady state is the same.
         kw["lam"] = branch.lam
-        check_modelled(dundurs=bool(kw.get("beta_f")))
         rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
         method = DEFAULT_METHOD
     elif isinstance(solution, ContactSolution):
@@ -828,8 +826,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
                   delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
                   beta_f=p.beta_f, lam=solution.lam)
         method = solution.method
-        check_modelled(beta_f=p.beta_f, method=method,
-                       conductance=solution.conductance)
+        check_modelled(method=method, conductance=solution.conductance)
     else:
         raise InputError("solution must be a steady single patch of solve() or contact() "
                          f"(a contact set's stability is not computed), got "

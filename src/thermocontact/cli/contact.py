@@ -143,7 +143,7 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--stability", is_flag=True,
               help="Also every growing mode of the primary branch linearised at fixed load, "
-                   "counted, in 1/s (derivation section 18; with --no-dundurs; seconds).")
+                   "counted, in 1/s (derivation section 18; seconds).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
@@ -198,10 +198,6 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         raise InputError("--stability analyses the single patch with perfect thermal "
                          "contact: give neither --zones nor --conductance",
                          parameters=("stability",))
-    if stability:
-        from ..discretisation.linearised import check_modelled
-
-        check_modelled(dundurs=dundurs is not False)
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   speed2=speed2, dundurs=dundurs is not False, materials=materials_file,
                   tol=tol)

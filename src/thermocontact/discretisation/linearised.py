@@ -55,13 +55,10 @@ from .representations import EdgeGraded
 __all__ = ["LinearisedContact", "check_modelled", "logarithm_constant", "projections"]
 
 
-def check_modelled(*, beta_f=0.0, method="graded", conductance=None, dundurs=None) -> None:
+def check_modelled(*, method="graded", conductance=None) -> None:
     """Refuse, in one line naming the parameter, what the linearised contact does not
-    model (before any work): the Dundurs term, a method other than an edge-graded one,
-    an interface conductance.
-
-    ``dundurs`` (a physical contact's flag, True by default there) counts as a Dundurs
-    term where it is not False.
+    model (before any work): a method other than an edge-graded one, an interface
+    conductance.
 
     Raises
     ------
@@ -69,12 +66,6 @@ def check_modelled(*, beta_f=0.0, method="graded", conductance=None, dundurs=Non
     """
     from .methods import METHODS
 
-    if beta_f:
-        raise InputError(f"stability: beta_f must be 0, got {beta_f!r}",
-                         parameters=("beta_f",))
-    if dundurs is not None and dundurs is not False:
-        raise InputError("stability: the Dundurs term is not modelled; solve with "
-                         "dundurs=False", parameters=("dundurs",))
     if method not in METHODS or not METHODS[method].edge_exponents:
         raise InputError("stability needs an edge-graded method (graded, "
                          f"graded-collocation), got {method!r}", parameters=("method",))
@@ -124,8 +115,7 @@ class LinearisedContact:
 
     def __post_init__(self):
         par = self.parameters
-        check_modelled(beta_f=par.beta_f if par.free_term else 0.0,
-                       method="graded" if isinstance(self.representation, EdgeGraded)
+        check_modelled(method="graded" if isinstance(self.representation, EdgeGraded)
                        else type(self.representation).__name__)
 
     @property
@@ -153,8 +143,10 @@ class LinearisedContact:
         table = kernel_table(aux, n, rep.to_cos, graded_map(rep.alpha))
         u = kernel_nodes()
         c, c2 = par.cylinder_scale, par.half_plane_scale
-        # u S_0 and u (G_0 - 1/u) of each body; the stationary half-plane's G_0 is 1/u.
-        steady = np.stack([np.log(np.abs(u)),
+        # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes to
+        # D~; scale-invariant, it has no edges' terms, S15); u S_0 and u (G_0 - 1/u) of
+        # each body, the stationary half-plane's G_0 being 1/u.
+        steady = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
                            u * moving_slope(u, c),
                            u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
                            u * cylinder_temperature_gradient_regular(u, c),
@@ -254,8 +246,9 @@ class LinearisedContact:
         disp = np.zeros((s.size, size), dtype=dtype)
         temp = np.zeros((s.size, size), dtype=dtype)
         cols = slice(0, 2 * n)
-        # Elastic (Flamant) on phi~; the edges' elastic and profile terms (S5).
-        disp[:, :n] += fixed["flamant"] / np.pi
+        # Elastic (Flamant, and the Dundurs term) on phi~; the edges' elastic and
+        # profile terms (S5).
+        disp[:, :n] += fixed["flamant"]
         disp[:, 2 * n] = 1.0
         disp[:, 2 * n + 1] = -(2.0 * L0 / np.pi) * (sig0 + s)
         disp[:, 2 * n + 2] = 1.0 / np.pi - (2.0 * L0 / np.pi) * s * (sig0 + s)
