@@ -27,6 +27,7 @@ from scipy.optimize import brentq
 
 from thermocontact import Model, StabilityResult
 from thermocontact.discretisation.linearised import LinearisedContact, projections
+from thermocontact.numerics.moment_engine import stretch
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
 from thermocontact.problem.validation import InputError
 from thermocontact.solvers.stability import (Winding, beyn, half_disc, linearised, newton,
@@ -75,7 +76,16 @@ def _residual(sol, z):
     t1 = moments(lambda u: cylinder_temperature(ce * u), ce, True)
     t2 = (moments(lambda u: cylinder_temperature(c2 * u), max(1.0, abs(c2)), True) if c2
           else moments(lambda u: -np.log(np.abs(u)), 1.0, True))
-    out = np.concatenate([pd @ disp, [wp @ phi - 1.0], pt @ (rho * q1(t1) - q2(t2))])
+    temp = rho * q1(t1) - q2(t2)
+    if sol.conductance is not None:
+        # The interface's (pi/(2 Bi)) q (D33) at the points, the flux scaled by
+        # 1/Delta and the pressure's reference fixed: p/p_ref = 2 p / (Delta/Delta0).
+        at = np.cos(np.multiply.outer(aux, np.arange(n))) @ rep.to_cos
+        sin_t = np.sin(stretch(aux))      # sqrt(1 - s^2) without cancellation at the edges
+        p_at = sin_t * (at @ phi)
+        q_at = eta * p_at + (at @ psi) / sin_t
+        temp = temp + 0.5 * np.pi * q_at / (dl * sol.conductance.biot(p_at / dl))
+    out = np.concatenate([pd @ disp, [wp @ phi - 1.0], pt @ temp])
     if not c2:
         # The stationary half-plane's temperature has a free constant: its first
         # projection is replaced by the heat partition (heat into the half-plane).
@@ -83,32 +93,42 @@ def _residual(sol, z):
     return out
 
 
-@pytest.mark.parametrize("pe, K, fhpe, lam, d, R, B", [(5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.0),
-                                                       (2.0, 1.0, 0.5, 0.5, 0.0, 0.0, 0.0),
-                                                       (1.0, 3.0, 0.4, 0.0, 2.0, 0.0, 0.0),
-                                                       (2.0, 3.0, 0.3, 0.2, 1.0, 0.5, 0.0),
-                                                       (2.0, 3.0, 0.3, 0.2, 0.5, -0.7, 0.0),
-                                                       (5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.6),
-                                                       (2.0, 3.0, 0.3, 0.2, 0.5, 0.4, -0.8)])
-def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d, R, B):
+@pytest.mark.parametrize("pe, K, fhpe, lam, d, R, B, conductance", [
+    (5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.0, None),
+    (2.0, 1.0, 0.5, 0.5, 0.0, 0.0, 0.0, None),
+    (1.0, 3.0, 0.4, 0.0, 2.0, 0.0, 0.0, None),
+    (2.0, 3.0, 0.3, 0.2, 1.0, 0.5, 0.0, None),
+    (2.0, 3.0, 0.3, 0.2, 0.5, -0.7, 0.0, None),
+    (5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.6, None),
+    (2.0, 3.0, 0.3, 0.2, 0.5, 0.4, -0.8, None),
+    (5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.0, (3.0, 0.0)),
+    (2.0, 1.0, 0.5, 0.5, 0.0, 0.0, 0.0, (0.5, 0.0)),
+    (1.0, 3.0, 0.4, 0.0, 2.0, 0.0, 0.0, (3.0, 1.0)),
+    (2.0, 3.0, 0.3, 0.2, 0.5, -0.7, 0.0, (10.0, 0.95))])
+def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d, R, B, conductance):
     """Also for a moving half-plane (R = v2/v1 != 0: its steady kernels, the
-    temperature complete, no partition row; derivation S14) and with the Dundurs term
-    (beta f = B, the edge exponents it makes carried by the representation, S15)."""
+    temperature complete, no partition row; derivation S14), with the Dundurs term
+    (beta f = B, the edge exponents it makes carried by the representation, S15) and
+    with an interface conductance (Bi0, m), constant or following the pressure (S16)."""
     n = 10
-    sol = Model(pe, K, delta1_over_delta2=d, speed_ratio=R, beta_f=B, n=n).solve_at(
-        n, fhpe, lam=lam)
+    sol = Model(pe, K, delta1_over_delta2=d, speed_ratio=R, beta_f=B, n=n,
+                conductance=conductance).solve_at(n, fhpe, lam=lam)
     M0 = linearised(sol).matrix(0)
     z0 = np.concatenate([sol.phi, sol.psi, [0.0, sol.sigma_over_delta, 1.0]])
     J = np.empty_like(M0)
+    # The residual is linear in phi, psi and D, unless the conductance follows the
+    # pressure (then phi's columns are differences too).
+    nonlinear = n if conductance is not None and conductance[1] else 0
     for k in range(z0.size):
-        h = 1e-5 if k > 2 * n else 1.0     # the residual is linear in phi, psi, D
+        h = 1e-5 if k > 2 * n or k < nonlinear else 1.0
         e = np.zeros_like(z0)
         e[k] = h
         J[:, k] = (_residual(sol, z0 + e) - _residual(sol, z0 - e)) / (2 * h)
     scale = np.abs(J).max()
     # The edges' columns differ from the differences by the steady residual's
     # derivative (the discretisation error) and the differences' error.
-    assert np.abs(M0[:, :2 * n + 1] - J[:, :2 * n + 1]).max() < 1e-13 * scale
+    assert np.abs(M0[:, nonlinear:2 * n + 1] - J[:, nonlinear:2 * n + 1]).max() < 1e-13 * scale
+    assert np.abs(M0[:, :nonlinear] - J[:, :nonlinear]).max(initial=0.0) < 1e-8 * scale
     assert np.abs(M0[:, 2 * n + 1:] - J[:, 2 * n + 1:]).max() < 1e-8 * scale
 
 
@@ -728,7 +748,7 @@ def test_stability_flags_are_booleans(monkeypatch):
 
 def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
                                                                         monkeypatch):
-    """``solve --stability --method paper`` (and a conductance): one line, exit 2,
+    """``solve --stability --method paper`` (and ``galerkin``): one line, exit 2,
     nothing solved (it solved for 17 s, then printed a warning and an error)."""
     import thermocontact.api as api
     from thermocontact.cli import main
@@ -739,7 +759,7 @@ def test_solve_stability_with_another_method_is_refused_before_the_solve(capsys,
     base = ["solve", "--pe", "1.5", "--fhpe", "1.5", "--K2-over-K1", "1", "--lam", "1",
             "--stability"]
     for extra, words in ((["--method", "paper"], "edge-graded --method"),
-                         (["--conductance", "1:0"], "conductance")):
+                         (["--method", "galerkin"], "edge-graded --method")):
         assert main(base + extra) == 2
         captured = capsys.readouterr()
         err = captured.err.strip().splitlines()
@@ -840,3 +860,19 @@ def test_the_dundurs_term_reduces_to_none(growing_pair):
         assert lin.representation.alpha != 0.5
         b, step = newton(lin.matrix, root, floor=1e-4)
         assert step < 1e-9 and abs(b - root) < 1e-10 * abs(root)
+
+
+def test_an_interface_conductance_removes_the_fast_edge_mode():
+    """The edge mode of path (a) at fHPe = 0.65 (tests/data/edge_mode.json: 2.0e4 at
+    n = 12 with perfect contact) lives where the perfect contact makes the flux singular
+    (derivation S11, S16): a weak resistance moves it (Bi = 1e3: 2.08e4), a Biot number of
+    10 (a bounded flux at the edges) leaves no eigenvalue with Re b >= 1e-3 and
+    |b| <= 1e6."""
+    import thermocontact as tc
+
+    weak = tc.stability(tc.solve(5, 0.65, 10, lam=1, conductance=(1e3, 0.0)))
+    assert weak.unstable_modes == 1 and weak.stable is False
+    assert weak.eigenvalues[0].imag == 0.0
+    assert weak.eigenvalues[0].real == pytest.approx(2.0773e4, rel=1e-4)
+    resisting = tc.stability(tc.solve(5, 0.65, 10, lam=1, conductance=(10.0, 0.0)))
+    assert resisting.stable is True and resisting.unstable_modes == 0

@@ -819,14 +819,16 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
         # perturbation leaves the far field unchanged, so the steady state is the same.
         kw["lam"] = branch.lam
         rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
-        method = DEFAULT_METHOD
+        method, conductance = DEFAULT_METHOD, None
     elif isinstance(solution, ContactSolution):
         p = solution.parameters
         kw = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
                   delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
                   beta_f=p.beta_f, lam=solution.lam)
         method = solution.method
-        check_modelled(method=method, conductance=solution.conductance)
+        check_modelled(method=method)
+        cond = solution.conductance
+        conductance = None if cond is None else (cond.biot0, cond.exponent)
     else:
         raise InputError("solution must be a steady single patch of solve() or contact() "
                          f"(a contact set's stability is not computed), got "
@@ -834,7 +836,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6, progress=None):
     model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
                   delta1_over_delta2=kw["delta1_over_delta2"],
                   speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
-                  method=method)
+                  method=method, conductance=conductance)
 
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)

@@ -195,8 +195,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
     if stability and (zones or conductance is not None):
-        raise InputError("--stability analyses the single patch with perfect thermal "
-                         "contact: give neither --zones nor --conductance",
+        raise InputError("--stability analyses the single patch: give neither --zones nor "
+                         "--conductance (a contact set's stability is not computed; "
+                         "solve --conductance gives the single patch's)",
                          parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   speed2=speed2, dundurs=dundurs is not False, materials=materials_file,

@@ -100,7 +100,7 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
         # What the analysis does not model is refused before the solve.
         from ..discretisation.linearised import check_modelled
 
-        check_modelled(method=method, conductance=conductance)
+        check_modelled(method=method)
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
                 speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,

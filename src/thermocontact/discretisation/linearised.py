@@ -41,7 +41,7 @@ from functools import cached_property
 import numpy as np
 
 from ..numerics.cache import BoundedCache
-from ..numerics.moment_engine import graded_map
+from ..numerics.moment_engine import graded_map, stretch
 from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
@@ -55,10 +55,9 @@ from .representations import EdgeGraded
 __all__ = ["LinearisedContact", "check_modelled", "logarithm_constant", "projections"]
 
 
-def check_modelled(*, method="graded", conductance=None) -> None:
+def check_modelled(*, method="graded") -> None:
     """Refuse, in one line naming the parameter, what the linearised contact does not
-    model (before any work): a method other than an edge-graded one, an interface
-    conductance.
+    model (before any work): a method other than an edge-graded one.
 
     Raises
     ------
@@ -69,9 +68,6 @@ def check_modelled(*, method="graded", conductance=None) -> None:
     if method not in METHODS or not METHODS[method].edge_exponents:
         raise InputError("stability needs an edge-graded method (graded, "
                          f"graded-collocation), got {method!r}", parameters=("method",))
-    if conductance is not None:
-        raise InputError("stability: an interface conductance is not supported; solve "
-                         "with perfect thermal contact", parameters=("conductance",))
 
 
 def logarithm_constant(b):
@@ -104,6 +100,9 @@ class LinearisedContact:
         The steady solution's factors.
     load_ratio, sigma_over_delta : float
         Its ``L = P_H/P`` and offset.
+    conductance : Conductance, optional
+        Its interface conductance (Biot number at the contact's scale, derivation
+        S16); None for perfect thermal contact.
     """
 
     parameters: Parameters
@@ -112,6 +111,7 @@ class LinearisedContact:
     psi: np.ndarray
     load_ratio: float
     sigma_over_delta: float
+    conductance: object = None
 
     def __post_init__(self):
         par = self.parameters
@@ -155,7 +155,34 @@ class LinearisedContact:
         mom = table.moments(steady)
         return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
                     uS0=(mom[..., 1], mom[..., 2]),
-                    uG0=(mom[..., 3], mom[..., 4] if c2 else None))
+                    uG0=(mom[..., 3], mom[..., 4] if c2 else None),
+                    interface=self._interface(aux))
+
+    def _interface(self, tau):
+        """The interface's term of the temperature rows at the points ``tau`` (S16),
+        shape (points, 2n + 3), or None for perfect thermal contact: with
+        ``I = (pi/(2 Bi)) q`` (D33), ``Bi = Bi0 (p/p_ref)^m``, ``q = q' + eta p`` in the
+        contact's moving coordinates and the flux scaled by ``1/Delta(t)``,
+        ``I~ = (pi/(2 Bi)) (q~ - del~ q0 - m q0 (p~/p0 - del~))``."""
+        cond = self.conductance
+        if cond is None:
+            return None
+        par, rep, n = self.parameters, self.representation, self.n
+        # Nodal values to values at the points (the cosine series in tau).
+        at = np.cos(np.multiply.outer(tau, np.arange(n))) @ rep.to_cos
+        t = stretch(tau)
+        weight = 2.0 * np.sin(0.5 * t) ** (2.0 * rep.alpha) * np.cos(0.5 * t) ** (
+            2.0 - 2.0 * rep.alpha)                       # w(s) = (1 - s)^a (1 + s)^(1 - a)
+        inverse_sin = 1.0 / np.sin(t)                    # q' = psi/sqrt(1 - s^2)
+        p0 = weight * (at @ self.phi)
+        q0 = par.eta * p0 + inverse_sin * (at @ self.psi)
+        factor = 0.5 * np.pi / cond.biot(p0)
+        m = cond.exponent
+        out = np.zeros((tau.size, self.size))
+        out[:, :n] = (factor * weight * (par.eta - (m * q0 / p0 if m else 0.0)))[:, None] * at
+        out[:, n:2 * n] = (factor * inverse_sin)[:, None] * at
+        out[:, 2 * n + 2] = -(1.0 - m) * factor * q0
+        return out
 
     def kernel_values(self, b):
         """The kernels that depend on ``b`` at the table's nodes, shape (nodes, 8):
@@ -267,6 +294,8 @@ class LinearisedContact:
             e = edges(mom(i, 3), uG0[i], i)
             e[:, 1] -= share[i][0] * (wp @ phi0) + share[i][1] * (wq @ psi0)
             temp[:, 2 * n + 1:] += sign * e
+        if fixed["interface"] is not None:
+            temp += fixed["interface"]
         rows = np.zeros((size, size), dtype=dtype)
         rows[:n + 2] = pd @ disp
         rows[n + 2, :n] = rep.pressure_rule.weights

@@ -134,9 +134,10 @@ class StabilityResult(Result):
 
 def linearised(solution) -> LinearisedContact:
     """The linearised contact about a :class:`~.result.ContactSolution`."""
-    check_modelled(conductance=solution.conductance)
+    check_modelled(method=solution.method)
     return LinearisedContact(solution.parameters, solution.representation, solution.phi,
-                             solution.psi, solution.load_ratio, solution.sigma_over_delta)
+                             solution.psi, solution.load_ratio, solution.sigma_over_delta,
+                             solution.conductance)
 
 
 class Winding:
