@@ -93,7 +93,8 @@ class LinearisedContact:
     Attributes
     ----------
     parameters : Parameters
-        The steady solution's (stationary half-plane, no Dundurs term).
+        The steady solution's (the half-plane stationary or moving, S14; the Dundurs
+        term or none, S15).
     representation : Representation
         An edge-graded one (the steady solution's).
     phi, psi : ndarray, shape (n,)
@@ -114,7 +115,6 @@ class LinearisedContact:
     conductance: object = None
 
     def __post_init__(self):
-        par = self.parameters
         check_modelled(method="graded" if isinstance(self.representation, EdgeGraded)
                        else type(self.representation).__name__)
 

@@ -18,7 +18,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..problem.validation import InputError
-from ..solvers.stability import STABILITY_N, linearised, stability_of
+from ..discretisation.linearised import check_modelled
+from ..solvers.stability import STABILITY_N, stability_of
 from .boundaries import Path, closure, model_for
 
 __all__ = ["check_map_stability", "classify", "kind_of", "map_stability", "stability_at"]
@@ -97,20 +98,14 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, **region):
 
 def check_map_stability(spec) -> None:
     """Refuse, before the map is computed, a map whose contacts the stability analysis
-    does not model (the Dundurs term, a Chebyshev method): the
-    linearised contact's own refusal at the grid's corners (every parameter's range is
-    an interval), each solved at n = 8 and lam = 0.
+    does not model: a method other than an edge-graded one
+    (:func:`~thermocontact.discretisation.linearised.check_modelled`).
 
     Raises
     ------
     InputError
     """
-    for xv in (spec.x.start, spec.x.stop):
-        for yv in (spec.y.start, spec.y.stop):
-            kw = {**spec.fixed, spec.x.name: xv, spec.y.name: yv}
-            kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
-            linearised(model_for(kw, method=spec.method).solve_at(
-                8, kw["fhpe"], lam=0.0, check_validity=False))
+    check_modelled(method=spec.method)
 
 
 def map_stability(ds, spec, *, n=STABILITY_N, **region):
