@@ -426,9 +426,18 @@ def test_group_help_lists_every_command_without_computing():
         assert short and whole.startswith(short.removesuffix("...")), (name, short)
 
 
-def test_a_switch_in_a_refusal_is_named_by_its_flag(capsys):
+def test_a_switch_in_a_refusal_is_named_by_its_flag(capsys, monkeypatch):
     """The library's "dundurs=False" reads as the command line's --no-dundurs, a flag
-    that exists (--dundurs=False is refused: the switch takes no value)."""
+    that exists (--dundurs=False is refused: the switch takes no value).  (A library
+    refusal naming it, standing in for the stability analysis, which once refused the
+    Dundurs term and now models it.)"""
+    import thermocontact.api as api
+    from thermocontact.problem.validation import InputError
+
+    def refuses(*args, **kwargs):
+        raise InputError("stability: the Dundurs term is not modelled; solve with "
+                         "dundurs=False", parameters=("dundurs",))
+    monkeypatch.setattr(api, "stability", refuses)
     assert main(["contact", "--cylinder", "steel", "--half-plane", "aluminium-alloy",
                  "--radius", "450mm", "--load", "200kN/m", "--speed", "10", "--friction",
                  "0.3", "--lam", "0", "--stability"]) == 2

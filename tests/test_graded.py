@@ -342,11 +342,7 @@ def test_a_blockwise_kernel_is_called_on_each_part_apart():
     the transient distortion's quadrature takes its depth per block of points) is called
     on the far field's nodes and on each side's innermost interval and outer panels
     apart, as the moments always called it; the numbers are those of the same kernel
-    called once on all of them, where it is elementwise.  The stability operator's
-    transient distortion kernels say so."""
-    from thermocontact import Model
-    from thermocontact.solvers.stability import linearised
-
+    called once on all of them, where it is elementwise."""
     shapes = []
 
     def blockwise(u):
@@ -360,8 +356,3 @@ def test_a_blockwise_kernel_is_called_on_each_part_apart():
                           scale=7.0, logarithmic=True)
     for a, b in zip(apart, once):
         assert_ulps(a, b)
-    cyl, half = (kernels for kernels, _ in linearised(
-        Model(1.0, 1.0, n=8).solve_at(8, 0.3, lam=-1.0))._kernels(0.5 + 0.5j)[:2])
-    for body in (cyl, half):
-        assert body["W"].elementwise is False and body["dS"].elementwise is False
-        assert getattr(body["T"], "elementwise", True)

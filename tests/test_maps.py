@@ -565,7 +565,9 @@ def test_a_line_with_proven_condition_is_the_same_line():
     for b, e in zip(bounded, estimated, strict=True):
         assert_same_result(b.replace(rcond=e.rcond), e)
         assert_same_result(b.validity.to_dict(), e.validity.to_dict())
-        assert CERTIFIED_RCOND <= b.rcond <= e.rcond
+        # A proven lower bound is at most the true number, LAPACK's estimate at least
+        # it but for rounding (a few ulps of it, which other CPUs' kernels move).
+        assert CERTIFIED_RCOND <= b.rcond <= e.rcond * (1 + 16 * np.finfo(float).eps)
     assert sum(b.rcond < e.rcond for b, e in zip(bounded, estimated)) >= len(fhpe) // 2
     with pytest.raises(InputError, match="rcond"):
         m.solve_many(fhpe, lam=1.0, rcond="exact")

@@ -427,9 +427,9 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     progress : callable, optional
         ``progress(stage, done, total)``.
     stability : bool, optional
-        Also each event's ``kind``, ``"fold"``, ``"hopf"`` or ``"grazing"``, from the
-        eigenvalues of the steady contact there (:func:`stability`; dimensionless paths;
-        about a minute per event).
+        Also each event's ``kind``, ``"fold"``, ``"hopf"``, ``"grazing"`` (or
+        ``"unstable"``, ``"uncertified"``), from the eigenvalues of the steady contact
+        there (:func:`stability`; dimensionless paths; seconds per event).
 
     Returns
     -------
@@ -448,6 +448,7 @@ def boundary(along, start, stop, *, pe=None, fhpe=None, K2_over_K1=None, k2_over
     check_callable("progress", progress)
     parts = _closure_parts(closure, lam, sigma_over_delta)
     lam, sigma, theta = (parts.get(k) for k in ("lam", "sigma_over_delta", "theta"))
+    stability = check_flag("stability", stability)
     physical = {"cylinder": cylinder, "half_plane": half_plane, "radius": radius,
                 "load": load, "speed": speed, "friction": friction, "dundurs": dundurs,
                 "materials": materials, "bulk_temperatures": parts.get("bulk_temperatures"),
@@ -629,9 +630,9 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     command : str, optional
         Recorded in the dataset's attributes.
     stability : bool, optional
-        Also ``stable`` and ``growth_rate`` at every solved point, from the
-        eigenvalues of its steady contact (:func:`stability` with its defaults, at the
-        point's heat partition; half a minute to a minute a point, in this process).
+        Also ``stable``, ``unstable_modes`` and ``growth_rate`` at every solved point,
+        from the eigenvalues of its steady contact (:func:`stability` with its
+        defaults, at the point's heat partition; seconds a point, in this process).
 
     Returns
     -------
@@ -646,6 +647,7 @@ def parameter_map(x, y, *, pe=None, fhpe=None, K2_over_K1=None, k2_over_k1=None,
     >>> ds["valid"].shape
     (2, 3)
     """
+    stability = check_flag("stability", stability)
     spec = map_spec(x, y, pe=pe, fhpe=fhpe, K2_over_K1=K2_over_K1, k2_over_k1=k2_over_k1,
                     delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
                     beta_f=beta_f, lam=lam, sigma_over_delta=sigma_over_delta,
@@ -846,6 +848,7 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
         raise InputError(f"spec must be a map's specification (map_spec), got {spec!r}",
                          parameters=("spec",))
 
+    stability = check_flag("stability", stability)
     if stability and not isinstance(spec, MapSpec):
         raise InputError("stability: maps of dimensionless parameters only (for a physical "
                          "contact, stability() of the contact)", parameters=("stability",))
@@ -1054,34 +1057,43 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
                        disc_radius=radius, hot_spots=spots, stop=history)
 
 
-def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32,
+@deprecated_spellings(renamed=(("re_min", "b_min"),),
+                      retired=("re_max", "im_max", "points"))
+def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
               progress=None) -> StabilityResult:
-    """Eigenvalues of largest real part of a steady single patch: is it stable?
+    """Every growing mode of a steady single patch, counted: is it stable?
 
     The contact linearised about a steady solution at fixed load, its edges free, for a
-    perturbation growing as ``exp(b t)`` (docs/derivation.md, section 18): ``M(b) c = 0``
-    solved by Beyn's contour-integral method in an ellipse of the right half-plane
-    and each eigenvalue checked by Newton's method; the error estimate is the change
-    of the eigenvalues from ``n`` to ``n/2``.  A stationary half-plane (``speed_ratio
-    = 0``), no Dundurs term and perfect thermal contact only.
+    perturbation growing as ``exp(b t)`` (docs/derivation.md, section 18):
+    ``M(b) c = 0``.  The eigenvalues with ``Re b >= b_min`` and ``|b| <= modulus_bound``
+    (the region the model holds in, S11) are counted by the
+    argument principle on the boundary of that region, located by Beyn's contour
+    integral and confirmed by Newton's method; ``stable`` is True only where the
+    count is 0, None (with the reason) where the count could not be certified.  A
+    stationary or a moving half-plane, with or without the Dundurs term; perfect
+    thermal contact only.
 
     Parameters
     ----------
     solution : ContactSolution or PhysicalContact
         From :func:`solve` (edge-graded methods; eigenvalues in units of
         ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
-        1/s, ``contact(..., dundurs=False)``).
+        1/s).
     n : int, optional
-        Unknowns per function of the analysis (default 12, from 8 to 64; the steady
-        solution is solved again at ``n`` and ``n/2``).
-    re_min, re_max, im_max : float, optional
-        The ellipse searched, in units of ``k2/Delta^2``: real parts from ``re_min > 0``
-        to ``re_max``, imaginary parts within ``+-im_max`` (``b = 0`` is a branch
-        point of the stationary half-plane's kernels, which the contour avoids).
-    points : int, optional
-        Points of the contour (even; half of them are computed).
+        Unknowns per function of the analysis (default 12, even, from 8 to 64; the
+        steady solution is solved again at ``n``, and at ``3n/2`` for the error
+        estimate where eigenvalues are found).
+    b_min : float, optional
+        The smallest growth rate counted, ``k2/Delta^2`` (> 0: ``b = 0`` is the
+        branch point of the stationary half-plane's kernels; a fold's exponentially
+        slow real root lies below the default, and the record estimates it).
+    modulus_bound : float, optional
+        ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min): a
+        mode beyond it has a thermal layer thinner than ``Delta/sqrt(modulus_bound)``
+        (``Delta/1000`` by default), where the model no longer holds (S11).
     progress : callable, optional
-        ``progress(done, total)`` over the contour points computed (a second each).
+        ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
+        estimate).
 
     Returns
     -------
@@ -1092,13 +1104,23 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
     Raises
     ------
     InputError
-        A moving half-plane, a Dundurs term, an interface conductance, a Chebyshev
-        method, a physical contact without a branch, or a region out of range.
+        A solution of neither kind, an interface conductance, a Chebyshev method, a
+        physical contact without a branch, or a region out of range.
+
+    Examples
+    --------
+    >>> import thermocontact as tc
+    >>> res = tc.stability(tc.solve(2, 0.3, 1, lam=-1), n=8)
+    >>> res.stable, res.unstable_modes
+    (True, 0)
     """
+    from .discretisation.linearised import check_modelled
+    from .solvers.result import ContactSolution
     from .solvers.stability import stability_of
+    from .studies.physical_contact import PhysicalContact
 
     rate_unit = None
-    if hasattr(solution, "branches"):
+    if isinstance(solution, PhysicalContact):
         # A physical contact: its primary branch, rates in 1/s (k2/Delta^2).
         branch = solution.primary
         if branch is None:
@@ -1108,29 +1130,30 @@ def stability(solution, *, n=12, re_min=0.5, re_max=10.0, im_max=10.0, points=32
         # With the bulk temperatures the branch's partition is the one they imply; the
         # perturbation leaves the far field unchanged, so the steady state is the same.
         kw["lam"] = branch.lam
-        if kw.get("beta_f"):
-            raise InputError("stability: the Dundurs term is not modelled; solve with "
-                             "dundurs=False", parameters=("dundurs",))
         rate_unit = solution.problem.half_plane.k / branch.half_width ** 2
-        method = DEFAULT_METHOD
-    else:
+        method, conductance = DEFAULT_METHOD, None
+    elif isinstance(solution, ContactSolution):
         p = solution.parameters
         kw = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
                   delta1_over_delta2=p.delta1_over_delta2, speed_ratio=p.speed_ratio,
                   beta_f=p.beta_f, lam=solution.lam)
         method = solution.method
-        if solution.conductance is not None:
-            raise InputError("stability: an interface conductance is not supported; solve "
-                             "with perfect thermal contact", parameters=("conductance",))
+        check_modelled(method=method)
+        cond = solution.conductance
+        conductance = None if cond is None else (cond.biot0, cond.exponent)
+    else:
+        raise InputError("solution must be a steady single patch of solve() or contact() "
+                         f"(a contact set's stability is not computed), got "
+                         f"{type(solution).__name__}", parameters=("solution",))
     model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
                   delta1_over_delta2=kw["delta1_over_delta2"],
                   speed_ratio=kw.get("speed_ratio", 0.0), beta_f=kw.get("beta_f", 0.0),
-                  method=method)
+                  method=method, conductance=conductance)
 
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
-    return stability_of(solve_at, n=n, re_min=re_min, re_max=re_max, im_max=im_max,
-                        points=points, rate_unit=rate_unit, progress=progress)
+    return stability_of(solve_at, n=n, b_min=b_min, modulus_bound=modulus_bound,
+                        rate_unit=rate_unit, progress=progress)
 
 
 def _transient_closure(closure, lam) -> dict:

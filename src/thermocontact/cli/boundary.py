@@ -47,8 +47,9 @@ __all__ = ["boundary_cmd"]
 @click.option("--layer-thickness", "layer_thickness", default=None,
               help="Or the thickness of a half-plane layer on its sink.")
 @click.option("--stability", is_flag=True,
-              help="Also each event's kind: fold, hopf or grazing, from the eigenvalues of "
-                   "the steady contact there (dimensionless paths; about a minute per event).")
+              help="Also each event's kind: fold, hopf or grazing, from the counted "
+                   "eigenvalues of the steady contact there (dimensionless paths; seconds per "
+                   "event).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def boundary_cmd(along, start, stop, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2,
                  speed_ratio, beta_f, lam, sigma, cylinder, half_plane, materials_file, radius, load, speed,

@@ -160,8 +160,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
                    "path stalls).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--stability", is_flag=True,
-              help="Also the eigenvalues of the primary branch linearised at fixed load, "
-                   "in 1/s (derivation section 18; with --no-dundurs; about a minute).")
+              help="Also every growing mode of the primary branch linearised at fixed load, "
+                   "counted, in 1/s (derivation section 18; seconds).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
@@ -213,8 +213,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
     if stability and (zones or conductance is not None):
-        raise InputError("--stability analyses the single patch with perfect thermal "
-                         "contact: give neither --zones nor --conductance",
+        raise InputError("--stability analyses the single patch: give neither --zones nor "
+                         "--conductance (a contact set's stability is not computed; "
+                         "solve --conductance gives the single patch's)",
                          parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   closure=bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,

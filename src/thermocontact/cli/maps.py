@@ -176,8 +176,9 @@ def run_map(spec, out, workers, title, command, stability=False):
 @click.option("--layer-thickness", "layer_thickness", default=None,
               help="Or the thickness of a half-plane layer on its sink (distance 4h/pi).")
 @click.option("--stability", is_flag=True,
-              help="Dimensionless maps: also stable and growth_rate at every point, from "
-                   "the eigenvalues of its steady contact (half a minute to a minute a point).")
+              help="Dimensionless maps: also stable, unstable_modes and growth_rate at every "
+                   "point, from the counted eigenvalues of its steady contact (seconds a "
+                   "point).")
 def map_cmd(x_spec, y_spec, pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
             beta_f, lam, sigma,
             delta_over_r, tol, method, out, workers, scheduler, cylinder, half_plane,

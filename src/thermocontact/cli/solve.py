@@ -83,8 +83,8 @@ def solve_summary(sol) -> str:
                    "from the contact at which the half-plane is at T2 (a layer of thickness "
                    "h on a sink at T2: L = 4h/pi).")
 @click.option("--stability", is_flag=True,
-              help="Also the eigenvalues of the contact linearised at fixed load, in units of "
-                   "k2/Delta^2 (derivation section 18; about a minute): is it stable?")
+              help="Also every growing mode of the contact linearised at fixed load, counted "
+                   "(Re b >= 1e-3 k2/Delta^2; derivation section 18; seconds): is it stable?")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio, beta_f, lam,
               sigma, n, tol, method, check, delta_over_r, conductance, theta, sink_distance,
@@ -93,6 +93,11 @@ def solve_cmd(pe, fhpe, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
     from ..api import solve
 
     one_closure(lam, sigma, theta)
+    if stability:
+        # What the analysis does not model is refused before the solve.
+        from ..discretisation.linearised import check_modelled
+
+        check_modelled(method=method)
     sol = solve(pe, fhpe, K2_over_K1, k2_over_k1=k2_over_k1,
                 delta1_over_delta2=1.0 if delta1_over_delta2 is None else delta1_over_delta2,
                 speed_ratio=speed_ratio, beta_f=beta_f, lam=lam, sigma_over_delta=sigma, n=n,
@@ -124,7 +129,7 @@ def record_of(result, stability=False) -> dict:
         from ..api import stability as eigenvalues
         from ..execution.progress import ProgressLine
 
-        bar = ProgressLine("stability: contour points", "points")
+        bar = ProgressLine("stability: evaluations of M(b)", "evaluations")
         record["stability"] = eigenvalues(result, progress=bar).to_dict()
         bar.close()
     return record
@@ -135,7 +140,15 @@ def stability_summary(record) -> str:
     r = record["region"]
     found = ", ".join(f"{re:.6g}{im:+.6g}i" for re, im in record["eigenvalues"]) or "none"
     est = record["error_estimate"]
-    return (f"  stable        = {record['stable']}  (eigenvalues with Re b in "
-            f"[{r['re_min']:g}, {r['re_max']:g}], |Im b| <= {r['im_max']:g}, "
-            f"{record['units']})\n  eigenvalues   = {found}"
-            + ("" if est is None else f"  (change from n/2: {est:.2g})"))
+    lines = [f"  stable        = {record['stable']}  ({record['unstable_modes']} eigenvalues "
+             f"with Re b >= {r['b_min']:g}, |b| <= {r['modulus_bound']:g} "
+             f"{record['units']['eigenvalues']}, by the argument principle)",
+             f"  eigenvalues   = {found}"
+             + ("" if est is None else f"  (change from n/2: {est:.2g})")]
+    if record["reason"]:
+        lines.append(f"  note          = {record['reason']}")
+    if record["slow_root"] is not None:
+        unit = record["units"]["eigenvalues"]
+        lines.append(f"  slow root     = {record['slow_root']:.3g} {unit} "
+                     "(a fold's real root below b_min, not counted)")
+    return "\n".join(lines)

@@ -23,8 +23,12 @@ edges' terms), ``u = s - r``:
 ``W``, ``S``, ``T``, ``G`` are each body's transient displacement, slope, temperature
 and gradient kernels (:mod:`thermocontact.physics.transient_green_functions`) with
 ``b`` the rate in units of ``k2/Delta^2``; at ``b = 0`` the steady kernels
-(:mod:`thermocontact.physics.green_functions`).  Every kernel goes through the one
-moment engine, as the steady blocks do.  Unknowns, in this order: ``phi~`` (n),
+(:mod:`thermocontact.physics.green_functions`).  The moments of every kernel are a
+fixed linear map of its values at fixed nodes, built once per ``n``
+(:mod:`thermocontact.numerics.tabulated_moments`; the same moments as the moment
+engine's, which the tests compare): the kernels' values are the only work per ``b``,
+and the half-plane's, which depend on ``b`` alone, are kept for the next contact.
+Unknowns, in this order: ``phi~`` (n),
 ``psi~`` (n), the rigid approach ``D~``, ``sig~ = sigma~/Delta`` and
 ``del~ = Delta~/Delta``.
 """
@@ -32,12 +36,15 @@ moment engine, as the steady blocks do.  Unknowns, in this order: ``phi~`` (n),
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
-from ..physics.green_functions import (cylinder_displacement, cylinder_slope,
-                                       cylinder_temperature,
-                                       cylinder_temperature_gradient_regular)
+from ..numerics.cache import BoundedCache
+from ..numerics.moment_engine import graded_map, stretch
+from ..numerics.tabulated_moments import kernel_nodes, kernel_table
+from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
+                                       cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
                                                  transient_temperature,
                                                  transient_temperature_gradient_regular)
@@ -45,7 +52,22 @@ from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .representations import EdgeGraded
 
-__all__ = ["LinearisedContact", "logarithm_constant", "projections"]
+__all__ = ["LinearisedContact", "check_modelled", "logarithm_constant", "projections"]
+
+
+def check_modelled(*, method="graded") -> None:
+    """Refuse, in one line naming the parameter, what the linearised contact does not
+    model (before any work): a method other than an edge-graded one.
+
+    Raises
+    ------
+    InputError
+    """
+    from .methods import METHODS
+
+    if method not in METHODS or not METHODS[method].edge_exponents:
+        raise InputError("stability needs an edge-graded method (graded, "
+                         f"graded-collocation), got {method!r}", parameters=("method",))
 
 
 def logarithm_constant(b):
@@ -71,13 +93,17 @@ class LinearisedContact:
     Attributes
     ----------
     parameters : Parameters
-        The steady solution's (stationary half-plane, no Dundurs term).
+        The steady solution's (the half-plane stationary or moving, S14; the Dundurs
+        term or none, S15).
     representation : Representation
         An edge-graded one (the steady solution's).
     phi, psi : ndarray, shape (n,)
         The steady solution's factors.
     load_ratio, sigma_over_delta : float
         Its ``L = P_H/P`` and offset.
+    conductance : Conductance, optional
+        Its interface conductance (Biot number at the contact's scale, derivation
+        S16); None for perfect thermal contact.
     """
 
     parameters: Parameters
@@ -86,18 +112,11 @@ class LinearisedContact:
     psi: np.ndarray
     load_ratio: float
     sigma_over_delta: float
+    conductance: object = None
 
     def __post_init__(self):
-        par = self.parameters
-        if par.half_plane_scale:
-            raise InputError("stability: speed_ratio must be 0 (the stationary half-plane); "
-                             f"got {par.speed_ratio!r}", parameters=("speed_ratio",))
-        if par.free_term:
-            raise InputError(f"stability: beta_f must be 0, got {par.beta_f!r}",
-                             parameters=("beta_f",))
-        if not isinstance(self.representation, EdgeGraded):
-            raise InputError("stability needs an edge-graded method (graded, "
-                             "graded-collocation)", parameters=("method",))
+        check_modelled(method="graded" if isinstance(self.representation, EdgeGraded)
+                       else type(self.representation).__name__)
 
     @property
     def n(self) -> int:
@@ -107,41 +126,88 @@ class LinearisedContact:
     def size(self) -> int:
         return 2 * self.n + 3
 
-    def _kernels(self, b):
-        """Per body: the unknowns' kernels ``W``, ``T`` and the edges' kernels
-        ``S_b - S_0``, ``G_b - G_0`` (None at ``b = 0``), ``u S_0``, ``u G_0 - 1``,
-        with the scale of each body; and ``l(b)``."""
-        par = self.parameters
-        c = par.cylinder_scale
-        steady1 = dict(uS0=lambda u: u * cylinder_slope(c * u),
-                       uG0=lambda u: u * cylinder_temperature_gradient_regular(u, c))
-        # The stationary half-plane: S_0 = sgn(u)/2, G_0 = 1/u exactly.
-        steady2 = dict(uS0=lambda u: 0.5 * np.abs(u), uG0=None)
-        if b == 0:
-            # Its displacement's and temperature's diverging constants taken out (T6,
-            # T11); the temperature's returns as the partition row (S8).
-            cyl = dict(W=lambda u: cylinder_displacement(c * u) / c,
-                       T=lambda u: cylinder_temperature(c * u), dS=None, dG=None, **steady1)
-            half = dict(W=lambda u: -0.5 * np.abs(u), T=lambda u: -np.log(np.abs(u)),
-                        dS=None, dG=None, **steady2)
-            return (cyl, c), (half, 1.0), 0.0
-        b1 = b / par.k2_over_k1
-        ell = logarithm_constant(b)
-        w0 = 2.0 / (np.pi * np.sqrt(complex(b)))
-        ws1, ws2 = _shared(c, b1), _shared(0.0, b)
-        cyl = dict(W=_blockwise(lambda u: ws1(u)[0]),
-                   T=lambda u: transient_temperature(u, c, b1),
-                   dS=_blockwise(lambda u: ws1(u)[1] - cylinder_slope(c * u)),
-                   dG=lambda u: (transient_temperature_gradient_regular(u, c, b1)
-                                 - cylinder_temperature_gradient_regular(u, c)), **steady1)
-        half = dict(W=_blockwise(lambda u: ws2(u)[0] - w0),
-                    T=lambda u: transient_temperature(u, 0.0, b) - ell,
-                    dS=_blockwise(lambda u: ws2(u)[1] - 0.5 * np.sign(u)),
-                    dG=lambda u: transient_temperature_gradient_regular(u, 0.0, b), **steady2)
-        return ((cyl, max(1.0, c, abs(np.sqrt(complex(b1))))),
-                (half, max(1.0, abs(np.sqrt(complex(b))))), ell)
+    @property
+    def moving(self) -> bool:
+        """Whether the half-plane moves through the contact (``c2 = R Pe != 0``): its
+        kernels are then those of a moving body, ``b = 0`` is not a branch point and
+        its temperature has no free constant (derivation S14)."""
+        return self.parameters.half_plane_scale != 0.0
 
-    def matrix(self, b, *, split=False):
+    @cached_property
+    def _fixed(self):
+        """What does not depend on ``b``: the points, the kernel table, Flamant's
+        block and the steady kernels' edge terms (S5, S6)."""
+        par, rep, n = self.parameters, self.representation, self.n
+        x, pd, pt = projections(n)
+        s, aux = rep.projection_points(x)
+        table = kernel_table(aux, n, rep.to_cos, graded_map(rep.alpha))
+        u = kernel_nodes()
+        c, c2 = par.cylinder_scale, par.half_plane_scale
+        # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes to
+        # D~; scale-invariant, it has no edges' terms, S15); u S_0 and u (G_0 - 1/u) of
+        # each body, the stationary half-plane's G_0 being 1/u.
+        steady = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
+                           u * moving_slope(u, c),
+                           u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
+                           u * cylinder_temperature_gradient_regular(u, c),
+                           u * cylinder_temperature_gradient_regular(u, c2) if c2
+                           else np.zeros_like(u)], axis=1)
+        mom = table.moments(steady)
+        return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
+                    uS0=(mom[..., 1], mom[..., 2]),
+                    uG0=(mom[..., 3], mom[..., 4] if c2 else None),
+                    interface=self._interface(aux))
+
+    def _interface(self, tau):
+        """The interface's term of the temperature rows at the points ``tau`` (S16),
+        shape (points, 2n + 3), or None for perfect thermal contact: with
+        ``I = (pi/(2 Bi)) q`` (D33), ``Bi = Bi0 (p/p_ref)^m``, ``q = q' + eta p`` in the
+        contact's moving coordinates and the flux scaled by ``1/Delta(t)``,
+        ``I~ = (pi/(2 Bi)) (q~ - del~ q0 - m q0 (p~/p0 - del~))``."""
+        cond = self.conductance
+        if cond is None:
+            return None
+        par, rep, n = self.parameters, self.representation, self.n
+        # Nodal values to values at the points (the cosine series in tau).
+        at = np.cos(np.multiply.outer(tau, np.arange(n))) @ rep.to_cos
+        t = stretch(tau)
+        weight = 2.0 * np.sin(0.5 * t) ** (2.0 * rep.alpha) * np.cos(0.5 * t) ** (
+            2.0 - 2.0 * rep.alpha)                       # w(s) = (1 - s)^a (1 + s)^(1 - a)
+        inverse_sin = 1.0 / np.sin(t)                    # q' = psi/sqrt(1 - s^2)
+        p0 = weight * (at @ self.phi)
+        q0 = par.eta * p0 + inverse_sin * (at @ self.psi)
+        factor = 0.5 * np.pi / cond.biot(p0)
+        m = cond.exponent
+        out = np.zeros((tau.size, self.size))
+        out[:, :n] = (factor * weight * (par.eta - (m * q0 / p0 if m else 0.0)))[:, None] * at
+        out[:, n:2 * n] = (factor * inverse_sin)[:, None] * at
+        out[:, 2 * n + 2] = -(1.0 - m) * factor * q0
+        return out
+
+    def kernel_values(self, b):
+        """The kernels that depend on ``b`` at the table's nodes, shape (nodes, 8):
+        per body (cylinder, half-plane) ``W``, ``T``, ``S_b - S_0``, ``G_b - G_0``
+        (``G`` less ``1/u``), each body's rate ``b k2/k_i``; the stationary
+        half-plane's displacement and temperature less their diverging constants
+        ``2/(pi sqrt b)`` and ``l(b)`` (T11, T6).  At ``b = 0`` the steady kernels
+        (the differences 0)."""
+        par = self.parameters
+        u, c, c2 = self._fixed["u"], par.cylinder_scale, par.half_plane_scale
+        if b == 0:
+            out = np.zeros((u.size, 8))
+            for k, scale in ((0, c), (4, c2)):
+                if scale:
+                    out[:, k] = cylinder_displacement(scale * u) / abs(scale)
+                    out[:, k + 1] = cylinder_temperature(scale * u)
+            if not c2:
+                out[:, 4] = -0.5 * np.abs(u)
+                out[:, 5] = -np.log(np.abs(u))
+            return out
+        b = complex(b)
+        return np.concatenate([_body_values(c, b / par.k2_over_k1), _body_values(c2, b)],
+                              axis=1)
+
+    def matrix(self, b, *, split=False, values=None):
         """``M(b)``, complex, shape ``(2n + 3, 2n + 3)`` (eqs. S3-S8).
 
         Parameters
@@ -155,15 +221,20 @@ class LinearisedContact:
             Return ``(M_reg, ell, row)`` with ``M = M_reg + ell * outer(e, row)``,
             ``e`` the temperature's first projection: the part regular as ``b -> 0``
             and the diverging constant of the stationary half-plane's temperature.
+        values : ndarray, optional
+            :meth:`kernel_values` at ``b``, where already computed.
 
         Returns
         -------
         ndarray, or tuple with ``split``
         """
         par, rep, n = self.parameters, self.representation, self.n
-        x, pd, pt = projections(n)
-        s, aux = rep.projection_points(x)
-        (k1, sc1), (k2, sc2), ell = self._kernels(b)
+        fixed = self._fixed
+        pd, pt, s = fixed["pd"], fixed["pt"], fixed["s"]
+        if values is None:
+            values = self.kernel_values(b)
+        bounded, singular = fixed["table"].moments(values)
+        ell = 0.0 if b == 0 or self.moving else logarithm_constant(b)
         eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
         phi0, psi0 = self.phi, self.psi
         L0, sig0 = self.load_ratio, self.sigma_over_delta
@@ -173,86 +244,99 @@ class LinearisedContact:
         # q2 = ((1 - eta) p - q')/2.
         share = ((0.5 * (1.0 + eta), 0.5), (0.5 * (1.0 - eta), -0.5))
 
-        def integrate(kernel, scale, logarithmic=False):
-            return rep.integrate(kernel, s, scale=scale, logarithmic=logarithmic, aux=aux)
+        def mom(body, k):
+            return bounded[..., 4 * body + k], singular[..., 4 * body + k]
 
-        def on_heat(mom, i):
-            (ap, aq), (Mb, Ms) = share[i], mom
+        def on_heat(m, i):
+            (ap, aq), (Mb, Ms) = share[i], m
             return np.hstack([ap * Mb, aq * Ms])
 
-        def steady_heat(mom, i, weight=1.0):
+        def steady_heat(m, i, weight=1.0):
             # int K q0_i dr for the steady heat times ``weight`` at the nodes.
-            (ap, aq), (Mb, Ms) = share[i], mom
+            (ap, aq), (Mb, Ms) = share[i], m
             return ap * (Mb @ (weight * phi0)) + aq * (Ms @ (weight * psi0))
 
-        def edges(diff, u_steady, i, scale, logarithmic):
+        dtype = values.dtype
+
+        def edges(diff, u_steady, i):
             # The columns (sig~, del~) of int (K_b - K_0)(u)(sig~ + del~ r) q0_i
             # - del~ int u K_0(u) q0_i (S6).
-            out = np.zeros((s.size, 2), dtype=complex if b != 0 else float)
-            if diff is not None:
-                mom = integrate(diff, scale, logarithmic)
-                out[:, 0] = steady_heat(mom, i)
-                out[:, 1] = steady_heat(mom, i, r)
+            out = np.zeros((s.size, 2), dtype=dtype)
+            if b != 0:
+                out[:, 0] = steady_heat(diff, i)
+                out[:, 1] = steady_heat(diff, i, r)
             if u_steady is not None:
-                out[:, 1] -= steady_heat(integrate(u_steady, scale, logarithmic), i)
+                out[:, 1] -= steady_heat(u_steady, i)
             return out
 
         size = self.size
-        dtype = complex if b != 0 else float
         disp = np.zeros((s.size, size), dtype=dtype)
         temp = np.zeros((s.size, size), dtype=dtype)
         cols = slice(0, 2 * n)
-        # Elastic (Flamant) on phi~; the edges' elastic and profile terms (S5).
-        lb, _ = integrate(lambda u: np.log(np.abs(u)), 1.0, True)
-        disp[:, :n] += lb / np.pi
+        # Elastic (Flamant, and the Dundurs term) on phi~; the edges' elastic and
+        # profile terms (S5).
+        disp[:, :n] += fixed["flamant"]
         disp[:, 2 * n] = 1.0
         disp[:, 2 * n + 1] = -(2.0 * L0 / np.pi) * (sig0 + s)
         disp[:, 2 * n + 2] = 1.0 / np.pi - (2.0 * L0 / np.pi) * s * (sig0 + s)
         # Each body's thermal displacement (factor 2 F d_i) and its edges' terms.
-        for i, (k, scale, weight) in enumerate(((k1, sc1, d), (k2, sc2, 1.0))):
+        uS0 = [(m[0], m[1]) for m in fixed["uS0"]]
+        for i, weight in enumerate((d, 1.0)):
             if weight == 0.0:
                 continue
             f = 2.0 * F * weight
-            disp[:, cols] += f * on_heat(integrate(k["W"], scale), i)
-            disp[:, 2 * n + 1:] += f * edges(k["dS"], k["uS0"], i, scale, False)
+            disp[:, cols] += f * on_heat(mom(i, 0), i)
+            disp[:, 2 * n + 1:] += f * edges(mom(i, 2), uS0[i], i)
         # Temperatures: rho times body 1's minus body 2's (S4), u G_0 = 1 + u (G_0 - 1/u).
-        for i, (k, scale, sign) in enumerate(((k1, sc1, rho), (k2, sc2, -1.0))):
-            temp[:, cols] += sign * on_heat(integrate(k["T"], scale, True), i)
-            e = edges(k["dG"], k["uG0"], i, scale, True)
+        uG0 = [None if m is None else (m[0], m[1]) for m in fixed["uG0"]]
+        for i, sign in enumerate((rho, -1.0)):
+            temp[:, cols] += sign * on_heat(mom(i, 1), i)
+            e = edges(mom(i, 3), uG0[i], i)
             e[:, 1] -= share[i][0] * (wp @ phi0) + share[i][1] * (wq @ psi0)
             temp[:, 2 * n + 1:] += sign * e
+        if fixed["interface"] is not None:
+            temp += fixed["interface"]
         rows = np.zeros((size, size), dtype=dtype)
         rows[:n + 2] = pd @ disp
         rows[n + 2, :n] = rep.pressure_rule.weights
         rows[n + 3:] = pt @ temp
-        # -l(b) int q2~ dr, a constant: on the temperature's first projection only.
+        # -l(b) int q2~ dr, a constant: on the temperature's first projection only (the
+        # stationary half-plane's; a moving one's temperature has no free constant).
         row = -np.sum(pt[0]) * np.concatenate([share[1][0] * wp, share[1][1] * wq, np.zeros(3)])
+        if self.moving:
+            row = np.zeros_like(row)
         if split:
             return rows, ell, row
-        if b == 0:
+        if b == 0 and not self.moving:
             rows[n + 3] = row
-        else:
+        elif b != 0:
             rows[n + 3] += ell * row
         return rows
 
 
-def _blockwise(kernel):
-    """``kernel``, marked as one whose values depend on the array it is given (the
-    transient distortion's quadrature in ``phi`` takes its depth and panels per block
-    of points): the moments evaluate it on each part of their nodes apart
-    (:func:`~thermocontact.numerics.moment_engine.moments`), as they always have."""
-    kernel.elementwise = False
-    return kernel
+#: Each body's kernel values at the table's nodes per rate, kept per process: a map's
+#: points share the half-plane's (its kernels depend on ``b`` alone) and a line's
+#: points at one Peclet number the cylinder's.
+KERNEL_VALUES = BoundedCache("transient kernel values", 64 * 2**20)
 
 
-def _shared(c, b):
-    """``u -> (W(u), S(u))`` of one body, each array of ``u`` computed once: the moment
-    engine asks for ``W`` and then ``S`` at the same arguments (same points, scale)."""
-    memo = {}
-
-    def both(u):
-        key = (u.shape, hash(u.tobytes()))
-        if key not in memo:
-            memo[key] = transient_displacement_and_slope(u, c, b)
-        return memo[key]
-    return both
+def _body_values(c, b):
+    """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
+    kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`,
+    shape (nodes, 4); for ``c = 0`` less the constants ``2/(pi sqrt b)`` and ``l(b)``."""
+    def build():
+        u = kernel_nodes()
+        W, S = transient_displacement_and_slope(u, c, b)
+        T = transient_temperature(u, c, b)
+        dG = transient_temperature_gradient_regular(u, c, b)
+        if c == 0.0:
+            W = W - 2.0 / (np.pi * np.sqrt(b))
+            T = T - logarithm_constant(b)
+            S = S - 0.5 * np.sign(u)
+        else:
+            S = S - moving_slope(u, c)
+            dG = dG - cylinder_temperature_gradient_regular(u, c)
+        out = np.stack([W, T, S, dG], axis=1).astype(complex)
+        out.setflags(write=False)
+        return out
+    return KERNEL_VALUES.get((float(c), complex(b)), build)

@@ -56,6 +56,8 @@ _PANEL_VARIATION = 4.0
 _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
+#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``).
+_GROUP = 256
 
 
 def _parameters(c, b):
@@ -267,24 +269,52 @@ def _phi_block(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = np.maximum(small, 1e-15)
-    depth = max(1, int(np.ceil(np.log2(max(1.0, float(np.max(end / small))))))) + 1
-    edges = end[:, None] * 2.0 ** np.arange(-depth, 1)[None, :]
-    edges = np.concatenate([np.zeros((u.size, 1)), edges], axis=1)
-    e = exponent(edges)[3]
-    change = np.max(np.abs(np.diff(e, axis=1)), axis=0)
     total = np.zeros((getattr(integrand, "count", None) or 1, u.size),
                      dtype=np.result_type(np.asarray(b), float))
-    for j in range(edges.shape[1] - 1):
-        parts = max(1, int(np.ceil(change[j] / _PANEL_VARIATION)))
-        frac = np.arange(parts + 1) / parts
-        sub = edges[:, j:j + 1] + (edges[:, j + 1:j + 2] - edges[:, j:j + 1]) * frac[None, :]
-        half = 0.5 * np.diff(sub, axis=1)
-        phi = ((sub[:, :-1] + half)[:, :, None] + half[:, :, None] * _GL_X).reshape(u.size, -1)
-        w = (half[:, :, None] * _GL_W).reshape(u.size, -1)
-        s, rho, d, ex = exponent(phi)
-        f = integrand(s, rho, d, sg)
-        total += np.sum((w * np.exp(-ex))[None] * (f if isinstance(f, tuple) else (f,)), axis=2)
+    # Points of one side and similar |u| share the rule in phi: the integrand's
+    # factors are formed once per node, the exponential once per point and node.
+    order = np.lexsort((a[:, 0], sg[:, 0]))
+    cuts = np.flatnonzero(np.diff(sg[order, 0]) != 0) + 1
+    for run in np.split(order, cuts):
+        for i in range(0, run.size, _GROUP):
+            idx = run[i:i + _GROUP]
+            total[:, idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
+                                       c, b, integrand)
     return (2.0 / np.pi) * total
+
+
+def _phi_group(a, sg, end, small, c, b, integrand):
+    """The rule of :func:`_phi_block` shared by points ``a = |u|`` of one side ``sg``:
+    from the largest end, graded to the smallest scale, each level in parts over which
+    the exponent changes by at most ``_PANEL_VARIATION`` for every point whose own end
+    lies beyond the level's start (beyond it the integrand is negligible)."""
+    def sd(phi):
+        s = np.sin(phi)
+        rho = _sqrt(b + (c * s) ** 2)
+        with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+            d = np.where(sg * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+        return s, rho, d, np.where(s == 0.0, 0.0, s * d)
+
+    top = float(np.max(end))
+    depth = max(1, int(np.ceil(np.log2(max(1.0, top / float(np.min(small))))))) + 1
+    edges = np.concatenate([[0.0], top * 2.0 ** np.arange(-depth, 1)])
+    step = np.abs(np.diff(sd(edges)[3]))
+    live = end[:, None] > edges[None, :-1]
+    change = np.max(np.where(live, a[:, None] * step[None, :], 0.0), axis=0)
+    parts = np.maximum(1, np.ceil(change / _PANEL_VARIATION).astype(int))
+    level = np.repeat(np.arange(parts.size), parts)
+    within = np.arange(level.size) - np.repeat(np.cumsum(parts) - parts, parts)
+    half = 0.5 * np.diff(edges)[level] / parts[level]
+    centre = edges[level] + (2 * within + 1) * half
+    phi = (centre[:, None] + half[:, None] * _GL_X).ravel()
+    w = (half[:, None] * _GL_W).ravel()
+    s, rho, d, e = sd(phi)
+    f = integrand(s, rho, d, sg)
+    weighted = np.exp(-np.multiply.outer(a, e)) * w
+    # Each kernel by its own sum (the same rounding alone or with the other; no
+    # threaded BLAS for these small products).
+    return np.stack([np.einsum("pn,n->p", weighted, np.broadcast_to(v, phi.shape))
+                     for v in (f if isinstance(f, tuple) else (f,))])
 
 
 def transient_displacement(u, c, b):

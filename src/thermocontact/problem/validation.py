@@ -123,6 +123,16 @@ def check_integer(name: str, value, low: int, high: int | None = None) -> int:
     return int(n)
 
 
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is a boolean (``True`` or ``False``; NumPy's too): a flag is not
+    any truthy value."""
+    kind = type(value)
+    if isinstance(value, bool) or (kind.__module__ == "numpy" and kind.__name__ in ("bool",
+                                                                                   "bool_")):
+        return bool(value)
+    _fail(name, "True or False", value)
+
+
 def check_choice(name: str, value, choices) -> str:
     """``value`` if it is one of ``choices``."""
     choices = sorted(choices)

@@ -109,10 +109,8 @@ VOCABULARY = {
     "ds": ("", "a dataset written by to_dataset"),
     # Stability of the steady contact.
     "solution": ("", "a steady contact (ContactSolution or PhysicalContact)"),
-    "re_min": ("k2/Delta^2", "least real part of the eigenvalues counted"),
-    "re_max": ("k2/Delta^2", "largest real part searched"),
-    "im_max": ("k2/Delta^2", "largest imaginary part searched"),
-    "points": ("", "points of a contour"),
+    "b_min": ("k2/Delta^2", "the least growth rate of the eigenvalues counted"),
+    "modulus_bound": ("k2/Delta^2", "the largest |b| of the eigenvalues counted"),
     # Discretisation and execution.
     "method": ("", "discretisation method (METHODS)"),
     "n": ("", "unknowns per function"),
@@ -140,10 +138,15 @@ DEPRECATED = {
     "temperatures": "closure=FarTemperatures(...)",
     "start": "initial (of a transient run)",
     "zones": "contact_set(...) (of contact)",
+    "re_min": "b_min (of stability: every eigenvalue above it counted)",
+    "re_max": "nothing (stability counts every eigenvalue up to modulus_bound)",
+    "im_max": "nothing (stability counts every eigenvalue up to modulus_bound)",
+    "points": "nothing (stability's contour is followed adaptively)",
 }
 
 
-def deprecated_spellings(*, renamed=(), closure=None, physical=None, converted=()):
+def deprecated_spellings(*, renamed=(), closure=None, physical=None, converted=(),
+                         retired=()):
     """A public call that still takes the spellings of versions before 1.0, each with a
     :class:`DeprecationWarning` naming what replaces it (:data:`DEPRECATED`).
 
@@ -153,6 +156,8 @@ def deprecated_spellings(*, renamed=(), closure=None, physical=None, converted=(
         ``(old, new)`` keyword names.
     converted : sequence of (str, str, callable)
         ``(old, new, convert)``: ``new=convert(old value)``.
+    retired : sequence of str
+        Keywords that 1.0 no longer needs: taken and ignored.
     closure : {"dimensionless", "physical", "either"}, optional
         The call's closure keywords of earlier versions (``theta``, ``sink_distance``,
         ``bulk_temperatures``, ``layer_thickness``) become its ``closure=``
@@ -179,6 +184,10 @@ def deprecated_spellings(*, renamed=(), closure=None, physical=None, converted=(
                                          parameters=(new,))
                     kwargs[new] = kwargs.pop(old)
                     used.append(f"{old}= ({new}=)")
+            for old in retired:
+                if old in kwargs:
+                    kwargs.pop(old)
+                    used.append(f"{old}= (no longer needed: ignored)")
             for old, new, convert in converted:
                 if kwargs.get(old) is not None:
                     if kwargs.get(new) is not None:

@@ -2,11 +2,16 @@
 
 The contact linearised about a steady solution at fixed load is ``M(b) c = 0``
 (:class:`~thermocontact.discretisation.linearised.LinearisedContact`, derivation
-section 18), a nonlinear eigenproblem in the rate ``b`` (units ``k2/Delta^2``).  Its
-eigenvalues in a region of the right half-plane are found by Beyn's contour-integral
-method (:func:`beyn`) and each is checked by Newton's method on ``det M`` (the trace
-formula, :func:`newton`), the second method; the error estimate is the change of the
-eigenvalues between ``n`` and ``n/2``.
+section 18), a nonlinear eigenproblem in the rate ``b`` (units ``k2/Delta^2``).  The
+verdict is a count: the roots of ``det M`` in the region ``Re b >= b_min``,
+``|b| <= R`` (``R`` the modulus bound, the model's range, eq. S11) by the argument
+principle on its boundary (:class:`Winding`: the phase of the determinant followed
+with steps each confirmed by its midpoint, eq. S12).  Where the count is positive the
+roots are located (a single one, real, by Brent's method on the real axis; several by
+Beyn's contour integral on the smallest half-disc holding them all, :func:`beyn`) and
+each is confirmed by Newton's method on ``det M`` kept on the principal sheet
+(:func:`newton`, eq. S13); the error estimate is the change of the eigenvalues between
+``n`` and ``3n/2``.
 """
 
 from __future__ import annotations
@@ -15,116 +20,309 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..discretisation.linearised import LinearisedContact
+from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..io.results import Result
 from ..problem.validation import InputError, check_integer, check_positive
 
-__all__ = ["StabilityResult", "beyn", "inside", "linearised", "newton", "stability_of"]
+__all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
+           "linearised", "newton", "scaled_matrix", "stability_of"]
 
-#: Unknowns per function of the stability analysis (its own discretisation: the cost
-#: of ``M(b)`` grows with ``n`` and with the number of contour points).
+#: Unknowns per function of the stability analysis (its own discretisation).
 STABILITY_N = 12
+#: The smallest growth rate counted by default, ``k2/Delta^2``: a growth time of a
+#: thousand diffusion times across the half-width (a fold's exponentially slow real
+#: root, derivation S8, lies far below it).
+B_MIN = 1e-3
+#: The default modulus bound, ``k2/Delta^2`` (derivation S11): a mode growing faster has
+#: a thermal layer thinner than ``Delta/1000``, where the surfaces' roughness and the
+#: interface's conductance, not this model, decide.
+MODULUS_BOUND = 1e6
+#: An eigenvalue that changes by more than this (relative) from n to 3n/2 is said to be
+#: unresolved in the record's reason.
+UNRESOLVED = 0.1
+#: The largest change of the determinant's phase accepted between two samples.
+PHASE_STEP = np.pi / 4
+#: Below this step of the contour's parameter a sample interval is not refined further:
+#: a root on or against the contour, and the count is not certified.
+SMALLEST_STEP = 1e-9
+#: The line's parameter ``t`` (``b = b_min (1 + i sinh t)``): first steps this long.
+_LINE_STEP = 4.0
+#: The arc's first steps (of ``theta`` in ``[0, pi/2]``).
+_ARC_STEPS = 2
+
+COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows times "
+                "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
+                "confirmed by its midpoint (both halves change it by less than pi/4 and add "
+                "up to the whole); roots located by Brent's method (one, real) or Beyn's "
+                "contour integral and confirmed by Newton's method")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
 class StabilityResult(Result):
-    """The eigenvalues of a steady single patch in a region of the right half-plane.
+    """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Attributes
     ----------
     eigenvalues : ndarray of complex
-        Largest real part first; one of each conjugate pair with its partner
-        (``M(conj b) = conj M(b)``).  In units of ``k2/Delta^2``, or 1/s where
-        ``rate_unit`` (``k2/Delta^2`` in 1/s) was given.
-    stable : bool
-        No eigenvalue in the region (``Re b > re_min``, ``|b|`` within the
-        ellipse ``region``).
-    error_estimate : float or None
-        The largest change of an eigenvalue between ``n`` and ``n/2`` (relative to
-        ``max(|b|, 1)``), None where there is none to compare.
-    newton_change : float or None
-        The largest change when Newton's method polishes Beyn's estimates (the second
-        method), relative as above.
+        Every eigenvalue located in the region, largest real part first, both members
+        of each conjugate pair (``M(conj b) = conj M(b)``); as many as counted unless
+        ``reason`` says otherwise.  In units of ``k2/Delta^2``, or 1/s where
+        ``rate_unit`` was given.
+    unstable_modes : int or None
+        The number of eigenvalues in the region by the argument principle (with
+        multiplicity); None where the count could not be certified.
+    stable : bool or None
+        True when the count is 0, False when it is positive, None where it could not
+        be certified (``reason``).
+    reason : str or None
+        Why ``stable`` is None, what was not located, or that an eigenvalue is not
+        resolved at ``n`` (its error estimate above 0.1); None otherwise.
+    growth_rate : float or None
+        The largest real part of an eigenvalue located, None where none.
     region : tuple
-        ``(re_min, re_max, im_max)`` of the ellipse searched, in the units of the
-        eigenvalues.
+        ``(b_min, modulus_bound)`` in the units of the eigenvalues.
+    count_method : str
+    error_estimate : float or None
+        The largest change of an eigenvalue between ``n`` and ``3n/2`` (``n/2`` above
+        ``n = 32``), relative to ``max(|b|, 1)``: an estimate of its error at ``n``;
+        None where there is none.
+    fold : float or None
+        ``|det M(0)/det M_reg(0)|`` (the two differ in the heat partition's row, S7-S8):
+        0 at a fold of the load, where a real root leaves ``b = 0`` exponentially
+        slowly; None for a moving half-plane (``b = 0`` is then no branch point).
+    slow_root : float or None
+        The estimate (S8) of that real root, in the eigenvalues' units, where it lies
+        on the principal sheet below ``b_min`` (not counted); None otherwise.
+    evaluations : int
+        Evaluations of ``M(b)``.
     n : int
     units : str
     """
 
     eigenvalues: np.ndarray
-    stable: bool
-    error_estimate: float | None
-    newton_change: float | None
+    unstable_modes: int | None
+    stable: bool | None
+    reason: str | None
+    growth_rate: float | None
     region: tuple
+    count_method: str
+    error_estimate: float | None
+    fold: float | None
+    slow_root: float | None
+    evaluations: int
     n: int
     units: str = "k2/Delta^2"
 
+    STATUSES = {"stable": "no eigenvalue in the region, the count certified",
+                "unstable": "eigenvalues in the region (unstable_modes), the count certified",
+                "uncertain": "the count could not be certified (message says why): stable "
+                             "is None"}
+    SUCCESS = frozenset({"stable", "unstable"})
+    UNITS = {"eigenvalues": "k2/Delta^2"}
+
+    @property
+    def status(self) -> str:
+        """One of :attr:`STATUSES`, from ``stable``."""
+        return {True: "stable", False: "unstable"}.get(self.stable, "uncertain")
+
+    @property
+    def message(self) -> str:
+        """The verdict in one line, with its reason where there is one."""
+        b_min, bound = self.region
+        head = (f"{self.unstable_modes} eigenvalue{'s' * (self.unstable_modes != 1)} with "
+                f"Re b >= {b_min:g} and |b| <= {bound:g} {self.units}"
+                if self.unstable_modes is not None else "the count was not certified")
+        return head + ("" if self.reason is None else f"; {self.reason}")
+
+    def _units(self) -> dict:
+        return {name: self.units for name in ("eigenvalues", "growth_rate", "region",
+                                              "slow_root")}
+
     def _summary(self):
         lead = (f"{self.eigenvalues[0]:.4g}" if len(self.eigenvalues) else "none")
-        return f"stable={self.stable}, largest={lead}, units={self.units!r}"
+        return (f"stable={self.stable}, unstable_modes={self.unstable_modes}, "
+                f"largest={lead}, units={self.units!r}")
 
     def _record(self):
         est = self.error_estimate
-        return {"stable": bool(self.stable),
+        return {"stable": self.stable, "unstable_modes": self.unstable_modes,
+                "reason": self.reason,
                 "eigenvalues": [[float(b.real), float(b.imag)] for b in self.eigenvalues],
+                "growth_rate": self.growth_rate,
+                "region": {"b_min": self.region[0], "modulus_bound": self.region[1]},
+                "count_method": self.count_method,
                 "error_estimate": None if est is None else float(est),
-                "newton_change": (None if self.newton_change is None
-                                  else float(self.newton_change)),
-                "region": {"re_min": self.region[0], "re_max": self.region[1],
-                           "im_max": self.region[2]},
-                "n": self.n, "units": self.units}
+                "fold": None if self.fold is None else float(self.fold),
+                "slow_root": self.slow_root,
+                "evaluations": int(self.evaluations), "n": self.n}
 
 
 def linearised(solution) -> LinearisedContact:
     """The linearised contact about a :class:`~.result.ContactSolution`."""
-    if solution.conductance is not None:
-        raise InputError("stability: an interface conductance is not supported; solve "
-                         "with perfect thermal contact", parameters=("conductance",))
+    check_modelled(method=solution.method)
     return LinearisedContact(solution.parameters, solution.representation, solution.phi,
-                             solution.psi, solution.load_ratio, solution.sigma_over_delta)
+                             solution.psi, solution.load_ratio, solution.sigma_over_delta,
+                             solution.conductance)
 
 
-def ellipse(re_min, re_max, im_max, points):
-    """Contour points in the upper half (``theta`` in ``(0, pi)``) of the ellipse with
-    real extent ``[re_min, re_max]`` and imaginary extent ``[-im_max, im_max]``, and
-    ``dz/dtheta`` there; the lower half is their conjugate."""
-    centre, a = 0.5 * (re_min + re_max), 0.5 * (re_max - re_min)
-    theta = 2.0 * np.pi * (np.arange(points // 2) + 0.5) / points
-    return centre + a * np.cos(theta) + 1j * im_max * np.sin(theta), \
-        -a * np.sin(theta) + 1j * im_max * np.cos(theta)
+class Winding:
+    """The phase of a function analytic in ``Re b > 0`` with ``f(conj b) = conj f(b)``,
+    followed along the boundary of ``Re b >= b_min``, ``|b| <= R`` (its upper half), and
+    the number of its zeros inside (the argument principle).
 
-
-def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0, progress=None):
-    """Eigenvalues of ``M(b) c = 0`` inside an ellipse by Beyn's method (Beyn 2012,
-    algorithm 1).
-
-    ``A_k = (1/2 pi i) oint b^k M(b)^{-1} V db`` by the trapezoidal rule on the ellipse
-    (exponentially convergent for ``M`` analytic in a neighbourhood of it), with a
-    real probe ``V`` so that the lower half of the contour is the conjugate of the
-    upper; ``A_0 = V0 S W0^H`` truncated at ``tol`` times the integrand's largest norm;
-    the eigenvalues are those of ``V0^H A_1 W0 S^{-1}`` that lie inside.
+    ``f = det A(b)`` of a matrix function ``A``; its phase and ``log|f|`` come from
+    :func:`numpy.linalg.slogdet`.  The matrices are kept, so that the boundaries of
+    several ``R`` share the line's samples and :meth:`contour` can serve Beyn's
+    method.
 
     Parameters
     ----------
     matrix : callable
-        ``M(b)``, a square complex matrix, analytic inside and near the ellipse.
-    region : tuple
-        ``(re_min, re_max, im_max)``.
-    points : int
-        Contour points (even; ``points/2`` evaluations of ``M``).
-    progress : callable, optional
-        ``progress(done, total)`` after each evaluation of ``M``.
+        ``b -> A(b)``, square.
+    b_min : float
+    """
+
+    def __init__(self, matrix, b_min):
+        self.matrix, self.b_min = matrix, float(b_min)
+        self.values, self.matrices = {}, {}
+
+    def _at(self, b):
+        if b not in self.values:
+            A = self.matrix(b)
+            sign, logdet = np.linalg.slogdet(A)
+            self.matrices[b] = A
+            self.values[b] = (complex(sign), float(logdet))
+        return self.values[b]
+
+    def contour(self, R):
+        """The samples on the upper half of the boundary for ``R`` (counterclockwise:
+        the arc from ``b = R``, then down the line) with trapezoidal weights ``dz``,
+        after :meth:`count` for ``R``."""
+        b_min = self.b_min
+        line = sorted((b for b in self.values if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
+                      key=lambda b: b.imag)
+        arc = sorted((b for b in self.values if abs(abs(b) - R) <= 1e-12 * R
+                      and b.real != b_min), key=lambda b: np.angle(b))
+        z = np.array(arc + line[::-1], dtype=complex)
+        dz = np.zeros_like(z)
+        step = np.diff(z)
+        dz[:-1] += 0.5 * step
+        dz[1:] += 0.5 * step
+        return z, dz
+
+    def line(self, t):
+        return complex(self.b_min, self.b_min * np.sinh(t))
+
+    def _follow(self, point, t0, t1, steps):
+        """The phase change of ``f`` along ``point(t)``, ``t`` from ``t0`` to ``t1``.
+
+        Each step is accepted only when its midpoint confirms it: both halves change
+        the phase by less than :data:`PHASE_STEP`, their sum agrees with the whole
+        step's change (an alias of a whole turn cannot pass both), and the midpoint is
+        not a sharp minimum of ``|f|`` (``log|f|`` more than 2 below the chord: a root
+        close to the contour); otherwise both halves are examined in turn.  None (and
+        why) where a step falls below :data:`SMALLEST_STEP` or ``f`` vanishes."""
+        edges = np.linspace(t0, t1, steps + 1)
+        stack = [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:])][::-1]
+        total = 0.0
+        while stack:
+            a, b = stack.pop()
+            m = 0.5 * (a + b)
+            (pa, la), (pm, lm), (pb, lb) = (self._at(point(t)) for t in (a, m, b))
+            if pa == 0 or pm == 0 or pb == 0:
+                return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
+            first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
+            whole = float(np.angle(pb / pa))
+            agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
+            if (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP and agree
+                    and lm >= 0.5 * (la + lb) - 2.0):
+                total += first + second
+                continue
+            if abs(b - a) < SMALLEST_STEP:
+                return None, f"a root on or against the contour near b = {point(m):.6g}"
+            stack += [(m, b), (a, m)]
+        return total, None
+
+    def count(self, R):
+        """``(N, reason)``: the number of zeros of ``f`` in ``Re b >= b_min``,
+        ``|b| <= R``, with multiplicity, or ``(None, why)`` where the phase could not
+        be followed or the winding is not an integer."""
+        b_min = self.b_min
+        Y = np.sqrt(R * R - b_min * b_min)
+        T = float(np.arcsinh(Y / b_min))
+        # The line on a grid common to every R, then to its end at |b| = R.
+        grid = np.arange(0.0, T, _LINE_STEP)
+        line, why = 0.0, None
+        for t0, t1 in zip(grid, list(grid[1:]) + [T]):
+            d, why = self._follow(self.line, float(t0), float(t1), 1)
+            if d is None:
+                return None, why
+            line += d
+        theta0 = float(np.arctan2(Y, b_min))
+        arc, why = self._follow(lambda th: R * np.exp(1j * th), theta0, 0.0, _ARC_STEPS)
+        if arc is None:
+            return None, why
+        # Upward along the line and back along the arc is the upper half of the
+        # boundary traversed clockwise; the lower half adds as much (conjugates).
+        winding = -(line + arc) / np.pi
+        N = int(round(winding))
+        if abs(winding - N) > 0.05:
+            return None, f"the winding {winding:.3f} is not an integer"
+        return N, None
+
+
+def half_disc(b_min, R, *, panels_per_unit=1.0, nodes=8):
+    """Quadrature of the upper half of the boundary of ``Re b >= b_min``,
+    ``|b| <= R``, counterclockwise: points ``z`` and weights ``dz`` (Gauss-Legendre on
+    the arc in ``theta`` and on the line in ``t``, ``b = b_min (1 + i sinh t)``, which
+    keeps the branch point ``b = 0`` at a fixed distance ``pi/2`` from the real ``t``
+    axis); the lower half is their conjugate, traversed the other way."""
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    Y = np.sqrt(R * R - b_min * b_min)
+    theta0 = float(np.arctan2(Y, b_min))
+    T = float(np.arcsinh(Y / b_min))
+
+    def panels(a, b, count):
+        edges = np.linspace(a, b, count + 1)
+        mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
+        return (mid[:, None] + half[:, None] * x).ravel(), (half[:, None] * w).ravel()
+    th, wth = panels(0.0, theta0, max(2, int(np.ceil(theta0 / (np.pi / 8)))))
+    z_arc, dz_arc = R * np.exp(1j * th), 1j * R * np.exp(1j * th) * wth
+    t, wt = panels(T, 0.0, max(2, int(np.ceil(T * panels_per_unit))))
+    z_line = b_min * (1.0 + 1j * np.sinh(t))
+    dz_line = 1j * b_min * np.cosh(t) * wt    # t descends: the weights are negative
+    return np.concatenate([z_arc, z_line]), np.concatenate([dz_arc, dz_line])
+
+
+def beyn(matrix, contour, *, rank=None, probes=8, tol=1e-5, seed=0, progress=None):
+    """Eigenvalues of ``M(b) c = 0`` inside a contour symmetric about the real axis, by
+    Beyn's method (Beyn 2012, algorithm 1).
+
+    ``A_k = (1/2 pi i) oint b^k M(b)^{-1} V db`` by the quadrature ``contour`` of the
+    upper half (points and weights ``dz``, counterclockwise; :func:`half_disc`), the
+    lower half its conjugate (``M(conj b) = conj M(b)``, ``V`` real);
+    ``A_0 = V0 S W0^H`` truncated to ``rank`` (or at ``tol`` times the integrand's
+    largest norm); the eigenvalues of ``V0^H A_1 W0 S^{-1}``.
+
+    Parameters
+    ----------
+    matrix : callable
+        ``M(b)``, a square complex matrix, analytic inside and near the contour.
+    contour : tuple
+        ``(z, dz)`` of the upper half.
+    rank : int, optional
+        The number of eigenvalues inside (the argument principle's count).
     probes : int
         Columns of ``V``: at least the number of eigenvalues inside.
+    progress : callable, optional
+        ``progress(done, total)`` after each evaluation of ``M``.
 
     Returns
     -------
     eigenvalues : ndarray
     rank : int
-        The rank of ``A_0`` found (``== probes`` means there may be more).
     """
-    z, dz = ellipse(*region, points)
+    z, dz = contour
     rng = np.random.default_rng(seed)
     V = None
     A0 = A1 = 0.0
@@ -138,117 +336,250 @@ def beyn(matrix, region, *, points=32, probes=8, tol=1e-5, seed=0, progress=None
         X = np.linalg.solve(M, V) * dzj
         A0 = A0 + X
         A1 = A1 + zj * X
-        size = max(size, np.linalg.norm(X, 2))
-    # The lower half: conjugates (M(conj b) = conj M(b), V real).
-    scale = (2.0 * np.pi / points) / (2j * np.pi)
-    A0 = scale * (A0 - np.conj(A0))
-    A1 = scale * (A1 - np.conj(A1))
+        size = max(size, np.linalg.norm(X, 2) / abs(dzj))
+    # The lower half: the conjugates, traversed the other way.
+    A0 = (A0 - np.conj(A0)) / (2j * np.pi)
+    A1 = (A1 - np.conj(A1)) / (2j * np.pi)
     U, sv, Wh = np.linalg.svd(A0, full_matrices=False)
-    # Against the integrand's own size: with no eigenvalue inside, A_0 is quadrature
-    # error only (a branch point near the contour makes it converge slowly).
-    k = int(np.sum(sv > tol * max(size, 1e-300)))
+    k = int(np.sum(sv > tol * max(size, 1e-300))) if rank is None else int(rank)
     if k == 0:
         return np.array([], dtype=complex), 0
     U, sv, W = U[:, :k], sv[:k], Wh[:k].conj().T
     B = U.conj().T @ A1 @ W / sv[None, :]
-    lam = np.linalg.eigvals(B)
-    return lam[inside(lam, region)], k
+    return np.linalg.eigvals(B), k
 
 
-def inside(b, region):
-    """Whether ``b`` lies inside the ellipse ``region = (re_min, re_max, im_max)``."""
-    centre, a = 0.5 * (region[0] + region[1]), 0.5 * (region[1] - region[0])
-    return ((np.real(b) - centre) / a) ** 2 + (np.imag(b) / region[2]) ** 2 < 1.0
-
-
-def newton(matrix, b0, *, steps=8, tol=1e-10, h=1e-6):
+def newton(matrix, b0, *, steps=12, tol=1e-10, h=1e-6, floor=0.0):
     """An eigenvalue of ``M(b) c = 0`` by Newton's method on ``det M`` from ``b0``.
 
     ``b <- b - 1/tr(M^{-1} M')`` (the logarithmic derivative of the determinant), with
-    ``M'`` by central differences of step ``h max(1, |b|)``.  Returns the last
-    iterate and its last step.
+    ``M'`` by central differences of step ``h |b|``.  The iterates stay on the
+    principal sheet, ``Re b > floor``: a step that would cross it is halved until it
+    does not (the cut ``b <= 0`` of the stationary half-plane's kernels is never
+    reached).  Returns the last iterate and its last step (``inf`` where the iterates
+    could not stay on the sheet).
     """
     b = complex(b0)
+    if b.real <= floor:
+        # A start off the sheet (an estimate left of the line): moved onto it.
+        b = complex(floor + max(abs(floor), 1e-12), b.imag)
     step = np.inf
     for _ in range(steps):
-        e = h * max(1.0, abs(b))
+        e = h * max(abs(b), 1e-300)
+        e = min(e, 0.5 * (b.real - floor)) if b.real - e <= floor else e
         M = matrix(b)
         dM = (matrix(b + e) - matrix(b - e)) / (2.0 * e)
-        step = 1.0 / np.trace(np.linalg.solve(M, dM))
+        try:
+            step = 1.0 / np.trace(np.linalg.solve(M, dM))
+        except np.linalg.LinAlgError:
+            return b, 0.0       # M singular to rounding: b is a root
+        if not np.isfinite(step):
+            return b, 0.0
+        for _ in range(60):
+            if (b - step).real > floor:
+                break
+            step *= 0.5
+        else:
+            return b, np.inf
         b = b - step
         if abs(step) <= tol * max(1.0, abs(b)):
             break
     return b, abs(step)
 
 
-def stability_of(solve_at, *, n=STABILITY_N, re_min=0.5, re_max=10.0, im_max=10.0,
-                 points=32, rate_unit=None, polish=True, progress=None) -> StabilityResult:
-    """Eigenvalues of largest real part of a steady single patch in an ellipse.
+def scaled_matrix(lin):
+    """``b -> M(b)`` with its temperature rows times ``sqrt(1 + b)`` (analytic and
+    non-zero in ``Re b > 0``: the same eigenvalues; the rows' size and the
+    determinant's phase then settle as ``|b|`` grows, where the temperature falls like
+    ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``)."""
+    n = lin.n
+
+    def matrix(b):
+        M = lin.matrix(b)
+        M[n + 3:] *= np.sqrt(1.0 + b)
+        return M
+    return matrix
+
+
+def _fold(lin):
+    """``|det M(0)/det M_reg(0)|`` (0 at a fold of the load, S8) and the slow real root
+    of (S8), ``b* = 4 exp(-2 gamma_E) exp(2 det M_reg(0)/det M(0))``, where the ratio is
+    negative (its sign decides whether the root is on the principal sheet); None and
+    None for a moving half-plane, whose kernels are analytic at ``b = 0``."""
+    if getattr(lin, "moving", False):
+        return None, None
+    reg, _, row = lin.matrix(0, split=True)
+    M0 = reg.copy()
+    M0[lin.n + 3] = row
+    s0, l0 = np.linalg.slogdet(M0)
+    s1, l1 = np.linalg.slogdet(reg)
+    if s0 == 0:
+        return 0.0, None
+    if s1 == 0:
+        return np.inf, None
+    ratio = float(np.real(s1 / s0)) * np.exp(l1 - l0)
+    slow = None
+    if ratio < 0:
+        slow = 4.0 * np.exp(-2.0 * np.euler_gamma) * np.exp(max(2.0 * ratio, -745.0))
+    return float(np.exp(l0 - l1)), slow
+
+
+def _check_region(b_min, modulus_bound):
+    b_min = check_positive("b_min", b_min)
+    modulus_bound = check_positive("modulus_bound", modulus_bound)
+    if not modulus_bound > 10.0 * b_min:
+        raise InputError(f"modulus_bound must exceed 10 b_min = {10 * b_min:g}, got "
+                         f"{modulus_bound!r}", parameters=("modulus_bound",))
+    return b_min, modulus_bound
+
+
+def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
+                 rate_unit=None, progress=None) -> StabilityResult:
+    """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Parameters
     ----------
     solve_at : callable
         ``solve_at(n)``: the steady solution at ``n`` unknowns per function.
     n : int
-        The stability analysis' ``n`` (even, >= 8); the error estimate compares
-        with ``n/2``.
-    re_min, re_max, im_max : float
-        The ellipse searched, in units of ``k2/Delta^2``: ``re_min > 0`` keeps it off
-        the branch point ``b = 0`` of the stationary half-plane's kernels, whose
-        distance from the contour sets the trapezoidal rule's convergence (about
-        ``exp(-0.45 points)`` of the integrand's size for the default ellipse).
-    points : int
-        Contour points.
+        The stability analysis' ``n`` (even, from 8 to 64); the error estimate compares
+        with ``3n/2`` (``n/2`` above 32).
+    b_min : float
+        The smallest growth rate counted, ``k2/Delta^2`` (> 0: ``b = 0`` is the branch
+        point of the stationary half-plane's kernels).
+    modulus_bound : float
+        ``R``: the region is ``Re b >= b_min``, ``|b| <= R`` (> 10 b_min; derivation
+        S11: a mode beyond it has a thermal layer thinner than ``Delta/sqrt(R)``).
     rate_unit : float, optional
         ``k2/Delta^2`` in 1/s: the eigenvalues and the region are reported in 1/s.
-    polish : bool
-        Check each eigenvalue by Newton's method (the second method).
     progress : callable, optional
-        ``progress(done, total)`` over the contour points (the analysis' cost).
+        ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
+        estimate).
 
     Returns
     -------
     StabilityResult
     """
-    n = check_integer("stability n", n, 8, 64)
-    re_min = check_positive("stability re_min", re_min)
-    if not re_max > re_min:
-        raise InputError(f"stability re_max must exceed re_min = {re_min:g}, got {re_max!r}",
-                         parameters=("re_max",))
-    im_max = check_positive("stability im_max", im_max)
-    points = 2 * check_integer("stability points", points // 2, 4, 256)
-    region = (re_min, re_max, im_max)
+    n = check_integer("n", n, 8, 64)
+    if n % 2:
+        raise InputError(f"n must be an even integer in [8, 64], got {n!r}",
+                         parameters=("n",))
+    b_min, R = _check_region(b_min, modulus_bound)
     lin = linearised(solve_at(n))
-    found, _ = beyn(lin.matrix, region, points=points, progress=progress)
-    found = found[found.imag >= -1e-12 * np.maximum(1.0, np.abs(found))]
-    change = None
-    if polish and found.size:
-        # The second method: Newton's from each estimate; an estimate it does not
-        # confirm (no convergence, or a root outside the region) is dropped.
-        kept, changes = [], []
-        for b in found:
-            p, step = newton(lin.matrix, b)
-            if step <= 1e-8 * max(1.0, abs(p)) and inside(p, region):
-                kept.append(p)
-                changes.append(abs(p - b) / max(1.0, abs(p)))
-        change = max(changes) if changes else None
-        found = np.array(kept, dtype=complex)
+    scaled = scaled_matrix(lin)
+    evaluations = [0]
+    expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
+
+    def counted(b):
+        evaluations[0] += 1
+        if progress is not None:
+            progress(evaluations[0], max(expected, evaluations[0]))
+        return scaled(b)
+
+    winding = Winding(counted, b_min)
+    N, reason = winding.count(R)
+    found = np.array([], dtype=complex)
     estimate = None
-    if found.size:
-        coarse = linearised(solve_at(n // 2))
-        estimate = max(abs(newton(coarse.matrix, b)[0] - b) / max(1.0, abs(b)) for b in found)
+    if N:
+        found, reason = _locate(winding, counted, N, b_min, R)
+        if found.size:
+            # The error at n: the change to a finer n (the change to n/2 overstates it
+            # many times: the eigenvalues converge faster than any fixed order).
+            other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
+            estimate = max(abs(newton(other.matrix, b, floor=0.5 * b_min)[0] - b)
+                           / max(1.0, abs(b)) for b in found)
+    fold, slow = _fold(lin)
+    if slow is not None and slow >= b_min:
+        slow = None     # counted, if anywhere
     # Both members of each complex pair, largest real part first.
     full = []
     for b in found:
         full.append(complex(b.real, abs(b.imag)))
-        if abs(b.imag) > 1e-12 * max(1.0, abs(b)):
+        if abs(b.imag) > 1e-9 * max(1.0, abs(b)):
             full.append(complex(b.real, -abs(b.imag)))
     full = np.array(sorted(full, key=lambda b: (-b.real, -b.imag)), dtype=complex)
-    units = "k2/Delta^2"
+    if N is not None and len(full) != N:
+        reason = reason or f"{len(full)} of the {N} eigenvalues counted were located"
+    if estimate is not None and estimate > UNRESOLVED:
+        reason = ((reason + "; ") if reason else "") + (
+            f"an eigenvalue changes by {estimate:.2g} of itself from n = {n} to a finer n: "
+            "not resolved at this n (the count is this n's)")
+    units, region = "k2/Delta^2", (b_min, R)
     if rate_unit is not None:
         full = full * rate_unit
         region = tuple(x * rate_unit for x in region)
+        slow = None if slow is None else slow * rate_unit
         units = "1/s"
-    return StabilityResult(eigenvalues=full, stable=not bool(np.any(full.real > 0.0)),
-                           error_estimate=estimate, newton_change=change,
-                           region=tuple(float(x) for x in region), n=n, units=units)
+    return StabilityResult(
+        eigenvalues=full, unstable_modes=N, stable=None if N is None else N == 0,
+        reason=reason, growth_rate=float(full.real.max()) if full.size else None,
+        region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
+        error_estimate=estimate, fold=fold, slow_root=slow,
+        evaluations=evaluations[0], n=n, units=units)
+
+
+def _locate(winding, matrix, N, b_min, R):
+    """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
+    real (the region is symmetric about the real axis), where ``det M`` changes sign
+    between ``b_min`` and ``R``: Brent's method in ``ln b``.  Otherwise the smallest
+    half-disc ``|b| <= R_j`` (``R_j = 4^j``: ``j`` doubled from 1, then bisected, the
+    count growing with the radius) holding all ``N`` by the same count; Beyn's method on
+    the samples the count took (trapezoidal weights), then on a Gauss-Legendre rule of
+    that boundary where Newton's method does not confirm all of them from the first
+    estimates.  Newton's method confirms each, kept on the sheet."""
+    roots = []
+
+    def confirm(estimates):
+        for b in estimates:
+            if b.imag < -1e-9 * max(1.0, abs(b)):
+                continue    # its conjugate is among them
+            root, step = newton(matrix, b, floor=0.5 * b_min)
+            if not np.isfinite(step) or step > 1e-8 * max(1.0, abs(root)):
+                continue
+            if root.real < b_min or abs(root) > R:
+                continue
+            root = (complex(root.real, abs(root.imag)) if abs(root.imag) > 1e-9 *
+                    max(1.0, abs(root)) else complex(root.real, 0.0))
+            if any(abs(root - q) <= 1e-6 * max(1.0, abs(q)) for q in roots):
+                continue
+            roots.append(root)
+
+    def located():
+        return sum(1 if q.imag == 0 else 2 for q in roots)
+
+    if N == 1:
+        from scipy.optimize import brentq  # here: scipy.optimize is slow to import
+
+        def real_det(x):
+            # det M at b = e^x, real; its size-th root keeps Brent's steps in range.
+            M = matrix(complex(np.exp(x), 0.0))
+            sign, logdet = np.linalg.slogdet(M)
+            return float(np.real(sign)) * np.exp(logdet / M.shape[0])
+        try:
+            confirm([complex(np.exp(brentq(real_det, np.log(b_min), np.log(R),
+                                           xtol=1e-7)), 0.0)])
+        except ValueError:
+            pass     # no sign change seen: Beyn's method below
+        if located() == N:
+            return np.array(roots, dtype=complex), None
+    top = int(np.ceil(np.log(R) / np.log(4.0)))
+
+    def holds(j):
+        r = 4.0 ** j
+        return r >= R or (r > 10.0 * b_min and winding.count(r)[0] == N)
+    # Doubling j from 1 (most roots lie at small |b|), then bisection in the bracket.
+    low, high = 0, 1
+    while high < top and not holds(high):
+        low, high = high, min(2 * high, top)
+    while high - low > 1:
+        mid = (low + high) // 2
+        if holds(mid):
+            high = mid
+        else:
+            low = mid
+    radius = min(4.0 ** high, R)
+    stored = winding.matrices
+    confirm(beyn(lambda b: stored[b], winding.contour(radius), rank=N, probes=N + 4)[0])
+    if located() < N:
+        confirm(beyn(matrix, half_disc(b_min, radius), rank=N, probes=N + 4)[0])
+    return np.array(roots, dtype=complex), None

@@ -88,8 +88,8 @@ class Event(Result):
         The event's distance from where the same margin changes sign with half the
         unknowns: the discretisation's share of its error (``at`` itself is located
         to ``rtol``).  None where it could not be bracketed at ``n/2``.
-    kind : {"fold", "hopf", "grazing"} or None
-        From the eigenvalues of the steady contact at the event
+    kind : {"fold", "hopf", "grazing", "unstable", "uncertified"} or None
+        From the counted eigenvalues of the steady contact at the event
         (:func:`thermocontact.studies.event_kinds.classify`); None where not asked for
         (and then left out of the record).
     """

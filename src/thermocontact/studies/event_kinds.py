@@ -1,13 +1,14 @@
 """What kind of end an event of a path is: fold, Hopf or grazing.
 
 The steady contact at an event of :func:`~thermocontact.studies.boundaries.follow` is
-linearised at fixed load and its eigenvalues found (derivation section 18,
+linearised at fixed load and its growing modes counted (derivation section 18,
 :func:`~thermocontact.solvers.stability.stability_of`): a real eigenvalue of largest real
-part in the right half-plane makes the event a ``"fold"`` (a real mode grows, the
+part with ``Re b >= b_min`` makes the event a ``"fold"`` (a real mode grows, the
 branch's real eigenvalue having passed through zero), a complex pair a ``"hopf"`` (an
 oscillating mode grows), and none, every mode decaying where validity is lost, a
-``"grazing"`` end.  :func:`map_stability` gives each point of a map its verdict and
-largest growth rate.
+``"grazing"`` end; ``"unstable"`` where modes were counted but none located,
+``"uncertified"`` where the count could not be certified.  :func:`map_stability` gives
+each point of a map its verdict, count and largest growth rate.
 """
 
 from __future__ import annotations
@@ -17,7 +18,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..problem.validation import InputError
-from ..solvers.stability import STABILITY_N, linearised, stability_of
+from ..discretisation.linearised import check_modelled
+from ..solvers.stability import STABILITY_N, stability_of
 from .boundaries import Path, closure, model_for
 
 __all__ = ["check_map_stability", "classify", "kind_of", "map_stability", "stability_at"]
@@ -29,9 +31,15 @@ _CLOSURES = ("lam", "sigma_over_delta", "theta", "sink_distance")
 def kind_of(result) -> str:
     """``"grazing"``, ``"fold"`` or ``"hopf"`` from a
     :class:`~thermocontact.solvers.stability.StabilityResult`: no eigenvalue in its
-    region, or the one of largest real part real or complex."""
-    if result.stable or not len(result.eigenvalues):
+    region, or the one of largest real part real or complex; ``"unstable"`` where the
+    count is positive but no eigenvalue was located, ``"uncertified"`` where the count
+    could not be certified."""
+    if result.stable is None:
+        return "uncertified"
+    if result.stable:
         return "grazing"
+    if not len(result.eigenvalues):
+        return "unstable"
     lead = result.eigenvalues[0]
     return "fold" if abs(lead.imag) <= 1e-9 * max(1.0, abs(lead)) else "hopf"
 
@@ -46,10 +54,10 @@ def classify(path: Path, *, n=STABILITY_N, progress=None, **region) -> Path:
     n : int
         Unknowns per function of the stability analysis.
     progress : callable, optional
-        ``progress(stage, done, total)`` over the events' contour points
+        ``progress(stage, done, total)`` over the events' evaluations of ``M(b)``
         (:func:`~thermocontact.studies.boundaries.trace`'s form).
     **region
-        ``re_min``, ``re_max``, ``im_max``, ``points`` of
+        ``b_min``, ``modulus_bound`` of
         :func:`~thermocontact.solvers.stability.stability_of`.
 
     Returns
@@ -90,20 +98,14 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, **region):
 
 def check_map_stability(spec) -> None:
     """Refuse, before the map is computed, a map whose contacts the stability analysis
-    does not model (a moving half-plane, the Dundurs term, a Chebyshev method): the
-    linearised contact's own refusal at the grid's corners (every parameter's range is
-    an interval), each solved at n = 8 and lam = 0.
+    does not model: a method other than an edge-graded one
+    (:func:`~thermocontact.discretisation.linearised.check_modelled`).
 
     Raises
     ------
     InputError
     """
-    for xv in (spec.x.start, spec.x.stop):
-        for yv in (spec.y.start, spec.y.stop):
-            kw = {**spec.fixed, spec.x.name: xv, spec.y.name: yv}
-            kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
-            linearised(model_for(kw, method=spec.method).solve_at(
-                8, kw["fhpe"], lam=0.0, check_validity=False))
+    check_modelled(method=spec.method)
 
 
 def map_stability(ds, spec, *, n=STABILITY_N, **region):
@@ -123,18 +125,20 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     n : int
         Unknowns per function of the stability analysis.
     **region
-        ``re_min``, ``re_max``, ``im_max``, ``points`` of
+        ``b_min``, ``modulus_bound`` of
         :func:`~thermocontact.solvers.stability.stability_of`.
 
     Returns
     -------
     xarray.Dataset
         ``ds`` with ``stable`` (1: no eigenvalue in the region, 0: one or more, -1: not
-        analysed) and ``growth_rate`` (the largest real part of an eigenvalue found,
-        k2/Delta^2; NaN where none or not analysed).
+        analysed, -2: the count not certified), ``unstable_modes`` (the count; -1
+        where not analysed or not certified) and ``growth_rate`` (the largest real part
+        of an eigenvalue located, k2/Delta^2; NaN where none or not analysed).
     """
     dims = (spec.y.name, spec.x.name)
     stable = np.full(ds["valid"].shape, -1, dtype=np.int8)
+    modes = np.full(ds["valid"].shape, -1, dtype=np.int32)
     rate = np.full(ds["valid"].shape, np.nan)
     lam = ds["lam"].broadcast_like(ds["valid"]).transpose(*ds["valid"].dims).values
     for (j, i), status in np.ndenumerate(np.asarray(ds["status"].values)):
@@ -145,16 +149,22 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
         kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
         kw["lam"] = float(lam[j, i])
         res = stability_at(kw, spec.method, n=n, **region)
-        stable[j, i] = int(res.stable)
-        if len(res.eigenvalues):
-            rate[j, i] = float(np.max(res.eigenvalues.real))
-    out = ds.assign(stable=(dims, stable), growth_rate=(dims, rate))
+        stable[j, i] = -2 if res.stable is None else int(res.stable)
+        if res.unstable_modes is not None:
+            modes[j, i] = res.unstable_modes
+        if res.growth_rate is not None:
+            rate[j, i] = res.growth_rate
+    out = ds.assign(stable=(dims, stable), unstable_modes=(dims, modes),
+                    growth_rate=(dims, rate))
     out["stable"].attrs.update(
-        long_name="1 where no eigenvalue of the contact linearised at fixed load lies in "
-                  "the region searched, 0 where one does, -1 not analysed",
-        flag_values=np.array([-1, 0, 1], dtype=np.int8),
-        flag_meanings="not_analysed unstable stable")
+        long_name="1 where no eigenvalue of the contact linearised at fixed load has "
+                  "Re b >= b_min, 0 where one does, -1 not analysed, -2 not certified",
+        flag_values=np.array([-2, -1, 0, 1], dtype=np.int8),
+        flag_meanings="not_certified not_analysed unstable stable")
+    out["unstable_modes"].attrs.update(
+        long_name="eigenvalues with Re b >= b_min counted by the argument principle "
+                  "(-1 where not analysed or not certified)")
     out["growth_rate"].attrs.update(
-        long_name="largest real part of an eigenvalue in the region searched "
-                  "(NaN where none)", units="k2/Delta^2")
+        long_name="largest real part of an eigenvalue located (NaN where none)",
+        units="k2/Delta^2")
     return out

@@ -1,0 +1,83 @@
+"""The cost of a stability verdict: one point, and a map with and without it.
+
+Run: ``python bench/bench_stability.py [--map N]``.  A benchmark, not a test: it prints
+tables and asserts nothing.  For each case the steady solution is solved first (not
+timed), then ``thermocontact.stability`` with its defaults (n = 12, Re b >= 1e-3,
+|b| <= 1e6) is timed three times: cold (the per-process caches cleared: the kernel
+table built, every kernel evaluated), a neighbour (the point at 1.05 Pe next: the table
+and the half-plane's kernel values kept, the cylinder's evaluated anew, as for the next
+point of a map or path) and warm (the same point again: every kernel value kept, the
+floor: the products, the determinants, Newton's method); wall and CPU time, and the
+evaluations of M(b).  Then an N x N map (default 4 x 4) over fHPe and Pe with and
+without ``stability=True``, in this process, and the ratio of their times.  BLAS is
+limited to one thread (the products are small; threads only compete on a shared
+machine).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import thermocontact as tc
+
+CASES = {
+    "Fig. 4: Pe=5 fHPe=0.2 K2/K1=10 lam=-1": dict(pe=5, fhpe=0.2, K2_over_K1=10, lam=-1),
+    "past the fold: Pe=fHPe=1.5 K2/K1=1 lam=1": dict(pe=1.5, fhpe=1.5, K2_over_K1=1, lam=1),
+    "Fig. 3: Pe=1 fHPe=0.5 K2/K1=10 lam=-1": dict(pe=1, fhpe=0.5, K2_over_K1=10, lam=-1),
+    "path (b): Pe=10 fHPe=0.33 K2/K1=100 lam=1": dict(pe=10, fhpe=0.331226, K2_over_K1=100,
+                                                      lam=1),
+}
+
+
+def timed(func):
+    w0, c0 = time.perf_counter(), time.process_time()
+    out = func()
+    return out, time.perf_counter() - w0, time.process_time() - c0
+
+
+def one_point():
+    print(f"{'case':44s} {'verdict':>7s} {'modes':>5s} {'evals':>5s} {'cold wall/cpu':>14s} "
+          f"{'neighbour wall/cpu':>18s} {'warm wall/cpu':>14s}")
+    for name, kw in CASES.items():
+        sol = tc.solve(**kw)
+        near = tc.solve(**{**kw, "pe": 1.05 * kw["pe"]})
+        tc.clear_caches()
+        res, w_cold, c_cold = timed(lambda: tc.stability(sol))
+        _, w_near, c_near = timed(lambda: tc.stability(near))
+        _, w_warm, c_warm = timed(lambda: tc.stability(sol))
+        print(f"{name:44s} {str(res.stable):>7s} {res.unstable_modes!s:>5s} "
+              f"{res.evaluations:5d} {w_cold:6.2f}s/{c_cold:5.2f}s "
+              f"{w_near:10.2f}s/{c_near:5.2f}s {w_warm:6.2f}s/{c_warm:5.2f}s")
+
+
+def a_map(size):
+    axes = (tc.Axis("fhpe", 0.1, 0.6, size), tc.Axis("pe", 1.0, 10.0, size, log=True))
+    kw = dict(K2_over_K1=10, lam=1, tol=1e-6)
+    tc.clear_caches()
+    _, plain, plain_cpu = timed(lambda: tc.parameter_map(*axes, **kw))
+    tc.clear_caches()
+    ds, with_it, with_cpu = timed(lambda: tc.parameter_map(*axes, stability=True, **kw))
+    points = size * size
+    print(f"\n{size} x {size} map over fHPe in [0.1, 0.6], Pe in [1, 10] (K2/K1 = 10, lam = 1)")
+    print(f"  without stability: {plain:8.2f} s wall, {plain_cpu:8.2f} s cpu "
+          f"({1e3 * plain / points:.1f} ms a point)")
+    print(f"  with stability:    {with_it:8.2f} s wall, {with_cpu:8.2f} s cpu "
+          f"({1e3 * with_it / points:.1f} ms a point)")
+    print(f"  ratio {with_it / plain:.1f} (wall), {with_cpu / plain_cpu:.1f} (cpu); "
+          f"verdicts: {int((ds['stable'] == 1).sum())} stable, "
+          f"{int((ds['stable'] == 0).sum())} unstable, "
+          f"{int((ds['stable'] == -2).sum())} not certified")
+
+
+def main(argv):
+    size = int(argv[argv.index("--map") + 1]) if "--map" in argv else 4
+    one_point()
+    a_map(size)
+
+
+if __name__ == "__main__":
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        main(sys.argv[1:])

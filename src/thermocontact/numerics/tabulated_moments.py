@@ -1,0 +1,216 @@
+"""Moments of kernels known by their values at fixed nodes: a linear map built once.
+
+The linearised contact (derivation section 18) integrates the same few kernels against
+the same bases at the same points for every rate ``b``; only the kernels change.  Each
+kernel is replaced by its interpolant on panels graded geometrically toward ``u = 0``
+on either side (``2^-50 <= |u| <= 2``, ratio :data:`RATIO`, :data:`NODES` Chebyshev
+points each), so that its moments are a fixed linear map of its values at those nodes:
+
+    B[k, i] = integral_0^pi K(s_k - cos T(tau)) W(tau) phi_i(tau) dtau
+            = sum_m K(u_m) A[k, i, m],
+
+``phi_i`` the nodal basis of the graded representation (cosine series in ``tau``),
+``W`` the pressure's or the flux's weight (:func:`~.moment_engine.moments`).  The map
+``A`` (:class:`KernelTable`) is product integration: on each panel the Lagrange
+polynomials of the nodes are integrated against the weighted bases by Gauss-Legendre
+in ``tau``, on the ``tau``-interval the panel covers, located without cancellation
+next to ``tau_k`` (offsets ``delta = tau - tau_k``, as the moment engine forms
+them).  A kernel that is smooth on either side of ``u = 0`` on every scale down to
+``2^-50``, with at most a jump or a logarithm at ``0`` (the transient kernels of
+derivation eqs. T3-T10, each side's interpolant then converging geometrically), is
+integrated to about 1e-13 of its size; the interval ``|u| < 2^-50`` is left out
+(at most ``2^-50 (1 + 50 ln 2)`` of a logarithm's size).  The kernels' values are
+the only work per ``b``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .cache import BoundedCache
+from .moment_engine import GRADED, stretch, stretch_inverse
+
+__all__ = ["KernelTable", "NODES", "RATIO", "kernel_nodes", "kernel_table"]
+
+#: Chebyshev points per panel (degree 15 interpolation).
+NODES = 16
+#: Ratio of consecutive panels' ends: ``|u|`` in ``[h, RATIO h]``.  A kernel
+#: ``exp(-beta u)`` (a boundary layer of the transient kernels, ``|arg beta| <= pi/4``)
+#: is interpolated to 1e-14 of its size at ``u = 0`` on every panel with this ratio.
+RATIO = np.sqrt(2.0)
+#: The panels span ``SMALLEST <= |u| <= LARGEST`` (points in ``[-1, 1]``); below
+#: ``SMALLEST`` the kernel is ``a + b ln|u| + c u + d u ln|u|`` to ``O(u^2 ln u)``.
+SMALLEST, LARGEST = 2.0 ** -36, 2.0
+#: The innermost interval's pieces, halving toward ``u = 0`` (the rest, below
+#: ``2^-60`` of it in ``tau``, is left out).
+_INNER_HALVINGS = 60
+#: Gauss-Legendre points per piece in ``tau`` and the longest piece.
+_GAUSS = 24
+_PIECE = 0.125
+
+#: The tables kept per process (11 MB at n = 12, 44 MB at n = 24).
+TABLES = BoundedCache("kernel tables", 128 * 2**20)
+
+
+def _panels():
+    count = int(np.ceil(np.log(LARGEST / SMALLEST) / np.log(RATIO)))
+    edges = SMALLEST * RATIO ** np.arange(count + 1)
+    edges[-1] = max(edges[-1], LARGEST)
+    return edges
+
+
+def _chebyshev():
+    """The Chebyshev points of a panel, descending in ``[-1, 1]``."""
+    return np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
+
+
+def kernel_nodes():
+    """The nodes ``u`` (ascending: the negative side's, then the positive side's) at
+    which a kernel's values are given to :meth:`KernelTable.moments`."""
+    edges = _panels()
+    x = _chebyshev()
+    mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])
+    pos = np.sort((mid[:, None] + half[:, None] * x[None, :]).ravel())
+    return np.concatenate([-pos[::-1], pos])
+
+
+def _lagrange(xq, x):
+    """Values at ``xq`` (any shape, in [-1, 1]) of the Lagrange polynomials of the
+    Chebyshev nodes ``x``, shape ``xq.shape + (len(x),)``: the Chebyshev series of each
+    (its coefficients the inverse of the nodes' Vandermonde matrix) summed at ``xq``."""
+    cheb = np.polynomial.chebyshev
+    return cheb.chebvander(xq, x.size - 1) @ np.linalg.inv(cheb.chebvander(x, x.size - 1))
+
+
+def _offset_u(tau_k, t_k, d, cmap):
+    """``u = s_k - cos T(tau_k + d)`` without cancellation for small ``d``."""
+    dt = cmap.increment(tau_k, d)
+    return 2.0 * np.sin(t_k + 0.5 * dt) * np.sin(0.5 * dt)
+
+
+def _offsets(tau_k, t_k, s_k, a, side, cmap):
+    """The offsets ``d`` with ``u(tau_k + d) = side * a`` (``a > 0``), by Newton's
+    method from the direct inversion; ``side = +1`` has ``d > 0`` (``r < s_k``)."""
+    one_minus = 2.0 * np.sin(0.5 * t_k) ** 2 + side * a       # 1 - r
+    one_plus = 2.0 * np.cos(0.5 * t_k) ** 2 - side * a        # 1 + r
+    t = np.where(one_minus <= one_plus,
+                 2.0 * np.arcsin(np.sqrt(np.clip(0.5 * one_minus, 0.0, 1.0))),
+                 np.pi - 2.0 * np.arcsin(np.sqrt(np.clip(0.5 * one_plus, 0.0, 1.0))))
+    d = stretch_inverse(t) - tau_k
+    for _ in range(4):
+        slope = np.sin(cmap.T(tau_k + d)) * cmap.dT(tau_k + d)
+        step = (_offset_u(tau_k, t_k, d, cmap) - side * a) / np.where(slope > 0.0, slope, 1.0)
+        d = d - np.where(slope > 0.0, step, 0.0)
+    return d
+
+
+class KernelTable:
+    """The linear map from a kernel's values at :func:`kernel_nodes` to its moments
+    at points ``s_k = cos T(tau_k)`` inside the contact (module docstring).
+
+    Parameters
+    ----------
+    tau : ndarray, shape (k,)
+        The points' ``tau`` in ``(0, pi)``.
+    n : int
+        Basis functions (nodal values at the graded nodes: the moments returned are
+        those of :meth:`~thermocontact.discretisation.representations.EdgeGraded.integrate`).
+    to_cos : ndarray, shape (n, n)
+        Nodal values to cosine coefficients in ``tau``.
+    cmap : CoordinateMap
+        The graded map with the pressure's weight.
+    """
+
+    def __init__(self, tau, n, to_cos, cmap=GRADED):
+        tau_k = np.asarray(tau, dtype=float)
+        t_k = stretch(tau_k)
+        s_k = np.cos(t_k)
+        edges = _panels()
+        xc = _chebyshev()
+        npan = edges.size - 1
+        # The innermost interval |u| < edges[0]: the kernel there is
+        # a + b ln|u| + c u + d u ln|u| + O(u^2 ln|u|), fitted to the first panel's
+        # nodes (least squares): a row of weights on those nodes per function.
+        first = 0.5 * (edges[0] + edges[1]) + 0.5 * (edges[1] - edges[0]) * xc
+        fit = np.linalg.pinv(_inner_basis(first))           # (4, NODES)
+        gx, gw = np.polynomial.legendre.leggauss(_GAUSS)
+        rows = []
+        for side in (-1.0, 1.0):
+            # The offsets of each panel's ends, cut at the contact's edge.
+            end = np.where(side > 0, np.pi - tau_k, -tau_k)
+            reach = np.where(side > 0, 1.0 + s_k, 1.0 - s_k)
+            a = np.minimum(edges[None, :], reach[:, None])
+            d = _offsets(tau_k[:, None], t_k[:, None], s_k[:, None], a, side, cmap)
+            d = np.where(a >= reach[:, None], end[:, None], d)
+            lo, hi = d[:, :-1], d[:, 1:]
+            live = np.abs(hi - lo) > 0.0
+            k_idx, p_idx = np.nonzero(live)
+            lo, hi = lo[live], hi[live]
+            # Long intervals in pieces of at most _PIECE.
+            pieces = np.maximum(1, np.ceil(np.abs(hi - lo) / _PIECE).astype(int))
+            # The innermost interval [0, d0] in pieces halving toward 0.
+            d0 = d[:, 0]
+            halvings = 2.0 ** -np.arange(_INNER_HALVINGS + 1)
+            ilo = d0[:, None] * halvings[1:][None, :]
+            ihi = d0[:, None] * halvings[:-1][None, :]
+            rep = np.repeat(np.arange(lo.size), pieces)
+            within = np.arange(rep.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+            width = (hi - lo)[rep] / pieces[rep]
+            a0 = np.concatenate([lo[rep] + within * width, ilo.ravel()])
+            width = np.concatenate([width, (ihi - ilo).ravel()])
+            kk = np.concatenate([k_idx[rep], np.repeat(np.arange(tau_k.size), _INNER_HALVINGS)])
+            pp = np.concatenate([p_idx[rep], np.full(tau_k.size * _INNER_HALVINGS, -1)])
+            nodes = a0[:, None] + 0.5 * width[:, None] * (gx + 1.0)[None, :]
+            wts = 0.5 * np.abs(width)[:, None] * gw[None, :]
+            u = np.abs(_offset_u(tau_k[kk][:, None], t_k[kk][:, None], nodes, cmap))
+            inner = pp < 0
+            q = np.where(inner, 0, pp)
+            mid, half = 0.5 * (edges[q + 1] + edges[q]), 0.5 * (edges[q + 1] - edges[q])
+            x = np.clip((u - mid[:, None]) / half[:, None], -1.0, 1.0)
+            lag = _lagrange(x, xc)                          # (I, G, NODES)
+            lag[inner] = _inner_basis(u[inner]) @ fit
+            tq = tau_k[kk][:, None] + nodes
+            wb, ws = cmap.weights(tq)
+            basis = np.cos(tq[..., None] * np.arange(n))   # (I, G, n)
+            # Per interval and weight, (n x G) @ (G x NODES), as stacked products.
+            contrib = np.stack([np.matmul((basis * (wt * wts)[..., None]).transpose(0, 2, 1),
+                                          lag) for wt in (wb, ws)])   # (2, I, n, NODES)
+            out = np.zeros((2, tau_k.size, npan, n, NODES))
+            np.add.at(out, (slice(None), kk, q), contrib)
+            # Panel p's nodes in ascending |u|: Chebyshev x descends.
+            out = out[..., ::-1].transpose(0, 1, 3, 2, 4).reshape(2, tau_k.size, n, -1)
+            if side < 0:
+                out = out[..., ::-1]        # ascending u: the largest |u| first
+            rows.append(out)
+        cos = np.concatenate(rows, axis=-1)                 # (2, k, n, nodes)
+        # Cosine coefficients -> nodal values: the representation's basis.
+        self.matrix = np.einsum("wkjm,ji->wkim", cos, to_cos)
+        self.shape = (tau_k.size, n)
+
+    def moments(self, values):
+        """``(bounded, singular)`` moments, each shape ``(k, n)`` (or with the extra
+        trailing axes of ``values``), of the kernels whose values at
+        :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``)."""
+        values = np.asarray(values)
+        table = self.matrix.reshape(2 * self.shape[0] * self.shape[1], -1)
+        if np.iscomplexobj(values):
+            # A real product on the real and imaginary parts side by side (half the
+            # work of the complex one).
+            flat = np.ascontiguousarray(values.reshape(values.shape[0], -1))
+            out = (table @ flat.view(float)).view(complex)
+        else:
+            out = table @ values.reshape(values.shape[0], -1)
+        return out.reshape((2,) + self.shape + values.shape[1:])
+
+
+def _inner_basis(u):
+    """``1, ln u, u, u ln u`` at ``u > 0``, shape ``u.shape + (4,)``."""
+    lg = np.log(u)
+    return np.stack([np.ones_like(u), lg, u, u * lg], axis=-1)
+
+
+def kernel_table(tau, n, to_cos, cmap=GRADED) -> KernelTable:
+    """The :class:`KernelTable` of points ``tau``, ``n`` and ``cmap``, kept per process."""
+    tau = np.ascontiguousarray(tau, dtype=float)
+    key = (tau.tobytes(), n, cmap.name)
+    return TABLES.get(key, lambda: KernelTable(tau, n, to_cos, cmap))
