@@ -12,7 +12,7 @@ command                            call
 =================================  ===========================================
 ``thermocontact solve``            :func:`thermocontact.solve`, :class:`thermocontact.Model`
 ``thermocontact contact``          :func:`contact`
-``thermocontact contact --zones``  :func:`contact` with ``zones=True``
+``thermocontact contact --zones``  :func:`contact_set` in physical units
 ``thermocontact zones``            :func:`contact_set`
 ``thermocontact boundary``         :func:`boundary`
 ``thermocontact map``              :func:`parameter_map`, :func:`operating_map`
