@@ -47,15 +47,17 @@ def test_theta_without_a_sink_is_refused_as_solve_refuses_it(capsys, args, tmp_p
 def test_theta_without_a_sink_is_refused_by_the_python_calls():
     fhpe, pe = tc.Axis("fhpe", 0, 1, 3), tc.Axis("pe", 1, 5, 3)
     with pytest.raises(InputError, match="a stationary half-plane needs sink_distance"):
-        tc.boundary("fhpe", 0, 1, pe=5, K2_over_K1=10, theta=1)
+        tc.boundary("fhpe", 0, 1, pe=5, K2_over_K1=10, closure=tc.FarTemperatures(1))
     with pytest.raises(InputError, match="a stationary half-plane needs sink_distance"):
-        tc.map_spec(fhpe, pe, K2_over_K1=10, theta=1)
+        tc.map_spec(fhpe, pe, K2_over_K1=10, closure=tc.FarTemperatures(1))
     with pytest.raises(InputError, match="sink_distance applies to a stationary half-plane"):
-        tc.map_spec(fhpe, pe, K2_over_K1=10, theta=1, speed_ratio=0.5, sink_distance=3)
+        tc.map_spec(fhpe, pe, K2_over_K1=10, closure=tc.FarTemperatures(1, 3),
+                    speed_ratio=0.5)
     # A moving half-plane takes theta alone; a speed ratio that varies leaves it to
     # each point.
-    tc.map_spec(fhpe, pe, K2_over_K1=10, theta=1, speed_ratio=0.5)
-    tc.map_spec(tc.Axis("speed_ratio", -1, -0.5, 2), pe, K2_over_K1=10, fhpe=0.2, theta=1)
+    tc.map_spec(fhpe, pe, K2_over_K1=10, closure=tc.FarTemperatures(1), speed_ratio=0.5)
+    tc.map_spec(tc.Axis("speed_ratio", -1, -0.5, 2), pe, K2_over_K1=10, fhpe=0.2,
+                closure=tc.FarTemperatures(1))
 
 
 def test_numbers_given_as_strings_are_those_numbers(short_run):

@@ -267,13 +267,13 @@ def test_physical_inputs_beyond_the_dimensionless_limits_still_solve():
     """The limits above bound what a user gives; what physical inputs make is not
     bounded by them: a polymer cylinder on steel (delta1/delta2 about 2700) and a slow,
     light contact between bulk temperatures 100 K apart (Theta about 1.3e6)."""
-    from thermocontact import contact
+    from thermocontact import BulkTemperatures, contact
 
     polymer = contact("E=3e9,nu=0.4,alpha=1.2e-4,K=0.25,k=1.2e-7", "steel", radius=0.01,
                       load=1e3, speed=0.1, friction=0.3, lam=1)
     assert polymer.primary is not None and polymer.primary.valid
     slow = contact("steel", "copper", radius=0.01, load=1e3, speed="1mm/s", friction=0.1,
-                   bulk_temperatures=("20C", "120C"), sink_distance="10mm")
+                   closure=BulkTemperatures("20C", "120C", sink_distance="10mm"))
     assert slow.primary is not None and slow.primary.valid
     assert abs(slow.primary.lam) > 1e4
 

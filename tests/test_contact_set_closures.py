@@ -157,7 +157,7 @@ def test_a_map_at_fixed_bulk_temperatures_has_its_contact_sets():
 
     ds = tc.operating_map(tc.Axis("speed", 0.2, 2.0, 2), tc.Axis("load", 1e4, 5e4, 2),
                           cylinder="copper", half_plane="steel", radius="10mm",
-                          friction=0.1, bulk_temperatures="200C,20C", sink_distance="2mm",
+                          friction=0.1, closure=tc.BulkTemperatures("200C", "20C", sink_distance="2mm"),
                           zones=True)
     assert (ds["valid"] == 1).all() and (ds["zones_status"] == "solved").all()
     assert (ds["zones_count"] == 1).all()

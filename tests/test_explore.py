@@ -30,8 +30,14 @@ HOT = {**{k: v for k, v in POINT.items() if k != "lam"},
 
 
 def kwargs(state):
-    """``tc.contact``'s arguments from a state, as a user would write them."""
-    return {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()}
+    """``tc.contact``'s arguments from a state, as a user would write them (the bulk
+    temperatures as ``closure=BulkTemperatures(...)``)."""
+    kw = {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()
+          if k not in adapter.TEMPERATURES}
+    if "bulk_temperatures" in state:
+        sinks = {k: state[k] for k in adapter.TEMPERATURES[1:] if k in state}
+        kw["closure"] = tc.BulkTemperatures(*state["bulk_temperatures"].split(","), **sinks)
+    return kw
 
 
 def record_at(record, key):

@@ -37,9 +37,14 @@ WAIT = 60_000
 
 
 def kwargs(state):
-    return {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()
-            if k in POINT or k in ("bulk_temperatures", "sink_distance", "layer_thickness",
-                                   "speed2")}
+    """``tc.contact``'s arguments from a state, as a user would write them (the bulk
+    temperatures as ``closure=BulkTemperatures(...)``)."""
+    kw = {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()
+          if k in POINT and k != "bulk_temperatures" or k == "speed2"}
+    if "bulk_temperatures" in state:
+        sinks = {k: state[k] for k in ("sink_distance", "layer_thickness") if k in state}
+        kw["closure"] = tc.BulkTemperatures(*state["bulk_temperatures"].split(","), **sinks)
+    return kw
 
 
 @pytest.fixture(scope="module")

@@ -99,7 +99,7 @@ def test_contact_picture_text_fits_in_the_figure(tmp_path, monkeypatch):
     monkeypatch.setattr(curves, "save_figure", lambda fig, path, written=None: drawn.append(fig))
     kw = dict(cylinder="copper", half_plane="steel", radius="50mm", load="5kN/m", speed=10,
               friction=0.3)
-    for closure in ({"lam": 0}, {"bulk_temperatures": "60C,40C", "sink_distance": "5mm"}):
+    for closure in ({"lam": 0}, {"closure": tc.BulkTemperatures("60C", "40C", sink_distance="5mm")}):
         curves.contact_figure(tc.contact(**kw, **closure), str(tmp_path / "c.png"))
     for fig in drawn:
         renderer = FigureCanvasAgg(fig).get_renderer()

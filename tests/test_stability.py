@@ -26,7 +26,7 @@ import pytest
 from scipy.optimize import brentq
 
 from conftest import assert_ulps
-from thermocontact import Model, StabilityResult
+from thermocontact import BulkTemperatures, Model, StabilityResult
 from thermocontact.discretisation.linearised import LinearisedContact, projections
 from thermocontact.numerics.moment_engine import stretch
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
@@ -450,8 +450,8 @@ def test_the_growing_pair_converges_in_n():
         assert r["newton_step"] < 1e-12
 
 
-@pytest.mark.parametrize("closure", [dict(lam=-1),
-                                     dict(bulk_temperatures="60C,20C", sink_distance="30mm")])
+@pytest.mark.parametrize("closure", [
+    dict(lam=-1), dict(closure=BulkTemperatures("60C", "20C", sink_distance="30mm"))])
 def test_physical_contact_rates_in_per_second(monkeypatch, closure):
     """``stability(contact(...))`` analyses the primary branch at its own Pe, fHPe and
     lam (the one the bulk temperatures imply, where they close the problem) and
@@ -598,8 +598,8 @@ def test_half_plane_waves_shorter_than_the_contact_decay():
 def test_kinds_of_events_on_a_path_closed_by_the_far_temperatures(monkeypatch):
     """A path closed by the far temperatures (theta, L/Delta) is analysed at the steady
     contact those temperatures make: the solution handed to the eigensolver is the one
-    of ``solve(..., theta=, sink_distance=)`` at the event."""
-    from thermocontact import solve
+    of ``solve(..., closure=FarTemperatures(theta, L/Delta))`` at the event."""
+    from thermocontact import FarTemperatures, solve
     from thermocontact.studies import event_kinds
     from thermocontact.studies.boundaries import Event, Path
 
@@ -616,7 +616,7 @@ def test_kinds_of_events_on_a_path_closed_by_the_far_temperatures(monkeypatch):
         return _result([])
     monkeypatch.setattr(event_kinds, "stability_of", stand_in)
     assert event_kinds.classify(path).events[0].kind == "grazing"
-    direct = solve(5.0, 0.2, 10.0, theta=1.0, sink_distance=30.0, n=32)
+    direct = solve(5.0, 0.2, 10.0, closure=FarTemperatures(1.0, 30.0), n=32)
     assert seen[0].lam == pytest.approx(direct.lam, abs=1e-12)
     assert seen[0].load_ratio == pytest.approx(direct.load_ratio, rel=1e-12)
 

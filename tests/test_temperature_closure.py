@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import sici
 
-from thermocontact import solve
+from thermocontact import BulkTemperatures, FarTemperatures, solve
 from thermocontact.analysis.fields import contact_fields
 from thermocontact.problem.closure import Temperatures, layer_sink_distance
 from thermocontact.problem.validation import InputError
@@ -41,8 +41,8 @@ def test_the_closures_lam_fed_back_gives_the_same_solution(kw, temperatures):
 def test_lam_comes_back_with_its_estimate():
     """Solved with n chosen, lam carries the Richardson estimate of the refinement,
     which bounds its change to n = 128, and the record says so."""
-    sol = solve(5, 0.2, 10, theta=1.0, sink_distance=30, tol=1e-6)
-    fine = solve(5, 0.2, 10, theta=1.0, sink_distance=30, n=128)
+    sol = solve(5, 0.2, 10, closure=FarTemperatures(1.0, 30), tol=1e-6)
+    fine = solve(5, 0.2, 10, closure=FarTemperatures(1.0, 30), n=128)
     assert sol.lam_error is not None and sol.lam_error > 0
     assert abs(sol.lam - fine.lam) <= sol.lam_error
     rec = sol.to_dict()
@@ -61,7 +61,7 @@ def test_high_peclet_split_is_the_effusivity_law():
     rho, kappa, R = 2.0, 1.0, 0.5
     ratio = np.sqrt(kappa / R) / rho
     limit = (ratio - 1.0) / (ratio + 1.0)
-    errors = [abs(solve(pe, 0.0, rho, k2_over_k1=kappa, speed_ratio=R, theta=0.0, n=64).lam
+    errors = [abs(solve(pe, 0.0, rho, k2_over_k1=kappa, speed_ratio=R, closure=FarTemperatures(0.0), n=64).lam
                   - limit) for pe in (10.0, 20.0, 40.0, 80.0)]
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all((orders > 1.9) & (orders < 2.1))
@@ -74,10 +74,11 @@ def test_exchanging_the_bodies_exchanges_the_temperatures():
     Theta' = pi K1 (T1 - T2)/(f v P) = -Theta/rho: lam' = -lam, the same P_H/P, the
     opposite offset."""
     pe, F, rho, kappa, R, d, theta = 2.0, 0.4, 3.0, 2.0, -0.5, 0.5, 0.7
-    a = solve(pe, F, rho, k2_over_k1=kappa, delta1_over_delta2=d, speed_ratio=R, theta=theta,
-              n=64)
+    a = solve(pe, F, rho, k2_over_k1=kappa, delta1_over_delta2=d, speed_ratio=R,
+              closure=FarTemperatures(theta), n=64)
     b = solve(abs(R) * pe * kappa, F * d, 1 / rho, k2_over_k1=1 / kappa,
-              delta1_over_delta2=1 / d, speed_ratio=1 / R, theta=-theta / rho, n=64)
+              delta1_over_delta2=1 / d, speed_ratio=1 / R,
+              closure=FarTemperatures(-theta / rho), n=64)
     assert abs(a.lam + b.lam) < 1e-11
     assert abs(a.load_ratio - b.load_ratio) < 1e-11
     assert abs(a.sigma_over_delta + b.sigma_over_delta) < 1e-11
@@ -95,7 +96,7 @@ def test_the_surfaces_meet_at_the_far_temperatures(kw, temperatures):
     units; a stationary one's temperature at the sink (D38) is T2, i.e. the level
     that perfect contact gives its logarithm is Theta + ln(L/Delta) (1 - lam)/2 in
     its units.  To 1e-7 at n = 64."""
-    sol = solve(**kw, theta=temperatures[0], sink_distance=temperatures[1], n=64)
+    sol = solve(**kw, closure=FarTemperatures(temperatures[0], temperatures[1]), n=64)
     rho = sol.parameters.K2_over_K1
     f = contact_fields(sol)                       # units f v P/(pi K1)
     if temperatures[1] is None:
@@ -196,16 +197,20 @@ def test_the_layer_is_the_sink_law_with_l_4h_over_pi():
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(theta=0.0, sink_distance=1.0), r"sink_distance_over_delta must be in \(1, 1e\+12\]"),
-    (dict(theta=0.0), "stationary half-plane needs sink_distance"),
-    (dict(theta=0.0, sink_distance=5.0, speed_ratio=-0.5), "stationary half-plane only"),
-    (dict(theta=0.0, sink_distance=5.0, lam=0.2), "exactly one closure"),
-    (dict(lam=0.2, sink_distance=5.0), "with theta only"),
-    (dict(theta=float("nan"), sink_distance=5.0), "theta must be"),
+    (lambda: dict(closure=FarTemperatures(0.0, 1.0)),
+     r"sink_distance_over_delta must be in \(1, 1e\+12\]"),
+    (lambda: dict(closure=FarTemperatures(0.0)), "stationary half-plane needs sink_distance"),
+    (lambda: dict(closure=FarTemperatures(0.0, 5.0), speed_ratio=-0.5),
+     "stationary half-plane only"),
+    (lambda: dict(closure=FarTemperatures(0.0, 5.0), lam=0.2), "exactly one closure"),
+    (lambda: dict(closure=FarTemperatures(None, 5.0)), "is given with theta only"),
+    (lambda: dict(closure=FarTemperatures(float("nan"), 5.0)), "theta must be"),
 ])
 def test_bad_closures_are_refused_in_one_line(kw, message):
+    """A bad closure is refused in one line, where the value is made or where it is
+    solved."""
     with pytest.raises(InputError, match=message) as err:
-        solve(5, 0.2, 10, n=16, **kw)
+        solve(5, 0.2, 10, n=16, **kw())
     assert "\n" not in str(err.value)
 
 
@@ -226,7 +231,7 @@ def test_solve_command_takes_the_temperatures(capsys):
     args = ["solve", "--pe", "5", "--fhpe", "0.2", "--K2-over-K1", "10", "-n", "16"]
     assert main(args + ["--theta", "1", "--sink-distance", "30", "--json"]) == 0
     rec = json.loads(capsys.readouterr().out)
-    sol = solve(5, 0.2, 10, theta=1.0, sink_distance=30.0, n=16)
+    sol = solve(5, 0.2, 10, closure=FarTemperatures(1.0, 30.0), n=16)
     assert rec["lam"] == sol.lam and rec["sink_distance"] == 30.0
     assert main(args + ["--theta", "1", "--sink-distance", "30", "--lam", "0.2"]) == 2
     err = capsys.readouterr().err.strip()
@@ -239,8 +244,9 @@ def test_solve_command_takes_the_temperatures(capsys):
 COPPER_ON_STEEL = dict(radius="10mm", load="50kN/m", speed="2m/s", friction=0.2)
 
 
-@pytest.mark.parametrize("closure", [dict(bulk_temperatures="20C,20C", speed2="-1m/s"),
-                                     dict(bulk_temperatures="80C,20C", sink_distance="1mm")])
+@pytest.mark.parametrize("closure", [
+    dict(closure=BulkTemperatures("20C", "20C"), speed2="-1m/s"),
+    dict(closure=BulkTemperatures("80C", "20C", sink_distance="1mm"))])
 def test_contact_with_bulk_temperatures_fed_back_as_lam(closure):
     """The contact found with the bulk temperatures is the one found with its lam
     given, to 1e-10 (measured 2e-16); a moving half-plane's incoming temperature,
@@ -281,7 +287,8 @@ def test_theta_by_hand_and_the_layer_is_its_sink():
     q = PhysicalProblem(cu, st, 0.01, 5e4, 2.0, 0.2, None, bulk_temperatures=(353.15, 293.15),
                         sink_distance=4e-3 / np.pi)
     assert p.temperatures(1e-4) == q.temperatures(1e-4)
-    assert q.to_dimensionless(1e-4)["sink_distance"] == pytest.approx(40 / np.pi, rel=1e-14)
+    far = q.to_dimensionless(1e-4)["closure"]
+    assert far.sink_distance_over_delta == pytest.approx(40 / np.pi, rel=1e-14)
 
 
 @pytest.mark.parametrize("args, message", [
@@ -334,7 +341,7 @@ def test_operating_map_at_fixed_bulk_temperatures_is_contact_at_its_points():
     import thermocontact as tc
 
     kw = dict(cylinder="copper", half_plane="steel", friction=0.2, radius="10mm",
-              bulk_temperatures="80C,20C", sink_distance="2mm")
+              closure=BulkTemperatures("80C", "20C", sink_distance="2mm"))
     ds = tc.operating_map(tc.Axis("load", 2e4, 2e5, 2, log=True), tc.Axis("speed", 1, 4, 2),
                           **kw)
     lam = ds["lam"].values
@@ -386,12 +393,12 @@ def test_a_path_along_theta_meets_the_path_along_lam():
     import thermocontact as tc
 
     kw = dict(pe=5, fhpe=0.7, K2_over_K1=10, n=16)
-    lam = [tc.solve(5, 0.7, 10, theta=t, sink_distance=10, n=16).lam for t in (0.0, 1.0)]
+    lam = [tc.solve(5, 0.7, 10, closure=FarTemperatures(t, 10), n=16).lam for t in (0.0, 1.0)]
     ends = [(target - lam[0]) / (lam[1] - lam[0]) for target in (0.0, 1.0)]
     along_lam = tc.boundary("lam", 0, 1, **kw).events
-    along_theta = tc.boundary("theta", *ends, sink_distance=10, **kw).events
+    along_theta = tc.boundary("theta", *ends, closure=FarTemperatures(None, 10), **kw).events
     assert [e.inequality for e in along_lam] == [e.inequality for e in along_theta] == ["gap"]
-    at = tc.solve(5, 0.7, 10, theta=along_theta[0].at, sink_distance=10, n=16).lam
+    at = tc.solve(5, 0.7, 10, closure=FarTemperatures(along_theta[0].at, 10), n=16).lam
     assert abs(at - along_lam[0].at) < 1e-8
 
 
@@ -401,8 +408,8 @@ def test_a_dimensionless_map_over_theta_is_solve_at_its_points():
     import thermocontact as tc
 
     ds = tc.parameter_map(tc.Axis("fhpe", 0, 0.4, 2), tc.Axis("theta", 0, 1, 2), pe=5,
-                          K2_over_K1=10, sink_distance=10)
-    ref = solve(5, 0.4, 10, theta=1.0, sink_distance=10, tol=1e-6)
+                          K2_over_K1=10, closure=FarTemperatures(None, 10))
+    ref = solve(5, 0.4, 10, closure=FarTemperatures(1.0, 10), tol=1e-6)
     assert abs(ds["lam"].values[1, 1] - ref.lam) < 1e-8
     assert abs(ds["load_ratio"].values[1, 1] - ref.load_ratio) < 1e-8
     with pytest.raises(InputError, match="exactly one of lam and sigma \\(or theta\\)"):

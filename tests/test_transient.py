@@ -45,7 +45,7 @@ def test_heat_balance_and_closures_at_every_step():
     assert np.all(run.pressure >= 0.0)
     assert np.all(run.gap[run.scheme == 0] >= -1e-12)
     # The far temperatures held: C is theta at every step.
-    run = tc.transient(**CASE, theta=0.7, until=0.5, steps=20, elements=96)
+    run = tc.transient(**CASE, closure=tc.FarTemperatures(0.7), until=0.5, steps=20, elements=96)
     assert np.all(run.temperature_difference[1:] == 0.7)
     on = run.in_contact[-1]
     assert np.max(np.abs((run.theta1[-1] - run.theta2[-1])[on] - 0.7)) < 1e-10
@@ -60,7 +60,8 @@ def test_short_times_divide_the_heat_by_the_effusivities():
     target = (e - 1.0) / (e + 1.0)
     errors = []
     for dt in (1e-3, 2.5e-4, 6.25e-5):
-        run = tc.transient(**{**CASE, "K2_over_K1": rho}, k2_over_k1=kr, theta=0.0, until=dt,
+        run = tc.transient(**{**CASE, "K2_over_K1": rho}, k2_over_k1=kr, closure=tc.FarTemperatures(0.0),
+                           until=dt,
                            steps=1, elements=96)
         errors.append(abs(run.lam[1] - target))
     assert errors[0] < 5e-4 and errors[-1] < 2e-6

@@ -481,14 +481,14 @@ def test_a_target_beyond_the_range_is_refused_with_its_own_value():
 
 
 def test_a_physical_contact_set_tells_its_progress():
-    """contact(zones=True) tells the percentage of the path from Hertz's zone followed,
+    """contact_set(cylinder=...) tells the percentage of the path from Hertz's zone followed,
     up to 100 at the answer (the command shows it after 2 s)."""
-    from thermocontact import contact
+    from thermocontact import contact_set
 
     told = []
-    found = contact("steel", "copper", radius=0.01, load=1e4, speed=2.0, friction=0.3,
-                    lam=1.0, dundurs=False, zones=True,
-                    progress=lambda done, total: told.append((done, total)))
+    found = contact_set(cylinder="steel", half_plane="copper", radius=0.01, load=1e4,
+                        speed=2.0, friction=0.3, lam=1.0, dundurs=False,
+                        progress=lambda done, total: told.append((done, total)))
     assert found.status == "solved"
     assert told and told[-1] == (100, 100) and all(t == 100 for _, t in told)
     assert [d for d, _ in told] == sorted(d for d, _ in told)

@@ -951,14 +951,14 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         non-conductor; not both.
     friction : float
         Coulomb coefficient ``f``: 0, or 1e-6 to 10
-        (:data:`~thermocontact.studies.tei.FRICTION_RANGE`).
+        (:data:`~thermocontact.physics.tei.FRICTION_RANGE`).
     wavelength : float or str
         ``L`` of the perturbation, 1 nm to 1 km
-        (:data:`~thermocontact.studies.tei.WAVELENGTH_RANGE`), m or with units
+        (:data:`~thermocontact.physics.tei.WAVELENGTH_RANGE`), m or with units
         (``"50mm"``).
     speed : float or str, optional
         Sliding speed ``V``: 0, or 1e-9 to 1e4 m/s
-        (:data:`~thermocontact.studies.tei.SPEED_RANGE`), m/s or with units: adds the
+        (:data:`~thermocontact.physics.tei.SPEED_RANGE`), m/s or with units: adds the
         modes at that speed and the most unstable wavelength.
     dundurs : bool, optional
         Keep the Dundurs term ``beta f`` (default), as ``contact`` does: in layers, the

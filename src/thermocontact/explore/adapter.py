@@ -585,7 +585,7 @@ def job_key(kind, state) -> str:
         return json.dumps(map_spec_of(state).manifest(), sort_keys=True, default=str)
     if kind == "transient":
         kw = transient_call(state)
-        _call(api.contact_transient_spec, **kw)
+        _call(api.contact_transient_spec, **library_keywords(kw))
         return json.dumps(kw, sort_keys=True, default=str)
     raise UserError(f"no background job {kind!r}: map or transient")
 

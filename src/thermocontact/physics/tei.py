@@ -30,7 +30,10 @@ from ..problem.materials import Material, dundurs_beta
 from ..problem.validation import InputError, check_nonnegative
 
 __all__ = [
+    "FRICTION_RANGE",
+    "SPEED_RANGE",
     "SlidingPair",
+    "WAVELENGTH_RANGE",
     "dispersion",
     "high_speed_limit",
     "high_speed_roots",
@@ -39,6 +42,16 @@ __all__ = [
     "speed_lower_bound",
     "surface_kernels",
 ]
+
+#: Wavelengths studied, m: a nanometre to a kilometre (beyond, the dimensionless
+#: groups of the dispersion relation overflow or underflow).
+WAVELENGTH_RANGE = (1e-9, 1e3)
+#: Sliding speeds studied besides 0, m/s: below, the growth rates underflow and the
+#: most unstable wavelength is not resolved; above, no machine slides.
+SPEED_RANGE = (1e-9, 1e4)
+#: Coefficients of friction besides 0 (no frictional heat): below, the critical speed
+#: overflows; above, no pair of materials slides.
+FRICTION_RANGE = (1e-6, 10.0)
 
 
 @dataclass(frozen=True)

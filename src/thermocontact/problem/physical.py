@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .closure import Temperatures, layer_sink_distance, temperature_group
+from .closure import FarTemperatures, Temperatures, layer_sink_distance, temperature_group
 from .materials import Material, dundurs_beta
 from .parameters import Parameters
 from .validation import InputError, check_finite, check_flag, check_nonnegative, check_positive
@@ -333,7 +333,8 @@ class PhysicalProblem:
                           c.distortivity / h.distortivity, self.speed_ratio, self.beta_f)
 
     def to_dimensionless(self, half_width) -> dict:
-        """The inputs of :func:`thermocontact.solve` at half-width ``Delta``."""
+        """The inputs of :func:`thermocontact.solve` at half-width ``Delta`` (with bulk
+        temperatures the closure ``FarTemperatures(Theta, L/Delta)`` of (D39))."""
         p = self.parameters(half_width)
         out = dict(pe=p.pe, fhpe=p.fhpe, K2_over_K1=p.K2_over_K1, k2_over_k1=p.k2_over_k1,
                    delta1_over_delta2=p.delta1_over_delta2)
@@ -341,7 +342,7 @@ class PhysicalProblem:
             out["lam"] = self.lam
         else:
             t = self.temperatures(half_width)
-            out.update(theta=t.theta, sink_distance=t.sink_distance)
+            out["closure"] = FarTemperatures(t.theta, t.sink_distance)
         if p.speed_ratio:
             out["speed_ratio"] = p.speed_ratio
         if p.beta_f:

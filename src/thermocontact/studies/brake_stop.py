@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..io.results import Result
+from ..physics.tei import SPEED_RANGE
 from ..problem.validation import InputError, check_range
 
 __all__ = ["BrakeStop", "StopHistory", "growth_table", "stop_amplification", "stop_history"]
@@ -54,7 +55,6 @@ def stop_history(stop=None, path=None, threshold=None) -> StopHistory:
     time (s) and speed (m/s), checked: one line each for a speed outside
     ``(0, 1e4]`` m/s, a deceleration that is not positive, times that do not
     increase, a stop that ends above its start."""
-    from .tei import SPEED_RANGE
 
     if (stop is None) == (path is None):
         raise InputError("give exactly one of brake_stop and stop_history",

@@ -30,8 +30,8 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..io.results import Result
 from ..physics.tei_layers import BACKINGS
-from ..physics.tei import (SlidingPair, high_speed_limit, high_speed_roots, modes,
-                          speed_lower_bound)
+from ..physics.tei import (FRICTION_RANGE, SPEED_RANGE, WAVELENGTH_RANGE, SlidingPair,
+                           high_speed_limit, high_speed_roots, modes, speed_lower_bound)
 from ..problem.validation import check_range, check_zero_or_range
 
 __all__ = ["BACKINGS", "FRICTION_RANGE", "HalfPlanes", "HotSpot", "SPEED_RANGE", "TEIFamily", "TEIMode",
@@ -45,16 +45,6 @@ _PER_OCTAVE = 4
 #: (H10) decides; where it says unstable, the scan goes on to ``_LAST_FACTOR``.
 _SCAN_FACTOR = 1e6
 _LAST_FACTOR = 1e15
-#: Wavelengths studied, m: a nanometre to a kilometre (beyond, the dimensionless
-#: groups of the dispersion relation overflow or underflow).
-WAVELENGTH_RANGE = (1e-9, 1e3)
-#: Sliding speeds studied besides 0, m/s: below, the growth rates underflow and the
-#: most unstable wavelength is not resolved; above, no machine slides.
-SPEED_RANGE = (1e-9, 1e4)
-#: Coefficients of friction besides 0 (no frictional heat): below, the critical speed
-#: overflows; above, no pair of materials slides.
-FRICTION_RANGE = (1e-6, 10.0)
-
 
 
 @dataclass(frozen=True, eq=False, repr=False)
