@@ -118,10 +118,11 @@ class TEIFamily(Result):
         the range (None without a minimum).
     crossings : tuple of dict
         Layers: every neutral crossing of the family at the result's wavelength up to
-        its critical speed, by speed (``speed``, m/s; ``migration_speed``, m/s;
-        ``direction``, +1 where a mode starts to grow with the speed, -1 where it
-        stops): windows of growth below the critical speed show as pairs, the
-        critical speed the first +1 (docs/tei.md).
+        :data:`CROSSINGS_BEYOND` times its critical speed, by speed (``speed``, m/s;
+        ``migration_speed``, m/s; ``direction``, +1 where a mode starts to grow with
+        the speed, -1 where it stops): the critical speed is the first +1, and a
+        window of growth that closes again shows as a +1 followed by a -1
+        (docs/tei.md).
     certified : bool or None
         Layers: the speed scan's check (L15): at each of its speeds the growing modes
         counted by the argument principle are those followed.  None for half-planes
@@ -177,7 +178,8 @@ class TEIResult(Result):
         At ``speed``: every mode of this wavelength, the fastest growing first.
     most_unstable_wavelength : float or None
         At ``speed``: the wavelength of largest growth rate, m (None if every
-        wavelength is stable at every speed, or without friction or speed).
+        wavelength is stable at every speed, or without friction or speed, or for
+        layers without a ``wavelength_range``).
     most_unstable_growth_rate : float or None
         Its growth rate, 1/s.
     plane : str
@@ -194,7 +196,10 @@ class TEIResult(Result):
     families : tuple of TEIFamily
         Every family of modes; ``critical_speed`` above is the lowest of theirs.
     wavelength_range : tuple of float or None
-        The wavelengths over which the families' minima were sought, m.
+        The wavelengths over which the families' minima were sought, m: from the
+        thinnest layer to 200 times the thickest (or 2 pi R), within
+        :data:`WAVELENGTH_RANGE`; None for half-planes, and for layers thicker than
+        its longest wavelength divided by 200 (no minimum is then sought).
     disc_radius : float or None
         ``R``, m, of ``hot_spots``.
     hot_spots : tuple of HotSpot
@@ -462,14 +467,21 @@ def _systems(pair, layups_):
 def _wavelength_range(thicknesses, radius):
     """Where a layup's families' minima are sought, m: from the thinnest layer's
     thickness (shorter waves see half-planes, whose critical speed rises as 1/L) to
-    the disc's circumference (one hot spot) or 200 times the thickest layer."""
+    the disc's circumference (one hot spot) or 200 times the thickest layer; None where
+    that is empty within :data:`WAVELENGTH_RANGE`."""
     lo = min(thicknesses)
     hi = 2.0 * math.pi * radius if radius is not None else 200.0 * max(thicknesses)
-    return max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
+    lo, hi = max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
+    # Layers thicker than the longest wavelength studied: no range (they are half-planes
+    # at every wavelength of it).
+    return (lo, hi) if lo < hi else None
 
 
 #: Wavelengths of the curve on which each family's minimum is bracketed.
 MINIMUM_POINTS = 40
+#: A layered family's neutral crossings are recorded up to this multiple of its
+#: critical speed (a window of growth below it shows as a pair).
+CROSSINGS_BEYOND = 3.0
 
 
 def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
@@ -504,7 +516,9 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
                           method="bounded", options={"xatol": 1e-10})
     if not res.fun <= V[i]:
         return float(V[i]), float(2.0 * math.pi / ms[i]), False
-    return float(res.fun), float(2.0 * math.pi / math.exp(res.x)), False
+    # The refinement may end on an end of the range (the least point its neighbour).
+    end = min(abs(res.x - math.log(ms[0])), abs(res.x - math.log(ms[-1]))) < 1e-6
+    return float(res.fun), float(2.0 * math.pi / math.exp(res.x)), bool(end)
 
 
 def hot_spot_table(systems, radius, n1, n2, anchors=None):
@@ -631,7 +645,7 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
             fams.append(TEIFamily(system.name, None, None))
             anchors.append(None)
             continue
-        scan = system.scan(m) if lay else None
+        scan = system.scan(m, beyond=CROSSINGS_BEYOND) if lay else None
         if scan is None:
             vc, b = system.critical(m)
         else:
@@ -660,7 +674,8 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         mw = rate = None
         if v > 0.0 and first is not None:
             if lay:
-                mw, rate = _most_unstable(systems, v, wl_range)
+                mw, rate = ((None, None) if wl_range is None
+                            else _most_unstable(systems, v, wl_range))
             else:
                 mw, rate = most_unstable_wavelength(pair, v, m, first.critical_speed)
         found_modes = []

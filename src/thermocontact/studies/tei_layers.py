@@ -10,12 +10,17 @@ root search finds every mode; the same interface serves both
 (:class:`thermocontact.studies.tei.HalfPlanes`, :class:`Layered`), so that every study
 works for every geometry.
 
-For a layup the modes are roots of ``det M(b)`` (L8): the rightmost few are seeded by
-the eigenvalues of the depth discretisation
+For a layup the modes are roots of ``det M(b)`` off the half-planes' branch cuts (L8,
+L15): the rightmost few are seeded by the eigenvalues of the depth discretisation
 (:func:`thermocontact.discretisation.tei_depth.layup_modes`) and polished by Newton's
-method on the determinant.  A neutral mode, ``b = i omega`` at the critical speed, is
-found by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
-``(V, omega)`` (L10); along a curve of wavelengths it is continued from the last one.
+method on the determinant, each in the frame it is nearer to rest in.  The critical
+speed comes from a scan that follows the modes in speed with step control, locates
+every change of sign and every interior maximum of a mode's growth rate (windows of
+growth), and counts the growing modes at every speed by the argument principle
+(:func:`speed_scan`, :func:`unstable_count`); a neutral mode, ``b = i omega``, is
+polished by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
+``(V, omega)`` (L10); along a curve of wavelengths, scans at every
+:data:`SCAN_EVERY`-th are continued between them (:func:`continue_neutral`).
 """
 
 from __future__ import annotations
@@ -28,8 +33,9 @@ import numpy as np
 from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
-__all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "growth_rate",
-           "neutral_point", "newton_roots", "pattern_frame", "raw_seeds"]
+__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "first_crossing",
+           "growth_rate", "neutral_point", "newton_roots", "pattern_frame", "raw_seeds",
+           "speed_scan", "unstable_count"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -151,10 +157,10 @@ class Layered:
         """The critical speed at ``m`` and the neutral ``b = i omega`` (:func:`first_crossing`)."""
         return first_crossing(self, m)
 
-    def scan(self, m, v_high=1e4, every=False):
-        """The neutral crossings at ``m`` up to the critical speed (or ``every`` one up
-        to ``v_high``) and the scan's checks (:func:`speed_scan`)."""
-        return speed_scan(self, m, v_high, every=every)
+    def scan(self, m, v_high=1e4, every=False, beyond=1.0):
+        """The neutral crossings at ``m`` up to ``beyond`` times the critical speed (or
+        ``every`` one up to ``v_high``) and the scan's checks (:func:`speed_scan`)."""
+        return speed_scan(self, m, v_high, every=every, beyond=beyond)
 
     def curve(self, wavenumbers, anchor=None):
         """Critical speeds and neutral ``omega`` along sorted wavenumbers
@@ -411,31 +417,33 @@ class SpeedScan:
         return (up[0][0], up[0][1]) if up else None
 
 
-def speed_scan(family, m, v_high=1e4, v_low=None, every=False):
+def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     """The neutral crossings of a family at wavenumber ``m`` from the lowest speed up
-    to ``v_high`` (the first upward one, or ``every`` one), by following its rightmost
-    modes in speed (L15).
+    to ``v_high``: up to ``beyond`` times the first upward one, or ``every`` one; by
+    following its rightmost modes in speed (L15).
 
     From the lowest speed (:meth:`Layered.lowest_speed`, lowered by factors 8 while a
-    mode grows there), the modes of the depth discretisation (:meth:`Layered.modes`)
-    are followed by Newton's method from speed to speed, each predicted along its
-    tangent ``db/dV`` (implicit differentiation).  A step (a factor at most
-    :data:`MAX_RATIO`) is accepted only if every followed mode lands within a fifth of
-    its distance from the imaginary axis of its prediction, otherwise halved (in ``ln
-    V``): a mode's growth rate is then known between the speeds as the tangents say,
-    and a crossing can hide only where it turns twice within a step.  On each step,
-    for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
-    ``Re b(V)``, the mode followed); an interior maximum (``dRe b/dV`` positive at the
-    left end, negative at the right) is located by bounded maximisation, and if it
-    reaches 0, a window of growth (two crossings).  Every :data:`RESEED` in speed the
-    discretisation reseeds; at each speed the growing modes are counted by the
-    argument principle (:func:`unstable_count`) where one is followed with ``Re b``
-    above ``-kappa m^2``, else at the reseeding: a count above those followed reseeds
-    at once.
+    mode grows there), the modes (:meth:`Layered.modes`) are followed by Newton's
+    method from speed to speed, each predicted along its tangent ``db/dV`` (implicit
+    differentiation).  A step (a factor at most :data:`MAX_RATIO`) is accepted only if
+    every followed mode lands within a fifth of its distance from the imaginary axis
+    of its prediction, otherwise halved (in the factor's excess over 1).  On each
+    step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
+    ``Re b(V)``, the mode followed from the nearer end, then Newton's method on the
+    neutral point); an interior maximum (``dRe b/dV`` positive at the step's start,
+    negative at its end) is located by bounded maximisation, and where it reaches 0
+    it is a window of growth (two crossings).  At every accepted speed the growing
+    modes are counted by the argument principle (:func:`unstable_count`); where the
+    count exceeds the followed modes that grow, and every :data:`RESEED` in speed, the
+    modes are reseeded, and a new one is followed back over the step.
 
     Returns
     -------
     SpeedScan
+        ``certified`` where every count was reliable and equal to the followed modes
+        that grow.  Not excluded: a window inside one step of a mode whose growth rate
+        turns twice within it, or of a mode followed at neither end of it
+        (docs/derivation.md, L15).
     """
     from scipy.optimize import brentq, minimize_scalar
 
@@ -459,25 +467,40 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False):
     crossings, counts, certified, maxima, speeds = [], 1, sure, 0, 1
     ratio, seeded = MAX_RATIO, v
 
-    def growth(k_b, k_slope, v0, v1):
-        return lambda x: float(_follow(family, m, v0, np.array([k_b]), np.array([k_slope]),
-                                       x)[0][0].real)
+    def growth(ends):
+        """Re b(V) of one mode, followed from the nearest of ``ends``, the points
+        ``(V, b, db/dV)`` known on its path (NaN where no follow lands)."""
+        def f(x):
+            for v0, b0_, s0_ in sorted(ends, key=lambda e: abs(math.log(x / e[0]))):
+                r = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)[0][0]
+                if np.isfinite(r):
+                    return r
+            return complex(math.nan)
+        return f
 
-    def locate(k_b, k_slope, v0, va, vb, direction):
-        f = growth(k_b, k_slope, v0, None)
+    def locate(ends, va, vb, direction):
+        f = growth(ends)
 
         def g(x):
-            r = f(x)
-            return r if np.isfinite(r) else -scale
+            r = f(x).real
+            # Unfollowed: the sign of the nearer end, so that Brent's method stays in
+            # the bracket (the neutral point is then polished independently).
+            return r if np.isfinite(r) else (-1.0 if (x - va) < (vb - x) else 1.0) * \
+                direction * scale
         vc = brentq(g, va, vb, xtol=1e-300, rtol=1e-11, maxiter=200)
-        bc = _follow(family, m, v0, np.array([k_b]), np.array([k_slope]), vc)[0][0]
-        V, w, ok = neutral_point(family, m, vc, bc.imag)
+        bc = f(vc)
+        w0 = bc.imag if np.isfinite(bc) else ends[0][1].imag * vc / ends[0][0]
+        V, w, ok = neutral_point(family, m, vc, w0)
         if ok and abs(V - vc) <= 1e-7 * vc:
             return (float(V), float(w), direction)
-        return (float(vc), float(bc.imag), direction)
+        return (float(vc), float(w0), direction)
 
-    while v < v_high and (every or not any(c[2] > 0 for c in crossings)):
-        v1 = min(v * ratio, v_high)
+    def limit():
+        up = [c[0] for c in crossings if c[2] > 0]
+        return v_high if every or not up else min(v_high, beyond * min(up))
+
+    while v < limit():
+        v1 = min(v * ratio, limit())
         if b.size:
             b1, pred = _follow(family, m, v, b, slope, v1)
             err = np.abs(b1 - pred)
@@ -488,23 +511,30 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False):
                 continue
         else:
             b1 = b
+        # Two modes followed onto one root: the root once.
         keep = np.isfinite(b1)
+        for k in range(b1.size):
+            if keep[k] and any(keep[j] and abs(b1[k] - b1[j]) <= 1e-8 * (abs(b1[k]) + scale)
+                               for j in range(k)):
+                keep[k] = False
         b0, s0, b1 = b[keep], slope[keep], b1[keep]
         s1 = _speed_slope(family, m, v1, b1)
         for k in range(b1.size):
             r0, r1 = b0[k].real, b1[k].real
             if (r0 < 0.0) != (r1 < 0.0):
-                crossings.append(locate(b0[k], s0[k], v, v, v1, 1 if r1 >= 0.0 else -1))
+                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
+                crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
             elif r0 < 0.0 and s0[k].real > 0.0 and s1[k].real < 0.0:
                 maxima += 1
-                f = growth(b0[k], s0[k], v, None)
-                res = minimize_scalar(lambda x: -f(math.exp(x)),
+                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
+                f = growth(ends)
+                res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
                                       bounds=(math.log(v), math.log(v1)), method="bounded",
                                       options={"xatol": 1e-7})
                 if -res.fun >= 0.0:
                     top = math.exp(res.x)
-                    crossings.append(locate(b0[k], s0[k], v, v, top, 1))
-                    crossings.append(locate(b0[k], s0[k], v, top, v1, -1))
+                    crossings.append(locate(ends, v, top, 1))
+                    crossings.append(locate(ends, top, v1, -1))
         # Count the growing modes; reseed from the discretisation where the count
         # exceeds those followed, and every RESEED in speed.
         counts += 1
@@ -521,7 +551,8 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False):
                     r1 = fresh[k].real
                     if np.isfinite(back[k]) and (back[k].real < 0.0) != (r1 < 0.0):
                         bs = _speed_slope(family, m, v, back[k:k + 1])[0]
-                        crossings.append(locate(back[k], bs, v, v, v1, 1 if r1 >= 0.0 else -1))
+                        ends = [(v, back[k], bs), (v1, fresh[k], fs[k])]
+                        crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
                 b1 = np.concatenate([b1, fresh])
                 s1 = np.concatenate([s1, fs])
             seeded = v1
@@ -534,7 +565,7 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False):
     crossings.sort()
     if not every:
         first = [c for c in crossings if c[2] > 0][:1]
-        crossings = [c for c in crossings if not first or c[0] <= first[0][0]]
+        crossings = [c for c in crossings if not first or c[0] <= beyond * first[0][0]]
     return SpeedScan(tuple(crossings), speeds, counts, bool(certified), maxima, start, float(v))
 
 
