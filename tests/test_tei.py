@@ -242,7 +242,8 @@ def test_result_record_equality_pickle_repr():
     assert d["plane"] == "strain" and d["families"] == [
         {"family": "all", "critical_speed": d["critical_speed"],
          "migration_speed": d["migration_speed"], "minimum_critical_speed": None,
-         "minimum_wavelength": None}]
+         "minimum_wavelength": None, "minimum_at_range_end": None, "crossings": [],
+         "certified": None}]
     assert d["wavelength"] == 0.05 and d["speed"] == 60.0
     rates = [mode["growth_rate"] for mode in d["modes"]]
     assert rates == sorted(rates, reverse=True) and rates[0] > 0   # 60 > V_c = 55.4

@@ -157,9 +157,10 @@ def test_pad_layer_on_a_slipping_backing_closed_form():
 
 def test_antisymmetric_minimum_over_wavelength_closed_form():
     """The family's minimum over the wavelength (the curve bracketed on 40 wavelengths,
-    refined by golden-section search) against the closed form's, to 1e-10 in speed."""
+    refined by bounded minimisation) against the closed form's, to 1e-10 in speed."""
     fam = _family("antisymmetric", IRON, NC_PAD, dundurs=False, slider_thickness=0.012)
-    got, wl = family_minimum(fam, (0.0024, 2.0))
+    got, wl, end = family_minimum(fam, (0.0024, 2.0))
+    assert end is False
     res = minimize_scalar(lambda x: layer_neutral_speed(IRON, 0.012, math.exp(x), 0.4,
                                                         "antisymmetric", NC_PAD),
                           bracket=(3.0, 4.0, 5.0), tol=1e-12)
@@ -338,8 +339,11 @@ def test_disc_record(disc):
     assert d["critical_speed"] == min(f["critical_speed"] for f in d["families"])
     for f in d["families"]:
         assert f["minimum_critical_speed"] <= f["critical_speed"]
-    assert {m["family"] for m in d["modes"]} <= {"antisymmetric", "symmetric"}
-    assert all(m["growth_rate"] > 0 for m in d["modes"])     # 10 m/s: growing ones only
+    # At 10 m/s every family is listed: its growing modes, or its least stable one.
+    assert {m["family"] for m in d["modes"]} == {"antisymmetric", "symmetric"}
+    for name in ("antisymmetric", "symmetric"):
+        rates = [m["growth_rate"] for m in d["modes"] if m["family"] == name]
+        assert all(r > 0 for r in rates) or len(rates) == 1
     spots = d["hot_spots"]
     assert [h["n"] for h in spots] == list(range(4, 11))
     best = min(spots, key=lambda h: h["critical_speed"])

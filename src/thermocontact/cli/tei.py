@@ -140,8 +140,18 @@ def report_lines(res):
         for fam in res.families:
             low = ("" if fam.minimum_critical_speed is None else
                    f"; minimum {fam.minimum_critical_speed:.6g} m/s at wavelength "
-                   f"{fam.minimum_wavelength:.6g} m")
+                   f"{fam.minimum_wavelength:.6g} m"
+                   + (" (the end of the range searched: not an interior minimum)"
+                      if fam.minimum_at_range_end else ""))
             lines.append(f"    {fam.family}: {_speed(fam.critical_speed)}{low}")
+            windows = [(a["speed"], b["speed"]) for a, b in zip(fam.crossings, fam.crossings[1:])
+                       if a["direction"] > 0 > b["direction"]]
+            for lo, hi in windows:
+                lines.append(f"      grows on {lo:.6g} < V < {hi:.6g} m/s, below the critical "
+                             f"speed of the branch above")
+            if fam.certified is False:
+                lines.append("      (the speed scan's count of growing modes did not confirm "
+                             "the modes followed: see docs/tei.md)")
     if res.speed is not None:
         lines.append(f"  at {res.speed:.6g} m/s: {len(res.modes)} "
                      f"mode{'' if len(res.modes) == 1 else 's'}, the fastest growing first")

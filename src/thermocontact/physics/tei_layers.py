@@ -431,7 +431,7 @@ def heat_coefficient(layup: Layup, wavenumber, speed):
     return (2.0 * mu_ref * a_ref * layup.friction / K_ref) * np.abs(speed) / wavenumber
 
 
-def dispersion_matrix(layup: Layup, b, wavenumber, speed):
+def dispersion_matrix(layup: Layup, b, wavenumber, speed, heat=True):
     """``M(b)``: the face conditions applied to every body's solutions (L8).
 
     Parameters
@@ -441,6 +441,10 @@ def dispersion_matrix(layup: Layup, b, wavenumber, speed):
         Growth rates in the frame of the bodies at rest (complex, 1/s), wavenumbers
         (1/m) and the moving bodies' velocity ``U`` (m/s), broadcast to a shape
         ``S``.
+    heat : bool, optional
+        False: without the frictional heat (``h = 0``; the convection kept), the
+        matrix ``M_0(b)`` whose determinant is zero only at free thermal modes, all
+        decaying (L15).
 
     Returns
     -------
@@ -451,7 +455,7 @@ def dispersion_matrix(layup: Layup, b, wavenumber, speed):
     C0, C1 = condition_matrix(layup)
     b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
                                   np.asarray(speed, float))
-    h = heat_coefficient(layup, m, V)[..., None, None]
+    h = heat_coefficient(layup, m, V)[..., None, None] * float(heat)
     last = len(layup.bodies) - 1
     blocks = []
     for j, body in enumerate(layup.bodies):
@@ -474,7 +478,8 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
     per layer; dividing by ``gamma/m`` alone removes that zero and adds none."""
     b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
                                   np.asarray(speed, float))
-    d = np.linalg.det(dispersion_matrix(layup, b, m, V))
+    with np.errstate(all="ignore"):     # a determinant that under- or overflows: no root
+        d = np.linalg.det(dispersion_matrix(layup, b, m, V))
     for body in layup.bodies:
         if body.thickness is not None and body.conducts:
             U = V if body.moving else 0.0

@@ -12,8 +12,9 @@ speed of that instant, the mode's shape following the speed), the perturbation o
 needs the speed to change little over a growth time, ``|dV/dt| / V << |Re b|``; it is
 checked against a time integration of the linearised equations discretised in depth
 (``tests/test_tei_layers.py``).  For each ``n`` the rightmost modes are followed
-down the speeds by Newton's method (all ``n`` together) from the depth
-discretisation's eigenvalues at the top speed, reseeded every 16th speed.
+down the speeds by Newton's method (all ``n`` together) from the family's rightmost
+modes at the top speed (depth-discretisation seeds, polished), reseeded every 16th
+speed.
 """
 
 from __future__ import annotations
@@ -154,7 +155,7 @@ def _track(system, ms, speeds):
             phi = pattern_frame(ms[:, None], prev_v, tracked.imag)
             tracked = tracked - 1j * phi * ms[:, None] * (v - prev_v)
         if i % 16 == 0:
-            seeds = [raw_seeds(system, m, v)[:2] for m in ms]
+            seeds = [system.modes(m, v)[:2] for m in ms]
             fresh = np.array([np.pad(s_, (0, 2 - len(s_)), constant_values=np.nan)
                               for s_ in seeds])
             tracked = fresh if tracked is None else np.concatenate([tracked, fresh], axis=1)

@@ -102,6 +102,21 @@ class TEIFamily(Result):
         end).
     minimum_wavelength : float or None
         The wavelength where it occurs, m.
+    minimum_at_range_end : bool or None
+        True where the least critical speed found lies at an end of
+        ``wavelength_range``: the minimum is then not interior, and may lie beyond
+        the range (None without a minimum).
+    crossings : tuple of dict
+        Layers: every neutral crossing of the family at the result's wavelength up to
+        :data:`CROSSINGS_BEYOND` times its critical speed, by speed (``speed``, m/s;
+        ``migration_speed``, m/s; ``direction``, +1 where a mode starts to grow with
+        the speed, -1 where it stops): the critical speed is the first +1, and a
+        window of growth that closes again shows as a +1 followed by a -1
+        (docs/tei.md).
+    certified : bool or None
+        Layers: the speed scan's check (L15): at each of its speeds the growing modes
+        counted by the argument principle are those followed.  None for half-planes
+        (their modes are all found by a polynomial root search).
     """
 
     family: str
@@ -109,6 +124,9 @@ class TEIFamily(Result):
     migration_speed: float | None
     minimum_critical_speed: float | None = None
     minimum_wavelength: float | None = None
+    minimum_at_range_end: bool | None = None
+    crossings: tuple = field(default=())
+    certified: bool | None = None
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -150,7 +168,8 @@ class TEIResult(Result):
         At ``speed``: every mode of this wavelength, the fastest growing first.
     most_unstable_wavelength : float or None
         At ``speed``: the wavelength of largest growth rate, m (None if every
-        wavelength is stable at every speed, or without friction or speed).
+        wavelength is stable at every speed, or without friction or speed, or for
+        layers without a ``wavelength_range``).
     most_unstable_growth_rate : float or None
         Its growth rate, 1/s.
     plane : str
@@ -167,7 +186,10 @@ class TEIResult(Result):
     families : tuple of TEIFamily
         Every family of modes; ``critical_speed`` above is the lowest of theirs.
     wavelength_range : tuple of float or None
-        The wavelengths over which the families' minima were sought, m.
+        The wavelengths over which the families' minima were sought, m: from the
+        thinnest layer to 200 times the thickest (or 2 pi R), within
+        :data:`WAVELENGTH_RANGE`; None for half-planes, and for layers thicker than
+        its longest wavelength divided by 200 (no minimum is then sought).
     disc_radius : float or None
         ``R``, m, of ``hot_spots``.
     hot_spots : tuple of HotSpot
@@ -416,7 +438,7 @@ def most_unstable_wavelength(pair: SlidingPair, speed: float, wavenumber: float,
         return 2.0 * math.pi / math.exp(logs[0]), float(rates[0])
     hi = logs[i + 1] if i + 1 < logs.size else math.log(m_c)
     res = minimize_scalar(lambda x: -growth_rate(pair, math.exp(x), speed),
-                          bracket=(logs[i - 1], logs[i], hi), tol=1e-10)
+                          bounds=(logs[i - 1], hi), method="bounded", options={"xatol": 1e-10})
     return 2.0 * math.pi / math.exp(res.x), float(-res.fun)
 
 
@@ -470,22 +492,32 @@ def _systems(pair, layups_):
 def _wavelength_range(thicknesses, radius):
     """Where a layup's families' minima are sought, m: from the thinnest layer's
     thickness (shorter waves see half-planes, whose critical speed rises as 1/L) to
-    the disc's circumference (one hot spot) or 200 times the thickest layer."""
+    the disc's circumference (one hot spot) or 200 times the thickest layer; None where
+    that is empty within :data:`WAVELENGTH_RANGE`."""
     lo = min(thicknesses)
     hi = 2.0 * math.pi * radius if radius is not None else 200.0 * max(thicknesses)
-    return max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
+    lo, hi = max(lo, WAVELENGTH_RANGE[0]), min(hi, WAVELENGTH_RANGE[1])
+    # Layers thicker than the longest wavelength studied: no range (they are half-planes
+    # at every wavelength of it).
+    return (lo, hi) if lo < hi else None
 
 
 #: Wavelengths of the curve on which each family's minimum is bracketed.
 MINIMUM_POINTS = 40
+#: A layered family's neutral crossings are recorded up to this multiple of its
+#: critical speed (a window of growth below it shows as a pair).
+CROSSINGS_BEYOND = 3.0
 
 
 def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
-    """The lowest critical speed over ``wl_range`` and its wavelength, (m/s, m): the
-    curve on ``points`` wavelengths (continued, :func:`~thermocontact.studies.tei_layers.
-    continue_neutral`), its least point refined by golden-section search in ``ln m``
-    (each point a neutral point continued from the nearest).  ``(None, None)`` where
-    the family is stable throughout."""
+    """The lowest critical speed over ``wl_range`` and its wavelength, (m/s, m, at the
+    end): the curve on ``points`` wavelengths (:meth:`curve`; for layers
+    :func:`~thermocontact.studies.tei_layers.continue_neutral`, scans from the lowest
+    speed continued between them), its least point refined by bounded minimisation in
+    ``ln m`` between its neighbours (each point a neutral point continued from the
+    least).  ``at the end`` is True where the least point is an end of the range (not
+    refined: the minimum may lie beyond).  ``(None, None, None)`` where the family is
+    stable throughout."""
     from scipy.optimize import minimize_scalar
 
     from .tei_layers import continue_step
@@ -493,21 +525,25 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
     ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], points)
     V, W = system.curve(ms, anchor)
     if not np.isfinite(V).any():
-        return None, None
+        return None, None, None
     i = int(np.nanargmin(V))
-    if i in (0, points - 1) or not (np.isfinite(V[i - 1]) and np.isfinite(V[i + 1])):
-        return float(V[i]), float(2.0 * math.pi / ms[i])
-    anchor = (float(ms[i]), (float(V[i]), float(W[i])))
+    if i in (0, points - 1):
+        return float(V[i]), float(2.0 * math.pi / ms[i]), True
+    if not (np.isfinite(V[i - 1]) and np.isfinite(V[i + 1])):
+        return float(V[i]), float(2.0 * math.pi / ms[i]), False
+    start = (float(ms[i]), (float(V[i]), float(W[i])))
 
     def vc(x):
-        p = continue_step(system, anchor[0], anchor[1], math.exp(x))
+        p = continue_step(system, start[0], start[1], math.exp(x))
         return math.inf if p is None else p[0]
 
-    res = minimize_scalar(vc, bracket=(math.log(ms[i - 1]), math.log(ms[i]),
-                                       math.log(ms[i + 1])), tol=1e-10)
+    res = minimize_scalar(vc, bounds=(math.log(ms[i - 1]), math.log(ms[i + 1])),
+                          method="bounded", options={"xatol": 1e-10})
     if not res.fun <= V[i]:
-        return float(V[i]), float(2.0 * math.pi / ms[i])
-    return float(res.fun), float(2.0 * math.pi / math.exp(res.x))
+        return float(V[i]), float(2.0 * math.pi / ms[i]), False
+    # The refinement may end on an end of the range (the least point its neighbour).
+    end = min(abs(res.x - math.log(ms[0])), abs(res.x - math.log(ms[-1]))) < 1e-6
+    return float(res.fun), float(2.0 * math.pi / math.exp(res.x)), bool(end)
 
 
 def hot_spot_table(systems, radius, n1, n2, anchors=None):
@@ -555,8 +591,8 @@ def _most_unstable(systems, speed, wl_range):
     if i in (0, ms.size - 1):
         return float(2.0 * math.pi / ms[i]), float(rate)
     res = minimize_scalar(lambda x: -_rate(system, math.exp(x), speed),
-                          bracket=(math.log(ms[i - 1]), math.log(ms[i]), math.log(ms[i + 1])),
-                          tol=1e-8)
+                          bounds=(math.log(ms[i - 1]), math.log(ms[i + 1])), method="bounded",
+                          options={"xatol": 1e-8})
     return float(2.0 * math.pi / math.exp(res.x)), float(-res.fun)
 
 
@@ -634,11 +670,19 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
             fams.append(TEIFamily(system.name, None, None))
             anchors.append(None)
             continue
-        vc, b = system.critical(m)
+        scan = system.scan(m, beyond=CROSSINGS_BEYOND) if lay else None
+        if scan is None:
+            vc, b = system.critical(m)
+        else:
+            vc, b = (None, None) if scan.first is None else (scan.first[0], 1j * scan.first[1])
         anchor = None if vc is None else (m, vc, b.imag)
-        low, at = ((None, None) if wl_range is None
-                   else family_minimum(system, wl_range, anchor=anchor))
-        fams.append(TEIFamily(system.name, vc, None if vc is None else -b.imag / m, low, at))
+        low, at, end = ((None, None, None) if wl_range is None
+                        else family_minimum(system, wl_range, anchor=anchor))
+        crossings = () if scan is None else tuple(
+            {"speed": c[0], "migration_speed": -c[1] / m, "direction": c[2]}
+            for c in scan.crossings)
+        fams.append(TEIFamily(system.name, vc, None if vc is None else -b.imag / m, low, at,
+                              end, crossings, None if scan is None else scan.certified))
         anchors.append(anchor)
     found = [f for f in fams if f.critical_speed is not None]
     first = min(found, key=lambda f: f.critical_speed) if found else None
@@ -655,7 +699,8 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         mw = rate = None
         if v > 0.0 and first is not None:
             if lay:
-                mw, rate = _most_unstable(systems, v, wl_range)
+                mw, rate = ((None, None) if wl_range is None
+                            else _most_unstable(systems, v, wl_range))
             else:
                 mw, rate = most_unstable_wavelength(pair, v, m, first.critical_speed)
         found_modes = []

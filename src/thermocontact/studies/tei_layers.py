@@ -10,12 +10,17 @@ root search finds every mode; the same interface serves both
 (:class:`thermocontact.studies.tei.HalfPlanes`, :class:`Layered`), so that every study
 works for every geometry.
 
-For a layup the modes are roots of ``det M(b)`` (L8): the rightmost few are seeded by
-the eigenvalues of the depth discretisation
+For a layup the modes are roots of ``det M(b)`` off the half-planes' branch cuts (L8,
+L15): the rightmost few are seeded by the eigenvalues of the depth discretisation
 (:func:`thermocontact.discretisation.tei_depth.layup_modes`) and polished by Newton's
-method on the determinant.  A neutral mode, ``b = i omega`` at the critical speed, is
-found by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
-``(V, omega)`` (L10); along a curve of wavelengths it is continued from the last one.
+method on the determinant, each in the frame it is nearer to rest in.  The critical
+speed comes from a scan that follows the modes in speed with step control, locates
+every change of sign and every interior maximum of a mode's growth rate (windows of
+growth), and counts the growing modes at every speed by the argument principle
+(:func:`speed_scan`, :func:`unstable_count`); a neutral mode, ``b = i omega``, is
+polished by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
+``(V, omega)`` (L10); along a curve of wavelengths, scans at every
+:data:`SCAN_EVERY`-th are continued between them (:func:`continue_neutral`).
 """
 
 from __future__ import annotations
@@ -28,18 +33,17 @@ import numpy as np
 from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
-__all__ = ["Layered", "continue_neutral", "continue_step", "first_crossing", "growth_rate",
-           "neutral_point", "newton_roots", "pattern_frame", "raw_seeds"]
+__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "first_crossing",
+           "growth_rate", "neutral_point", "newton_roots", "pattern_frame", "raw_seeds",
+           "speed_scan", "unstable_count"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
-#: Chebyshev intervals per body of the scan for the first crossing (signs only; the
-#: crossing is then polished by Newton's method).
-SCAN_POINTS = 16
-#: Seeds polished per evaluation of the modes.
-SEEDS = 4
-#: Speeds per factor 2 of the scan for the first crossing.
-PER_OCTAVE = 2
+#: Seeds polished per evaluation of the modes: the discretisation's rightmost
+#: eigenvalues off the half-planes' continuous spectra.
+SEEDS = 8
+#: Wavenumbers of a critical-speed curve between two scans from the lowest speed.
+SCAN_EVERY = 20
 
 
 def _scale(layup: Layup, m) -> float:
@@ -52,12 +56,16 @@ def newton_roots(func, x0, scale, iters=25):
     differences of step ``1e-6 scale``; returns the roots and which converged: a step
     below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
     falls (the rounding of the determinant reached).  Each root is iterated only
-    until it has converged; ``func(z, active)`` gets the indices of those iterated."""
+    until it has converged, or given up (NaN) if its step is still above ``1e-6 (|x| +
+    scale)`` after 12 iterations (no quadratic convergence in sight: a seed of the
+    continuous spectrum); ``func(z, active)`` gets the indices of those iterated."""
     x = np.array(x0, dtype=complex)
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
     last = np.full(x.shape, np.inf)
-    for _ in range(iters):
+    for it in range(iters):
+        if it == 12:
+            x[~done & (last > 1e-6 * (np.abs(x) + scale))] = np.nan
         act = np.flatnonzero(~done & np.isfinite(x))
         if not act.size:
             break
@@ -101,42 +109,58 @@ class Layered:
         return layup_dispersion(self.layup, b, m, speed)
 
     def in_continuum(self, b, m, speed):
-        """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-3 of its
-        scale): ``b + i m U`` real and below ``-kappa m^2/2`` for a half-plane moving
-        at ``U``, where the depth discretisation puts a cloud of eigenvalues that are
-        no modes."""
+        """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-2 of its
+        distance from ``b + i m U = 0``, and 1e-7 of ``m V``, the discretisation's
+        error in the frame at rest where the moving bodies' rows carry ``i m V``): ``b + i m U`` real and below
+        ``-kappa m^2/2`` for a half-plane moving at ``U``, where the depth
+        discretisation puts a cloud of eigenvalues that are no modes."""
+        return self._near_cut(b, m, speed, 0.5, 1e-2, 1e-7)
+
+    def on_cut(self, b, m, speed):
+        """Whether each ``b`` lies on a half-plane's branch cut, ``b + i m U`` real
+        (to 1e-9 of its size and 1e-13 of ``m V``) and at most ``-kappa m^2``: a point of the
+        continuous spectrum, where a root of the determinant on the principal branch
+        is no mode."""
+        return self._near_cut(b, m, speed, 1.0, 1e-9, 1e-13)
+
+    def _near_cut(self, b, m, speed, edge_factor, tol, slack):
         b = np.asarray(b, dtype=complex)
         out = np.zeros(b.shape, dtype=bool)
         for body in self.layup.bodies:
             if body.thickness is None and body.conducts:
                 edge = body.material.k * m * m
                 z = b + 1j * m * (speed if body.moving else 0.0)
-                out |= (z.real < -0.5 * edge) & (np.abs(z.imag) <= 1e-3 * (np.abs(z.real) + edge))
+                out |= (z.real <= -edge_factor * edge) & (
+                    np.abs(z.imag) <= tol * (np.abs(z.real) + edge) + slack * m * abs(speed))
         return out
 
     def modes(self, m, speed, count=SEEDS, seeds=None):
         """The rightmost modes at one wavenumber and speed, 1/s, by decreasing real part:
-        depth-discretisation seeds (or ``seeds``) polished by Newton's method."""
+        depth-discretisation seeds (or ``seeds``) polished by Newton's method in the
+        frame each is nearer to rest in.
+
+        A mode is a zero of :meth:`dispersion` off the half-planes' branch cuts (the
+        physical sheet, every half-plane's field decaying with depth); its real part
+        may lie below the continuous spectrum's ``-kappa m^2`` (a mode at rest on the
+        disc, far from the pads' cut in frequency).  Which are found: those seeded by
+        the discretisation's ``count`` rightmost eigenvalues off the continuous
+        spectra (L14); every growing one is counted by :func:`unstable_count`."""
         m = float(m)
         if seeds is None:
-            seeds = raw_seeds(self, m, speed)[:count]
-        if not len(seeds):
+            seeds = raw_seeds(self, m, speed, count=count)
+        seeds = np.asarray(seeds, dtype=complex)
+        if not seeds.size:
             return np.array([], dtype=complex)
-        scale = max(self.scale(m), 1e-300)
-        roots, ok = newton_roots(lambda z, _: self.dispersion(z, m, speed), seeds, scale)
-        # A root far from its seed is none of the discretisation's: Newton's method
-        # has run off to where the determinant underflows.
-        near = np.abs(roots - seeds) <= 0.5 * np.abs(seeds) + 10.0 * scale
-        roots = roots[ok & near & (roots.real > self.continuum(m))]
-        out = []
-        for r in roots[np.argsort(-roots.real, kind="stable")]:
-            if all(abs(r - x) > 1e-8 * (abs(r) + scale) for x in out):
-                out.append(complex(r))
-        return np.array(out, dtype=complex)
+        return _unique(self, m, _polish(self, m, speed, seeds)[0])
 
     def critical(self, m):
         """The critical speed at ``m`` and the neutral ``b = i omega`` (:func:`first_crossing`)."""
         return first_crossing(self, m)
+
+    def scan(self, m, v_high=1e4, every=False, beyond=1.0):
+        """The neutral crossings at ``m`` up to ``beyond`` times the critical speed (or
+        ``every`` one up to ``v_high``) and the scan's checks (:func:`speed_scan`)."""
+        return speed_scan(self, m, v_high, every=every, beyond=beyond)
 
     def curve(self, wavenumbers, anchor=None):
         """Critical speeds and neutral ``omega`` along sorted wavenumbers
@@ -219,75 +243,345 @@ def neutral_point(family, m, speed, omega, iters=40):
     return V, omega_of(V, s), done
 
 
-def raw_seeds(family, m, speed, points=None):
-    """The depth discretisation's rightmost eigenvalues off the half-planes' continuous
-    spectra (unpolished; ``points`` per body, default :data:`SEED_POINTS`)."""
+def raw_seeds(family, m, speed, points=None, count=SEEDS):
+    """The depth discretisation's ``count`` rightmost eigenvalues off the half-planes'
+    continuous spectra (unpolished; ``points`` per body, default :data:`SEED_POINTS`)."""
     seeds = layup_modes(family.layup, m, speed, SEED_POINTS if points is None else points)
-    return seeds[~family.in_continuum(seeds, m, speed)][:SEEDS]
+    return seeds[~family.in_continuum(seeds, m, speed)][:count]
+
+
+def _polish(family, m, speed, b0, reach=None):
+    """Newton's method on the dispersion function from the guesses ``b0``, each in the
+    frame it is nearer to rest in (:func:`pattern_frame`: there a mode at rest on a
+    body is a number of size ``kappa m^2``, resolved to rounding, not a frequency near
+    ``m V``).  Returns the roots (NaN where Newton's method failed, ran farther than
+    ``reach`` from its guess, default half the guess in that frame plus ``10 kappa
+    m^2``, or ended on a half-plane's branch cut) and the frames."""
+    b0 = np.atleast_1d(np.asarray(b0, dtype=complex))
+    scale = max(family.scale(m), 1e-300)
+    phi = pattern_frame(m, speed, b0.imag)
+    shift = 1j * phi * m * speed
+    z0 = b0 + shift
+    roots, ok = newton_roots(lambda z, act: family.dispersion(z - shift[act], m, speed), z0,
+                             scale)
+    lim = 0.5 * np.abs(z0) + 10.0 * scale if reach is None else reach
+    b = roots - shift
+    good = ok & (np.abs(roots - z0) <= lim) & ~family.on_cut(b, m, speed)
+    return np.where(good, b, np.nan), phi
+
+
+def _unique(family, m, b):
+    """The finite roots ``b``, by decreasing real part, each once."""
+    scale = family.scale(m)
+    b = np.asarray(b, dtype=complex)
+    b = b[np.isfinite(b)]
+    out = []
+    for r in b[np.argsort(-b.real, kind="stable")]:
+        if all(abs(r - x) > 1e-8 * (abs(r) + scale) for x in out):
+            out.append(complex(r))
+    return np.array(out, dtype=complex)
+
+
+def _speed_slope(family, m, speed, b):
+    """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
+    ``D`` (implicit differentiation), both by central differences in the root's frame."""
+    b = np.asarray(b, dtype=complex)
+    phi = pattern_frame(m, speed, b.imag)
+    z = b + 1j * phi * m * speed
+    hz = 1e-6 * (np.abs(z) + family.scale(m))
+    hv = 1e-6 * speed
+
+    def g(zz, v):
+        return family.dispersion(zz - 1j * phi * m * v, m, v)
+
+    dz = (g(z + hz, speed) - g(z - hz, speed)) / (2.0 * hz)
+    dv = (g(z, speed + hv) - g(z, speed - hv)) / (2.0 * hv)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return -dv / dz - 1j * phi * m
+
+
+def _follow(family, m, v0, b0, slope0, v1):
+    """The root ``b0`` (slope ``slope0`` at ``v0``) at the speed ``v1``: predicted along
+    its tangent and polished (NaN where Newton's method fails); and the prediction."""
+    pred = b0 + (v1 - v0) * slope0
+    reach = 0.5 * np.abs(pred - b0) + 0.5 * np.abs(b0.real) + 10.0 * family.scale(m)
+    return _polish(family, m, v1, pred, reach)[0], pred
+
+
+def unstable_count(family, m, speed, points=48):
+    """The number of growing modes at one wavenumber and speed, by the argument
+    principle, and whether the count is reliable (L15).
+
+    ``D(b) = det M(b)/det M_0(b)`` (:func:`~thermocontact.physics.tei_layers.
+    dispersion_matrix` with and without the frictional heat) has the modes as zeros,
+    no pole in ``Re b >= 0`` (those of ``det M_0`` are free thermal modes, which
+    decay) and tends to 1 as ``|b| -> inf`` there; so the number of its zeros in
+    ``Re b > 0`` is minus its winding along the imaginary axis, ``-Delta arg D/(2
+    pi)`` for ``omega`` from ``-inf`` to ``inf``.  The frequencies: ``points`` per
+    decade-spaced side about each body's frame (``0`` and ``-m V``), from ``1e-4``
+    times the smallest rate (``kappa m^2``, ``kappa/h^2``, ``m V``) to ``1e6`` times
+    the largest, each step refined until the argument changes by less than 0.25.
+
+    Returns
+    -------
+    (int, bool)
+        The count, and whether it is reliable: the steps resolved, the winding an
+        integer to 1e-6, ``D`` within 0.05 of 1 at both ends.
+    """
+    from ..physics.tei_layers import dispersion_matrix
+
+    layup = family.layup
+    rates = [m * speed] if speed > 0.0 else []
+    for body in layup.bodies:
+        if body.conducts:
+            rates.append(body.material.k * m * m)
+            if body.thickness is not None:
+                rates.append(body.material.k / body.thickness ** 2)
+    lo, hi = min(rates) * 1e-4, max(rates) * 1e6
+    side = np.geomspace(lo, hi, points)
+    centres = {-m * speed if body.moving else 0.0 for body in layup.bodies}
+    w = np.concatenate([c + np.concatenate([-side[::-1], [0.0], side]) for c in centres]
+                       + [[-1e3 * hi - m * speed, 1e3 * hi]])
+    w = np.unique(w)
+
+    def ratio(w):
+        b = 1j * w
+        s1, l1 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed))
+        s0, l0 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed, heat=False))
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+            return s1 / s0 * np.exp(l1 - l0)
+
+    D = ratio(w)
+    resolved = False
+    for _ in range(60):
+        step = np.angle(D[1:] / D[:-1])
+        bad = ~(np.abs(step) <= 0.25)
+        if not bad.any():
+            resolved = True
+            break
+        idx = np.flatnonzero(bad)
+        mid = 0.5 * (w[idx] + w[idx + 1])
+        w = np.insert(w, idx + 1, mid)
+        D = np.insert(D, idx + 1, ratio(mid))
+    total = np.sum(np.angle(D[1:] / D[:-1])) + np.angle(D[0]) - np.angle(D[-1])
+    n = -total / (2.0 * math.pi)
+    count = int(round(n)) if np.isfinite(n) else -1
+    ends = abs(D[0] - 1.0) < 0.05 and abs(D[-1] - 1.0) < 0.05
+    return count, bool(resolved and ends and abs(n - count) < 1e-6)
+
+
+#: The speed scan's steps: at most this factor, at least ``1 + MIN_STEP``.
+MAX_RATIO = 4.0
+MIN_STEP = 1e-6
+#: Speeds of a scan between two reseedings from the depth discretisation (a factor).
+RESEED = 4.0
+
+
+@dataclass(frozen=True)
+class SpeedScan:
+    """Every neutral crossing of a family at one wavenumber up to a speed, and what the
+    scan that found them checked (:func:`speed_scan`, L15).
+
+    Attributes
+    ----------
+    crossings : tuple of (float, float, int)
+        ``(V, omega, direction)``: the speed, m/s, the neutral frequency, rad/s (the
+        crest's speed relative to the counterface is ``-omega/m``), and +1 where a
+        mode starts to grow with the speed, -1 where it stops; by speed.
+    speeds : int
+        Speeds of the scan (grid points accepted).
+    counts : int
+        Speeds at which the growing modes were counted (argument principle).
+    certified : bool
+        Every count reliable and equal to the number of growing modes followed.
+    maxima : int
+        Interior maxima of a mode's growth rate located between two speeds.
+    start, end : float
+        The speeds the scan started from (where no mode grows; a mode growing at
+        1e-9 m/s, the lowest speed studied, gives that speed as an upper bound of
+        the critical speed, ``certified`` False) and reached, m/s.
+    """
+
+    crossings: tuple
+    speeds: int
+    counts: int
+    certified: bool
+    maxima: int
+    start: float
+    end: float
+
+    @property
+    def first(self):
+        """The lowest upward crossing ``(V, omega)``, or None."""
+        up = [c for c in self.crossings if c[2] > 0]
+        return (up[0][0], up[0][1]) if up else None
+
+
+def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
+    """The neutral crossings of a family at wavenumber ``m`` from the lowest speed up
+    to ``v_high``: up to ``beyond`` times the first upward one, or ``every`` one; by
+    following its rightmost modes in speed (L15).
+
+    From the lowest speed (:meth:`Layered.lowest_speed`, lowered by factors 8 while a
+    mode grows there), the modes (:meth:`Layered.modes`) are followed by Newton's
+    method from speed to speed, each predicted along its tangent ``db/dV`` (implicit
+    differentiation).  A step (a factor at most :data:`MAX_RATIO`) is accepted only if
+    every followed mode lands within a fifth of its distance from the imaginary axis
+    of its prediction, otherwise halved (in the factor's excess over 1).  On each
+    step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
+    ``Re b(V)``, the mode followed from the nearer end, then Newton's method on the
+    neutral point); an interior maximum (``dRe b/dV`` positive at the step's start,
+    negative at its end) is located by bounded maximisation, and where it reaches 0
+    it is a window of growth (two crossings).  At every accepted speed the growing
+    modes are counted by the argument principle (:func:`unstable_count`); where the
+    count exceeds the followed modes that grow, and every :data:`RESEED` in speed, the
+    modes are reseeded, and a new one is followed back over the step.
+
+    Returns
+    -------
+    SpeedScan
+        ``certified`` where every count was reliable and equal to the followed modes
+        that grow.  Not excluded: a window inside one step of a mode whose growth rate
+        turns twice within it, or of a mode followed at neither end of it
+        (docs/derivation.md, L15).
+    """
+    from scipy.optimize import brentq, minimize_scalar
+
+    m = float(m)
+    scale = family.scale(m)
+    v = family.lowest_speed(m) if v_low is None else float(v_low)
+    while True:
+        b = family.modes(m, v)
+        n, sure = unstable_count(family, m, v)
+        grows = n > 0 or (len(b) and b[0].real > 0.0)
+        if not grows or v <= 1e-9:
+            break
+        v = max(v / 8.0, 1e-9)
+    if grows:
+        # Growing at the lowest speed studied: that speed, an upper bound.
+        w = float(b[0].imag) if len(b) else math.nan
+        return SpeedScan(((v, w, 1),), 1, 1, False, 0, v, v)
+    start = v
+    b = _unique(family, m, b)
+    slope = _speed_slope(family, m, v, b)
+    crossings, counts, certified, maxima, speeds = [], 1, sure, 0, 1
+    ratio, seeded = MAX_RATIO, v
+
+    def growth(ends):
+        """Re b(V) of one mode, followed from the nearest of ``ends``, the points
+        ``(V, b, db/dV)`` known on its path (NaN where no follow lands)."""
+        def f(x):
+            for v0, b0_, s0_ in sorted(ends, key=lambda e: abs(math.log(x / e[0]))):
+                r = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)[0][0]
+                if np.isfinite(r):
+                    return r
+            return complex(math.nan)
+        return f
+
+    def locate(ends, va, vb, direction):
+        f = growth(ends)
+
+        def g(x):
+            r = f(x).real
+            # Unfollowed: the sign of the nearer end, so that Brent's method stays in
+            # the bracket (the neutral point is then polished independently).
+            return r if np.isfinite(r) else (-1.0 if (x - va) < (vb - x) else 1.0) * \
+                direction * scale
+        vc = brentq(g, va, vb, xtol=1e-300, rtol=1e-11, maxiter=200)
+        bc = f(vc)
+        w0 = bc.imag if np.isfinite(bc) else ends[0][1].imag * vc / ends[0][0]
+        V, w, ok = neutral_point(family, m, vc, w0)
+        if ok and abs(V - vc) <= 1e-7 * vc:
+            return (float(V), float(w), direction)
+        return (float(vc), float(w0), direction)
+
+    def limit():
+        up = [c[0] for c in crossings if c[2] > 0]
+        return v_high if every or not up else min(v_high, beyond * min(up))
+
+    while v < limit():
+        v1 = min(v * ratio, limit())
+        if b.size:
+            b1, pred = _follow(family, m, v, b, slope, v1)
+            err = np.abs(b1 - pred)
+            tol = 0.2 * np.maximum(np.abs(b.real), np.abs(b1.real)) + 1e-9 * scale
+            fine = np.isfinite(b1) & (err <= tol)
+            if not fine.all() and ratio - 1.0 > MIN_STEP:
+                ratio = 1.0 + 0.5 * (ratio - 1.0)
+                continue
+        else:
+            b1 = b
+        # Two modes followed onto one root: the root once.
+        keep = np.isfinite(b1)
+        for k in range(b1.size):
+            if keep[k] and any(keep[j] and abs(b1[k] - b1[j]) <= 1e-8 * (abs(b1[k]) + scale)
+                               for j in range(k)):
+                keep[k] = False
+        b0, s0, b1 = b[keep], slope[keep], b1[keep]
+        s1 = _speed_slope(family, m, v1, b1)
+        for k in range(b1.size):
+            r0, r1 = b0[k].real, b1[k].real
+            if (r0 < 0.0) != (r1 < 0.0):
+                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
+                crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
+            elif r0 < 0.0 and s0[k].real > 0.0 and s1[k].real < 0.0:
+                maxima += 1
+                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
+                f = growth(ends)
+                res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
+                                      bounds=(math.log(v), math.log(v1)), method="bounded",
+                                      options={"xatol": 1e-7})
+                if -res.fun >= 0.0:
+                    top = math.exp(res.x)
+                    crossings.append(locate(ends, v, top, 1))
+                    crossings.append(locate(ends, top, v1, -1))
+        # Count the growing modes; reseed from the discretisation where the count
+        # exceeds those followed, and every RESEED in speed.
+        counts += 1
+        n, sure = unstable_count(family, m, v1)
+        if n != int(np.sum(b1.real > 0.0)) or v1 >= RESEED * seeded:
+            fresh = [x for x in family.modes(m, v1)
+                     if all(abs(x - y) > 1e-8 * (abs(x) + scale) for y in b1)]
+            if fresh:
+                # A mode not followed so far: its value at v, for the step's checks.
+                fresh = np.array(fresh)
+                fs = _speed_slope(family, m, v1, fresh)
+                back = _follow(family, m, v1, fresh, fs, v)[0]
+                for k in range(fresh.size):
+                    r1 = fresh[k].real
+                    if np.isfinite(back[k]) and (back[k].real < 0.0) != (r1 < 0.0):
+                        bs = _speed_slope(family, m, v, back[k:k + 1])[0]
+                        ends = [(v, back[k], bs), (v1, fresh[k], fs[k])]
+                        crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
+                b1 = np.concatenate([b1, fresh])
+                s1 = np.concatenate([s1, fs])
+            seeded = v1
+        certified &= sure and n == int(np.sum(b1.real > 0.0))
+        order = np.argsort(-b1.real, kind="stable")
+        b, slope = b1[order], s1[order]
+        v = v1
+        speeds += 1
+        ratio = min(1.0 + 2.0 * (ratio - 1.0), MAX_RATIO)
+    crossings.sort()
+    if not every:
+        first = [c for c in crossings if c[2] > 0][:1]
+        crossings = [c for c in crossings if not first or c[0] <= beyond * first[0][0]]
+    return SpeedScan(tuple(crossings), speeds, counts, bool(certified), maxima, start, float(v))
 
 
 def first_crossing(family, m, v_low=None, v_high=1e4):
-    """The lowest speed at which a mode of wavenumber ``m`` grows, from a scan
-    upward (:data:`PER_OCTAVE` speeds per factor 2, one where every mode decays at
-    least at ``kappa m^2``; the depth discretisation's eigenvalues at
-    :data:`SCAN_POINTS`) located by Newton's method on the neutral point; ``(None, None)`` if
-    none grows below ``v_high``.
-
-    Where a mode grows at the scan's start, the start moves down (by factors 8) until
-    none does; a mode growing at 1e-9 m/s, the lowest speed studied, gives that speed
-    (an upper bound) and that mode.
+    """The lowest speed at which a mode of wavenumber ``m`` grows
+    (:func:`speed_scan`), and the neutral growth rate ``b = i omega`` there;
+    ``(None, None)`` if none grows below ``v_high``.  A mode growing at 1e-9 m/s, the
+    lowest speed studied, gives that speed (an upper bound) and that mode.
 
     Returns
     -------
     (float, complex) or (None, None)
-        The critical speed, m/s, and the neutral growth rate ``b = i omega``, 1/s.
+        The critical speed, m/s, and ``i omega``, 1/s.
     """
-    v = family.lowest_speed(m) if v_low is None else v_low
-    fine = 2.0 ** (1.0 / PER_OCTAVE)
-    ratio = fine
-    prev = None
-    # A mode growing at the scan's start: the start moves down until none does.
-    while True:
-        b = raw_seeds(family, m, v, SCAN_POINTS)
-        if not (len(b) and family.modes(m, v, seeds=b[:SEEDS]).real.max(initial=-1.0) > 0.0):
-            break
-        if v <= 1e-9:           # growing at the lowest speed studied: an upper bound
-            return v, complex(family.modes(m, v, seeds=b[:SEEDS])[0])
-        v = max(v / 8.0, 1e-9)
-    while v <= v_high * ratio:
-        b = raw_seeds(family, m, v, SCAN_POINTS)
-        if len(b) and b[0].real > 0.0:
-            b = family.modes(m, v, seeds=b)      # polished
-        if len(b) and b[0].real > 0.0:
-            if prev is None:    # growing where the start found none: locate from below
-                v0, b0 = v / fine, None
-            else:
-                v0, b0 = prev
-            # Interpolate in ln V where Re b crosses 0, and the frequency in the
-            # pattern's frame (neutral_point), then Newton.
-            b1 = complex(b[0])
-            t = 0.5 if b0 is None else -b0.real / (b1.real - b0.real)
-            vg = v0 * (v / v0) ** t
-            phi = float(pattern_frame(m, v, b1.imag))
-            s1 = b1.imag + phi * m * v
-            s0 = s1 if b0 is None else b0.imag + phi * m * v0
-            V, w, ok = neutral_point(family, m, vg, -phi * m * vg + s0 + t * (s1 - s0))
-            if ok and v0 / fine <= V <= v * fine:
-                return float(V), 1j * float(w)
-            return _brent_crossing(family, m, v0, v)
-        prev = (v, complex(b[0]) if len(b) else None)
-        # Octaves where every mode decays at least at kappa m^2 are crossed in one step.
-        ratio = 2.0 if not len(b) or b[0].real < -family.scale(m) else fine
-        v *= ratio
-    return None, None
-
-
-def _brent_crossing(family, m, v0, v1):
-    from scipy.optimize import brentq
-
-    vc = brentq(lambda v: growth_rate(family, m, v), v0, v1, rtol=1e-13)
-    b = family.modes(m, vc)
-    return float(vc), complex(b[0])
+    first = speed_scan(family, m, v_high, v_low).first
+    return (None, None) if first is None else (first[0], 1j * first[1])
 
 
 def continue_step(family, m0, point, m1, depth=0):
@@ -310,16 +604,18 @@ def continue_step(family, m0, point, m1, depth=0):
     return None if half is None else continue_step(family, mid, half, m1, depth + 1)
 
 
-def continue_neutral(family, wavenumbers, anchor=None, check_every=20):
-    """The critical speed and neutral ``omega`` along sorted wavenumbers, continued.
+def continue_neutral(family, wavenumbers, anchor=None, scan_every=None):
+    """The critical speed and neutral ``omega`` along sorted wavenumbers (L15).
 
-    From ``anchor = (m, V, omega)``, a neutral point already found, outward both
-    ways; without one, from a scan (:func:`first_crossing`) at the first
-    wavenumber.  Each next point comes from Newton's method on the neutral point
-    started from the last (:func:`continue_step`, halving the step where it fails).
-    Every ``check_every`` points the modes at ``0.999 V`` are checked to decay: where
-    one grows, another branch crosses lower, and a scan (:func:`first_crossing`) takes
-    over, as it does wherever the continuation fails.
+    At every ``scan_every``-th wavenumber (default :data:`SCAN_EVERY`; the first and
+    the last included) a scan from the lowest speed (:func:`speed_scan`) finds the
+    critical speed; the neutral point found there (and ``anchor = (m, V, omega)``, a
+    neutral point already found by a scan) is continued both ways by Newton's method
+    (:func:`continue_step`) to the next scanned wavenumber, or until it fails (a
+    fold of the branch, where a window of growth closes).  At each wavenumber the
+    lowest of the points reaching it is kept: a branch that is the lowest at a scanned
+    wavenumber is followed over both neighbouring intervals, so a lower branch is
+    missed only if it is nowhere the lowest at a scanned wavenumber.
 
     Returns
     -------
@@ -327,32 +623,38 @@ def continue_neutral(family, wavenumbers, anchor=None, check_every=20):
         NaN where no mode grows below the scan's end.
     """
     ms = np.asarray(wavenumbers, dtype=float)
-    V = np.full(ms.shape, np.nan)
+    n = ms.size
+    every = SCAN_EVERY if scan_every is None else scan_every
+    scanned = sorted(set(range(0, n, every)) | {n - 1})
+    V = np.full(ms.shape, np.inf)
     W = np.full(ms.shape, np.nan)
-    if anchor is None:
-        _walk(family, ms, range(ms.size), None, V, W, check_every)
-    else:
-        k = int(np.searchsorted(ms, anchor[0]))
-        start = (float(anchor[0]), (float(anchor[1]), float(anchor[2])))
-        _walk(family, ms, range(k, ms.size), start, V, W, check_every)
-        _walk(family, ms, range(k - 1, -1, -1), start, V, W, check_every)
-    return V, W
-
-
-def _walk(family, ms, order, prev, V, W, check_every):
-    for count, i in enumerate(order):
-        m = ms[i]
-        found = None
-        if prev is not None:
-            found = prev[1] if prev[0] == m else continue_step(family, prev[0], prev[1], m)
-            if found is not None and count % check_every == check_every - 1 and growth_rate(
-                    family, m, 0.999 * found[0]) > 0.0:
-                found = None
-        if found is None:
-            vc, b = first_crossing(family, m)
-            found = None if vc is None else (vc, b.imag)
-        if found is None:
-            prev = None
+    starts = []
+    if anchor is not None:
+        starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
+                       (float(anchor[1]), float(anchor[2]))))
+    for j in scanned:
+        if anchor is not None and ms[j] == anchor[0]:
             continue
-        V[i], W[i] = found
-        prev = (float(m), found)
+        vc, b = first_crossing(family, ms[j])
+        if vc is not None:
+            starts.append((j + 1, float(ms[j]), (vc, b.imag)))
+            if vc < V[j]:
+                V[j], W[j] = vc, b.imag
+    for k, m0, point in starts:
+        # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
+        for order in (range(k, n), range(k - 1, -1, -1)):
+            prev = (m0, point)
+            for i in order:
+                if ms[i] == m0:
+                    found = point
+                else:
+                    found = continue_step(family, prev[0], prev[1], ms[i])
+                if found is None:
+                    break
+                if found[0] < V[i]:
+                    V[i], W[i] = found
+                prev = (float(ms[i]), found)
+                if i in scanned and ms[i] != m0:
+                    break
+    V[~np.isfinite(V)] = np.nan
+    return V, W
