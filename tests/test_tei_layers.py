@@ -326,10 +326,38 @@ def test_stop_amplification_against_time_integration():
 # --- the call and the command ----------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def disc():
-    return tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm", speed=10,
-               dundurs=False, slider_thickness="12mm", disc_radius="120mm", hot_spots="4:10",
-               brake_stop="3:1")
+def disc_run():
+    """The disc's analysis and what it told its progress, ``[(stage, done, total)]``."""
+    told = []
+    res = tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm", speed=10,
+              dundurs=False, slider_thickness="12mm", disc_radius="120mm", hot_spots="4:10",
+              brake_stop="3:1", progress=lambda *a: told.append(a))
+    return res, told
+
+
+@pytest.fixture(scope="module")
+def disc(disc_run):
+    return disc_run[0]
+
+
+def test_disc_tells_its_progress(disc_run):
+    """A layup's analysis (seconds to minutes) tells each stage in order: each family's
+    critical speed and curve over the wavelength, each family's hot-spot curve, the
+    stop; each stage's count starts at 0 and rises to its total."""
+    _, told = disc_run
+    families = ("antisymmetric", "symmetric")
+    stages = list(dict.fromkeys(stage for stage, _, _ in told))
+    assert stages == ([f"{f}: {what}" for f in families
+                       for what in ("critical speed", "minimum over the wavelength")]
+                      + [f"{f}: hot spots" for f in families] + ["the stop's growth rates"])
+    for stage in stages:
+        counts = [(done, total) for s, done, total in told if s == stage]
+        assert counts[0][0] == 0 and counts[-1][0] == counts[-1][1]
+        assert len({total for _, total in counts}) == 1
+        assert all(a[0] <= b[0] for a, b in zip(counts, counts[1:]))
+    with pytest.raises(InputError, match="progress"):
+        tei("cast-iron", "organic-composite-brake-block", 0.4, "75mm",
+            slider_thickness="12mm", progress="yes")
 
 
 def test_disc_record(disc):

@@ -930,7 +930,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         *, slider_thickness=None, faces=2, counterface_thickness=None,
         backing="slip-insulated", separator=None, plane_stress=False, disc_radius=None,
         hot_spots=None, brake_stop=None, stop_history=None,
-        stop_threshold=None) -> TEIResult:
+        stop_threshold=None, progress=None) -> TEIResult:
     """Thermoelastic instability of sliding bodies (``thermocontact tei``): two
     half-planes, a brake disc of finite thickness between pads, pads as layers on a
     backing plate, a clutch pack.
@@ -996,6 +996,10 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     stop_threshold : float, optional
         The amplification that marks a hot-spot number unstable over the stop
         (default ``e^5``).
+    progress : callable, optional
+        ``progress(stage, done, total)``: the analysis's stages (each family's
+        critical speed, its curve over the wavelength, its hot-spot curve, the stop),
+        each counted in scans from the lowest speed; layers take seconds to minutes.
 
     Returns
     -------
@@ -1015,6 +1019,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
 
     s, c = _materials(slider, counterface, materials, names=("slider", "counterface"))
     dundurs = check_flag("dundurs", dundurs)
+    check_callable("progress", progress)
     plane = "stress" if check_flag("plane_stress", plane_stress) else "strain"
     wl = _quantity("wavelength", wavelength, "m")
     v = _quantity("speed", speed, "m/s")
@@ -1054,7 +1059,8 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         return analyse(s, c, friction, wl, speed=v, dundurs=dundurs, plane=plane,
                        slider_thickness=d, faces=faces, counterface_thickness=h,
                        backing=backing, separator=sep, separator_thickness=sep_t,
-                       disc_radius=radius, hot_spots=spots, stop=history)
+                       disc_radius=radius, hot_spots=spots, stop=history,
+                       progress=progress)
 
 
 @deprecated_spellings(renamed=(("re_min", "b_min"),),

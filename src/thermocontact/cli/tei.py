@@ -9,6 +9,7 @@ import json
 import click
 
 from ..problem.errors import InputError
+from .progress import StageProgress
 
 __all__ = ["report_lines", "tei_cmd"]
 
@@ -85,12 +86,17 @@ def tei_cmd(slider, counterface, friction, wavelength, speed, dundurs, slider_th
         if slider_thickness is None and counterface_thickness is None:
             raise InputError("--plot-modes needs a layer (--slider-thickness or "
                              "--counterface-thickness)")
-    res = tei(slider, counterface, friction, wavelength, speed=speed, dundurs=dundurs,
-              materials=materials_file, slider_thickness=slider_thickness, faces=faces,
-              counterface_thickness=counterface_thickness, backing=backing,
-              separator=separator, plane_stress=plane_stress, disc_radius=disc_radius,
-              hot_spots=hot_spots, brake_stop=stop, stop_history=stop_history,
-              stop_threshold=stop_threshold)
+    # Layers take seconds to minutes: each stage's progress once the command has run 2 s.
+    progress = StageProgress("tei")
+    try:
+        res = tei(slider, counterface, friction, wavelength, speed=speed, dundurs=dundurs,
+                  materials=materials_file, slider_thickness=slider_thickness, faces=faces,
+                  counterface_thickness=counterface_thickness, backing=backing,
+                  separator=separator, plane_stress=plane_stress, disc_radius=disc_radius,
+                  hot_spots=hot_spots, brake_stop=stop, stop_history=stop_history,
+                  stop_threshold=stop_threshold, progress=progress)
+    finally:
+        progress.close()
     if plot_file is not None:
         from ..plotting.tei import tei_figure
 

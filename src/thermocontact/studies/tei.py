@@ -467,9 +467,10 @@ class HalfPlanes:
         vc, mode = critical_speed(self.pair, m)
         return (None, None) if vc is None else (vc, -1j * mode.migration_speed * m)
 
-    def curve(self, wavenumbers, anchor=None):
+    def curve(self, wavenumbers, anchor=None, progress=None):
         """Exact: only ``V/(kappa m)`` enters (H11), ``V_c`` and the neutral
-        frequency in units of ``kappa m^2`` are fixed multiples."""
+        frequency in units of ``kappa m^2`` are fixed multiples (one critical speed at
+        most: ``progress`` is not told)."""
         ms = np.asarray(wavenumbers, dtype=float)
         if anchor is not None:
             m0, vc, w = anchor
@@ -509,7 +510,7 @@ MINIMUM_POINTS = 40
 CROSSINGS_BEYOND = 3.0
 
 
-def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
+def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None, progress=None):
     """The lowest critical speed over ``wl_range`` and its wavelength, (m/s, m, at the
     end): the curve on ``points`` wavelengths (:meth:`curve`; for layers
     :func:`~thermocontact.studies.tei_layers.continue_neutral`, scans from the lowest
@@ -517,13 +518,13 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
     ``ln m`` between its neighbours (each point a neutral point continued from the
     least).  ``at the end`` is True where the least point is an end of the range (not
     refined: the minimum may lie beyond).  ``(None, None, None)`` where the family is
-    stable throughout."""
+    stable throughout.  ``progress(done, total)``: the curve's (:meth:`curve`)."""
     from scipy.optimize import minimize_scalar
 
     from .tei_layers import continue_step
 
     ms = np.geomspace(2.0 * math.pi / wl_range[1], 2.0 * math.pi / wl_range[0], points)
-    V, W = system.curve(ms, anchor)
+    V, W = system.curve(ms, anchor, progress=progress)
     if not np.isfinite(V).any():
         return None, None, None
     i = int(np.nanargmin(V))
@@ -546,14 +547,17 @@ def family_minimum(system, wl_range, points=MINIMUM_POINTS, anchor=None):
     return float(res.fun), float(2.0 * math.pi / math.exp(res.x)), bool(end)
 
 
-def hot_spot_table(systems, radius, n1, n2, anchors=None):
+def hot_spot_table(systems, radius, n1, n2, anchors=None, progress=None):
     """``HotSpot`` for ``n = n1 ... n2`` round a disc of radius ``radius``, and the
     governing ``n`` (lowest critical speed; None if none goes unstable).
-    ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None."""
+    ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None;
+    ``progress(stage, done, total)``: each family's curve (:meth:`curve`)."""
     ns = np.arange(n1, n2 + 1)
     ms = ns / radius                                  # m = 2 pi/(2 pi R/n)
     anchors = anchors or [None] * len(systems)
-    speeds = np.array([system.curve(ms, a)[0] for system, a in zip(systems, anchors)])
+    speeds = np.array([system.curve(ms, a, progress=_stage(progress, f"{system.name}: "
+                                                                     f"hot spots"))[0]
+                       for system, a in zip(systems, anchors)])
     table = []
     for k, n in enumerate(ns):
         col = speeds[:, k]
@@ -601,6 +605,14 @@ def _rate(system, m, speed):
     return float(b[0].real) if len(b) else -math.inf
 
 
+def _stage(progress, stage):
+    """``progress(stage, done, total)`` as ``tell(done, total)`` for one stage (a no-op
+    without ``progress``)."""
+    if progress is None:
+        return lambda done, total: None
+    return lambda done, total: progress(stage, done, total)
+
+
 def check_geometry(slider, counterface, **geometry):
     """The layups of a geometry built, so that their checks run before any work
     (:func:`~thermocontact.physics.tei_layers.layups`); two half-planes: the pair's."""
@@ -613,7 +625,7 @@ def check_geometry(slider, counterface, **geometry):
 def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True, *,
             plane="strain", slider_thickness=None, faces=2, counterface_thickness=None,
             backing="slip-insulated", separator=None, separator_thickness=None,
-            disc_radius=None, hot_spots=None, stop=None) -> TEIResult:
+            disc_radius=None, hot_spots=None, stop=None, progress=None) -> TEIResult:
     """The critical speed of every family at one wavelength, its minimum over the
     wavelength, and at a speed the modes and the most unstable wavelength; with a
     disc radius, the hot-spot table; with a stop, its amplifications: the study
@@ -641,6 +653,10 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
     stop : StopHistory, optional
         A speed history (:func:`thermocontact.studies.brake_stop.stop_history`), with
         ``disc_radius`` and ``hot_spots``: each hot-spot number's amplification.
+    progress : callable, optional
+        ``progress(stage, done, total)``: each family's scan, its curve over the
+        wavelength and its hot-spot curve (a layup's analysis takes seconds to
+        minutes), and the stop.
 
     Returns
     -------
@@ -670,14 +686,20 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
             fams.append(TEIFamily(system.name, None, None))
             anchors.append(None)
             continue
+        tell = _stage(progress, f"{system.name}: critical speed")
+        tell(0, 1)
         scan = system.scan(m, beyond=CROSSINGS_BEYOND) if lay else None
+        tell(1, 1)
         if scan is None:
             vc, b = system.critical(m)
         else:
             vc, b = (None, None) if scan.first is None else (scan.first[0], 1j * scan.first[1])
         anchor = None if vc is None else (m, vc, b.imag)
         low, at, end = ((None, None, None) if wl_range is None
-                        else family_minimum(system, wl_range, anchor=anchor))
+                        else family_minimum(system, wl_range, anchor=anchor,
+                                            progress=_stage(progress, f"{system.name}: "
+                                                                      f"minimum over the "
+                                                                      f"wavelength")))
         crossings = () if scan is None else tuple(
             {"speed": c[0], "migration_speed": -c[1] / m, "direction": c[2]}
             for c in scan.crossings)
@@ -714,14 +736,18 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         extra = dict(speed=v, modes=tuple(found_modes), most_unstable_wavelength=mw,
                      most_unstable_growth_rate=rate)
     if disc_radius is not None and friction > 0.0:
-        table, governing = hot_spot_table(systems, disc_radius, *hot_spots, anchors=anchors)
+        table, governing = hot_spot_table(systems, disc_radius, *hot_spots, anchors=anchors,
+                                          progress=progress)
         extra.update(disc_radius=disc_radius, hot_spots=table, governing_hot_spots=governing)
     elif disc_radius is not None:
         extra.update(disc_radius=disc_radius)
     if stop is not None:
         from .brake_stop import stop_amplification
 
+        tell = _stage(progress, "the stop's growth rates")
+        tell(0, 1)
         extra.update(stop=stop_amplification(systems, disc_radius, hot_spots, stop))
+        tell(1, 1)
     return TEIResult(pair.slider.name, pair.counterface.name, pair.friction, wl, pair.dundurs,
                      pair.beta, None if first is None else first.critical_speed, stable,
                      None if first is None else first.migration_speed, **extra,

@@ -162,10 +162,10 @@ class Layered:
         ``every`` one up to ``v_high``) and the scan's checks (:func:`speed_scan`)."""
         return speed_scan(self, m, v_high, every=every, beyond=beyond)
 
-    def curve(self, wavenumbers, anchor=None):
+    def curve(self, wavenumbers, anchor=None, progress=None):
         """Critical speeds and neutral ``omega`` along sorted wavenumbers
         (:func:`continue_neutral`, from ``anchor = (m, V, omega)`` if given)."""
-        return continue_neutral(self, wavenumbers, anchor)
+        return continue_neutral(self, wavenumbers, anchor, progress=progress)
 
     def mode_shape(self, m, speed, b, points=41):
         """The mode ``b`` through the layup
@@ -604,7 +604,7 @@ def continue_step(family, m0, point, m1, depth=0):
     return None if half is None else continue_step(family, mid, half, m1, depth + 1)
 
 
-def continue_neutral(family, wavenumbers, anchor=None, scan_every=None):
+def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress=None):
     """The critical speed and neutral ``omega`` along sorted wavenumbers (L15).
 
     At every ``scan_every``-th wavenumber (default :data:`SCAN_EVERY`; the first and
@@ -615,7 +615,9 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None):
     fold of the branch, where a window of growth closes).  At each wavenumber the
     lowest of the points reaching it is kept: a branch that is the lowest at a scanned
     wavenumber is followed over both neighbouring intervals, so a lower branch is
-    missed only if it is nowhere the lowest at a scanned wavenumber.
+    missed only if it is nowhere the lowest at a scanned wavenumber.  ``progress(done,
+    total)``, if given, is told after each scan and at the end (the continuations
+    the last of ``total``).
 
     Returns
     -------
@@ -632,7 +634,9 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None):
     if anchor is not None:
         starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
                        (float(anchor[1]), float(anchor[2]))))
-    for j in scanned:
+    tell = progress or (lambda done, total: None)
+    for done, j in enumerate(scanned):
+        tell(done, len(scanned) + 1)
         if anchor is not None and ms[j] == anchor[0]:
             continue
         vc, b = first_crossing(family, ms[j])
@@ -656,5 +660,6 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None):
                 prev = (float(ms[i]), found)
                 if i in scanned and ms[i] != m0:
                     break
+    tell(len(scanned) + 1, len(scanned) + 1)
     V[~np.isfinite(V)] = np.nan
     return V, W
