@@ -555,8 +555,7 @@ def hot_spot_table(systems, radius, n1, n2, anchors=None, progress=None):
     ns = np.arange(n1, n2 + 1)
     ms = ns / radius                                  # m = 2 pi/(2 pi R/n)
     anchors = anchors or [None] * len(systems)
-    speeds = np.array([system.curve(ms, a, progress=_stage(progress, f"{system.name}: "
-                                                                     f"hot spots"))[0]
+    speeds = np.array([system.curve(ms, a, _stage(progress, f"{system.name}: hot spots"))[0]
                        for system, a in zip(systems, anchors)])
     table = []
     for k, n in enumerate(ns):
@@ -695,11 +694,10 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         else:
             vc, b = (None, None) if scan.first is None else (scan.first[0], 1j * scan.first[1])
         anchor = None if vc is None else (m, vc, b.imag)
+        curve_told = _stage(progress, f"{system.name}: minimum over the wavelength")
         low, at, end = ((None, None, None) if wl_range is None
                         else family_minimum(system, wl_range, anchor=anchor,
-                                            progress=_stage(progress, f"{system.name}: "
-                                                                      f"minimum over the "
-                                                                      f"wavelength")))
+                                            progress=curve_told))
         crossings = () if scan is None else tuple(
             {"speed": c[0], "migration_speed": -c[1] / m, "direction": c[2]}
             for c in scan.crossings)
