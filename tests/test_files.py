@@ -173,6 +173,15 @@ def test_interrupted_reproduce_leaves_complete_files_and_counts_them(tmp_path, c
     assert (tmp_path / "fig5.csv").read_text().rstrip().count("\n") > 10
 
 
+#: The first lines of the drivers that are interrupted below: a command started from a
+#: terminal takes Ctrl-C, whatever the test runner's own disposition of SIGINT (a process
+#: started in the background of a shell ignores it, and its children inherit that; a
+#: thread's blocked signals are inherited too).
+INTERRUPTIBLE = ("import signal\n"
+                 "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
+                 "signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})\n")
+
+
 def test_interrupt_while_importing_prints_no_traceback():
     """SIGINT while NumPy loads, while SciPy loads, or in the first solve ends the
     command with status 130 and one line, never a traceback.  The signal is sent at
@@ -182,7 +191,7 @@ def test_interrupt_while_importing_prints_no_traceback():
     import subprocess
     import sys
 
-    driver = (
+    driver = INTERRUPTIBLE + (
         "import os, sys, time\n"
         "point = sys.argv.pop(1)\n"
         "def wait():\n"
@@ -239,7 +248,7 @@ def test_interrupted_contact_picture_leaves_no_process(tmp_path):
     import sys
     import time
 
-    driver = (
+    driver = INTERRUPTIBLE + (
         "import os, sys, time\n"
         "import thermocontact.api as api\n"
         "def solving(*args, **kwargs):\n"
@@ -279,7 +288,7 @@ def test_interrupt_while_workers_start_is_no_traceback_of_theirs():
     import subprocess
     import sys
 
-    driver = (
+    driver = INTERRUPTIBLE + (
         "import os, signal, sys\n"
         "from thermocontact.execution import executors as ex\n"
         "import concurrent.futures as cf, multiprocessing\n"
