@@ -17,6 +17,26 @@ def references() -> dict:
     return json.loads((pathlib.Path(__file__).parent / "data" / "references.json").read_text())
 
 
+def contact_keywords(state) -> dict:
+    """``thermocontact.contact``'s keyword arguments for an explorer page's state, as a
+    user writes them (independently of the page's own translation): the contact's fields
+    only, friction and lam as numbers, dundurs as a flag, the bulk temperatures as
+    ``closure=BulkTemperatures(T1, T2, sink_distance=..., layer_thickness=...)``."""
+    import thermocontact as tc
+    from thermocontact.explore.adapter import POINT, TEMPERATURES
+
+    kw = {k: v for k, v in state.items() if k in POINT and k not in TEMPERATURES}
+    for k in ("friction", "lam"):
+        if k in kw:
+            kw[k] = float(kw[k])
+    if "dundurs" in kw:
+        kw["dundurs"] = kw["dundurs"].lower() in ("true", "1", "yes")
+    if "bulk_temperatures" in state:
+        sinks = {k: state[k] for k in TEMPERATURES[1:] if k in state}
+        kw["closure"] = tc.BulkTemperatures(*state["bulk_temperatures"].split(","), **sinks)
+    return kw
+
+
 def assert_ulps(got, want, ulps=4, scale="max", equal_nan=False, err_msg=""):
     """Assert that two computations of the same numbers agree to a few units in the last
     place.

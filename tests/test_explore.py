@@ -20,6 +20,7 @@ import thermocontact as tc
 from thermocontact.cli.main import main
 from thermocontact.explore import adapter
 from thermocontact.explore.server import Explorer, is_loopback
+from conftest import contact_keywords as kwargs
 
 #: The README's contact, as the page's fields hold it.
 POINT = {"cylinder": "copper", "half_plane": "steel", "radius": "10mm", "load": "50kN/m",
@@ -27,17 +28,6 @@ POINT = {"cylinder": "copper", "half_plane": "steel", "radius": "10mm", "load": 
 #: The same with the bulk temperatures instead of lam.
 HOT = {**{k: v for k, v in POINT.items() if k != "lam"},
        "bulk_temperatures": "80C,20C", "sink_distance": "2mm"}
-
-
-def kwargs(state):
-    """``tc.contact``'s arguments from a state, as a user would write them (the bulk
-    temperatures as ``closure=BulkTemperatures(...)``)."""
-    kw = {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()
-          if k not in adapter.TEMPERATURES}
-    if "bulk_temperatures" in state:
-        sinks = {k: state[k] for k in adapter.TEMPERATURES[1:] if k in state}
-        kw["closure"] = tc.BulkTemperatures(*state["bulk_temperatures"].split(","), **sinks)
-    return kw
 
 
 def record_at(record, key):

@@ -18,6 +18,7 @@ import pytest
 
 import thermocontact as tc
 from thermocontact.explore.browser import chromium_path, launch, session
+from conftest import contact_keywords as kwargs
 
 sync_api = pytest.importorskip("playwright.sync_api",
                                reason="playwright is not installed (pip install '.[test]')")
@@ -34,17 +35,6 @@ POINT = {"cylinder": "copper", "half_plane": "steel", "radius": "10mm", "load": 
 MAP = {"x": "load:30000:80000:3:log", "y": "speed:1:4:3:log"}
 #: Seconds a view may take to appear (the machine may be busy).
 WAIT = 60_000
-
-
-def kwargs(state):
-    """``tc.contact``'s arguments from a state, as a user would write them (the bulk
-    temperatures as ``closure=BulkTemperatures(...)``)."""
-    kw = {k: (float(v) if k in ("friction", "lam") else v) for k, v in state.items()
-          if k in POINT and k != "bulk_temperatures" or k == "speed2"}
-    if "bulk_temperatures" in state:
-        sinks = {k: state[k] for k in ("sink_distance", "layer_thickness") if k in state}
-        kw["closure"] = tc.BulkTemperatures(*state["bulk_temperatures"].split(","), **sinks)
-    return kw
 
 
 @pytest.fixture(scope="module")
