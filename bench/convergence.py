@@ -106,7 +106,7 @@ def clear_point_caches():
     """Forget the per-``n`` point geometry of the graded moments (a first call's cost)."""
     from thermocontact.numerics import moment_engine as graded
 
-    graded.GEOMETRY.clear()
+    graded.clear_geometry()
 
 
 def timed_solve(par, method, n, repeats):

@@ -151,18 +151,18 @@ def test_projection_assembled_in_blocks_of_points_is_the_whole(method, monkeypat
     formed from all 2n points at once, to rounding."""
     from thermocontact.discretisation import system
     from thermocontact.discretisation.methods import METHODS
-    from thermocontact.numerics.moment_engine import GEOMETRY
+    from thermocontact.numerics.moment_engine import geometry_cache
 
     par = Parameters(5.0, 0.0, 10.0, 4.0, 0.7, 0.2)
     whole = METHODS[method].assemble(par, 24)
-    held = GEOMETRY.bytes
+    held = geometry_cache(24).bytes
     monkeypatch.setattr(system, "ASSEMBLY_ENTRIES", 7 * 24)  # blocks of 7 points
     parts = METHODS[method].assemble(par, 24)
     for name in ("C", "Tp", "Tq", "Hp", "Hq", "const_column", "linear_column"):
         a, b = getattr(whole, name), getattr(parts, name)
         assert a.shape == b.shape
         assert np.max(np.abs(a - b)) <= 1e-14 * np.max(np.abs(a)), name
-    assert GEOMETRY.bytes <= held  # the blocks' point geometry is not kept
+    assert geometry_cache(24).bytes <= held  # the blocks' point geometry is not kept
 
 
 def test_the_single_patch_system_shares_its_cached_blocks(monkeypatch):

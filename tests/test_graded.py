@@ -289,7 +289,7 @@ def test_points_beyond_an_edge_move_the_edge_geometry(monkeypatch, n):
                lambda u: cylinder_temperature_gradient_regular(u, 40.0)]
 
     def run():
-        graded.GEOMETRY.clear()
+        graded.clear_geometry()
         out = []
         for s in sides:
             h = 3.0 * (np.abs(s) - 1.0)[:, None]

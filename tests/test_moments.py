@@ -38,7 +38,7 @@ def _clear_rules():
               graded.weight_integrals):
         f.cache_clear()
     graded.BASES.clear()
-    graded.GEOMETRY.clear()
+    graded.clear_geometry()
 
 
 @pytest.mark.parametrize("c", [1e3, 1e5, 1e6])

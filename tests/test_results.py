@@ -274,13 +274,16 @@ def test_the_geometry_cache_counts_everything_it_holds():
     """The moment engine's point geometry and the innermost intervals it adds per kernel
     are counted by the cache that holds them: its bytes are those of its entries."""
     from thermocontact.numerics.cache import nbytes
-    from thermocontact.numerics.moment_engine import GEOMETRY
+    from thermocontact.numerics.moment_engine import GEOMETRY, SMALL_GEOMETRY
 
     clear_caches()
     solve(5, 0.2, 10, lam=-1, n=32)
+    assert len(SMALL_GEOMETRY) > 0 and len(GEOMETRY) == 0  # levels 8 to 32: the small n
+    solve(5, 0.2, 10, lam=-1, n=128)
     assert len(GEOMETRY) > 0
-    assert GEOMETRY.bytes == sum(nbytes(v) for v in GEOMETRY._data.values())
-    assert GEOMETRY.bytes <= GEOMETRY.max_bytes
+    for cache in (GEOMETRY, SMALL_GEOMETRY):
+        assert cache.bytes == sum(nbytes(v) for v in cache._data.values())
+        assert cache.bytes <= cache.max_bytes
     # A broadcast view (a geometry moved from an edge point's) holds its distinct
     # entries only.
     row = np.arange(6.0)

@@ -45,6 +45,7 @@ import numpy as np
 
 from ..discretisation.operator import distortion_operators, temperature_kernels
 from ..numerics.extrema import polish_minimum
+from ..numerics.moment_engine import geometry_cache
 
 __all__ = ["ContactFields", "SAMPLES", "Zone", "contact_fields", "slope_factors",
            "slopes_and_strains", "surface_temperatures", "zones_of"]
@@ -98,17 +99,23 @@ def _local(zone: Zone, other: Zone, s):
     return (other.centre + other.half * s - zone.centre) / zone.half
 
 
-def _temperatures(zones, rep, eta, units, at, s):
+def _temperatures(zones, rep, eta, units, at, s, half_plane=True):
     """Both bodies' surface temperature rises at points ``s`` of zone ``at``, before
     the half-plane's level is set: the sums over zones of (D8) and (D12) in units
     ``units`` (``f |v1 - v2| P/(pi K_i)``), by the kernels' one quadrature
-    (:func:`~thermocontact.discretisation.operator.temperature_kernels`)."""
+    (:func:`~thermocontact.discretisation.operator.temperature_kernels`); the
+    half-plane's None with ``half_plane=False``."""
     t1 = t2 = 0.0
     for z in zones:
         u = _local(z, at, s)
-        (tb, tq), (hb, hq) = temperature_kernels(z.parameters, rep, u)
+        (tb, tq), hp = temperature_kernels(z.parameters, rep, u, half_plane=half_plane)
         # q1, q2 = ((1 +- eta) p +- q')/2, each body with its own signed kernel scale.
         a = units[0] * 0.5 * ((1 + eta) * (tb @ z.phi) + tq @ z.psi)
+        t1 = t1 + (a if z.half == 1.0 else z.half * a)
+        if not half_plane:
+            t2 = None
+            continue
+        hb, hq = hp
         if z.parameters.half_plane_scale:
             b = units[1] * 0.5 * ((1 - eta) * (hb @ z.phi) - hq @ z.psi)
         else:
@@ -118,7 +125,6 @@ def _temperatures(zones, rep, eta, units, at, s):
                 hb = hb + lg * rep.pressure_rule.weights[None, :]
                 hq = hq + lg * rep.flux_rule.weights[None, :]
             b = -units[1] * 0.5 * ((1 - eta) * (hb @ z.phi) - hq @ z.psi)
-        t1 = t1 + (a if z.half == 1.0 else z.half * a)
         t2 = t2 + (b if z.half == 1.0 else z.half * b)
     return t1, t2
 
@@ -325,7 +331,8 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
         t1, t2 = _temperatures(zones, rep, eta, (u1, u2), z, s_in)
         t1s.append(t1)
         t2s.append(t2)
-        t_edges = _temperatures(zones, rep, eta, (u1, u2), z, np.array([-1.0, 1.0]))[0]
+        t_edges = _temperatures(zones, rep, eta, (u1, u2), z, np.array([-1.0, 1.0]),
+                                half_plane=False)[0]
         t1_all.append(np.concatenate([t_edges[:1], t1s[-1], t_edges[1:]]))
     t1, t2 = np.concatenate(t1s), np.concatenate(t2s)
     if perfect_contact:
@@ -341,9 +348,12 @@ def contact_fields(sol, *, length=1.0, load=1.0, temperature_units=None,
     it = int(np.argmax(t_all))
     s_t = np.concatenate([[-1.0], s_in, [1.0]])
     zb = zones[best]
-    _, neg_flash = polish_minimum(
-        lambda x: -_temperatures(zones, rep, eta, (u1, u2), zb, np.asarray(x, dtype=float))[0],
-        s_t, -t_all, it)
+    # Its points are this solution's alone: their moments' geometry is not kept.
+    with geometry_cache(rep.n).transient():
+        _, neg_flash = polish_minimum(
+            lambda x: -_temperatures(zones, rep, eta, (u1, u2), zb, np.asarray(x, dtype=float),
+                                     half_plane=False)[0],
+            s_t, -t_all, it)
     rises = np.concatenate([*t1_all, t2])
     rises = rises[np.isfinite(rises)]
     nan = np.array([np.nan])

@@ -21,7 +21,7 @@ import numpy as np
 from ..discretisation.system import SHARED_BLOCKS_N
 from ..io.results import Result
 from ..numerics.batched import stacked
-from ..numerics.moment_engine import GEOMETRY, MIN_BLOCK
+from ..numerics.moment_engine import MIN_BLOCK, geometry_cache
 from ..numerics.extrema import interpolated_minima, polish_minimum
 from ..physics.green_functions import cylinder_displacement_drop, moving_slope
 from ..problem.parameters import Parameters
@@ -291,7 +291,7 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
         # kernels at the same points (1 MB at n = 32).
         parts = []
         for i in range(0, s.size, block):
-            with GEOMETRY.transient(when=rep.n >= SHARED_BLOCKS_N):
+            with geometry_cache(rep.n).transient(when=rep.n >= SHARED_BLOCKS_N):
                 parts.append(gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam,
                                   s[i:i + block]))
         return np.concatenate([g for g, _ in parts], axis=1), parts[0][1]
@@ -581,7 +581,7 @@ def assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, *, polish=True) -> 
     # the row-operator cache keeps: from n = 512 dropped at the end (30 MB at n = 512
     # and 1024); below kept for the next grid line's kernels at the same points (a few
     # MB).
-    with GEOMETRY.transient(when=rep.n >= SHARED_BLOCKS_N):
+    with geometry_cache(rep.n).transient(when=rep.n >= SHARED_BLOCKS_N):
         return _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish)
 
 

@@ -247,7 +247,7 @@ def temperature_operators(par: Parameters, rep, s, aux=None):
     return Up, Uq
 
 
-def temperature_kernels(par: Parameters, rep, s, aux=None):
+def temperature_kernels(par: Parameters, rep, s, aux=None, half_plane=True):
     """Each body's surface temperature kernel integrated against ``(p, q')`` at ``s``.
 
     The cylinder's ``T(c u) = exp(-c u) K0(c |u|)`` (D8); the half-plane's ``ln|u|``
@@ -259,6 +259,11 @@ def temperature_kernels(par: Parameters, rep, s, aux=None):
     stationary one (up to its free level).  The one quadrature of these kernels: of
     the temperature equation (D33) and of the surfaces' temperatures alike.
 
+    ``half_plane=False`` leaves the half-plane's out (None): where only the cylinder's
+    temperature is wanted.  A stationary half-plane's ``ln|u|`` does not depend on
+    ``Pe``; the representation keeps it per set of points
+    (:meth:`~.representations.Representation.logarithm`).
+
     Returns
     -------
     cylinder, half_plane : pair of ndarray, shape (k, n)
@@ -267,10 +272,9 @@ def temperature_kernels(par: Parameters, rep, s, aux=None):
     c, c2 = par.cylinder_scale, par.half_plane_scale
     cylinder = rep.integrate(lambda u: cylinder_temperature(c * u), s, scale=c,
                              logarithmic=True, aux=aux)
+    if not half_plane:
+        return cylinder, None
     if c2:
-        half_plane = rep.integrate(lambda u: cylinder_temperature(c2 * u), s, scale=abs(c2),
-                                   logarithmic=True, aux=aux)
-    else:
-        half_plane = rep.integrate(lambda u: np.log(np.abs(u)), s, scale=1.0,
-                                   logarithmic=True, aux=aux)
-    return cylinder, half_plane
+        return cylinder, rep.integrate(lambda u: cylinder_temperature(c2 * u), s,
+                                       scale=abs(c2), logarithmic=True, aux=aux)
+    return cylinder, rep.logarithm(s, aux)

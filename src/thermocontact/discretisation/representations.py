@@ -59,6 +59,11 @@ ROWS = BoundedCache("row operators", 128 * 2**20)
 KEPT_MOMENTS_N = 256
 
 
+def _log_abs(u):
+    """``ln|u|``, the kernel of :meth:`Representation.logarithm`."""
+    return np.log(np.abs(u))
+
+
 def _read_only(arrays):
     """``arrays`` (a tuple), each made read-only: shared from a cache."""
     for a in arrays:
@@ -199,6 +204,13 @@ class Representation:
     def __repr__(self):
         extra = "" if self.alpha == 0.5 else f", alpha={self.alpha!r}"
         return f"{type(self).__name__}(n={self.n}{extra})"
+
+    def logarithm(self, s, aux=None):
+        """Row operators ``(I_p, I_q)`` of ``integral ln|s - r| (p, q')(r) dr``: a
+        stationary half-plane's surface temperature kernel (D12), the same for every
+        ``Pe``."""
+        return self.integrate(_log_abs, np.asarray(s, dtype=float), scale=1.0,
+                              logarithmic=True, aux=aux)
 
     def prolong(self, values, finer):
         """``finer``'s nodal values (m, finer.n) of the functions whose nodal values here
@@ -483,9 +495,13 @@ class EdgeGraded(Representation):
         return self._kept("sign", s, aux,
                           lambda: self.integrate(np.sign, s, scale=1.0, aux=aux))
 
+    def logarithm(self, s, aux=None):
+        s = np.asarray(s, dtype=float)
+        return self._kept("logarithm", s, aux, lambda: super(EdgeGraded, self).logarithm(s, aux))
+
     def _kept(self, name, s, aux, build):
         """The row operators of a kernel that depends on the points alone (``1/u``,
-        ``sgn u``), read-only, kept in the row-operator cache below
+        ``sgn u``, ``ln|u|``), read-only, kept in the row-operator cache below
         :data:`KEPT_MOMENTS_N`: a map's lines assemble them at the same points for every
         ``Pe`` (a fifth of an assembly's time)."""
         if self.n >= KEPT_MOMENTS_N:

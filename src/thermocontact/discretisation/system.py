@@ -36,7 +36,7 @@ import numpy as np
 
 from dataclasses import replace
 
-from ..numerics.moment_engine import BASES, GEOMETRY
+from ..numerics.moment_engine import BASES, geometry_cache
 from ..problem.closure import Temperatures
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError, check_sink_given
@@ -129,7 +129,7 @@ def _projected(par, rep, x, s, aux, step):
         a = None if aux is None else aux[rows]
         # A block's point geometry serves its kernels only; the 2n points' whole, when
         # one block, may serve another assembly at these points (a sweep).
-        with GEOMETRY.transient(when=step < x.size):
+        with geometry_cache(n).transient(when=step < x.size):
             C, Tp, Tq = contact_operators(par, rep, s[rows], a)
             Hp, Hq = heat_operators(par, rep, s[rows], a)
         pairs = ((p1, C), (p1, Tp), (p1, Tq), (p2, Hp), (p2, Hq))

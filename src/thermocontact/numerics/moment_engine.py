@@ -32,10 +32,14 @@ from .moments import (LOG_LEVELS, gauss_legendre, inner_reference, chebyshev_lag
 
 __all__ = [
     "CoordinateMap",
+    "GEOMETRY",
     "GRADED",
+    "SMALL_GEOMETRY",
     "IDENTITY",
     "bounded_weight",
     "chebyshev_moments",
+    "clear_geometry",
+    "geometry_cache",
     "graded_map",
     "pressure_weight",
     "cosine_value",
@@ -386,7 +390,7 @@ class _Side:
 
     def inner_parts(self, geo, levels):
         """Graded innermost interval: ``u``, live mask, weights, Lagrange matrix (kept
-        in :data:`GEOMETRY` as entries of their own, so that the cache counts them)."""
+        in the geometry cache as entries of their own, so that it counts them)."""
         ref_tau, om, _, lagr = inner_reference(levels)
         d = self.sign * self.inner[:, None] * ref_tau[None, :]
         wq = self.inner[:, None] * om[None, :]
@@ -442,8 +446,29 @@ def _rows(a, k):
     return np.broadcast_to(a[:1], (k,) + a.shape[1:])
 
 
-#: The point geometry of the moments, shared by the kernels of one assembly.
+#: The point geometry of the moments, shared by the kernels of one assembly, at
+#: ``n > SMALL_GEOMETRY_N`` (:func:`geometry_cache`).
 GEOMETRY = BoundedCache("graded geometry", 32 * 2**20)
+#: The same at ``n <= SMALL_GEOMETRY_N``, under a budget of its own.  A contact
+#: evaluates the same points at every level of its refinement and for every ``Pe``
+#: (its fields' samples and slope points, its assemblies' collocation points): about
+#: 57 MB at levels 8 to 64.  A least-recently-used cache smaller than that cycle keeps
+#: none of it from one call to the next, so the small levels get the room the cycle
+#: needs, and the large levels keep the budget (and the peak memory) they had.
+SMALL_GEOMETRY = BoundedCache("graded geometry, n <= 64", 64 * 2**20)
+SMALL_GEOMETRY_N = 64
+
+
+def clear_geometry() -> None:
+    """Forget the point geometry at every ``n`` (a first call's cost)."""
+    GEOMETRY.clear()
+    SMALL_GEOMETRY.clear()
+
+
+def geometry_cache(n: int) -> BoundedCache:
+    """The cache of the point geometry at ``n`` (:data:`GEOMETRY` or
+    :data:`SMALL_GEOMETRY`)."""
+    return SMALL_GEOMETRY if n <= SMALL_GEOMETRY_N else GEOMETRY
 #: Rows times common-rule nodes per block of points: the moments of more points are
 #: computed block by block, so that the geometry and the kernel's values (arrays of
 #: that size, a few of them at once) stay near 4 MB each whatever n.
@@ -466,7 +491,7 @@ def _geometry(key: bytes, n: int, tau_key: bytes | None, cmap) -> _Geometry:
         # Points beyond one edge: the edge's own geometry, moved (kept, for the next).
         at_edge = np.array([edge]).tobytes()
         return _geometry(at_edge, n, None, cmap).moved(s, at_edge)
-    return GEOMETRY.get((key, n, tau_key, cmap.name), build)
+    return geometry_cache(n).get((key, n, tau_key, cmap.name), build)
 
 
 def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes | None):
@@ -483,7 +508,8 @@ def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes 
         k = geo.s.size
         return ((_past_edge(geo.s)[:, None] + e, _rows(e, k)), _rows(live, k),
                 np.broadcast_to(wq, (2, k) + wq.shape[2:]), lagr)
-    return GEOMETRY.get((key, geo.n, tau_key, geo.cmap.name, index, levels), build)
+    return geometry_cache(geo.n).get((key, geo.n, tau_key, geo.cmap.name, index, levels),
+                                     build)
 
 
 def _kernel_values(kernel, far, near):

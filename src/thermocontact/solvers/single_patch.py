@@ -32,7 +32,7 @@ from ..discretisation.system import (SHARED_BLOCKS_N, Blocks, check_temperatures
                                      contact_set_system)
 from ..numerics.cache import BoundedCache, release_freed_memory
 from ..numerics.dense import RCOND_CHOICES, solve_stack
-from ..numerics.moment_engine import GEOMETRY
+from ..numerics.moment_engine import clear_geometry
 from ..problem.closure import (CLOSURE_LIMIT, check_closure_range, closure_of, far_temperatures,
                                temperature_closure)
 from ..problem.conductance import Conductance
@@ -51,6 +51,7 @@ __all__ = [
     "DEFAULT_TOL",
     "LIMIT",
     "Model",
+    "assessed",
     "check_n",
     "solve",
     "solve_system",
@@ -110,9 +111,14 @@ def solve_system(par: Parameters, blocks: Blocks, method: str, *, lam=None,
     """
     sol = _solve_patch(par, blocks, method, lam, sigma_over_delta, conductance, {},
                        temperatures)
-    if not check_validity:
-        return sol
-    return sol.replace(validity=assess(par, sol.representation, sol.phi, sol.psi,
+    return assessed(sol, polish=polish) if check_validity else sol
+
+
+def assessed(sol: ContactSolution, polish=True) -> ContactSolution:
+    """``sol`` with its contact inequalities evaluated
+    (:func:`~thermocontact.analysis.validity.assess`): as :func:`solve_system` with
+    ``check_validity=True`` gives it, for a solution solved without."""
+    return sol.replace(validity=assess(sol.parameters, sol.representation, sol.phi, sol.psi,
                                        sol.load_ratio, sol.sigma_over_delta, sol.lam,
                                        polish=polish))
 
@@ -339,7 +345,7 @@ class Model:
                     ASSEMBLIES.discard(self._assembly_key(m))
                 # Nor beside the point geometry the coarser levels' assemblies kept for
                 # another assembly at their points (11 MB at n = 256).
-                GEOMETRY.clear()
+                clear_geometry()
                 release_freed_memory()
             p = self.parameters
             self._blocks[n] = ASSEMBLIES.get(self._assembly_key(n),

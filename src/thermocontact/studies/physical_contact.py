@@ -30,7 +30,7 @@ from ..problem.physical import FHPE_MIN, MAX_WIDTH, PhysicalProblem
 from ..problem.validation import InputError, check_finite, check_nonnegative, check_positive
 from ..numerics.continuation import secant
 from ..solvers.result import ContactSolution
-from ..solvers.single_patch import DEFAULT_TOL
+from ..solvers.single_patch import DEFAULT_TOL, assessed
 from .boundaries import EVENT_RTOL, Path, trace
 from .ray import FIELD_TOL_FACTOR, Ray, brackets, follow, refine_fields, root, start_of_root
 
@@ -335,10 +335,11 @@ def _branch(prob: PhysicalProblem, pe, n, tol, estimate) -> Branch:
         sol = ray.solve_at(pe, n, check_validity=True)
         f, field_error = fields_of(sol), 0.0
     else:
-        # The fields (local values) to their own target, from n on (ray.refine_fields).
-        fine = refine_fields(lambda m: ray.solve_at(pe, m, check_validity=m >= n), n,
-                             fields_of, tol, method=ray.method)
-        sol, f = fine.levels[-1][0].solution, fine.levels[-1][0].fields
+        # The fields (local values) to their own target, from n on (ray.refine_fields);
+        # the contact inequalities of the finest level alone, the one reported.
+        fine = refine_fields(lambda m: ray.solve_at(pe, m), n, fields_of, tol,
+                             method=ray.method)
+        sol, f = assessed(fine.levels[-1][0].solution), fine.levels[-1][0].fields
         field_error = fine.estimate
     sol = sol.replace(error_estimate=est, tol=tol)
     offset = sol.sigma_over_delta * half_width
