@@ -31,6 +31,15 @@ and the half-plane's, which depend on ``b`` alone, are kept for the next contact
 Unknowns, in this order: ``phi~`` (n),
 ``psi~`` (n), the rigid approach ``D~``, ``sig~ = sigma~/Delta`` and
 ``del~ = Delta~/Delta``.
+
+With ``edges="held"`` the same unknowns describe the contact whose edges stay where
+they are (eq. S17, the linearisation of the transient's elements, whose contact set
+holds under a small perturbation): the pressure's two inverse-square-root terms at the
+fixed edges are ``-d/dr[(sig~ + del~ r) p0]``, their frictional heat goes into both
+bodies as the pressure's does, and the heat-flux difference is ``psi~`` alone, so the
+steady flux's singularity stays at the fixed edges.  Its columns ``sig~``, ``del~`` are
+each kernel's moments on ``g = sqrt(1 - r^2) d/dr[(sig~ + del~ r) p0]``, equations at
+fixed points.
 """
 
 from __future__ import annotations
@@ -41,7 +50,7 @@ from functools import cached_property
 import numpy as np
 
 from ..numerics.cache import BoundedCache
-from ..numerics.moment_engine import graded_map, stretch
+from ..numerics.moment_engine import graded_map, nodes, stretch
 from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
@@ -104,6 +113,12 @@ class LinearisedContact:
     conductance : Conductance, optional
         Its interface conductance (Biot number at the contact's scale, derivation
         S16); None for perfect thermal contact.
+    edges : {"free", "held"}
+        ``"free"``: the edges move (S5, S6), the stability of the steady contact;
+        ``"held"``: they stay where they are (S17), the linearisation of a contact
+        set held fixed (the transient's elements under a small perturbation), for a
+        stationary half-plane without the Dundurs term and with perfect thermal
+        contact.
     """
 
     parameters: Parameters
@@ -113,10 +128,20 @@ class LinearisedContact:
     load_ratio: float
     sigma_over_delta: float
     conductance: object = None
+    edges: str = "free"
 
     def __post_init__(self):
         check_modelled(method="graded" if isinstance(self.representation, EdgeGraded)
                        else type(self.representation).__name__)
+        if self.edges not in ("free", "held"):
+            raise InputError(f"edges must be 'free' or 'held', got {self.edges!r}",
+                             parameters=("edges",))
+        par = self.parameters
+        if self.edges == "held" and (par.half_plane_scale or par.free_term
+                                     or self.conductance is not None):
+            raise InputError("edges='held' is modelled for a stationary half-plane without "
+                             "the Dundurs term and with perfect thermal contact (the "
+                             "transient's model)", parameters=("edges",))
 
     @property
     def n(self) -> int:
@@ -154,9 +179,30 @@ class LinearisedContact:
                            else np.zeros_like(u)], axis=1)
         mom = table.moments(steady)
         return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
+                    flamant_flux=mom[1][..., 0],
                     uS0=(mom[..., 1], mom[..., 2]),
                     uG0=(mom[..., 3], mom[..., 4] if c2 else None),
-                    interface=self._interface(aux))
+                    interface=self._interface(aux), held=self._held_sources())
+
+    def _held_sources(self):
+        """``g = sqrt(1 - r^2) d/dr[(sig~ + del~ r) p0]`` at the nodes, shape (n, 2): the
+        columns ``sig~``, ``del~`` of the pressure's edge terms with the edges held
+        (S17), as flux-type nodal values (``g/sqrt(1 - r^2)`` is the density).  With
+        ``r = cos T(tau)``, ``p0 = sin T phi0(tau)`` and ``dr/dtau = -sin T T'``,
+        ``sin T d/dr = -(1/T') d/dtau``, ``T' = 2 sin^2 tau``: smooth and even in
+        ``tau``.  None with the edges free."""
+        if self.edges != "held":
+            return None
+        n = self.n
+        tau = nodes(n)                                     # r ascending
+        t = stretch(tau)
+        sin_t, cos_t = np.sin(t), np.cos(t)
+        j = np.arange(n)
+        slope = -(np.sin(np.multiply.outer(tau, j)) * j) @ (self.representation.to_cos
+                                                            @ self.phi)
+        tail = sin_t * slope / (2.0 * np.sin(tau) ** 2)    # sin T phi0'(tau) / T'
+        return np.stack([-cos_t * self.phi - tail,
+                         -(cos_t ** 2 - sin_t ** 2) * self.phi - cos_t * tail], axis=1)
 
     def _interface(self, tau):
         """The interface's term of the temperature rows at the points ``tau`` (S16),
@@ -296,6 +342,16 @@ class LinearisedContact:
             temp[:, 2 * n + 1:] += sign * e
         if fixed["interface"] is not None:
             temp += fixed["interface"]
+        if fixed["held"] is not None:
+            # The edges held (S17): the pressure's edge terms -d/dr[(sig~ + del~ r) p0],
+            # each kernel's flux-type moments on g, at fixed points; its heat shared as
+            # the pressure's.
+            g = fixed["held"]
+            disp[:, 2 * n + 1:] = -fixed["flamant_flux"] @ g
+            temp[:, 2 * n + 1:] = 0.0
+            for i, (weight, sign) in enumerate(zip((d, 1.0), (rho, -1.0))):
+                disp[:, 2 * n + 1:] -= 2.0 * F * weight * share[i][0] * (mom(i, 0)[1] @ g)
+                temp[:, 2 * n + 1:] -= sign * share[i][0] * (mom(i, 1)[1] @ g)
         rows = np.zeros((size, size), dtype=dtype)
         rows[:n + 2] = pd @ disp
         rows[n + 2, :n] = rep.pressure_rule.weights

@@ -41,8 +41,8 @@ from ..problem.validation import (InputError, check_choice, check_finite, check_
 from .active_set import chattering, next_set
 from .elements import contact_runs, solve_elements, solve_on_set
 
-__all__ = ["TransientRun", "TransientSpec", "longest_step", "read_run", "run_transient",
-           "zones_of"]
+__all__ = ["TransientRun", "TransientSpec", "held_set_steps", "longest_step", "read_run",
+           "run_transient", "zones_of"]
 
 #: Most steps x elements of a run: its history (the inputs' and outputs' transforms, in
 #: complex spatial modes) and its fields stay within a few hundred MB.
@@ -688,6 +688,64 @@ def _run(spec, resume, progress, save, save_every, preparing=None):
                             seconds + _time.perf_counter()))
             last_save = _time.perf_counter()
     return run.result(status, message, seconds + _time.perf_counter())
+
+
+def held_set_steps(spec: TransientSpec, active) -> tuple:
+    """The steps linearised on a contact set held fixed: a small perturbation of a steady
+    state whose contact elements stay in contact and the others out.
+
+    Each step (eq. R9) is then linear in what the steps before it left, and the steady
+    state drops out of the perturbation's steps: they are the steps of a run from rest
+    (no profile, no steady heat) on the elements ``active``, kicked by the load
+    ``spec.perturb`` during the first step, the closure held at its steady value
+    (``hold="theta"``: the far temperatures; ``"lam"``: the partition, its heat
+    ``lam`` times the kick).  A run of :func:`run_transient` from that steady state with
+    a kick small enough to keep the set is the steady state plus these steps (tested);
+    no sign is asked of the perturbation, so the set may be one no steady state of the
+    elements has (an invalid single patch): the edges held there are the
+    linearisation of derivation S17.
+
+    Parameters
+    ----------
+    spec : TransientSpec
+        ``initial="steady"``: the problem, the elements, the steps, the kick
+        (``perturb``) and what is held.
+    active : array of bool, shape (elements,)
+        The contact set held.
+
+    Returns
+    -------
+    time : ndarray, shape (steps,)
+        The end of each step, ``l^2/kappa2``.
+    pressure, flux : ndarray, shape (steps, elements)
+        The perturbation's pressure and ``q1 - q2`` at each step.
+    approach : ndarray, shape (steps,)
+        The perturbation's rigid approach.
+    """
+    if spec.initial != "steady":
+        raise InputError("held_set_steps perturbs a steady state: give initial='steady'",
+                         parameters=("initial",))
+    X, h = spec.grid()
+    active = np.asarray(active, dtype=bool)
+    if active.shape != X.shape or not active.any():
+        raise InputError(f"active must be {X.size} flags with at least one set, got "
+                         f"shape {active.shape}", parameters=("active",))
+    tops = transient_element_operators(spec.parameters(), X, h, spec.dt, spec.steps)
+    ops, conv = tops.current, tops.convolution
+    histories = [OnlineConvolution(k) for k in tops.kernels]
+    p, q, D = (np.zeros((spec.steps, X.size)), np.zeros((spec.steps, X.size)),
+               np.zeros(spec.steps))
+    for n in range(1, spec.steps + 1):
+        y1 = conv.backward(histories[0].history(n))
+        y2 = conv.backward(histories[1].history(n))
+        load = spec.perturb if n == 1 else 0.0
+        closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": 0.0}
+        p[n - 1], q[n - 1], _, D[n - 1], _ = solve_on_set(
+            ops.Gp, ops.Gq, ops.Tp, ops.Tq, y1[0] + y2[0], y1[1] - y2[1], h, active,
+            load=load, **closure)
+        histories[0].push(conv.forward(0.5 * (p[n - 1] + q[n - 1]))[None, :])
+        histories[1].push(conv.forward(0.5 * (p[n - 1] - q[n - 1]))[None, :])
+    return spec.dt * np.arange(1, spec.steps + 1), p, q, D
 
 
 class _Stepper:
