@@ -216,11 +216,39 @@ class LinearisedContact:
         cylinder's."""
         if b == 0:
             return self._fixed["table"].moments(self.kernel_values(0))
-        par, table = self.parameters, self._fixed["table"]
-        b = complex(b)
-        both = [_body_moments(table, c, rate) for c, rate in
-                ((par.cylinder_scale, b / par.k2_over_k1), (par.half_plane_scale, b))]
+        table = self._fixed["table"]
+        both = [_body_moments(table, c, rate) for c, rate in self._bodies(complex(b))]
         return tuple(np.concatenate([m[w] for m in both], axis=-1) for w in range(2))
+
+    def _bodies(self, b):
+        """Each body's scale and rate at ``b``: the cylinder's ``b k2/k1``."""
+        par = self.parameters
+        return ((par.cylinder_scale, b / par.k2_over_k1), (par.half_plane_scale, b))
+
+    def prepare(self, rates) -> None:
+        """Compute and keep the moments (:meth:`kernel_moments`) at several rates at
+        once: the kernels' values at each rate not yet kept, and one product of the
+        table with all of them (the table, 11 MB at n = 12, read once instead of once
+        a rate)."""
+        table = self._fixed["table"]
+        for body in range(2):
+            todo = {}
+            for b in rates:
+                if b != 0:
+                    c, rate = self._bodies(complex(b))[body]
+                    key = (table.key, float(c), complex(rate))
+                    if key not in KERNEL_MOMENTS and key not in todo:
+                        todo[key] = (c, rate)
+            if not todo:
+                continue
+            values = np.concatenate([_body_values(c, rate) for c, rate in todo.values()],
+                                    axis=1)
+            bounded, singular = table.moments(values)
+            for j, key in enumerate(todo):
+                part = tuple(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
+                for m in part:
+                    m.setflags(write=False)
+                KERNEL_MOMENTS.get(key, lambda part=part: part)
 
     def matrix(self, b, *, split=False, values=None):
         """``M(b)``, complex, shape ``(2n + 3, 2n + 3)`` (eqs. S3-S8).

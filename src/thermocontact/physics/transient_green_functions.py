@@ -57,8 +57,9 @@ _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
 #: Points sharing one rule in ``phi`` (sorted by side and ``|u|``).
-_GROUP = 256
-#: Points with ``lam = |u| (sqrt|b| + 2|c|) <= _SERIES_REACH`` take the series in ``|u|``
+_GROUP = 32
+#: Points with ``lam <= _SERIES_REACH``, ``lam = |u| (sqrt|b| + 2|c|)`` (in the wake
+#: ``|u| min(sqrt|b| + 2|c|, |b|/|c|)``), take the series in ``|u|``
 #: (:func:`_phi_series`): ``|u s D| <= lam`` on the whole interval, so its terms fall like
 #: ``lam^k/k!`` and the rounding of their sum is at most ``exp(2 lam) < 3`` times that of
 #: the quadrature.
@@ -235,7 +236,12 @@ def _phi_quadrature(u, c, b, integrand):
 def _phi_block(u, c, b, integrand):
     """The quadrature of :func:`_phi_quadrature` for a block of points: the series in
     ``|u|`` next to the source (:func:`_phi_series`), the graded rule beyond."""
-    near = np.abs(u) * (np.sqrt(abs(b)) + 2.0 * abs(c)) <= _SERIES_REACH
+    # A bound of |s D| on the interval: |rho| + |c| <= sqrt|b| + 2|c|, and in the wake
+    # (D = b/(rho + |c| s), Re rho >= 0) also |b|/|c|.
+    reach = np.full(u.shape, np.sqrt(abs(b)) + 2.0 * abs(c))
+    if c != 0.0:
+        reach[np.sign(u) * c < 0.0] = min(reach[0], abs(b) / abs(c))
+    near = np.abs(u) * reach <= _SERIES_REACH
     if not np.any(near):
         return _phi_graded(u, c, b, integrand)
     out = np.empty((getattr(integrand, "count", None) or 1, u.size),
@@ -251,7 +257,7 @@ def _phi_series(u, c, b, integrand):
     ``m_k = (2/pi) int f (s D)^k dphi`` of each side ``sgn u`` by the graded rule of
     :func:`_phi_rule` at ``u = 0`` (the same panels as its points next to the source:
     toward the scale of ``rho``, a quarter of ``sqrt|b|/|c|``).  The integral over a
-    bounded interval of an entire function of ``|u|``: for ``|u| |s D| <= lam <=``
+    bounded interval of an entire function of ``|u|``: for ``|u s D| <= lam <=``
     :data:`_SERIES_REACH` the terms after :data:`_SERIES_TERMS` are below ``1e-25`` of
     ``int |f|``, and no cancellation beyond a factor ``exp(2 lam)``."""
     a, sg = np.abs(u), np.sign(u)
