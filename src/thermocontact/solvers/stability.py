@@ -496,11 +496,12 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         estimate).
     guesses : sequence of complex, optional
         Where the eigenvalues are expected (``k2/Delta^2``): a neighbouring contact's,
-        continued along a path or across a map.  Newton's method starts from them
-        first; where it confirms as many distinct eigenvalues in the region as counted,
-        they are all (the count is the certificate) and the contour integral is not
-        needed.  They change neither the count nor, beyond Newton's tolerance, the
-        eigenvalues.
+        continued along a path or across a map.  A real one narrows the bracket of a
+        single real eigenvalue (the sign of ``det M`` there, then a factor 4 at a time
+        to the sign change); otherwise the half-disc of Beyn's method is sought from
+        the one that holds them with a margin.  Where they miss, the search is the one
+        without them.  They change neither the count (the certificate) nor, beyond
+        Newton's tolerance, the eigenvalues.
 
     Returns
     -------
@@ -566,13 +567,13 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
 
 
 def _locate(winding, matrix, N, b_min, R, guesses=()):
-    """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  First Newton's
-    method from the ``guesses`` (a neighbour's roots), done where it confirms ``N``
-    distinct roots in the region.  Otherwise: a single root is
+    """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
     real (the region is symmetric about the real axis), where ``det M`` changes sign
-    between ``b_min`` and ``R``: Brent's method in ``ln b``.  Otherwise the smallest
-    half-disc ``|b| <= R_j`` (``R_j = 4^j``: ``j`` doubled from 1, then bisected, the
-    count growing with the radius) holding all ``N`` by the same count; Beyn's method on
+    between ``b_min`` and ``R``: Brent's method in ``ln b``, in a bracket narrowed by a
+    real guess (a neighbour's root).  Otherwise the smallest half-disc ``|b| <= R_j``
+    (``R_j = 4^j``: ``j`` doubled from 1, or from the one that holds the guesses with a
+    margin, then bisected, the count growing with the radius) holding all ``N`` by the
+    same count (with guesses, the first that holds them); Beyn's method on
     the samples the count took (trapezoidal weights), then on a Gauss-Legendre rule of
     that boundary where Newton's method does not confirm all of them from the first
     estimates.  Newton's method confirms each, kept on the sheet."""
@@ -597,19 +598,15 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
         return sum(1 if q.imag == 0 else 2 for q in roots)
 
     good = [complex(g) for g in guesses if np.isfinite(g) and g.real >= b_min and abs(g) <= R]
-    if good:
-        confirm(sorted({complex(g.real, abs(g.imag)) for g in good}, key=lambda g: -g.real))
-        if located() == N:
-            return np.array(roots, dtype=complex), None
     if N == 1:
         from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
         # det M at b = e^x, real, relative to the geometric mean of its ends (the
         # contour's samples at b_min and R) and, where they differ by more than
-        # e^1000, to a power that keeps it in range: linear in x at a simple root, so
-        # that Brent's steps converge fast (a size-th root of det M, 1/|b - b*|^(1/27)
-        # at the root, left them to bisection); the sign, all that brackets the root,
-        # is det M's wherever the exponent is clipped.
+        # e^1000, to a power that keeps it in range; the sign, all that brackets the
+        # root, is det M's wherever the exponent is clipped.  (A size-th root of
+        # det M, |b - b*|^(1/27) at the root, left Brent's steps to bisection: 30
+        # evaluations where this takes 17-19.)
         ends = [winding.at(complex(b)) for b in (b_min, R)]
         ref = 0.5 * (ends[0][1] + ends[1][1])
         power = max(1.0, abs(ends[0][1] - ends[1][1]) / 1000.0)
@@ -617,9 +614,26 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
         def real_det(x):
             sign, logdet = winding.at(complex(np.exp(x), 0.0))
             return float(np.real(sign)) * np.exp(np.clip((logdet - ref) / power, -700.0, 700.0))
+        low, high = np.log(b_min), np.log(R)
+        # A neighbour's real eigenvalue narrows the bracket (det M changes sign once
+        # on the real axis: the one root): the sign there, then at steps of a factor 4
+        # from it until the sign changes.
+        real = [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
+        if real:
+            first = np.sign(real_det(low))
+            y = float(np.clip(np.log(real[0]), low, high))
+            up = np.sign(real_det(y)) == first
+            low, high = (y, high) if up else (low, y)
+            while True:
+                y += np.log(4.0) if up else -np.log(4.0)
+                if not low < y < high:
+                    break
+                same = np.sign(real_det(y)) == first
+                low, high = (y, high) if same else (low, y)
+                if same != up:
+                    break
         try:
-            confirm([complex(np.exp(brentq(real_det, np.log(b_min), np.log(R),
-                                           xtol=1e-7)), 0.0)])
+            confirm([complex(np.exp(brentq(real_det, low, high, xtol=1e-7)), 0.0)])
         except ValueError:
             pass     # no sign change seen: Beyn's method below
         if located() == N:
@@ -629,8 +643,16 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
     def holds(j):
         r = 4.0 ** j
         return r >= R or (r > 10.0 * b_min and winding.count(r)[0] == N)
-    # Doubling j from 1 (most roots lie at small |b|), then bisection in the bracket.
+    # Doubling j from 1 (most roots lie at small |b|), or from the half-disc that holds
+    # the guesses with a margin, then bisection in the bracket.
     low, high = 0, 1
+    if good:
+        high = int(np.clip(np.ceil(np.log(1.5 * max(abs(g) for g in good)) / np.log(4.0)),
+                           1, top))
+        if holds(high):
+            low = high - 1      # holds: taken, though a smaller one might hold them too
+        else:
+            low, high = high, min(2 * high, top)
     while high < top and not holds(high):
         low, high = high, min(2 * high, top)
     while high - low > 1:
