@@ -214,9 +214,11 @@ class LinearisedContact:
         scale and rate (:data:`KERNEL_MOMENTS`): a map's points share the half-plane's
         (they depend on ``b`` alone) and a line's points at one Peclet number the
         cylinder's."""
-        if b == 0:
-            return self._fixed["table"].moments(self.kernel_values(0))
         table = self._fixed["table"]
+        if b == 0:
+            par = self.parameters
+            key = (table.key, float(par.cylinder_scale), float(par.half_plane_scale), 0.0)
+            return KERNEL_MOMENTS.get(key, lambda: _frozen(table.moments(self.kernel_values(0))))
         both = [_body_moments(table, c, rate) for c, rate in self._bodies(complex(b))]
         return tuple(np.concatenate([m[w] for m in both], axis=-1) for w in range(2))
 
@@ -245,9 +247,7 @@ class LinearisedContact:
                                     axis=1)
             bounded, singular = table.moments(values)
             for j, key in enumerate(todo):
-                part = tuple(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
-                for m in part:
-                    m.setflags(write=False)
+                part = _frozen(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
                 KERNEL_MOMENTS.get(key, lambda part=part: part)
 
     def matrix(self, b, *, split=False, values=None):
@@ -361,19 +361,25 @@ class LinearisedContact:
 
 #: Each body's kernel moments per table, scale and rate, kept per process: a map's
 #: points share the half-plane's (its kernels depend on ``b`` alone) and a line's
-#: points at one Peclet number the cylinder's (37 kB an entry at n = 12).
+#: points at one Peclet number the cylinder's (37 kB an entry at n = 12); and the steady
+#: kernels' moments of M(0), per table and the bodies' scales.
 KERNEL_MOMENTS = BoundedCache("transient kernel moments", 64 * 2**20)
 
 
 def _body_moments(table, c, b):
     """The moments (:meth:`~thermocontact.numerics.tabulated_moments.KernelTable.moments`)
     of one body's :func:`_body_values`, kept in :data:`KERNEL_MOMENTS`."""
-    def build():
-        out = table.moments(_body_values(c, b))
-        for m in out:
-            m.setflags(write=False)
-        return out
-    return KERNEL_MOMENTS.get((table.key, float(c), complex(b)), build)
+    return KERNEL_MOMENTS.get((table.key, float(c), complex(b)),
+                              lambda: _frozen(table.moments(_body_values(c, b))))
+
+
+def _frozen(arrays):
+    """``arrays`` as a tuple of read-only arrays (kept in a cache: shared, never
+    written)."""
+    out = tuple(arrays)
+    for m in out:
+        m.setflags(write=False)
+    return out
 
 
 def _body_values(c, b):
