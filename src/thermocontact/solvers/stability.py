@@ -85,7 +85,7 @@ class StabilityResult(Result):
     error_estimate : float or None
         The largest change of an eigenvalue between ``n`` and ``3n/2`` (``n/2`` above
         ``n = 32``), relative to ``max(|b|, 1)``: an estimate of its error at ``n``;
-        None where there is none.
+        None where there is none or it was not computed (a map's points).
     fold : float or None
         ``|det M(0)/det M_reg(0)|`` (the two differ in the heat partition's row, S7-S8):
         0 at a fold of the load, where a real root leaves ``b = 0`` exponentially
@@ -233,7 +233,9 @@ class Winding:
         total = 0.0
         while todo:
             if self.prepare is not None:
-                fresh = {point(t) for point, a, b in todo for t in (a, 0.5 * (a + b), b)}
+                # In order, once each (the same batch, the same rounding, every run).
+                fresh = dict.fromkeys(point(t) for point, a, b in todo
+                                      for t in (a, 0.5 * (a + b), b))
                 fresh = [z for z in fresh if z not in self.values]
                 if fresh:
                     self.prepare(fresh)
@@ -375,8 +377,8 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     ``Re b > floor``: a step that would cross it is halved until it does not (the cut
     ``b <= 0`` of the stationary half-plane's kernels is never reached).  Returns the
     last iterate and its last step as proposed, before any halving (``inf`` where the
-    iterates could not stay on the sheet).  ``prepare``, where given, is called with the rates of each step before
-    ``matrix`` (:class:`Winding`).
+    iterates could not stay on the sheet).  ``prepare``, where given, is called with
+    the rates of each step before ``matrix`` (:class:`Winding`).
     """
     b = complex(b0)
     if b.real <= floor:
@@ -473,7 +475,7 @@ def _check_region(b_min, modulus_bound):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
-                 rate_unit=None, progress=None, guesses=()) -> StabilityResult:
+                 rate_unit=None, progress=None, guesses=(), estimate=True) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Parameters
@@ -497,11 +499,15 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     guesses : sequence of complex, optional
         Where the eigenvalues are expected (``k2/Delta^2``): a neighbouring contact's,
         continued along a path or across a map.  A real one narrows the bracket of a
-        single real eigenvalue (the sign of ``det M`` there, then a factor 4 at a time
-        to the sign change); otherwise the half-disc of Beyn's method is sought from
-        the one that holds them with a margin.  Where they miss, the search is the one
+        single real eigenvalue (the sign of ``det M`` there, then at steps of a factor
+        1.1, 1.1^4, ... to the sign change); otherwise the half-disc of Beyn's method
+        is sought from the one that holds them with a margin.  Where they miss, the search is the one
         without them.  They change neither the count (the certificate) nor, beyond
         Newton's tolerance, the eigenvalues.
+    estimate : bool
+        Compute the error estimate (the eigenvalues again at ``3n/2``); without it
+        ``error_estimate`` is None and the reason does not say whether an eigenvalue
+        is resolved (for a map, whose fields do not hold either).
 
     Returns
     -------
@@ -526,16 +532,16 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None))
     N, reason = winding.count(R)
     found = np.array([], dtype=complex)
-    estimate = None
+    change = None
     if N:
         found, reason = _locate(winding, counted, N, b_min, R, guesses)
-        if found.size:
+        if found.size and estimate:
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
-            estimate = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
-                                      prepare=getattr(other, "prepare", None))[0] - b)
-                           / max(1.0, abs(b)) for b in found)
+            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
+                                    prepare=getattr(other, "prepare", None))[0] - b)
+                         / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
     if slow is not None and slow >= b_min:
         slow = None     # counted, if anywhere
@@ -548,9 +554,9 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     full = np.array(sorted(full, key=lambda b: (-b.real, -b.imag)), dtype=complex)
     if N is not None and len(full) != N:
         reason = reason or f"{len(full)} of the {N} eigenvalues counted were located"
-    if estimate is not None and estimate > UNRESOLVED:
+    if change is not None and change > UNRESOLVED:
         reason = ((reason + "; ") if reason else "") + (
-            f"an eigenvalue changes by {estimate:.2g} of itself from n = {n} to a finer n: "
+            f"an eigenvalue changes by {change:.2g} of itself from n = {n} to a finer n: "
             "not resolved at this n (the count is this n's)")
     units, region = "k2/Delta^2", (b_min, R)
     if rate_unit is not None:
@@ -562,7 +568,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         eigenvalues=full, unstable_modes=N, stable=None if N is None else N == 0,
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
         region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
-        error_estimate=estimate, fold=fold, slow_root=slow,
+        error_estimate=change, fold=fold, slow_root=slow,
         evaluations=evaluations[0], n=n, units=units)
 
 
@@ -616,16 +622,18 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
             return float(np.real(sign)) * np.exp(np.clip((logdet - ref) / power, -700.0, 700.0))
         low, high = np.log(b_min), np.log(R)
         # A neighbour's real eigenvalue narrows the bracket (det M changes sign once
-        # on the real axis: the one root): the sign there, then at steps of a factor 4
-        # from it until the sign changes.
+        # on the real axis: the one root): the sign there, then at steps from it of a
+        # factor 1.1, 1.1^4, 1.1^16, ... until the sign changes.
         real = [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
         if real:
             first = np.sign(real_det(low))
             y = float(np.clip(np.log(real[0]), low, high))
             up = np.sign(real_det(y)) == first
             low, high = (y, high) if up else (low, y)
+            step = np.log(1.1)
             while True:
-                y += np.log(4.0) if up else -np.log(4.0)
+                y += step if up else -step
+                step *= 4.0
                 if not low < y < high:
                     break
                 same = np.sign(real_det(y)) == first
