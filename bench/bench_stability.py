@@ -1,6 +1,6 @@
 """The cost of a stability verdict: one point, and a map with and without it.
 
-Run: ``python bench/bench_stability.py [--map N ...]``.  A benchmark, not a test: it prints
+Run: ``python bench/bench_stability.py [--map N|NxM ...]``.  A benchmark, not a test: it prints
 tables and asserts nothing.  For each case the steady solution is solved first (not
 timed), then ``thermocontact.stability`` with its defaults (n = 12, Re b >= 1e-3,
 |b| <= 1e6) is timed four times: cold (the per-process caches cleared: the kernel
@@ -10,7 +10,8 @@ first point of a map's row or a new point of a path), warm (the same point again
 kernel's moments kept, the floor: the assembly, the determinants, Newton's method) and
 along (the point at 1.05 fHPe, the same Pe: the cylinder's moments kept where the
 samples repeat, as for the next point of a map's row); wall and CPU time, and the
-evaluations of M(b).  Then for each N an N x N map (default 4 x 4) over fHPe and Pe
+evaluations of M(b).  Then for each shape a map (``N``: N x N, default 4 x 4; ``NxM``: N
+values of fHPe, M of Pe, long rows of constant Pe as in a large map) over fHPe and Pe
 with and without ``stability=True``, in this process (after a 2 x 2 map, which pays for the
 first calls; the caches cleared before each), and the ratio of their times.  BLAS is
 limited to one thread (the products are small; threads only compete on a shared
@@ -57,8 +58,10 @@ def one_point():
               f"{w_along:6.2f}s/{c_along:5.2f}s")
 
 
-def a_map(size):
-    axes = (tc.Axis("fhpe", 0.1, 0.6, size), tc.Axis("pe", 1.0, 10.0, size, log=True))
+def a_map(shape):
+    """The map of ``shape`` "N" (N x N) or "NxM" (N values of fHPe, M of Pe)."""
+    nx, ny = (int(v) for v in (shape.split("x") if "x" in shape else (shape, shape)))
+    axes = (tc.Axis("fhpe", 0.1, 0.6, nx), tc.Axis("pe", 1.0, 10.0, ny, log=True))
     kw = dict(K2_over_K1=10, lam=1, tol=1e-6)
     # The process's first map pays for imports and first calls that any later map does
     # not (0.3 s against 0.9 s of CPU for the 6 x 6 map): a 2 x 2 map first.
@@ -67,8 +70,8 @@ def a_map(size):
     _, plain, plain_cpu = timed(lambda: tc.parameter_map(*axes, **kw))
     tc.clear_caches()
     ds, with_it, with_cpu = timed(lambda: tc.parameter_map(*axes, stability=True, **kw))
-    points = size * size
-    print(f"\n{size} x {size} map over fHPe in [0.1, 0.6], Pe in [1, 10] (K2/K1 = 10, lam = 1)")
+    points = nx * ny
+    print(f"\n{nx} x {ny} map over fHPe in [0.1, 0.6], Pe in [1, 10] (K2/K1 = 10, lam = 1)")
     print(f"  without stability: {plain:8.2f} s wall, {plain_cpu:8.2f} s cpu "
           f"({1e3 * plain / points:.1f} ms a point)")
     print(f"  with stability:    {with_it:8.2f} s wall, {with_cpu:8.2f} s cpu "
@@ -80,10 +83,10 @@ def a_map(size):
 
 
 def main(argv):
-    sizes = [int(a) for a in argv[argv.index("--map") + 1:]] if "--map" in argv else [4]
+    shapes = argv[argv.index("--map") + 1:] if "--map" in argv else ["4"]
     one_point()
-    for size in sizes:
-        a_map(size)
+    for shape in shapes:
+        a_map(shape)
 
 
 if __name__ == "__main__":
