@@ -508,6 +508,31 @@ def test_stability_of_orders_pairs_and_estimates(monkeypatch):
             st.stability_of(lambda n: n, **bad)
 
 
+@pytest.mark.parametrize("roots, guesses", [
+    ([40.0 + 0j], [25.0]),                        # one real root: the bracket narrowed
+    ([40.0 + 0j], [3e-3, 9e5]),                    # guesses far off, at the region's ends
+    ([1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j], [1.45 + 2.1j, 0.72]),   # Newton from each
+    ([1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j], [30.0 + 1j, -4.0]),     # useless: Beyn's method
+])
+def test_a_neighbours_eigenvalues_change_nothing_but_the_work(monkeypatch, roots, guesses):
+    """``stability_of(..., guesses=...)`` (a neighbour's eigenvalues, continued across a
+    map): the same count and the same eigenvalues (to Newton's tolerance) as without
+    them, whether the guesses are close, far or outside the region; where a single real
+    root's guess is close, fewer evaluations of M (Brent's bracket narrowed)."""
+    import thermocontact.solvers.stability as st
+
+    monkeypatch.setattr(st, "linearised", lambda n: _Stand(roots))
+    plain = st.stability_of(lambda n: n, n=12, modulus_bound=1e3)
+    guessed = st.stability_of(lambda n: n, n=12, modulus_bound=1e3, guesses=guesses)
+    assert plain.unstable_modes == guessed.unstable_modes == len(roots)
+    assert plain.reason is None and guessed.reason is None
+    np.testing.assert_allclose(guessed.eigenvalues, plain.eigenvalues, rtol=1e-9)
+    np.testing.assert_allclose(sorted(guessed.eigenvalues, key=_order),
+                               sorted(roots, key=_order), rtol=1e-9)
+    if len(roots) == 1 and abs(guesses[0] - roots[0]) < 0.5 * abs(roots[0]):
+        assert guessed.evaluations < plain.evaluations
+
+
 def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
     """``parameter_map(..., stability=True)`` (a 2 x 2 map, the smallest): each point
     analysed at its own inputs and at the map's heat partition there (the solution

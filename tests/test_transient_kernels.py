@@ -338,3 +338,21 @@ def test_displacement_and_slope_in_one_pass(c, b):
     w, s = tk.transient_displacement_and_slope(u, c, b)
     assert_ulps(w, tk.transient_displacement(u, c, b))
     assert_ulps(s, tk.transient_slope(u, c, b))
+
+
+@pytest.mark.parametrize("c, b", [(0.0, 1e-4 + 1e-4j), (50.0, 1e-3 + 0.5j), (-30.0, 1e-3 + 2e3j),
+                                  (1000.0, 1e-3 + 30j)])
+def test_series_next_to_the_source_is_the_quadrature(monkeypatch, c, b):
+    """Next to the source (``|u| lam <= 1/2``) the displacement and slope are their series
+    in ``|u|`` (derivation, "Transient kernels", *Evaluation*): against the graded
+    quadrature at every point (the series switched off), at the stability tables' nodes
+    (down to ``|u| = 2^-36``, both sides) and at ``u = 0``, to 1e-14 of the largest
+    value."""
+    from thermocontact.numerics.tabulated_moments import kernel_nodes
+
+    u = np.concatenate([kernel_nodes(), [0.0]])
+    series = tk.transient_displacement_and_slope(u, c, b)
+    monkeypatch.setattr(tk, "_SERIES_REACH", -1.0)
+    graded = tk.transient_displacement_and_slope(u, c, b)
+    for got, ref in zip(series, graded):
+        assert np.abs(got - ref).max() < 1e-14 * np.abs(ref).max()

@@ -26,8 +26,9 @@ and gradient kernels (:mod:`thermocontact.physics.transient_green_functions`) wi
 (:mod:`thermocontact.physics.green_functions`).  The moments of every kernel are a
 fixed linear map of its values at fixed nodes, built once per ``n``
 (:mod:`thermocontact.numerics.tabulated_moments`; the same moments as the moment
-engine's, which the tests compare): the kernels' values are the only work per ``b``,
-and the half-plane's, which depend on ``b`` alone, are kept for the next contact.
+engine's, which the tests compare): the kernels' values and their product with the
+table are the only work per ``b``, and each body's moments are kept for the next
+contact (the half-plane's depend on ``b`` alone, the cylinder's on ``b`` and ``Pe``).
 Unknowns, in this order: ``phi~`` (n),
 ``psi~`` (n), the rigid approach ``D~``, ``sig~ = sigma~/Delta`` and
 ``del~ = Delta~/Delta``.
@@ -253,6 +254,48 @@ class LinearisedContact:
         return np.concatenate([_body_values(c, b / par.k2_over_k1), _body_values(c2, b)],
                               axis=1)
 
+    def kernel_moments(self, b):
+        """``(bounded, singular)`` moments of :meth:`kernel_values` at the table's
+        points, each shape ``(points, n, 8)``.  Each body's are kept per process by its
+        scale and rate (:data:`KERNEL_MOMENTS`): a map's points share the half-plane's
+        (they depend on ``b`` alone) and a line's points at one Peclet number the
+        cylinder's."""
+        table = self._fixed["table"]
+        if b == 0:
+            par = self.parameters
+            key = (table.key, float(par.cylinder_scale), float(par.half_plane_scale), 0.0)
+            return KERNEL_MOMENTS.get(key, lambda: _frozen(table.moments(self.kernel_values(0))))
+        both = [_body_moments(table, c, rate) for c, rate in self._bodies(complex(b))]
+        return tuple(np.concatenate([m[w] for m in both], axis=-1) for w in range(2))
+
+    def _bodies(self, b):
+        """Each body's scale and rate at ``b``: the cylinder's ``b k2/k1``."""
+        par = self.parameters
+        return ((par.cylinder_scale, b / par.k2_over_k1), (par.half_plane_scale, b))
+
+    def prepare(self, rates) -> None:
+        """Compute and keep the moments (:meth:`kernel_moments`) at several rates at
+        once: the kernels' values at each rate not yet kept, and one product of the
+        table with all of them (the table, 11 MB at n = 12, read once instead of once
+        a rate)."""
+        table = self._fixed["table"]
+        for body in range(2):
+            todo = {}
+            for b in rates:
+                if b != 0:
+                    c, rate = self._bodies(complex(b))[body]
+                    key = (table.key, float(c), complex(rate))
+                    if key not in KERNEL_MOMENTS and key not in todo:
+                        todo[key] = (c, rate)
+            if not todo:
+                continue
+            values = np.concatenate([_body_values(c, rate) for c, rate in todo.values()],
+                                    axis=1)
+            bounded, singular = table.moments(values)
+            for j, key in enumerate(todo):
+                part = _frozen(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
+                KERNEL_MOMENTS.get(key, lambda part=part: part)
+
     def matrix(self, b, *, split=False, values=None):
         """``M(b)``, complex, shape ``(2n + 3, 2n + 3)`` (eqs. S3-S8).
 
@@ -268,7 +311,8 @@ class LinearisedContact:
             ``e`` the temperature's first projection: the part regular as ``b -> 0``
             and the diverging constant of the stationary half-plane's temperature.
         values : ndarray, optional
-            :meth:`kernel_values` at ``b``, where already computed.
+            :meth:`kernel_values` at ``b``, where already computed (otherwise the
+            moments kept by :meth:`kernel_moments`).
 
         Returns
         -------
@@ -278,8 +322,9 @@ class LinearisedContact:
         fixed = self._fixed
         pd, pt, s = fixed["pd"], fixed["pt"], fixed["s"]
         if values is None:
-            values = self.kernel_values(b)
-        bounded, singular = fixed["table"].moments(values)
+            bounded, singular = self.kernel_moments(b)
+        else:
+            bounded, singular = fixed["table"].moments(values)
         ell = 0.0 if b == 0 or self.moving else logarithm_constant(b)
         eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
         phi0, psi0 = self.phi, self.psi
@@ -302,7 +347,7 @@ class LinearisedContact:
             (ap, aq), (Mb, Ms) = share[i], m
             return ap * (Mb @ (weight * phi0)) + aq * (Ms @ (weight * psi0))
 
-        dtype = values.dtype
+        dtype = bounded.dtype
 
         def edges(diff, u_steady, i):
             # The columns (sig~, del~) of int (K_b - K_0)(u)(sig~ + del~ r) q0_i
@@ -370,29 +415,42 @@ class LinearisedContact:
         return rows
 
 
-#: Each body's kernel values at the table's nodes per rate, kept per process: a map's
+#: Each body's kernel moments per table, scale and rate, kept per process: a map's
 #: points share the half-plane's (its kernels depend on ``b`` alone) and a line's
-#: points at one Peclet number the cylinder's.
-KERNEL_VALUES = BoundedCache("transient kernel values", 64 * 2**20)
+#: points at one Peclet number the cylinder's (37 kB an entry at n = 12); and the steady
+#: kernels' moments of M(0), per table and the bodies' scales.
+KERNEL_MOMENTS = BoundedCache("transient kernel moments", 64 * 2**20)
+
+
+def _body_moments(table, c, b):
+    """The moments (:meth:`~thermocontact.numerics.tabulated_moments.KernelTable.moments`)
+    of one body's :func:`_body_values`, kept in :data:`KERNEL_MOMENTS`."""
+    return KERNEL_MOMENTS.get((table.key, float(c), complex(b)),
+                              lambda: _frozen(table.moments(_body_values(c, b))))
+
+
+def _frozen(arrays):
+    """``arrays`` as a tuple of read-only arrays (kept in a cache: shared, never
+    written)."""
+    out = tuple(arrays)
+    for m in out:
+        m.setflags(write=False)
+    return out
 
 
 def _body_values(c, b):
     """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
     kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`,
     shape (nodes, 4); for ``c = 0`` less the constants ``2/(pi sqrt b)`` and ``l(b)``."""
-    def build():
-        u = kernel_nodes()
-        W, S = transient_displacement_and_slope(u, c, b)
-        T = transient_temperature(u, c, b)
-        dG = transient_temperature_gradient_regular(u, c, b)
-        if c == 0.0:
-            W = W - 2.0 / (np.pi * np.sqrt(b))
-            T = T - logarithm_constant(b)
-            S = S - 0.5 * np.sign(u)
-        else:
-            S = S - moving_slope(u, c)
-            dG = dG - cylinder_temperature_gradient_regular(u, c)
-        out = np.stack([W, T, S, dG], axis=1).astype(complex)
-        out.setflags(write=False)
-        return out
-    return KERNEL_VALUES.get((float(c), complex(b)), build)
+    u = kernel_nodes()
+    W, S = transient_displacement_and_slope(u, c, b)
+    T = transient_temperature(u, c, b)
+    dG = transient_temperature_gradient_regular(u, c, b)
+    if c == 0.0:
+        W = W - 2.0 / (np.pi * np.sqrt(b))
+        T = T - logarithm_constant(b)
+        S = S - 0.5 * np.sign(u)
+    else:
+        S = S - moving_slope(u, c)
+        dG = dG - cylinder_temperature_gradient_regular(u, c)
+    return np.stack([W, T, S, dG], axis=1).astype(complex)

@@ -117,6 +117,10 @@ class BoundedCache:
     def __len__(self):
         return len(self._data)
 
+    def __contains__(self, key):
+        with self._lock:
+            return key in self._data
+
     def __repr__(self):
         return (f"BoundedCache({self.name!r}: {len(self)} entries, "
                 f"{self._bytes / 2**20:.1f} of {self.max_bytes / 2**20:.0f} MiB)")

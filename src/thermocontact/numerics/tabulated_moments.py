@@ -123,6 +123,9 @@ class KernelTable:
 
     def __init__(self, tau, n, to_cos, cmap=GRADED):
         tau_k = np.asarray(tau, dtype=float)
+        #: What the table depends on besides ``to_cos`` (which follows from ``n`` and
+        #: ``cmap``): a key for what is computed with it.
+        self.key = (np.ascontiguousarray(tau_k).tobytes(), int(n), cmap.name)
         t_k = stretch(tau_k)
         s_k = np.cos(t_k)
         edges = _panels()

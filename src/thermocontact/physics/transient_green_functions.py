@@ -57,7 +57,16 @@ _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
 #: Points sharing one rule in ``phi`` (sorted by side and ``|u|``).
-_GROUP = 256
+_GROUP = 32
+#: Points with ``lam <= _SERIES_REACH``, ``lam = |u| (sqrt|b| + 2|c|)`` (in the wake
+#: ``|u| min(sqrt|b| + 2|c|, |b|/|c|)``), take the series in ``|u|``
+#: (:func:`_phi_series`): ``|u s D| <= lam`` on the whole interval, so its terms fall like
+#: ``lam^k/k!`` and the rounding of their sum is at most ``exp(2 lam) < 3`` times that of
+#: the quadrature.
+_SERIES_REACH = 0.5
+#: Terms of that series: the first left out is below ``0.5^21/21! < 1e-25`` of the
+#: integral of ``|integrand|``.
+_SERIES_TERMS = 21
 
 
 def _parameters(c, b):
@@ -225,6 +234,61 @@ def _phi_quadrature(u, c, b, integrand):
 
 
 def _phi_block(u, c, b, integrand):
+    """The quadrature of :func:`_phi_quadrature` for a block of points: the series in
+    ``|u|`` next to the source (:func:`_phi_series`), the graded rule beyond."""
+    # A bound of |s D| on the interval: |rho| + |c| <= sqrt|b| + 2|c|, and in the wake
+    # (D = b/(rho + |c| s), Re rho >= 0) also |b|/|c|.
+    reach = np.full(u.shape, np.sqrt(abs(b)) + 2.0 * abs(c))
+    if c != 0.0:
+        reach[np.sign(u) * c < 0.0] = min(reach[0], abs(b) / abs(c))
+    near = np.abs(u) * reach <= _SERIES_REACH
+    if not np.any(near):
+        return _phi_graded(u, c, b, integrand)
+    out = np.empty((getattr(integrand, "count", None) or 1, u.size),
+                   dtype=np.result_type(np.asarray(b), float))
+    out[:, near] = _phi_series(u[near], c, b, integrand)
+    if not np.all(near):
+        out[:, ~near] = _phi_graded(u[~near], c, b, integrand)
+    return out
+
+
+def _phi_series(u, c, b, integrand):
+    """``(2/pi) int f exp(-|u| s D) dphi`` as ``sum_k (-|u|)^k/k! m_k``, the moments
+    ``m_k = (2/pi) int f (s D)^k dphi`` of each side ``sgn u`` by the graded rule of
+    :func:`_phi_rule` at ``u = 0`` (the same panels as its points next to the source:
+    toward the scale of ``rho``, a quarter of ``sqrt|b|/|c|``).  The integral over a
+    bounded interval of an entire function of ``|u|``: for ``|u s D| <= lam <=``
+    :data:`_SERIES_REACH` the terms after :data:`_SERIES_TERMS` are below ``1e-25`` of
+    ``int |f|``, and no cancellation beyond a factor ``exp(2 lam)``."""
+    a, sg = np.abs(u), np.sign(u)
+    count = getattr(integrand, "count", None) or 1
+    out = np.empty((count, u.size), dtype=np.result_type(np.asarray(b), float))
+    small = 0.5 / _SERIES_REACH
+    if c != 0.0 and b != 0.0:
+        small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
+    small = max(small, 1e-15)
+    for side in np.unique(sg):
+        at = sg == side
+        w, (s_, rho, d, e) = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
+                                       np.array([small]), c, b)
+        f = integrand(s_, rho, d, side)
+        # The powers (s D)^k times the weights: the moments of each kernel by one product.
+        powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
+        powers[0] = w
+        for k in range(1, _SERIES_TERMS):
+            powers[k] = powers[k - 1] * e
+        x = -a[at]
+        for i, v in enumerate(f if isinstance(f, tuple) else (f,)):
+            m = np.einsum("kn,n->k", powers, np.broadcast_to(v, e.shape))
+            # Horner: m_0 + x (m_1 + x/2 (m_2 + x/3 (...))).
+            total = np.full(x.shape, m[-1])
+            for j in range(_SERIES_TERMS - 1, 0, -1):
+                total = m[j - 1] + (x / j) * total
+            out[i, at] = total
+    return (2.0 / np.pi) * out
+
+
+def _phi_graded(u, c, b, integrand):
     a = np.abs(u)[:, None]
     sg = np.sign(u)[:, None]
     half_pi = 0.5 * np.pi
@@ -283,11 +347,12 @@ def _phi_block(u, c, b, integrand):
     return (2.0 / np.pi) * total
 
 
-def _phi_group(a, sg, end, small, c, b, integrand):
-    """The rule of :func:`_phi_block` shared by points ``a = |u|`` of one side ``sg``:
-    from the largest end, graded to the smallest scale, each level in parts over which
-    the exponent changes by at most ``_PANEL_VARIATION`` for every point whose own end
-    lies beyond the level's start (beyond it the integrand is negligible)."""
+def _phi_rule(a, sg, end, small, c, b):
+    """The rule in ``phi`` shared by points ``a = |u|`` of one side ``sg``: from the
+    largest end, graded to the smallest scale, each level in parts over which the
+    exponent changes by at most ``_PANEL_VARIATION`` for every point whose own end lies
+    beyond the level's start (beyond it the integrand is negligible).  Returns the
+    weights and ``(s, rho, D, s D)`` at the nodes."""
     def sd(phi):
         s = np.sin(phi)
         rho = _sqrt(b + (c * s) ** 2)
@@ -308,12 +373,18 @@ def _phi_group(a, sg, end, small, c, b, integrand):
     centre = edges[level] + (2 * within + 1) * half
     phi = (centre[:, None] + half[:, None] * _GL_X).ravel()
     w = (half[:, None] * _GL_W).ravel()
-    s, rho, d, e = sd(phi)
+    return w, sd(phi)
+
+
+def _phi_group(a, sg, end, small, c, b, integrand):
+    """The integrals of :func:`_phi_block` for points ``a = |u|`` of one side ``sg`` on
+    their shared rule (:func:`_phi_rule`)."""
+    w, (s, rho, d, e) = _phi_rule(a, sg, end, small, c, b)
     f = integrand(s, rho, d, sg)
     weighted = np.exp(-np.multiply.outer(a, e)) * w
     # Each kernel by its own sum (the same rounding alone or with the other; no
     # threaded BLAS for these small products).
-    return np.stack([np.einsum("pn,n->p", weighted, np.broadcast_to(v, phi.shape))
+    return np.stack([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
                      for v in (f if isinstance(f, tuple) else (f,))])
 
 

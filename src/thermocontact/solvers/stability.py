@@ -85,7 +85,7 @@ class StabilityResult(Result):
     error_estimate : float or None
         The largest change of an eigenvalue between ``n`` and ``3n/2`` (``n/2`` above
         ``n = 32``), relative to ``max(|b|, 1)``: an estimate of its error at ``n``;
-        None where there is none.
+        None where there is none or it was not computed (a map's points).
     fold : float or None
         ``|det M(0)/det M_reg(0)|`` (the two differ in the heat partition's row, S7-S8):
         0 at a fold of the load, where a real root leaves ``b = 0`` exponentially
@@ -180,13 +180,18 @@ class Winding:
     matrix : callable
         ``b -> A(b)``, square.
     b_min : float
+    prepare : callable, optional
+        ``prepare(points)`` before the samples ``points`` of one round of refinement
+        are evaluated by ``matrix`` one by one: for work shared by several (the
+        linearised contact's kernel moments, :meth:`LinearisedContact.prepare`).
     """
 
-    def __init__(self, matrix, b_min):
-        self.matrix, self.b_min = matrix, float(b_min)
+    def __init__(self, matrix, b_min, prepare=None):
+        self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
         self.values, self.matrices = {}, {}
 
-    def _at(self, b):
+    def at(self, b):
+        """``(sign, log|det A(b)|)``, kept (with ``A(b)``)."""
         if b not in self.values:
             A = self.matrix(b)
             sign, logdet = np.linalg.slogdet(A)
@@ -213,34 +218,44 @@ class Winding:
     def line(self, t):
         return complex(self.b_min, self.b_min * np.sinh(t))
 
-    def _follow(self, point, t0, t1, steps):
-        """The phase change of ``f`` along ``point(t)``, ``t`` from ``t0`` to ``t1``.
+    def _follow(self, pieces):
+        """The phase change of ``f`` along the paths ``point(t)``, ``t`` from ``t0`` to
+        ``t1``, of ``pieces`` (tuples ``(point, t0, t1)``), summed.
 
         Each step is accepted only when its midpoint confirms it: both halves change
         the phase by less than :data:`PHASE_STEP`, their sum agrees with the whole
         step's change (an alias of a whole turn cannot pass both), and the midpoint is
         not a sharp minimum of ``|f|`` (``log|f|`` more than 2 below the chord: a root
-        close to the contour); otherwise both halves are examined in turn.  None (and
-        why) where a step falls below :data:`SMALLEST_STEP` or ``f`` vanishes."""
-        edges = np.linspace(t0, t1, steps + 1)
-        stack = [(float(a), float(b)) for a, b in zip(edges[:-1], edges[1:])][::-1]
+        close to the contour); otherwise both halves are examined in the next round.
+        Each round's samples are prepared together.  None (and why) where a step falls
+        below :data:`SMALLEST_STEP` or ``f`` vanishes."""
+        todo = [(point, float(a), float(b)) for point, a, b in pieces]
         total = 0.0
-        while stack:
-            a, b = stack.pop()
-            m = 0.5 * (a + b)
-            (pa, la), (pm, lm), (pb, lb) = (self._at(point(t)) for t in (a, m, b))
-            if pa == 0 or pm == 0 or pb == 0:
-                return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
-            first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
-            whole = float(np.angle(pb / pa))
-            agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
-            if (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP and agree
-                    and lm >= 0.5 * (la + lb) - 2.0):
-                total += first + second
-                continue
-            if abs(b - a) < SMALLEST_STEP:
-                return None, f"a root on or against the contour near b = {point(m):.6g}"
-            stack += [(m, b), (a, m)]
+        while todo:
+            if self.prepare is not None:
+                # In order, once each (the same batch, the same rounding, every run).
+                fresh = dict.fromkeys(point(t) for point, a, b in todo
+                                      for t in (a, 0.5 * (a + b), b))
+                fresh = [z for z in fresh if z not in self.values]
+                if fresh:
+                    self.prepare(fresh)
+            refine = []
+            for point, a, b in todo:
+                m = 0.5 * (a + b)
+                (pa, la), (pm, lm), (pb, lb) = (self.at(point(t)) for t in (a, m, b))
+                if pa == 0 or pm == 0 or pb == 0:
+                    return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
+                first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
+                whole = float(np.angle(pb / pa))
+                agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
+                if (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP and agree
+                        and lm >= 0.5 * (la + lb) - 2.0):
+                    total += first + second
+                    continue
+                if abs(b - a) < SMALLEST_STEP:
+                    return None, f"a root on or against the contour near b = {point(m):.6g}"
+                refine += [(point, a, m), (point, m, b)]
+            todo = refine
         return total, None
 
     def count(self, R):
@@ -252,19 +267,19 @@ class Winding:
         T = float(np.arcsinh(Y / b_min))
         # The line on a grid common to every R, then to its end at |b| = R.
         grid = np.arange(0.0, T, _LINE_STEP)
-        line, why = 0.0, None
-        for t0, t1 in zip(grid, list(grid[1:]) + [T]):
-            d, why = self._follow(self.line, float(t0), float(t1), 1)
-            if d is None:
-                return None, why
-            line += d
+        pieces = [(self.line, t0, t1) for t0, t1 in zip(grid, list(grid[1:]) + [T])]
         theta0 = float(np.arctan2(Y, b_min))
-        arc, why = self._follow(lambda th: R * np.exp(1j * th), theta0, 0.0, _ARC_STEPS)
-        if arc is None:
+        edges = np.linspace(theta0, 0.0, _ARC_STEPS + 1)
+
+        def arc(th):
+            return R * np.exp(1j * th)
+        pieces += [(arc, a, b) for a, b in zip(edges[:-1], edges[1:])]
+        change, why = self._follow(pieces)
+        if change is None:
             return None, why
         # Upward along the line and back along the arc is the upper half of the
         # boundary traversed clockwise; the lower half adds as much (conjugates).
-        winding = -(line + arc) / np.pi
+        winding = -change / np.pi
         N = int(round(winding))
         if abs(winding - N) > 0.05:
             return None, f"the winding {winding:.3f} is not an integer"
@@ -349,39 +364,65 @@ def beyn(matrix, contour, *, rank=None, probes=8, tol=1e-5, seed=0, progress=Non
     return np.linalg.eigvals(B), k
 
 
-def newton(matrix, b0, *, steps=12, tol=1e-10, h=1e-6, floor=0.0):
+def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     """An eigenvalue of ``M(b) c = 0`` by Newton's method on ``det M`` from ``b0``.
 
     ``b <- b - 1/tr(M^{-1} M')`` (the logarithmic derivative of the determinant), with
-    ``M'`` by central differences of step ``h |b|``.  The iterates stay on the
-    principal sheet, ``Re b > floor``: a step that would cross it is halved until it
-    does not (the cut ``b <= 0`` of the stationary half-plane's kernels is never
-    reached).  Returns the last iterate and its last step (``inf`` where the iterates
-    could not stay on the sheet).
+    ``M'`` by central differences of step ``h |b|``, kept from one step to the next
+    while the steps shrink at least tenfold (the simplified Newton method: one
+    evaluation of ``M`` a step instead of three; a step that shrinks less is taken
+    again with ``M'`` at its own start).  Near a simple root ``b*`` a step is
+    ``(b - b*)(1 + O(|b0 - b*|))`` either way, so that a small last step confirms a
+    root as Newton's does.  The iterates stay on the principal sheet,
+    ``Re b > floor``: a step that would cross it is halved until it does not (the cut
+    ``b <= 0`` of the stationary half-plane's kernels is never reached).  Returns the
+    last iterate and its last step as proposed, before any halving (``inf`` where the
+    iterates could not stay on the sheet).  ``prepare``, where given, is called with
+    the rates of each step before ``matrix`` (:class:`Winding`).
     """
     b = complex(b0)
     if b.real <= floor:
         # A start off the sheet (an estimate left of the line): moved onto it.
         b = complex(floor + max(abs(floor), 1e-12), b.imag)
-    step = np.inf
-    for _ in range(steps):
+    step, dM = np.inf, None
+
+    def difference(b):
+        # The central difference's step, kept off the floor.
         e = h * max(abs(b), 1e-300)
-        e = min(e, 0.5 * (b.real - floor)) if b.real - e <= floor else e
+        return min(e, 0.5 * (b.real - floor)) if b.real - e <= floor else e
+
+    def derivative(b):
+        e = difference(b)
+        if prepare is not None:
+            prepare([b + e, b - e])
+        return (matrix(b + e) - matrix(b - e)) / (2.0 * e)
+    for _ in range(steps):
+        if prepare is not None:
+            e = difference(b)
+            prepare([b] if dM is not None else [b, b + e, b - e])
         M = matrix(b)
-        dM = (matrix(b + e) - matrix(b - e)) / (2.0 * e)
+        last, kept = step, dM is not None
+        if not kept:
+            dM = derivative(b)
         try:
             step = 1.0 / np.trace(np.linalg.solve(M, dM))
+            if kept and not abs(step) <= 0.1 * abs(last):
+                dM = derivative(b)
+                step = 1.0 / np.trace(np.linalg.solve(M, dM))
         except np.linalg.LinAlgError:
             return b, 0.0       # M singular to rounding: b is a root
         if not np.isfinite(step):
             return b, 0.0
+        move = step
         for _ in range(60):
-            if (b - step).real > floor:
+            if (b - move).real > floor:
                 break
-            step *= 0.5
+            move *= 0.5
         else:
             return b, np.inf
-        b = b - step
+        b = b - move
+        # The step proposed, not the one halved to stay on the sheet, says how close
+        # the root is.
         if abs(step) <= tol * max(1.0, abs(b)):
             break
     return b, abs(step)
@@ -434,7 +475,7 @@ def _check_region(b_min, modulus_bound):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
-                 rate_unit=None, progress=None) -> StabilityResult:
+                 rate_unit=None, progress=None, guesses=(), estimate=True) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Parameters
@@ -455,6 +496,18 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     progress : callable, optional
         ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
         estimate).
+    guesses : sequence of complex, optional
+        Where the eigenvalues are expected (``k2/Delta^2``): a neighbouring contact's,
+        continued along a path or across a map.  A real one narrows the bracket of a
+        single real eigenvalue (the sign of ``det M`` there, then at steps of a factor
+        1.1, 1.1^4, ... to the sign change); otherwise the half-disc of Beyn's method
+        is sought from the one that holds them with a margin.  Where they miss, the search is the one
+        without them.  They change neither the count (the certificate) nor, beyond
+        Newton's tolerance, the eigenvalues.
+    estimate : bool
+        Compute the error estimate (the eigenvalues again at ``3n/2``); without it
+        ``error_estimate`` is None and the reason does not say whether an eigenvalue
+        is resolved (for a map, whose fields do not hold either).
 
     Returns
     -------
@@ -476,18 +529,19 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             progress(evaluations[0], max(expected, evaluations[0]))
         return scaled(b)
 
-    winding = Winding(counted, b_min)
+    winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None))
     N, reason = winding.count(R)
     found = np.array([], dtype=complex)
-    estimate = None
+    change = None
     if N:
-        found, reason = _locate(winding, counted, N, b_min, R)
-        if found.size:
+        found, reason = _locate(winding, counted, N, b_min, R, guesses)
+        if found.size and estimate:
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
-            estimate = max(abs(newton(other.matrix, b, floor=0.5 * b_min)[0] - b)
-                           / max(1.0, abs(b)) for b in found)
+            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
+                                    prepare=getattr(other, "prepare", None))[0] - b)
+                         / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
     if slow is not None and slow >= b_min:
         slow = None     # counted, if anywhere
@@ -500,9 +554,9 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     full = np.array(sorted(full, key=lambda b: (-b.real, -b.imag)), dtype=complex)
     if N is not None and len(full) != N:
         reason = reason or f"{len(full)} of the {N} eigenvalues counted were located"
-    if estimate is not None and estimate > UNRESOLVED:
+    if change is not None and change > UNRESOLVED:
         reason = ((reason + "; ") if reason else "") + (
-            f"an eigenvalue changes by {estimate:.2g} of itself from n = {n} to a finer n: "
+            f"an eigenvalue changes by {change:.2g} of itself from n = {n} to a finer n: "
             "not resolved at this n (the count is this n's)")
     units, region = "k2/Delta^2", (b_min, R)
     if rate_unit is not None:
@@ -514,16 +568,18 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         eigenvalues=full, unstable_modes=N, stable=None if N is None else N == 0,
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
         region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
-        error_estimate=estimate, fold=fold, slow_root=slow,
+        error_estimate=change, fold=fold, slow_root=slow,
         evaluations=evaluations[0], n=n, units=units)
 
 
-def _locate(winding, matrix, N, b_min, R):
+def _locate(winding, matrix, N, b_min, R, guesses=()):
     """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
     real (the region is symmetric about the real axis), where ``det M`` changes sign
-    between ``b_min`` and ``R``: Brent's method in ``ln b``.  Otherwise the smallest
-    half-disc ``|b| <= R_j`` (``R_j = 4^j``: ``j`` doubled from 1, then bisected, the
-    count growing with the radius) holding all ``N`` by the same count; Beyn's method on
+    between ``b_min`` and ``R``: Brent's method in ``ln b``, in a bracket narrowed by a
+    real guess (a neighbour's root).  Otherwise the smallest half-disc ``|b| <= R_j``
+    (``R_j = 4^j``: ``j`` doubled from 1, or from the one that holds the guesses with a
+    margin, then bisected, the count growing with the radius) holding all ``N`` by the
+    same count (with guesses, the first that holds them); Beyn's method on
     the samples the count took (trapezoidal weights), then on a Gauss-Legendre rule of
     that boundary where Newton's method does not confirm all of them from the first
     estimates.  Newton's method confirms each, kept on the sheet."""
@@ -533,7 +589,7 @@ def _locate(winding, matrix, N, b_min, R):
         for b in estimates:
             if b.imag < -1e-9 * max(1.0, abs(b)):
                 continue    # its conjugate is among them
-            root, step = newton(matrix, b, floor=0.5 * b_min)
+            root, step = newton(matrix, b, floor=0.5 * b_min, prepare=winding.prepare)
             if not np.isfinite(step) or step > 1e-8 * max(1.0, abs(root)):
                 continue
             if root.real < b_min or abs(root) > R:
@@ -547,17 +603,45 @@ def _locate(winding, matrix, N, b_min, R):
     def located():
         return sum(1 if q.imag == 0 else 2 for q in roots)
 
+    good = [complex(g) for g in guesses if np.isfinite(g) and g.real >= b_min and abs(g) <= R]
     if N == 1:
         from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
+        # det M at b = e^x, real, relative to the geometric mean of its ends (the
+        # contour's samples at b_min and R) and, where they differ by more than
+        # e^1000, to a power that keeps it in range; the sign, all that brackets the
+        # root, is det M's wherever the exponent is clipped.  (A size-th root of
+        # det M, |b - b*|^(1/27) at the root, left Brent's steps to bisection: 30
+        # evaluations where this takes 17-19.)
+        ends = [winding.at(complex(b)) for b in (b_min, R)]
+        ref = 0.5 * (ends[0][1] + ends[1][1])
+        power = max(1.0, abs(ends[0][1] - ends[1][1]) / 1000.0)
+
         def real_det(x):
-            # det M at b = e^x, real; its size-th root keeps Brent's steps in range.
-            M = matrix(complex(np.exp(x), 0.0))
-            sign, logdet = np.linalg.slogdet(M)
-            return float(np.real(sign)) * np.exp(logdet / M.shape[0])
+            sign, logdet = winding.at(complex(np.exp(x), 0.0))
+            return float(np.real(sign)) * np.exp(np.clip((logdet - ref) / power, -700.0, 700.0))
+        low, high = np.log(b_min), np.log(R)
+        # A neighbour's real eigenvalue narrows the bracket (det M changes sign once
+        # on the real axis: the one root): the sign there, then at steps from it of a
+        # factor 1.1, 1.1^4, 1.1^16, ... until the sign changes.
+        real = [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
+        if real:
+            first = np.sign(real_det(low))
+            y = float(np.clip(np.log(real[0]), low, high))
+            up = np.sign(real_det(y)) == first
+            low, high = (y, high) if up else (low, y)
+            step = np.log(1.1)
+            while True:
+                y += step if up else -step
+                step *= 4.0
+                if not low < y < high:
+                    break
+                same = np.sign(real_det(y)) == first
+                low, high = (y, high) if same else (low, y)
+                if same != up:
+                    break
         try:
-            confirm([complex(np.exp(brentq(real_det, np.log(b_min), np.log(R),
-                                           xtol=1e-7)), 0.0)])
+            confirm([complex(np.exp(brentq(real_det, low, high, xtol=1e-7)), 0.0)])
         except ValueError:
             pass     # no sign change seen: Beyn's method below
         if located() == N:
@@ -567,8 +651,16 @@ def _locate(winding, matrix, N, b_min, R):
     def holds(j):
         r = 4.0 ** j
         return r >= R or (r > 10.0 * b_min and winding.count(r)[0] == N)
-    # Doubling j from 1 (most roots lie at small |b|), then bisection in the bracket.
+    # Doubling j from 1 (most roots lie at small |b|), or from the half-disc that holds
+    # the guesses with a margin, then bisection in the bracket.
     low, high = 0, 1
+    if good:
+        high = int(np.clip(np.ceil(np.log(1.5 * max(abs(g) for g in good)) / np.log(4.0)),
+                           1, top))
+        if holds(high):
+            low = high - 1      # holds: taken, though a smaller one might hold them too
+        else:
+            low, high = high, min(2 * high, top)
     while high < top and not holds(high):
         low, high = high, min(2 * high, top)
     while high - low > 1:
@@ -581,5 +673,8 @@ def _locate(winding, matrix, N, b_min, R):
     stored = winding.matrices
     confirm(beyn(lambda b: stored[b], winding.contour(radius), rank=N, probes=N + 4)[0])
     if located() < N:
-        confirm(beyn(matrix, half_disc(b_min, radius), rank=N, probes=N + 4)[0])
+        rule = half_disc(b_min, radius)
+        if winding.prepare is not None:
+            winding.prepare(list(rule[0]))
+        confirm(beyn(matrix, rule, rank=N, probes=N + 4)[0])
     return np.array(roots, dtype=complex), None

@@ -84,15 +84,21 @@ def classify(path: Path, *, n=STABILITY_N, progress=None, **region) -> Path:
     return replace(path, events=tuple(events))
 
 
-def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, **region):
+def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, guesses=(),
+                 estimate=True, **region):
     """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
     single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
     ``lam``, ``sigma_over_delta`` or the far temperatures ``theta``), eigenvalues in
-    units of ``k2/Delta^2``."""
+    units of ``k2/Delta^2``; ``guesses`` (a neighbour's eigenvalues) and ``estimate``
+    as in :func:`~thermocontact.solvers.stability.stability_of`."""
     model = model_for(kw, method=method)
 
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], check_validity=False, **closure(kw))
+    if guesses is not None and len(guesses):
+        region = {**region, "guesses": guesses}
+    if not estimate:
+        region = {**region, "estimate": False}
     return stability_of(solve_at, n=n, progress=progress, **region)
 
 
@@ -114,7 +120,10 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     Each point not ``"failed"`` is analysed at its own inputs and heat partition
     (the dataset's ``lam``, whatever closed the map: the steady state at that ``lam``
     is the same, and the perturbation leaves the far field unchanged), by
-    :func:`stability_at`.
+    :func:`stability_at` without the error estimate (which the map does not hold),
+    row by row (the points of a row of constant Peclet number share the cylinder's
+    kernels), the eigenvalues of the neighbours before it in its row and column given
+    as guesses to locate its own (the count at the point is the certificate).
 
     Parameters
     ----------
@@ -141,6 +150,7 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     modes = np.full(ds["valid"].shape, -1, dtype=np.int32)
     rate = np.full(ds["valid"].shape, np.nan)
     lam = ds["lam"].broadcast_like(ds["valid"]).transpose(*ds["valid"].dims).values
+    roots = {}
     for (j, i), status in np.ndenumerate(np.asarray(ds["status"].values)):
         if status == "failed":
             continue
@@ -148,7 +158,9 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
               spec.x.name: float(spec.x.values[i])}
         kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
         kw["lam"] = float(lam[j, i])
-        res = stability_at(kw, spec.method, n=n, **region)
+        guesses = [b for key in ((j, i - 1), (j - 1, i)) for b in roots.get(key, ())]
+        res = stability_at(kw, spec.method, n=n, guesses=guesses, estimate=False, **region)
+        roots[j, i] = res.eigenvalues
         stable[j, i] = -2 if res.stable is None else int(res.stable)
         if res.unstable_modes is not None:
             modes[j, i] = res.unstable_modes
