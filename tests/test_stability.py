@@ -238,6 +238,17 @@ def test_the_argument_principle_counts_known_roots():
     assert Winding(_known_problem([2.0 + 0j, 2.0 + 0j]), 1e-3).count(100.0) == (2, None)
 
 
+def test_a_negative_winding_is_no_count():
+    """det M(b) is analytic in the region, so its winding is a count of roots, never
+    negative: a negative one (a phase lost to rounding: n = 48 at Pe = fHPe = 1.5,
+    K2/K1 = 1, lam = 1, past the fold, gave -2) is refused, not reported as a count.  Here
+    a function with a double pole inside winds -2."""
+    def pole(b):
+        return np.array([[1.0 / (b - 1.0) ** 2]])
+    count, why = Winding(pole, 1e-3).count(10.0)
+    assert count is None and "negative" in why
+
+
 def test_a_root_on_the_contour_is_not_counted_but_said():
     winding = Winding(_known_problem([1e-3 + 0.5j, 1e-3 - 0.5j]), 1e-3)
     count, why = winding.count(10.0)

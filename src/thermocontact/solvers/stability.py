@@ -261,7 +261,8 @@ class Winding:
     def count(self, R):
         """``(N, reason)``: the number of zeros of ``f`` in ``Re b >= b_min``,
         ``|b| <= R``, with multiplicity, or ``(None, why)`` where the phase could not
-        be followed or the winding is not an integer."""
+        be followed or the winding is not an integer, or is negative (no analytic
+        ``f`` winds so: its phase was lost)."""
         b_min = self.b_min
         Y = np.sqrt(R * R - b_min * b_min)
         T = float(np.arcsinh(Y / b_min))
@@ -283,6 +284,11 @@ class Winding:
         N = int(round(winding))
         if abs(winding - N) > 0.05:
             return None, f"the winding {winding:.3f} is not an integer"
+        if N < 0:
+            # An analytic det M(b) winds zero or more times; a negative winding is a
+            # phase lost along the way (det M(b) of a large n, its rounding), no count.
+            return None, (f"the winding {N} is negative: the phase of det M(b) was lost "
+                          f"(a smaller n keeps it)")
         return N, None
 
 
