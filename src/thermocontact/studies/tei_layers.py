@@ -33,7 +33,8 @@ import numpy as np
 from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
-__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "first_crossing",
+__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
+           "first_crossing",
            "growth_rate", "neutral_point", "newton_roots", "pattern_frame", "raw_seeds",
            "speed_scan", "unstable_count"]
 
@@ -290,12 +291,12 @@ def _speed_slope(family, m, speed, b):
     z = b + 1j * phi * m * speed
     hz = 1e-6 * (np.abs(z) + family.scale(m))
     hv = 1e-6 * speed
-
-    def g(zz, v):
-        return family.dispersion(zz - 1j * phi * m * v, m, v)
-
-    dz = (g(z + hz, speed) - g(z - hz, speed)) / (2.0 * hz)
-    dv = (g(z, speed + hv) - g(z, speed - hv)) / (2.0 * hv)
+    # The four differences in one evaluation.
+    zz = np.stack([z + hz, z - hz, z, z])
+    vv = np.stack([np.full(z.shape, v) for v in (speed, speed, speed + hv, speed - hv)])
+    f = family.dispersion(zz - 1j * phi * m * vv, m, vv)
+    dz = (f[0] - f[1]) / (2.0 * hz)
+    dv = (f[2] - f[3]) / (2.0 * hv)
     with np.errstate(invalid="ignore", divide="ignore"):
         return -dv / dz - 1j * phi * m
 
@@ -328,7 +329,7 @@ def unstable_count(family, m, speed, points=48):
         The count, and whether it is reliable: the steps resolved, the winding an
         integer to 1e-6, ``D`` within 0.05 of 1 at both ends.
     """
-    from ..physics.tei_layers import dispersion_matrix
+    from ..physics.tei_layers import condition_terms, heat_coefficient
 
     layup = family.layup
     rates = [m * speed] if speed > 0.0 else []
@@ -344,10 +345,12 @@ def unstable_count(family, m, speed, points=48):
                        + [[-1e3 * hi - m * speed, 1e3 * hi]])
     w = np.unique(w)
 
+    h = heat_coefficient(layup, m, speed)
+
     def ratio(w):
-        b = 1j * w
-        s1, l1 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed))
-        s0, l0 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed, heat=False))
+        M0, M1 = condition_terms(layup, 1j * w, m, speed)
+        s1, l1 = np.linalg.slogdet(M0 + h * M1)
+        s0, l0 = np.linalg.slogdet(M0)
         with np.errstate(over="ignore", under="ignore", invalid="ignore"):
             return s1 / s0 * np.exp(l1 - l0)
 
@@ -478,6 +481,41 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             return complex(math.nan)
         return f
 
+    def peak(ends):
+        """The largest Re b of one mode between the speeds of ``ends`` (the real part of
+        its slope positive at the first, negative at the second): where that real
+        part vanishes, by Brent's method in ln V, each speed followed from the nearest
+        point known on the path; where a follow fails, by bounded maximisation of Re b.
+        Returns the speed, Re b there and the points known."""
+        known = list(ends)
+
+        def slope(x):
+            for v0, _, s0_ in ends:
+                if x == math.log(v0):
+                    return s0_.real
+            V = math.exp(x)
+            r = growth(known)(V)
+            sl = _speed_slope(family, m, V, np.array([r]))[0] if np.isfinite(r) else r
+            if not np.isfinite(sl):
+                raise FloatingPointError
+            known.append((V, r, sl))
+            return sl.real
+
+        try:
+            # ln V to 1e-7, as the maximisation below: Re b there to rounding.
+            top = math.exp(brentq(slope, math.log(ends[0][0]), math.log(ends[1][0]),
+                                  xtol=1e-7, rtol=1e-15))
+            rate = growth(known)(top).real
+            if np.isfinite(rate):
+                return top, rate, known
+        except (FloatingPointError, RuntimeError):
+            pass
+        f = growth(ends)
+        res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
+                              bounds=(math.log(ends[0][0]), math.log(ends[1][0])),
+                              method="bounded", options={"xatol": 1e-7})
+        return math.exp(res.x), -res.fun, ends
+
     def locate(ends, va, vb, direction):
         f = growth(ends)
 
@@ -526,15 +564,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                 crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
             elif r0 < 0.0 and s0[k].real > 0.0 and s1[k].real < 0.0:
                 maxima += 1
-                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
-                f = growth(ends)
-                res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
-                                      bounds=(math.log(v), math.log(v1)), method="bounded",
-                                      options={"xatol": 1e-7})
-                if -res.fun >= 0.0:
-                    top = math.exp(res.x)
-                    crossings.append(locate(ends, v, top, 1))
-                    crossings.append(locate(ends, top, v1, -1))
+                top, rate, known = peak([(v, b0[k], s0[k]), (v1, b1[k], s1[k])])
+                if rate >= 0.0:
+                    crossings.append(locate(known, v, top, 1))
+                    crossings.append(locate(known, top, v1, -1))
         # Count the growing modes; reseed from the discretisation where the count
         # exceeds those followed, and every RESEED in speed.
         counts += 1
@@ -589,19 +622,34 @@ def continue_step(family, m0, point, m1, depth=0):
     Newton's method from the same speed and frequency in the pattern's frame
     (:func:`neutral_point`), accepted if it converges within a factor 2 of the speed;
     otherwise the interval is halved (in ``ln m``, at most 8 times)."""
-    v0, w0 = point
+    return continue_steps(family, [m0], [point], [m1], depth)[0]
+
+
+def continue_steps(family, m0, points, m1, depth=0):
+    """:func:`continue_step` for several independent steps ``m0[j] -> m1[j]`` from
+    ``points[j]``: the first attempts solved together (:func:`neutral_point`, each on
+    its own), the halvings one by one; a list of ``(V, omega)`` or None."""
+    m0 = np.asarray(m0, dtype=float)
+    m1 = np.asarray(m1, dtype=float)
+    v0 = np.array([p[0] for p in points], dtype=float)
+    w0 = np.array([p[1] for p in points], dtype=float)
     # Predicted: the same speed and the same frequency in the pattern's frame, in
     # units of kappa m^2.
-    phi = float(pattern_frame(m0, v0, w0))
+    phi = pattern_frame(m0, v0, w0)
     s = (w0 + phi * m0 * v0) / family.scale(m0)
     v, w, ok = neutral_point(family, m1, v0, -phi * m1 * v0 + s * family.scale(m1))
-    if ok and 0.5 * v0 < v < 2.0 * v0:
-        return float(v), float(w)
-    if depth >= 8:
-        return None
-    mid = math.sqrt(m0 * m1)
-    half = continue_step(family, m0, point, mid, depth + 1)
-    return None if half is None else continue_step(family, mid, half, m1, depth + 1)
+    out = []
+    for j in range(m0.size):
+        if ok[j] and 0.5 * v0[j] < v[j] < 2.0 * v0[j]:
+            out.append((float(v[j]), float(w[j])))
+        elif depth >= 8:
+            out.append(None)
+        else:
+            mid = math.sqrt(m0[j] * m1[j])
+            half = continue_step(family, m0[j], points[j], mid, depth + 1)
+            out.append(None if half is None else continue_step(family, mid, half, m1[j],
+                                                                depth + 1))
+    return out
 
 
 def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress=None):
@@ -644,22 +692,31 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
             starts.append((j + 1, float(ms[j]), (vc, b.imag)))
             if vc < V[j]:
                 V[j], W[j] = vc, b.imag
-    for k, m0, point in starts:
-        # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
-        for order in (range(k, n), range(k - 1, -1, -1)):
-            prev = (m0, point)
+    # Each start continued up and down: independent chains, stepped together.
+    # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
+    chains = [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
+              for order in (range(k, n), range(k - 1, -1, -1))]
+    while chains:
+        steps = []
+        for order, m0, start, prev in chains:
             for i in order:
-                if ms[i] == m0:
-                    found = point
-                else:
-                    found = continue_step(family, prev[0], prev[1], ms[i])
-                if found is None:
+                if ms[i] != m0:
+                    steps.append((order, m0, start, prev, i))
                     break
-                if found[0] < V[i]:
-                    V[i], W[i] = found
-                prev = (float(ms[i]), found)
-                if i in scanned and ms[i] != m0:
-                    break
+                # The start's own wavenumber: its point.
+                if start[0] < V[i]:
+                    V[i], W[i] = start
+                prev = (m0, start)
+        found = continue_steps(family, [c[3][0] for c in steps], [c[3][1] for c in steps],
+                               [ms[c[4]] for c in steps]) if steps else []
+        chains = []
+        for (order, m0, start, prev, i), point in zip(steps, found):
+            if point is None:
+                continue
+            if point[0] < V[i]:
+                V[i], W[i] = point
+            if i not in scanned:
+                chains.append((order, m0, start, (float(ms[i]), point)))
     tell(len(scanned) + 1, len(scanned) + 1)
     V[~np.isfinite(V)] = np.nan
     return V, W
