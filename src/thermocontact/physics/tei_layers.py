@@ -289,8 +289,7 @@ def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None)
         then the thermal solutions in the same order (conductors only); a
         half-plane above the stack has only the bottom's, one below only the top's.
     """
-    return _fields(_Solutions.of(body, refs, upper, mat), *_broadcast(b, wavenumber, velocity),
-                   _face_depths(body))
+    return body_fields(body, b, wavenumber, velocity, refs, _face_depths(body), upper, mat)
 
 
 def _face_depths(body: Body):
@@ -307,8 +306,10 @@ def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, m
     -------
     ndarray, shape ``S + (len(depths), 6, columns)``
     """
-    return _fields(_Solutions.of(body, refs, upper, mat), *_broadcast(b, wavenumber, velocity),
-                   np.asarray(depths, dtype=float).ravel())
+    sol = _Solutions.of([(body, upper, body.material if mat is None else mat)], refs)
+    F = _fields(sol, *_broadcast(b, wavenumber, velocity),
+                np.asarray(depths, dtype=float).reshape(1, -1))
+    return F[..., 0, :, :, :][..., sol.columns]
 
 
 def _broadcast(b, wavenumber, velocity):
@@ -323,83 +324,99 @@ def _broadcast(b, wavenumber, velocity):
 
 @dataclass(frozen=True)
 class _Solutions:
-    """A body's solutions (L2-L4) as coefficients of the few functions of depth they
-    are made of, so that :func:`_fields` evaluates all of them at once.
+    """The solutions (L2-L4) of a stack of bodies as coefficients of the few functions
+    of depth they are made of, so that :func:`_fields` evaluates all of them at once.
 
     Each solution starts from a face (``s = -1`` the bottom, ``+1`` the top) and
     decays away from it; ``t = m (y - y_start) = sign tau - shift m H`` with ``tau =
     m`` times the depth, ``s t <= 0``.  The elastic fields are ``(A + B t) e^{s t}``
     (a harmonic ``phi = e^{s t}/m^2``, ``2 mu u = grad phi``; and ``psi = e^{s t}/m``,
     ``2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y``); the thermal ones
-    ``cD D + cdD D' + (ce + cG G) e^{-G |t|}`` (L1, L3)."""
+    ``cD D + cdD D' + (ce + cG G) e^{-G |t|}`` (L1, L3).  Every body has two starts
+    (a half-plane's second, and a non-conductor's thermal solutions, with no
+    coefficients) and six columns, of which ``columns`` are its own."""
 
-    starts: np.ndarray      # s of each start, float
-    sign: float             # t = sign tau - shift m H
-    shift: np.ndarray
-    thickness: float        # H (0 for a half-plane)
-    moving: bool
-    kappa: float            # 0: a non-conductor (no thermal solutions)
-    A: np.ndarray           # (6, starts, 2): elastic, phi and psi
+    starts: np.ndarray      # (bodies, 2): s of each start
+    sign: np.ndarray        # (bodies,): t = sign tau - shift m H
+    shift: np.ndarray       # (bodies, 2)
+    thickness: np.ndarray   # (bodies,): H (0 for a half-plane)
+    moving: np.ndarray      # (bodies,): 1.0 for the slider's bodies
+    kappa: np.ndarray       # (bodies,): diffusivity (1 for a non-conductor)
+    A: np.ndarray           # (bodies, 6, 2, 2): elastic, phi and psi
     B: np.ndarray
-    cD: np.ndarray          # (6, starts): thermal
+    cD: np.ndarray          # (bodies, 6, 2): thermal
     cdD: np.ndarray
     ce: np.ndarray
     cG: np.ndarray
+    columns: np.ndarray     # each body's own columns among its six, bodies in order
 
     @staticmethod
-    def of(body: Body, refs, upper=True, mat=None) -> "_Solutions":
-        mat = body.material if mat is None else mat
+    def of(bodies, refs) -> "_Solutions":
+        """``bodies``: ``(Body, upper, material in plane strain)`` each; ``refs`` as
+        for :func:`face_fields`."""
         mu_ref, a_ref, K_ref = refs
-        r, nu = mu_ref / mat.mu, mat.nu
-        layer = body.thickness is not None
-        starts = np.array((-1.0, 1.0) if layer else ((-1.0,) if upper else (1.0,)))
-        ns = starts.size
-        A = np.zeros((6, ns, 2), dtype=complex)
-        B = np.zeros((6, ns, 2), dtype=complex)
-        s = starts
+        nb = len(bodies)
+        A = np.zeros((nb, 6, 2, 2), dtype=complex)
+        B = np.zeros((nb, 6, 2, 2), dtype=complex)
+        cD, cdD, ce, cG = (np.zeros((nb, 6, 2), dtype=complex) for _ in range(4))
+        starts, shift = np.full((nb, 2), -1.0), np.zeros((nb, 2))
+        sign, thickness, moving, kappa = (np.ones(nb), np.zeros(nb), np.zeros(nb),
+                                          np.ones(nb))
+        columns = []
         ux, uy, sxy, syy, T, q = range(6)
-        # phi-type
-        A[ux, :, 0], A[uy, :, 0], A[sxy, :, 0], A[syy, :, 0] = 1j * r, s * r, 1j * s, 1.0
-        # psi-type
-        B[ux, :, 1] = 1j * r
-        A[uy, :, 1], B[uy, :, 1] = (-3.0 + 4.0 * nu) * r, s * r
-        A[sxy, :, 1], B[sxy, :, 1] = 1j * (-1.0 + 2.0 * nu), 1j * s
-        A[syy, :, 1], B[syy, :, 1] = -2.0 * (1.0 - nu) * s, 1.0
-        cD, cdD, ce, cG = (np.zeros((6, ns), dtype=complex) for _ in range(4))
-        if body.conducts:
-            pot = _potential(mat) / a_ref
-            kr = mat.K / K_ref
-            dy = -s                        # d/dy = -s d/d(distance)
-            cD[ux], cdD[uy], cdD[sxy], cD[syy] = 1j * pot, pot * dy, 1j * pot * dy / r, pot / r
-            ce[T] = 1.0
-            cG[q] = -s * kr                # q = -K dT/dy
-        return _Solutions(starts, 1.0 if (layer or upper) else -1.0,
-                          np.array((0.0, 1.0) if layer else (0.0,)),
-                          body.thickness if layer else 0.0, body.moving,
-                          mat.k if body.conducts else 0.0, A, B, cD, cdD, ce, cG)
+        for j, (body, upper, mat) in enumerate(bodies):
+            r, nu = mu_ref / mat.mu, mat.nu
+            layer = body.thickness is not None
+            ns = 2 if layer else 1
+            if layer:
+                starts[j], shift[j], thickness[j] = (-1.0, 1.0), (0.0, 1.0), body.thickness
+            elif not upper:
+                starts[j, 0], sign[j] = 1.0, -1.0
+            moving[j] = float(body.moving)
+            s = starts[j, :ns]
+            a, bb = A[j, :, :ns], B[j, :, :ns]
+            # phi-type
+            a[ux, :, 0], a[uy, :, 0], a[sxy, :, 0], a[syy, :, 0] = 1j * r, s * r, 1j * s, 1.0
+            # psi-type
+            bb[ux, :, 1] = 1j * r
+            a[uy, :, 1], bb[uy, :, 1] = (-3.0 + 4.0 * nu) * r, s * r
+            a[sxy, :, 1], bb[sxy, :, 1] = 1j * (-1.0 + 2.0 * nu), 1j * s
+            a[syy, :, 1], bb[syy, :, 1] = -2.0 * (1.0 - nu) * s, 1.0
+            own = list(range(2 * ns))
+            if body.conducts:
+                kappa[j] = mat.k
+                pot = _potential(mat) / a_ref
+                kr = mat.K / K_ref
+                dy = -s                        # d/dy = -s d/d(distance)
+                cD[j, ux, :ns], cD[j, syy, :ns] = 1j * pot, pot / r
+                cdD[j, uy, :ns], cdD[j, sxy, :ns] = pot * dy, 1j * pot * dy / r
+                ce[j, T, :ns] = 1.0
+                cG[j, q, :ns] = -s * kr        # q = -K dT/dy
+                own += [4 + i for i in range(ns)]
+            columns += [6 * j + c for c in own]
+        return _Solutions(starts, sign, shift, thickness, moving, kappa, A, B, cD, cdD, ce,
+                          cG, np.array(columns))
 
 
 def _fields(sol: _Solutions, b, m, U, depths):
-    """The fields of :func:`body_fields`: ``b``, ``m``, ``U`` of one shape ``S``,
-    ``depths`` one-dimensional; shape ``S + (depths, 6, columns)``."""
-    tau = m[..., None] * depths                                  # S + (P,)
-    t = sol.sign * tau[..., None] - (m * sol.thickness)[..., None, None] * sol.shift
+    """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
+    ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
+    of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
+    the thermal, one per start)."""
+    tau = m[..., None, None] * depths                                      # S + (nb, P)
+    t = (sol.sign[:, None, None] * tau[..., None]
+         - (m[..., None] * sol.thickness)[..., None, None] * sol.shift[:, None, :])
+    G = np.sqrt(1.0 + (b[..., None] + 1j * (m * U)[..., None] * sol.moving)
+                / (sol.kappa * (m * m)[..., None]))[..., None, None]        # L1
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-        g = np.exp(sol.starts * t)[..., None, :, None]             # S + (P, 1, ns, 1)
-        el = (sol.A + sol.B * t[..., None, :, None]) * g           # S + (P, 6, ns, 2)
-    el = el.reshape(el.shape[:-2] + (2 * sol.starts.size,))
-    if not sol.kappa:
-        return el
-    u = U if sol.moving else 0.0
-    G = np.sqrt(1.0 + (b + 1j * m * u) / (sol.kappa * m * m))[..., None, None]   # L1
-    dist = np.abs(t)                   # m times the distance from the start face
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        g = np.exp(sol.starts[:, None, :] * t)[..., None, :, None]         # S + (nb, P, 1, 2, 1)
+        el = (sol.A[:, None] + sol.B[:, None] * t[..., None, :, None]) * g  # S + (nb, P, 6, 2, 2)
+        dist = np.abs(t)                   # m times the distance from the start face
         e = np.exp(-G * dist)
-    D, dD = _potential_profile(G, dist, e)
-    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-        th = (D[..., None, :] * sol.cD + dD[..., None, :] * sol.cdD
-              + e[..., None, :] * (sol.ce + G[..., None] * sol.cG))    # S + (P, 6, ns)
-    return np.concatenate([el, th], axis=-1)
+        D, dD = _potential_profile(G, dist, e)
+        th = (D[..., None, :] * sol.cD[:, None] + dD[..., None, :] * sol.cdD[:, None]
+              + e[..., None, :] * (sol.ce[:, None] + G[..., None] * sol.cG[:, None]))
+    return np.concatenate([el.reshape(el.shape[:-2] + (4,)), th], axis=-1)
 
 
 @lru_cache(maxsize=64)
@@ -494,30 +511,57 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     (ndarray, ndarray), each of shape ``S + (n, n)``
     """
     b, m, V = _broadcast(b, wavenumber, speed)
-    bodies, n = _assembly(layup)
+    asm = _assembly(layup)
+    F = _fields(asm.solutions, b, m, V, asm.depths)                     # S + (nb, 2, 6, 6)
+    rows = asm.C @ F.reshape(F.shape[:-3] + (12, 6))                     # S + (nb, 2n, 6)
+    n = asm.solutions.columns.size
     out = np.empty(b.shape + (2 * n, n), dtype=complex)
-    for sol, C, cols, depths in bodies:
-        F = _fields(sol, b, m, V, depths)
-        out[..., cols] = C @ F.reshape(F.shape[:-3] + (12, F.shape[-1]))
+    for j, (dst, src) in enumerate(asm.blocks):
+        out[..., dst] = rows[..., j, :, :][..., src]
     return out[..., :n, :], out[..., n:, :]
 
 
-def _assembly(layup: Layup):
-    """Per body: its solutions (:class:`_Solutions`), the rows of ``C_0`` over those of
-    ``C_1`` of :func:`condition_matrix` acting on its face fields, its columns and its
-    faces' depths; and the order of ``M``.  Kept on the (frozen) layup."""
+@dataclass(frozen=True)
+class _Assembly:
+    """What :func:`condition_terms` needs of a layup, made once: every body's
+    solutions, the rows of ``C_0`` over those of ``C_1`` of :func:`condition_matrix`
+    acting on each body's face fields ``(bodies, 2 n, 12)``, the faces' depths, where
+    each body's columns go in ``M`` (and which of its six they are), the frictional
+    heat's coefficient per ``|V|/m`` and the conducting layers' ``(kappa, moving)``
+    (:func:`layup_dispersion`)."""
+
+    solutions: _Solutions
+    C: np.ndarray
+    depths: np.ndarray
+    blocks: tuple
+    heat: float
+    layers: tuple
+
+
+def _assembly(layup: Layup) -> _Assembly:
+    """The layup's :class:`_Assembly`, kept on the (frozen) layup."""
     cached = layup.__dict__.get("_assembly")
     if cached is None:
-        refs = layup.references()
         C0, C1 = condition_matrix(layup)
         last = len(layup.bodies) - 1
-        bodies, col = [], 0
+        sol = _Solutions.of([(body, j == last, layup.elastic(body))
+                             for j, body in enumerate(layup.bodies)], layup.references())
+        C = np.concatenate([C0, C1]).reshape(2 * C0.shape[0], len(layup.bodies), 12)
+        blocks, col = [], 0
         for j, body in enumerate(layup.bodies):
-            sol = _Solutions.of(body, refs, upper=j == last, mat=layup.elastic(body))
-            C = np.concatenate([C0[:, j].reshape(-1, 12), C1[:, j].reshape(-1, 12)])
-            bodies.append((sol, C, slice(col, col + body.columns), _face_depths(body)))
-            col += body.columns
-        cached = (tuple(bodies), col)
+            own = sol.columns[(sol.columns >= 6 * j) & (sol.columns < 6 * j + 6)] - 6 * j
+            contiguous = np.array_equal(own, np.arange(own.size))
+            blocks.append((slice(col, col + own.size),
+                           slice(0, own.size) if contiguous else own))
+            col += own.size
+        kap = np.array([b.material.k for b in layup.bodies
+                        if b.thickness is not None and b.conducts])
+        mov = np.array([float(b.moving) for b in layup.bodies
+                        if b.thickness is not None and b.conducts])
+        cached = _Assembly(sol, np.ascontiguousarray(C.transpose(1, 0, 2)),
+                           np.array([_face_depths(body) for body in layup.bodies]),
+                           tuple(blocks), float(heat_coefficient(layup, 1.0, 1.0)),
+                           (kap, mov))
         object.__setattr__(layup, "_assembly", cached)
     return cached
 
@@ -546,7 +590,7 @@ def dispersion_matrix(layup: Layup, b, wavenumber, speed, heat=True):
     M0, M1 = condition_terms(layup, b, m, V)
     if not heat:
         return M0
-    return M0 + heat_coefficient(layup, m, V)[..., None, None] * M1
+    return M0 + (_assembly(layup).heat * np.abs(V) / m)[..., None, None] * M1
 
 
 def layup_dispersion(layup: Layup, b, wavenumber, speed):
@@ -561,12 +605,13 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
     independent, the determinant is ``det M`` divided by ``2 (gamma/m) e^{-gamma h}``
     per layer; dividing by ``gamma/m`` alone removes that zero and adds none."""
     b, m, V = _broadcast(b, wavenumber, speed)
+    kap, mov = _assembly(layup).layers
     with np.errstate(all="ignore"):     # a determinant that under- or overflows: no root
         d = np.linalg.det(dispersion_matrix(layup, b, m, V))
-        for body in layup.bodies:
-            if body.thickness is not None and body.conducts:
-                U = V if body.moving else 0.0
-                d = d / np.sqrt(1.0 + (b + 1j * m * U) / (body.material.k * m * m))
+        if kap.size:
+            G = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
+                        / (kap * (m * m)[..., None]))
+            d = d / np.prod(G, axis=-1)
     return d
 
 
