@@ -471,9 +471,24 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     ratio, seeded = MAX_RATIO, v
 
     def growth(ends):
-        """Re b(V) of one mode, followed from the nearest of ``ends``, the points
-        ``(V, b, db/dV)`` known on its path (NaN where no follow lands)."""
+        """b(V) of one mode, followed from the nearest of ``ends``, the points ``(V, b,
+        db/dV)`` known on its path (NaN where no follow lands): first predicted by
+        the cubic through the nearest known on either side (their values and
+        slopes), then along the tangent of each in turn."""
         def f(x):
+            below = [e for e in ends if e[0] < x]
+            above = [e for e in ends if e[0] > x]
+            if below and above:
+                (va, ba, sa), (vb, bb, sb) = (max(below, key=lambda e: e[0]),
+                                              min(above, key=lambda e: e[0]))
+                h, t = vb - va, (x - va) / (vb - va)
+                pred = ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
+                    (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
+                b0_ = ba if t < 0.5 else bb
+                reach = 0.5 * abs(pred - b0_) + 0.5 * abs(b0_.real) + 10.0 * scale
+                r = _polish(family, m, x, np.array([pred]), reach)[0][0]
+                if np.isfinite(r):
+                    return r
             for v0, b0_, s0_ in sorted(ends, key=lambda e: abs(math.log(x / e[0]))):
                 r = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)[0][0]
                 if np.isfinite(r):
