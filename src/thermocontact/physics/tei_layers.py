@@ -513,27 +513,29 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     b, m, V = _broadcast(b, wavenumber, speed)
     asm = _assembly(layup)
     F = _fields(asm.solutions, b, m, V, asm.depths)                     # S + (nb, 2, 6, 6)
-    rows = asm.C @ F.reshape(F.shape[:-3] + (12, 6))                     # S + (nb, 2n, 6)
-    n = asm.solutions.columns.size
-    out = np.empty(b.shape + (2 * n, n), dtype=complex)
-    for j, (dst, src) in enumerate(asm.blocks):
-        out[..., dst] = rows[..., j, :, :][..., src]
-    return out[..., :n, :], out[..., n:, :]
+    nb = F.shape[-4]
+    # Transposed, each body's columns become rows, which stack without copying.
+    MT = F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT    # S + (nb, 6, 2n)
+    MT = MT.reshape(MT.shape[:-3] + (6 * nb, MT.shape[-1]))
+    if asm.own is not None:
+        MT = MT[..., asm.own, :]
+    n = MT.shape[-2]
+    return MT[..., :n].swapaxes(-1, -2), MT[..., n:].swapaxes(-1, -2)
 
 
 @dataclass(frozen=True)
 class _Assembly:
     """What :func:`condition_terms` needs of a layup, made once: every body's
-    solutions, the rows of ``C_0`` over those of ``C_1`` of :func:`condition_matrix`
-    acting on each body's face fields ``(bodies, 2 n, 12)``, the faces' depths, where
-    each body's columns go in ``M`` (and which of its six they are), the frictional
-    heat's coefficient per ``|V|/m`` and the conducting layers' ``(kappa, moving)``
-    (:func:`layup_dispersion`)."""
+    solutions, the rows of ``C_0`` beside those of ``C_1`` of :func:`condition_matrix`
+    acting on each body's face fields, transposed, ``(bodies, 12, 2 n)``, the faces'
+    depths, which of the bodies' six columns each are theirs (None: all), the
+    frictional heat's coefficient per ``|V|/m`` and the conducting layers' ``(kappa,
+    moving)`` (:func:`layup_dispersion`)."""
 
     solutions: _Solutions
-    C: np.ndarray
+    CT: np.ndarray
     depths: np.ndarray
-    blocks: tuple
+    own: np.ndarray | None
     heat: float
     layers: tuple
 
@@ -547,21 +549,16 @@ def _assembly(layup: Layup) -> _Assembly:
         sol = _Solutions.of([(body, j == last, layup.elastic(body))
                              for j, body in enumerate(layup.bodies)], layup.references())
         C = np.concatenate([C0, C1]).reshape(2 * C0.shape[0], len(layup.bodies), 12)
-        blocks, col = [], 0
-        for j, body in enumerate(layup.bodies):
-            own = sol.columns[(sol.columns >= 6 * j) & (sol.columns < 6 * j + 6)] - 6 * j
-            contiguous = np.array_equal(own, np.arange(own.size))
-            blocks.append((slice(col, col + own.size),
-                           slice(0, own.size) if contiguous else own))
-            col += own.size
+        own = sol.columns
+        if np.array_equal(own, np.arange(6 * len(layup.bodies))):
+            own = None
         kap = np.array([b.material.k for b in layup.bodies
                         if b.thickness is not None and b.conducts])
         mov = np.array([float(b.moving) for b in layup.bodies
                         if b.thickness is not None and b.conducts])
-        cached = _Assembly(sol, np.ascontiguousarray(C.transpose(1, 0, 2)),
+        cached = _Assembly(sol, np.ascontiguousarray(C.transpose(1, 2, 0)),
                            np.array([_face_depths(body) for body in layup.bodies]),
-                           tuple(blocks), float(heat_coefficient(layup, 1.0, 1.0)),
-                           (kap, mov))
+                           own, float(heat_coefficient(layup, 1.0, 1.0)), (kap, mov))
         object.__setattr__(layup, "_assembly", cached)
     return cached
 
