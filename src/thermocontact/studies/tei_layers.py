@@ -283,6 +283,30 @@ def _unique(family, m, b):
     return np.array(out, dtype=complex)
 
 
+def _cubic_peak(lo, hi):
+    """``ln V`` of the maximum of the cubic in ``ln V`` through the real parts of ``b``
+    and of its slope ``d b/d ln V = V db/dV`` at ``lo = (V, b, db/dV)`` (rising) and
+    ``hi`` (falling), kept a hundredth of the bracket inside it."""
+    ua, ub = math.log(lo[0]), math.log(hi[0])
+    H = ub - ua
+    fa, fb = lo[1].real, hi[1].real
+    da, db = H * lo[0] * lo[2].real, H * hi[0] * hi[2].real     # slopes in t = (u - ua)/H
+    # The cubic's slope a t^2 + b t + c: positive at t = 0, negative at 1, one root.
+    a = 6.0 * (fa - fb) + 3.0 * (da + db)
+    b = -6.0 * (fa - fb) - 4.0 * da - 2.0 * db
+    c = da
+    if abs(a) <= 1e-12 * (abs(b) + abs(c)):
+        t = -c / b
+    else:
+        sq = math.sqrt(max(b * b - 4.0 * a * c, 0.0))
+        # The root without cancellation, then the other from their product c/a.
+        r1 = (-b - math.copysign(sq, b)) / (2.0 * a)
+        r2 = c / (a * r1) if r1 != 0.0 else -b / a
+        t = r1 if 0.0 <= r1 <= 1.0 else r2
+    t = min(max(t, 0.01), 0.99) if math.isfinite(t) else 0.5
+    return ua + t * H
+
+
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
     ``D`` (implicit differentiation), both by central differences in the root's frame."""
@@ -499,13 +523,15 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     def peak(ends):
         """The largest Re b of one mode between the speeds of ``ends`` (the real part of
         its slope positive at the first, negative at the second): where that real
-        part vanishes, by Brent's method in ln V, each speed followed from the nearest
-        point known on the path; where a follow fails, by bounded maximisation of Re b.
-        Returns the speed, Re b there and the points known."""
+        part vanishes, in ln V to 1e-7, each speed followed from the nearest point
+        known on the path; by the maxima of the cubics through the values and slopes
+        at the ends of the bracket (:func:`_cubic_peak`), or, if they do not settle in
+        8 steps, by Brent's method on the bracket; where a follow fails, by bounded
+        maximisation of Re b.  Returns the speed, Re b there and the points known."""
         known = list(ends)
 
         def slope(x):
-            for v0, _, s0_ in ends:
+            for v0, _, s0_ in known:
                 if x == math.log(v0):
                     return s0_.real
             V = math.exp(x)
@@ -517,8 +543,26 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             return sl.real
 
         try:
+            lo, hi = ends
+            for _ in range(8):
+                x = _cubic_peak(lo, hi)
+                if len(known) > 3:
+                    # The secant of the slope through the two latest points, if inside.
+                    (v0, _, s0_), (v1, _, s1_) = known[-2:]
+                    u0, u1 = math.log(v0), math.log(v1)
+                    d0, d1 = v0 * s0_.real, v1 * s1_.real
+                    xs = u1 - d1 * (u1 - u0) / (d1 - d0) if d1 != d0 else math.nan
+                    if math.log(lo[0]) < xs < math.log(hi[0]):
+                        x = xs
+                last = known[-1]
+                if len(known) > 2 and abs(x - math.log(last[0])) <= 1e-7:
+                    return last[0], last[1].real, known
+                d = slope(x)
+                if d == 0.0:
+                    return known[-1][0], known[-1][1].real, known
+                lo, hi = (known[-1], hi) if d > 0.0 else (lo, known[-1])
             # ln V to 1e-7, as the maximisation below: Re b there to rounding.
-            top = math.exp(brentq(slope, math.log(ends[0][0]), math.log(ends[1][0]),
+            top = math.exp(brentq(slope, math.log(lo[0]), math.log(hi[0]),
                                   xtol=1e-7, rtol=1e-15))
             rate = growth(known)(top).real
             if np.isfinite(rate):
