@@ -456,10 +456,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     every followed mode lands within a fifth of its distance from the imaginary axis
     of its prediction, otherwise halved (in the factor's excess over 1).  On each
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
-    ``Re b(V)``, the mode followed from the nearer end, then Newton's method on the
-    neutral point); an interior maximum (``dRe b/dV`` positive at the step's start,
-    negative at its end) is located by bounded maximisation, and where it reaches 0
-    it is a window of growth (two crossings).  At every accepted speed the growing
+    ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
+    on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
+    start, negative at its end) is located where that slope vanishes (docs/derivation.md,
+    L15), and where it reaches 0 it is a window of growth (two crossings).  At every accepted speed the growing
     modes are counted by the argument principle (:func:`unstable_count`); where the
     count exceeds the followed modes that grow, and every :data:`RESEED` in speed, the
     modes are reseeded, and a new one is followed back over the step.
