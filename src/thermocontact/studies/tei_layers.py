@@ -34,9 +34,8 @@ from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
 __all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
-           "first_crossing",
-           "growth_rate", "neutral_point", "newton_roots", "pattern_frame", "raw_seeds",
-           "speed_scan", "unstable_count"]
+           "first_crossing", "growth_rate", "neutral_point", "newton_roots", "pattern_frame",
+           "raw_seeds", "speed_scan", "unstable_count"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -458,11 +457,12 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
     ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
     on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
-    start, negative at its end) is located where that slope vanishes (docs/derivation.md,
-    L15), and where it reaches 0 it is a window of growth (two crossings).  At every accepted speed the growing
-    modes are counted by the argument principle (:func:`unstable_count`); where the
-    count exceeds the followed modes that grow, and every :data:`RESEED` in speed, the
-    modes are reseeded, and a new one is followed back over the step.
+    start, negative at its end) is located where that slope vanishes
+    (docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
+    crossings).  At every accepted speed the growing modes are counted by the argument
+    principle (:func:`unstable_count`); where the count exceeds the followed modes that
+    grow, and every :data:`RESEED` in speed, the modes are reseeded, and a new one is
+    followed back over the step.
 
     Returns
     -------
@@ -524,10 +524,12 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         """The largest Re b of one mode between the speeds of ``ends`` (the real part of
         its slope positive at the first, negative at the second): where that real
         part vanishes, in ln V to 1e-7, each speed followed from the nearest point
-        known on the path; by the maxima of the cubics through the values and slopes
-        at the ends of the bracket (:func:`_cubic_peak`), or, if they do not settle in
-        8 steps, by Brent's method on the bracket; where a follow fails, by bounded
-        maximisation of Re b.  Returns the speed, Re b there and the points known."""
+        known on the path.  Each trial speed: the secant of the slope's real part
+        through the two latest points if it falls inside the bracket, else the
+        maximum of the cubic through the values and slopes at the bracket's ends
+        (:func:`_cubic_peak`); if that does not settle in 8 steps, Brent's method on
+        the bracket; where a follow fails, bounded maximisation of Re b.  Returns the
+        speed, Re b there and the points known."""
         known = list(ends)
 
         def slope(x):
