@@ -66,7 +66,7 @@ def main():
         ("one critical speed by a scan", None, lambda: systems()[0].critical(m), 3),
         ("one neutral point by Newton's method", None,
          lambda: neutral_point(sy[0], m * 1.01, vc, b.imag * 1.01), 10),
-        ("one dispersion function (det M, 6 x 6)", None,
+        ("one dispersion function (det M, 12 x 12)", None,
          lambda: sy[0].dispersion(b, m, vc), 200),
         ("one depth discretisation (n = 16 per body), eigenvalues", None,
          lambda: layup_modes(sy[0].layup, m, vc, 16), 20),

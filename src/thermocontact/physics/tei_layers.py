@@ -53,6 +53,7 @@ __all__ = [
     "Layup",
     "body_fields",
     "condition_matrix",
+    "condition_terms",
     "dispersion_matrix",
     "face_fields",
     "layup_dispersion",
@@ -230,26 +231,32 @@ def _potential(mat: Material) -> float:
 
 def _sinhc(z):
     """``sinh(z)/z`` (1 at 0), accurate at small ``|z|`` where ``(e^z - 1)/z`` cancels."""
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return np.where(z == 0, 1.0, np.sinh(z) / np.where(z == 0, 1.0, z))
+    return np.where(z == 0, 1.0, np.sinh(z) / np.where(z == 0, 1.0, z))
 
 
-def _potential_profile(G, tau):
+def _potential_profile(G, tau, e=None):
     """``(D, D')`` of ``D = (e^{-G tau} - e^{-tau})/(G^2 - 1)`` at ``tau >= 0`` (L3):
     the displacement potential, in units of ``1/m^2``, of a temperature ``e^{-G tau}``
-    (``tau = m`` times the distance from the face), and its derivative in ``tau``.
-    Regular at ``G = 1``: near it ``D = -tau e^{-(1 + G) tau/2} sinhc((1 - G) tau/2)/(G + 1)``,
-    a divided difference without cancellation."""
+    (``tau = m`` times the distance from the face; ``e`` that temperature, if known),
+    and its derivative in ``tau``.  Regular at ``G = 1``: near it ``D = -tau e^{-(1 +
+    G) tau/2} sinhc((1 - G) tau/2)/(G + 1)``, a divided difference without
+    cancellation."""
     G = np.asarray(G, dtype=complex)
     tau = np.asarray(tau, dtype=float)
     d = G - 1.0
     with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
         e_t = np.exp(-tau)
         near = np.abs(d * tau) < 1.0
-        direct = (np.exp(-G * tau) - e_t) / np.where(near, 1.0, G * G - 1.0)
-        dd = np.where(near, d, 0.0)
-        close = -tau * np.exp(-0.5 * (1.0 + G) * tau) * _sinhc(-0.5 * dd * tau) / (G + 1.0)
-    D = np.where(near, close, direct)
+        if near.all():
+            D = -tau * np.exp(-0.5 * (1.0 + G) * tau) * _sinhc(-0.5 * d * tau) / (G + 1.0)
+        else:
+            e = np.exp(-G * tau) if e is None else e
+            D = (e - e_t) / np.where(near, 1.0, G * G - 1.0)
+            if near.any():
+                dd = np.where(near, d, 0.0)
+                close = -tau * np.exp(-0.5 * (1.0 + G) * tau) * _sinhc(-0.5 * dd * tau) / (
+                    G + 1.0)
+                D = np.where(near, close, D)
     return D, -G * D - e_t / (G + 1.0)
 
 
@@ -282,10 +289,12 @@ def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None)
         then the thermal solutions in the same order (conductors only); a
         half-plane above the stack has only the bottom's, one below only the top's.
     """
-    if body.thickness is None:
-        out = body_fields(body, b, wavenumber, velocity, refs, [0.0], upper, mat)
-        return np.concatenate([out, out], axis=-3)
-    return body_fields(body, b, wavenumber, velocity, refs, [0.0, body.thickness], upper, mat)
+    return body_fields(body, b, wavenumber, velocity, refs, _face_depths(body), upper, mat)
+
+
+def _face_depths(body: Body):
+    """The depths of a body's faces (a half-plane's one face twice)."""
+    return np.array([0.0, 0.0 if body.thickness is None else body.thickness])
 
 
 def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, mat=None):
@@ -297,63 +306,117 @@ def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, m
     -------
     ndarray, shape ``S + (len(depths), 6, columns)``
     """
-    mat = body.material if mat is None else mat
-    b, m, U = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
-                                  np.asarray(velocity, float))
-    if not body.moving:
-        U = np.zeros(U.shape)
-    mu_ref, a_ref, K_ref = refs
-    r = mu_ref / mat.mu
-    nu = mat.nu
-    layer = body.thickness is not None
-    # Each solution starts from a face (s = -1 the bottom, +1 the top) and decays
-    # away from it; t = m (y - y_start) at each point, s t <= 0.
-    starts = (-1, 1) if layer else ((-1,) if upper else (1,))
-    depths = np.asarray(depths, dtype=float)
-    tau = m[..., None] * depths                        # S + (points,)
-    H = (m * body.thickness)[..., None] if layer else 0.0
-    out = np.zeros(b.shape + (depths.size, 6, body.columns), dtype=complex)
-    ux, uy, sxy, syy, T, q = range(6)
+    sol = _Solutions.of([(body, upper, body.material if mat is None else mat)], refs)
+    F = _fields(sol, *_broadcast(b, wavenumber, velocity),
+                np.asarray(depths, dtype=float).reshape(1, -1))
+    return F[..., 0, :, :, :][..., sol.columns]
 
-    def offset(s):
-        if layer:
-            return tau if s < 0 else tau - H
-        return tau if upper else -tau
 
-    col = 0
-    for s in starts:
-        t = offset(s)
-        with np.errstate(under="ignore"):
-            g = np.exp(s * t)
-        # phi-type: 2 mu u = grad phi, phi = g/m^2 (L2).
-        o = out[..., col]
-        o[..., ux], o[..., uy], o[..., sxy], o[..., syy] = 1j * r * g, s * r * g, 1j * s * g, g
-        # psi-type: 2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y, psi = g/m.
-        o = out[..., col + 1]
-        o[..., ux] = 1j * t * r * g
-        o[..., uy] = (s * t - 3.0 + 4.0 * nu) * r * g
-        o[..., sxy] = 1j * (s * t - 1.0 + 2.0 * nu) * g
-        o[..., syy] = (t - 2.0 * (1.0 - nu) * s) * g
-        col += 2
-    if body.conducts:
-        G = np.sqrt(1.0 + (b + 1j * m * U) / (mat.k * m * m))[..., None]   # gamma/m (L1)
-        pot = _potential(mat) / a_ref
-        kr = mat.K / K_ref
-        for s in starts:
-            dist = np.abs(offset(s))       # m times the distance from the start face
-            with np.errstate(under="ignore"):
-                e = np.exp(-G * dist)
-            D, dD = _potential_profile(G, dist)
-            dy = -s                        # d/dy = -s d/d(distance)
-            o = out[..., col]
-            o[..., ux] = 1j * pot * D
-            o[..., uy] = pot * dy * dD
-            o[..., sxy] = 1j * pot * dy * dD / r
-            o[..., syy] = pot * D / r
-            o[..., T] = e
-            o[..., q] = -s * kr * G * e        # q = -K dT/dy
-            col += 1
-    return out
+def _broadcast(b, wavenumber, velocity):
+    """``b`` (complex), ``m`` and ``U`` (float) as arrays of one shape."""
+    b = np.asarray(b, dtype=complex)
+    m = np.asarray(wavenumber, dtype=float)
+    U = np.asarray(velocity, dtype=float)
+    if b.shape == m.shape == U.shape:
+        return b, m, U
+    return np.broadcast_arrays(b, m, U)
+
+
+@dataclass(frozen=True)
+class _Solutions:
+    """The solutions (L2-L4) of a stack of bodies as coefficients of the few functions
+    of depth they are made of, so that :func:`_fields` evaluates all of them at once.
+
+    Each solution starts from a face (``s = -1`` the bottom, ``+1`` the top) and
+    decays away from it; ``t = m (y - y_start) = sign tau - shift m H`` with ``tau =
+    m`` times the depth, ``s t <= 0``.  The elastic fields are ``(A + B t) e^{s t}``
+    (a harmonic ``phi = e^{s t}/m^2``, ``2 mu u = grad phi``; and ``psi = e^{s t}/m``,
+    ``2 mu u = grad((y - y_s) psi) - 4 (1 - nu) psi e_y``); the thermal ones
+    ``cD D + cdD D' + (ce + cG G) e^{-G |t|}`` (L1, L3).  Every body has two starts
+    (a half-plane's second, and a non-conductor's thermal solutions, with no
+    coefficients) and six columns, of which ``columns`` are its own."""
+
+    starts: np.ndarray      # (bodies, 2): s of each start
+    sign: np.ndarray        # (bodies,): t = sign tau - shift m H
+    shift: np.ndarray       # (bodies, 2)
+    thickness: np.ndarray   # (bodies,): H (0 for a half-plane)
+    moving: np.ndarray      # (bodies,): 1.0 for the slider's bodies
+    kappa: np.ndarray       # (bodies,): diffusivity (1 for a non-conductor)
+    A: np.ndarray           # (bodies, 6, 2, 2): elastic, phi and psi
+    B: np.ndarray
+    cD: np.ndarray          # (bodies, 6, 2): thermal
+    cdD: np.ndarray
+    ce: np.ndarray
+    cG: np.ndarray
+    columns: np.ndarray     # each body's own columns among its six, bodies in order
+
+    @staticmethod
+    def of(bodies, refs) -> "_Solutions":
+        """``bodies``: ``(Body, upper, material in plane strain)`` each; ``refs`` as
+        for :func:`face_fields`."""
+        mu_ref, a_ref, K_ref = refs
+        nb = len(bodies)
+        A = np.zeros((nb, 6, 2, 2), dtype=complex)
+        B = np.zeros((nb, 6, 2, 2), dtype=complex)
+        cD, cdD, ce, cG = (np.zeros((nb, 6, 2), dtype=complex) for _ in range(4))
+        starts, shift = np.full((nb, 2), -1.0), np.zeros((nb, 2))
+        sign, thickness, moving, kappa = (np.ones(nb), np.zeros(nb), np.zeros(nb),
+                                          np.ones(nb))
+        columns = []
+        ux, uy, sxy, syy, T, q = range(6)
+        for j, (body, upper, mat) in enumerate(bodies):
+            r, nu = mu_ref / mat.mu, mat.nu
+            layer = body.thickness is not None
+            ns = 2 if layer else 1
+            if layer:
+                starts[j], shift[j], thickness[j] = (-1.0, 1.0), (0.0, 1.0), body.thickness
+            elif not upper:
+                starts[j, 0], sign[j] = 1.0, -1.0
+            moving[j] = float(body.moving)
+            s = starts[j, :ns]
+            a, bb = A[j, :, :ns], B[j, :, :ns]
+            # phi-type
+            a[ux, :, 0], a[uy, :, 0], a[sxy, :, 0], a[syy, :, 0] = 1j * r, s * r, 1j * s, 1.0
+            # psi-type
+            bb[ux, :, 1] = 1j * r
+            a[uy, :, 1], bb[uy, :, 1] = (-3.0 + 4.0 * nu) * r, s * r
+            a[sxy, :, 1], bb[sxy, :, 1] = 1j * (-1.0 + 2.0 * nu), 1j * s
+            a[syy, :, 1], bb[syy, :, 1] = -2.0 * (1.0 - nu) * s, 1.0
+            own = list(range(2 * ns))
+            if body.conducts:
+                kappa[j] = mat.k
+                pot = _potential(mat) / a_ref
+                kr = mat.K / K_ref
+                dy = -s                        # d/dy = -s d/d(distance)
+                cD[j, ux, :ns], cD[j, syy, :ns] = 1j * pot, pot / r
+                cdD[j, uy, :ns], cdD[j, sxy, :ns] = pot * dy, 1j * pot * dy / r
+                ce[j, T, :ns] = 1.0
+                cG[j, q, :ns] = -s * kr        # q = -K dT/dy
+                own += [4 + i for i in range(ns)]
+            columns += [6 * j + c for c in own]
+        return _Solutions(starts, sign, shift, thickness, moving, kappa, A, B, cD, cdD, ce,
+                          cG, np.array(columns))
+
+
+def _fields(sol: _Solutions, b, m, U, depths):
+    """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
+    ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
+    of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
+    the thermal, one per start)."""
+    tau = m[..., None, None] * depths                                      # S + (nb, P)
+    t = (sol.sign[:, None, None] * tau[..., None]
+         - (m[..., None] * sol.thickness)[..., None, None] * sol.shift[:, None, :])
+    G = np.sqrt(1.0 + (b[..., None] + 1j * (m * U)[..., None] * sol.moving)
+                / (sol.kappa * (m * m)[..., None]))[..., None, None]        # L1
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        g = np.exp(sol.starts[:, None, :] * t)[..., None, :, None]         # S + (nb, P, 1, 2, 1)
+        el = (sol.A[:, None] + sol.B[:, None] * t[..., None, :, None]) * g  # S + (nb, P, 6, 2, 2)
+        dist = np.abs(t)                   # m times the distance from the start face
+        e = np.exp(-G * dist)
+        D, dD = _potential_profile(G, dist, e)
+        th = (D[..., None, :] * sol.cD[:, None] + dD[..., None, :] * sol.cdD[:, None]
+              + e[..., None, :] * (sol.ce[:, None] + G[..., None] * sol.cG[:, None]))
+    return np.concatenate([el.reshape(el.shape[:-2] + (4,)), th], axis=-1)
 
 
 @lru_cache(maxsize=64)
@@ -431,6 +494,75 @@ def heat_coefficient(layup: Layup, wavenumber, speed):
     return (2.0 * mu_ref * a_ref * layup.friction / K_ref) * np.abs(speed) / wavenumber
 
 
+def condition_terms(layup: Layup, b, wavenumber, speed):
+    """``(M_0, M_1)`` with ``M(b) = M_0(b) + h M_1(b)`` (L8; ``h`` of
+    :func:`heat_coefficient`): the face conditions of :func:`condition_matrix` without
+    and with the frictional heat's coefficient, applied to every body's solutions
+    (:func:`face_fields`), evaluated once for both.
+
+    Parameters
+    ----------
+    layup : Layup
+    b, wavenumber, speed : array_like
+        As for :func:`dispersion_matrix`.
+
+    Returns
+    -------
+    (ndarray, ndarray), each of shape ``S + (n, n)``
+    """
+    b, m, V = _broadcast(b, wavenumber, speed)
+    asm = _assembly(layup)
+    F = _fields(asm.solutions, b, m, V, asm.depths)                     # S + (nb, 2, 6, 6)
+    nb = F.shape[-4]
+    # Transposed, each body's columns become rows, which stack without copying.
+    MT = F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT    # S + (nb, 6, 2n)
+    MT = MT.reshape(MT.shape[:-3] + (6 * nb, MT.shape[-1]))
+    if asm.own is not None:
+        MT = MT[..., asm.own, :]
+    n = MT.shape[-2]
+    return MT[..., :n].swapaxes(-1, -2), MT[..., n:].swapaxes(-1, -2)
+
+
+@dataclass(frozen=True)
+class _Assembly:
+    """What :func:`condition_terms` needs of a layup, made once: every body's
+    solutions, the rows of ``C_0`` beside those of ``C_1`` of :func:`condition_matrix`
+    acting on each body's face fields, transposed, ``(bodies, 12, 2 n)``, the faces'
+    depths, which of the bodies' six columns each are theirs (None: all), the
+    frictional heat's coefficient per ``|V|/m`` and the conducting layers' ``(kappa,
+    moving)`` (:func:`layup_dispersion`)."""
+
+    solutions: _Solutions
+    CT: np.ndarray
+    depths: np.ndarray
+    own: np.ndarray | None
+    heat: float
+    layers: tuple
+
+
+def _assembly(layup: Layup) -> _Assembly:
+    """The layup's :class:`_Assembly`, kept on the (frozen) layup."""
+    cached = layup.__dict__.get("_assembly")
+    if cached is None:
+        C0, C1 = condition_matrix(layup)
+        last = len(layup.bodies) - 1
+        sol = _Solutions.of([(body, j == last, layup.elastic(body))
+                             for j, body in enumerate(layup.bodies)], layup.references())
+        C = np.concatenate([C0, C1]).reshape(2 * C0.shape[0], len(layup.bodies), 12)
+        own = sol.columns
+        if np.array_equal(own, np.arange(6 * len(layup.bodies))):
+            own = None
+        kap = np.array([b.material.k for b in layup.bodies
+                        if b.thickness is not None and b.conducts])
+        mov = np.array([float(b.moving) for b in layup.bodies
+                        if b.thickness is not None and b.conducts])
+        cached = _Assembly(sol, np.ascontiguousarray(C.transpose(1, 2, 0)),
+                           np.array([_face_depths(body) for body in layup.bodies]),
+                           own, float(heat_coefficient(layup, 1.0, 1.0)), (kap, mov))
+        object.__setattr__(layup, "_assembly", cached)
+    return cached
+
+
 def dispersion_matrix(layup: Layup, b, wavenumber, speed, heat=True):
     """``M(b)``: the face conditions applied to every body's solutions (L8).
 
@@ -451,18 +583,11 @@ def dispersion_matrix(layup: Layup, b, wavenumber, speed, heat=True):
     ndarray, shape ``S + (n, n)``
         Square; ``n`` the unknown amplitudes of all bodies.
     """
-    refs = layup.references()
-    C0, C1 = condition_matrix(layup)
-    b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
-                                  np.asarray(speed, float))
-    h = heat_coefficient(layup, m, V)[..., None, None] * float(heat)
-    last = len(layup.bodies) - 1
-    blocks = []
-    for j, body in enumerate(layup.bodies):
-        F = face_fields(body, b, m, V, refs, upper=j == last, mat=layup.elastic(body))
-        F = F.reshape(F.shape[:-3] + (12, F.shape[-1]))          # (face, field) as one axis
-        blocks.append(C0[:, j].reshape(-1, 12) @ F + h * (C1[:, j].reshape(-1, 12) @ F))
-    return np.concatenate(blocks, axis=-1)
+    b, m, V = _broadcast(b, wavenumber, speed)
+    M0, M1 = condition_terms(layup, b, m, V)
+    if not heat:
+        return M0
+    return M0 + (_assembly(layup).heat * np.abs(V) / m)[..., None, None] * M1
 
 
 def layup_dispersion(layup: Layup, b, wavenumber, speed):
@@ -476,14 +601,14 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
     basis ``cosh``, ``sinh(gamma .)/gamma`` about the mid-plane, which stays
     independent, the determinant is ``det M`` divided by ``2 (gamma/m) e^{-gamma h}``
     per layer; dividing by ``gamma/m`` alone removes that zero and adds none."""
-    b, m, V = np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(wavenumber, float),
-                                  np.asarray(speed, float))
+    b, m, V = _broadcast(b, wavenumber, speed)
+    kap, mov = _assembly(layup).layers
     with np.errstate(all="ignore"):     # a determinant that under- or overflows: no root
         d = np.linalg.det(dispersion_matrix(layup, b, m, V))
-    for body in layup.bodies:
-        if body.thickness is not None and body.conducts:
-            U = V if body.moving else 0.0
-            d = d / np.sqrt(1.0 + (b + 1j * m * U) / (body.material.k * m * m))
+        if kap.size:
+            G = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
+                        / (kap * (m * m)[..., None]))
+            d = d / np.prod(G, axis=-1)
     return d
 
 

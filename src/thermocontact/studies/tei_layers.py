@@ -33,9 +33,9 @@ import numpy as np
 from ..discretisation.tei_depth import layup_modes
 from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
 
-__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "first_crossing",
-           "growth_rate", "neutral_point", "newton_roots", "pattern_frame", "raw_seeds",
-           "speed_scan", "unstable_count"]
+__all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
+           "first_crossing", "growth_rate", "neutral_point", "newton_roots", "pattern_frame",
+           "raw_seeds", "speed_scan", "unstable_count"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -282,6 +282,30 @@ def _unique(family, m, b):
     return np.array(out, dtype=complex)
 
 
+def _cubic_peak(lo, hi):
+    """``ln V`` of the maximum of the cubic in ``ln V`` through the real parts of ``b``
+    and of its slope ``d b/d ln V = V db/dV`` at ``lo = (V, b, db/dV)`` (rising) and
+    ``hi`` (falling), kept a hundredth of the bracket inside it."""
+    ua, ub = math.log(lo[0]), math.log(hi[0])
+    H = ub - ua
+    fa, fb = lo[1].real, hi[1].real
+    da, db = H * lo[0] * lo[2].real, H * hi[0] * hi[2].real     # slopes in t = (u - ua)/H
+    # The cubic's slope a t^2 + b t + c: positive at t = 0, negative at 1, one root.
+    a = 6.0 * (fa - fb) + 3.0 * (da + db)
+    b = -6.0 * (fa - fb) - 4.0 * da - 2.0 * db
+    c = da
+    if abs(a) <= 1e-12 * (abs(b) + abs(c)):
+        t = -c / b
+    else:
+        sq = math.sqrt(max(b * b - 4.0 * a * c, 0.0))
+        # The root without cancellation, then the other from their product c/a.
+        r1 = (-b - math.copysign(sq, b)) / (2.0 * a)
+        r2 = c / (a * r1) if r1 != 0.0 else -b / a
+        t = r1 if 0.0 <= r1 <= 1.0 else r2
+    t = min(max(t, 0.01), 0.99) if math.isfinite(t) else 0.5
+    return ua + t * H
+
+
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
     ``D`` (implicit differentiation), both by central differences in the root's frame."""
@@ -290,12 +314,12 @@ def _speed_slope(family, m, speed, b):
     z = b + 1j * phi * m * speed
     hz = 1e-6 * (np.abs(z) + family.scale(m))
     hv = 1e-6 * speed
-
-    def g(zz, v):
-        return family.dispersion(zz - 1j * phi * m * v, m, v)
-
-    dz = (g(z + hz, speed) - g(z - hz, speed)) / (2.0 * hz)
-    dv = (g(z, speed + hv) - g(z, speed - hv)) / (2.0 * hv)
+    # The four differences in one evaluation.
+    zz = np.stack([z + hz, z - hz, z, z])
+    vv = np.stack([np.full(z.shape, v) for v in (speed, speed, speed + hv, speed - hv)])
+    f = family.dispersion(zz - 1j * phi * m * vv, m, vv)
+    dz = (f[0] - f[1]) / (2.0 * hz)
+    dv = (f[2] - f[3]) / (2.0 * hv)
     with np.errstate(invalid="ignore", divide="ignore"):
         return -dv / dz - 1j * phi * m
 
@@ -328,7 +352,7 @@ def unstable_count(family, m, speed, points=48):
         The count, and whether it is reliable: the steps resolved, the winding an
         integer to 1e-6, ``D`` within 0.05 of 1 at both ends.
     """
-    from ..physics.tei_layers import dispersion_matrix
+    from ..physics.tei_layers import condition_terms, heat_coefficient
 
     layup = family.layup
     rates = [m * speed] if speed > 0.0 else []
@@ -344,10 +368,12 @@ def unstable_count(family, m, speed, points=48):
                        + [[-1e3 * hi - m * speed, 1e3 * hi]])
     w = np.unique(w)
 
+    h = heat_coefficient(layup, m, speed)
+
     def ratio(w):
-        b = 1j * w
-        s1, l1 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed))
-        s0, l0 = np.linalg.slogdet(dispersion_matrix(layup, b, m, speed, heat=False))
+        M0, M1 = condition_terms(layup, 1j * w, m, speed)
+        s1, l1 = np.linalg.slogdet(M0 + h * M1)
+        s0, l0 = np.linalg.slogdet(M0)
         with np.errstate(over="ignore", under="ignore", invalid="ignore"):
             return s1 / s0 * np.exp(l1 - l0)
 
@@ -429,13 +455,14 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     every followed mode lands within a fifth of its distance from the imaginary axis
     of its prediction, otherwise halved (in the factor's excess over 1).  On each
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
-    ``Re b(V)``, the mode followed from the nearer end, then Newton's method on the
-    neutral point); an interior maximum (``dRe b/dV`` positive at the step's start,
-    negative at its end) is located by bounded maximisation, and where it reaches 0
-    it is a window of growth (two crossings).  At every accepted speed the growing
-    modes are counted by the argument principle (:func:`unstable_count`); where the
-    count exceeds the followed modes that grow, and every :data:`RESEED` in speed, the
-    modes are reseeded, and a new one is followed back over the step.
+    ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
+    on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
+    start, negative at its end) is located where that slope vanishes
+    (docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
+    crossings).  At every accepted speed the growing modes are counted by the argument
+    principle (:func:`unstable_count`); where the count exceeds the followed modes that
+    grow, and every :data:`RESEED` in speed, the modes are reseeded, and a new one is
+    followed back over the step.
 
     Returns
     -------
@@ -468,15 +495,87 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     ratio, seeded = MAX_RATIO, v
 
     def growth(ends):
-        """Re b(V) of one mode, followed from the nearest of ``ends``, the points
-        ``(V, b, db/dV)`` known on its path (NaN where no follow lands)."""
+        """b(V) of one mode, followed from the nearest of ``ends``, the points ``(V, b,
+        db/dV)`` known on its path (NaN where no follow lands): first predicted by
+        the cubic through the nearest known on either side (their values and
+        slopes), then along the tangent of each in turn."""
         def f(x):
+            below = [e for e in ends if e[0] < x]
+            above = [e for e in ends if e[0] > x]
+            if below and above:
+                (va, ba, sa), (vb, bb, sb) = (max(below, key=lambda e: e[0]),
+                                              min(above, key=lambda e: e[0]))
+                h, t = vb - va, (x - va) / (vb - va)
+                pred = ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
+                    (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
+                b0_ = ba if t < 0.5 else bb
+                reach = 0.5 * abs(pred - b0_) + 0.5 * abs(b0_.real) + 10.0 * scale
+                r = _polish(family, m, x, np.array([pred]), reach)[0][0]
+                if np.isfinite(r):
+                    return r
             for v0, b0_, s0_ in sorted(ends, key=lambda e: abs(math.log(x / e[0]))):
                 r = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)[0][0]
                 if np.isfinite(r):
                     return r
             return complex(math.nan)
         return f
+
+    def peak(ends):
+        """The largest Re b of one mode between the speeds of ``ends`` (the real part of
+        its slope positive at the first, negative at the second): where that real
+        part vanishes, in ln V to 1e-7, each speed followed from the nearest point
+        known on the path.  Each trial speed: the secant of the slope's real part
+        through the two latest points if it falls inside the bracket, else the
+        maximum of the cubic through the values and slopes at the bracket's ends
+        (:func:`_cubic_peak`); if that does not settle in 8 steps, Brent's method on
+        the bracket; where a follow fails, bounded maximisation of Re b.  Returns the
+        speed, Re b there and the points known."""
+        known = list(ends)
+
+        def slope(x):
+            for v0, _, s0_ in known:
+                if x == math.log(v0):
+                    return s0_.real
+            V = math.exp(x)
+            r = growth(known)(V)
+            sl = _speed_slope(family, m, V, np.array([r]))[0] if np.isfinite(r) else r
+            if not np.isfinite(sl):
+                raise FloatingPointError
+            known.append((V, r, sl))
+            return sl.real
+
+        try:
+            lo, hi = ends
+            for _ in range(8):
+                x = _cubic_peak(lo, hi)
+                if len(known) > 3:
+                    # The secant of the slope through the two latest points, if inside.
+                    (v0, _, s0_), (v1, _, s1_) = known[-2:]
+                    u0, u1 = math.log(v0), math.log(v1)
+                    d0, d1 = v0 * s0_.real, v1 * s1_.real
+                    xs = u1 - d1 * (u1 - u0) / (d1 - d0) if d1 != d0 else math.nan
+                    if math.log(lo[0]) < xs < math.log(hi[0]):
+                        x = xs
+                last = known[-1]
+                if len(known) > 2 and abs(x - math.log(last[0])) <= 1e-7:
+                    return last[0], last[1].real, known
+                d = slope(x)
+                if d == 0.0:
+                    return known[-1][0], known[-1][1].real, known
+                lo, hi = (known[-1], hi) if d > 0.0 else (lo, known[-1])
+            # ln V to 1e-7, as the maximisation below: Re b there to rounding.
+            top = math.exp(brentq(slope, math.log(lo[0]), math.log(hi[0]),
+                                  xtol=1e-7, rtol=1e-15))
+            rate = growth(known)(top).real
+            if np.isfinite(rate):
+                return top, rate, known
+        except (FloatingPointError, RuntimeError):
+            pass
+        f = growth(ends)
+        res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
+                              bounds=(math.log(ends[0][0]), math.log(ends[1][0])),
+                              method="bounded", options={"xatol": 1e-7})
+        return math.exp(res.x), -res.fun, ends
 
     def locate(ends, va, vb, direction):
         f = growth(ends)
@@ -526,15 +625,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                 crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
             elif r0 < 0.0 and s0[k].real > 0.0 and s1[k].real < 0.0:
                 maxima += 1
-                ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
-                f = growth(ends)
-                res = minimize_scalar(lambda x: -np.nan_to_num(f(math.exp(x)).real, nan=-np.inf),
-                                      bounds=(math.log(v), math.log(v1)), method="bounded",
-                                      options={"xatol": 1e-7})
-                if -res.fun >= 0.0:
-                    top = math.exp(res.x)
-                    crossings.append(locate(ends, v, top, 1))
-                    crossings.append(locate(ends, top, v1, -1))
+                top, rate, known = peak([(v, b0[k], s0[k]), (v1, b1[k], s1[k])])
+                if rate >= 0.0:
+                    crossings.append(locate(known, v, top, 1))
+                    crossings.append(locate(known, top, v1, -1))
         # Count the growing modes; reseed from the discretisation where the count
         # exceeds those followed, and every RESEED in speed.
         counts += 1
@@ -589,19 +683,34 @@ def continue_step(family, m0, point, m1, depth=0):
     Newton's method from the same speed and frequency in the pattern's frame
     (:func:`neutral_point`), accepted if it converges within a factor 2 of the speed;
     otherwise the interval is halved (in ``ln m``, at most 8 times)."""
-    v0, w0 = point
+    return continue_steps(family, [m0], [point], [m1], depth)[0]
+
+
+def continue_steps(family, m0, points, m1, depth=0):
+    """:func:`continue_step` for several independent steps ``m0[j] -> m1[j]`` from
+    ``points[j]``: the first attempts solved together (:func:`neutral_point`, each on
+    its own), the halvings one by one; a list of ``(V, omega)`` or None."""
+    m0 = np.asarray(m0, dtype=float)
+    m1 = np.asarray(m1, dtype=float)
+    v0 = np.array([p[0] for p in points], dtype=float)
+    w0 = np.array([p[1] for p in points], dtype=float)
     # Predicted: the same speed and the same frequency in the pattern's frame, in
     # units of kappa m^2.
-    phi = float(pattern_frame(m0, v0, w0))
+    phi = pattern_frame(m0, v0, w0)
     s = (w0 + phi * m0 * v0) / family.scale(m0)
     v, w, ok = neutral_point(family, m1, v0, -phi * m1 * v0 + s * family.scale(m1))
-    if ok and 0.5 * v0 < v < 2.0 * v0:
-        return float(v), float(w)
-    if depth >= 8:
-        return None
-    mid = math.sqrt(m0 * m1)
-    half = continue_step(family, m0, point, mid, depth + 1)
-    return None if half is None else continue_step(family, mid, half, m1, depth + 1)
+    out = []
+    for j in range(m0.size):
+        if ok[j] and 0.5 * v0[j] < v[j] < 2.0 * v0[j]:
+            out.append((float(v[j]), float(w[j])))
+        elif depth >= 8:
+            out.append(None)
+        else:
+            mid = math.sqrt(m0[j] * m1[j])
+            half = continue_step(family, m0[j], points[j], mid, depth + 1)
+            out.append(None if half is None else continue_step(family, mid, half, m1[j],
+                                                                depth + 1))
+    return out
 
 
 def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress=None):
@@ -644,22 +753,31 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
             starts.append((j + 1, float(ms[j]), (vc, b.imag)))
             if vc < V[j]:
                 V[j], W[j] = vc, b.imag
-    for k, m0, point in starts:
-        # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
-        for order in (range(k, n), range(k - 1, -1, -1)):
-            prev = (m0, point)
+    # Each start continued up and down: independent chains, stepped together.
+    # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
+    chains = [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
+              for order in (range(k, n), range(k - 1, -1, -1))]
+    while chains:
+        steps = []
+        for order, m0, start, prev in chains:
             for i in order:
-                if ms[i] == m0:
-                    found = point
-                else:
-                    found = continue_step(family, prev[0], prev[1], ms[i])
-                if found is None:
+                if ms[i] != m0:
+                    steps.append((order, m0, start, prev, i))
                     break
-                if found[0] < V[i]:
-                    V[i], W[i] = found
-                prev = (float(ms[i]), found)
-                if i in scanned and ms[i] != m0:
-                    break
+                # The start's own wavenumber: its point.
+                if start[0] < V[i]:
+                    V[i], W[i] = start
+                prev = (m0, start)
+        found = continue_steps(family, [c[3][0] for c in steps], [c[3][1] for c in steps],
+                               [ms[c[4]] for c in steps]) if steps else []
+        chains = []
+        for (order, m0, start, prev, i), point in zip(steps, found):
+            if point is None:
+                continue
+            if point[0] < V[i]:
+                V[i], W[i] = point
+            if i not in scanned:
+                chains.append((order, m0, start, (float(ms[i]), point)))
     tell(len(scanned) + 1, len(scanned) + 1)
     V[~np.isfinite(V)] = np.nan
     return V, W
