@@ -52,6 +52,8 @@ def test_table_agrees_with_scipy_and_falls_back_outside(name):
     table, scipy_form = TABLES[name]
     rng = np.random.default_rng(8)
     x = np.exp(rng.uniform(np.log(1e-3), np.log(1e4), 20000))
+    if name in ("E", "N"):  # analytic at 0: the panel below the octaves too
+        x = np.concatenate([x, [0.0], np.geomspace(1e-300, 2.0**RANGE[0], 2000)])
     ref = scipy_form(x)
     flat, growth = BOUNDS[name]
     # Both within their bounds of the exact value: at most their sum apart.
@@ -59,7 +61,8 @@ def test_table_agrees_with_scipy_and_falls_back_outside(name):
                   * np.abs(ref))
     # Outside the range, and NaN: SciPy's value itself.
     low, high = RANGE
-    out = np.array([0.0, 2.0**low / 3, 2.0**high, 1e300, np.nan, np.inf])
+    out = np.array([2.0**high, 1e300, np.nan, np.inf]
+                   + ([] if name in ("E", "N") else [0.0, 2.0**low / 3]))
     with np.errstate(invalid="ignore"):
         np.testing.assert_array_equal(table()(out), scipy_form(out))
     # Any shape.

@@ -7,24 +7,28 @@ exponentially scaled Bessel functions,
 
 evaluated at every node of every moment of a grid line's assemblies and validity
 checks (some 400 000 values a line of the benchmark map).  SciPy evaluates each
-Bessel function by its own Chebyshev series, 40 to 60 ns a value here, and a kernel
-needs two of them; a table evaluates the product at once in about 25 ns.
+Bessel function by its own Chebyshev series, 40 to 60 ns a value on the benchmark's
+machine, and a kernel needs two of them; a table evaluates the product at once, in
+about a third of that.
 
-Each table covers ``2^-10 <= x < 2^22`` in octaves ``[2^(e-1), 2^e)``, each cut into
-:data:`PANELS` panels of equal length (ratio of their ends at most ``1 + 2/PANELS``),
-and holds on each panel the polynomial of degree :data:`DEGREE` through the function's
-SciPy values at the panel's Chebyshev points, in the panel's variable
-``t in [-1, 1]``.  The functions are analytic on ``x > 0`` with at most a pole or a
-logarithm at ``x = 0``, so on a panel whose ends have ratio ``1 + 1/32`` the
-interpolant's truncation error falls like ``rho^-(DEGREE + 1)`` with ``rho`` about
-``4 * 65``: below ``1e-16`` of the value at degree 5.  What remains is the samples'
+Each table covers ``2^-10 <= x < 2^22`` in octaves ``[2^(e-1), 2^e)`` (``E`` and ``N``,
+analytic at 0, also ``[0, 2^-10)`` as one more panel), each octave cut into
+:data:`PANELS` panels of equal length (the ratio of a panel's ends at most
+``1 + 2/PANELS``), and holds on each panel the polynomial of degree :data:`DEGREE`
+through the function's SciPy values at the panel's Chebyshev points, in the panel's
+variable ``t in [-1, 1]``.  The functions are analytic on ``x > 0`` with at most a
+pole or a logarithm at ``x = 0``, so on a panel ``[a, b]`` the interpolant's
+truncation error falls like ``rho^-(DEGREE + 1)``, ``rho = c + sqrt(c^2 - 1)``,
+``c = (b + a)/(b - a) = 129``: about ``1e-17`` of the value at degree 6 (at degree
+5, 3e-15: measured 26 ulps next to the pole of ``G+-``).  What remains is the samples'
 own rounding (SciPy's, a few ulps; for ``N`` and ``G-`` at large ``x`` the
 cancellation of the difference, about ``eps x``) times the interpolant's Lebesgue
-constant (about 2.1 for 6 Chebyshev points), and the evaluation's rounding.
+constant (about 2.2 for 7 Chebyshev points), and the evaluation's rounding.
 Measured against mpmath (``tests/test_kernel_tables.py``): relative errors of at most
-a few 1e-15 for ``x <= 16``, growing like ``eps x`` beyond for ``N`` and ``G-`` (as
-SciPy's own differences do).  Outside the table's range (and at NaN) the value is
-SciPy's.
+8 ulps for ``E`` and ``G+``, and for ``N`` and ``G-`` at most ``8 (1 + x)`` and
+``16 (1 + x)`` ulps, the bounds SciPy's own differences meet (``G-`` up to 32 ulps
+next to ``x = 2``, where SciPy's ``K0``, ``K1`` change formula and are up to 24 ulps
+off themselves).  Outside the table's range (and at NaN) the value is SciPy's.
 """
 
 from __future__ import annotations
@@ -51,25 +55,33 @@ class GeometricTable:
     Parameters
     ----------
     f : callable
-        Vectorised; sampled once, at the panels' Chebyshev points.
-    fallback : callable, optional
-        Evaluates the points outside :data:`RANGE` (default ``f``).
+        Vectorised; sampled once, at the panels' Chebyshev points, and evaluating the
+        points outside the panels (and NaN).
+    analytic : bool, optional
+        ``f`` is analytic at ``x = 0``: one more panel, ``[0, 2^-10)``, covers the
+        points below the octaves (the graded quadratures' nodes next to a source).
     """
 
-    def __init__(self, f, fallback=None):
+    def __init__(self, f, analytic=False):
         low, high = RANGE
-        self.f, self.fallback = f, f if fallback is None else fallback
+        self.f = f
         self.low, self.high = 2.0**low, 2.0**high
         # frexp's exponent e of x in [2^(e-1), 2^e): the lowest octave has e = low + 1.
         self.first = low + 1
         panel = np.arange((high - low) * PANELS)
         octave, j = np.divmod(panel, PANELS)
         scale = 2.0 ** (octave + self.first)
-        left = (0.5 + j / (2 * PANELS)) * scale
         half = scale / (4 * PANELS)
+        centre = (0.5 + j / (2 * PANELS)) * scale + half
+        #: The panel [0, 2^low) where f is analytic at 0 (None otherwise).
+        self.bottom = None
+        if analytic:
+            self.bottom = panel.size
+            centre = np.append(centre, 0.5 * self.low)
+            half = np.append(half, 0.5 * self.low)
         k = np.arange(DEGREE + 1)
         t = np.cos(np.pi * (k + 0.5) / (DEGREE + 1))
-        samples = f((left + half)[:, None] + half[:, None] * t[None, :])
+        samples = f(centre[:, None] + half[:, None] * t[None, :])
         # The monomial coefficients in t, highest power first, one row per power, fitted
         # to the samples' differences from one of them (a few percent of the value on a
         # panel): the inverse Vandermonde matrix's entries, up to about 10, then round
@@ -94,23 +106,30 @@ class GeometricTable:
         e *= PANELS
         j += e
         outside = ~((x >= self.low) & (x < self.high))
-        any_outside = outside.any()
-        if any_outside:
+        rest = None
+        if outside.any():
             j[outside] = 0
+            if self.bottom is not None:
+                below = outside & (x >= 0.0) & (x < self.low)
+                j[below] = self.bottom
+                t[below] = x[below] * (2.0 / self.low) - 1.0
+                outside &= ~below
+            if outside.any():
+                rest = outside
         c = self.coefficients
         y = np.take(c[0], j)
         for k in range(1, DEGREE + 1):
             y *= t
             y += np.take(c[k], j)
-        if any_outside:
-            y[outside] = self.fallback(x[outside])
+        if rest is not None:
+            y[rest] = self.f(x[rest])
         return y
 
 
 @functools.cache
 def displacement_table() -> GeometricTable:
     """``E(x) = exp(-x) I0(x) = i0e(x)`` (derivation eq. D5)."""
-    return GeometricTable(i0e)
+    return GeometricTable(i0e, analytic=True)
 
 
 def _slope(x):
@@ -120,7 +139,7 @@ def _slope(x):
 @functools.cache
 def slope_table() -> GeometricTable:
     """``N(x) = exp(-x) [I0(x) - I1(x)]`` (derivation eq. D7)."""
-    return GeometricTable(_slope)
+    return GeometricTable(_slope, analytic=True)
 
 
 def _upstream(a):
