@@ -175,22 +175,26 @@ def cylinder_temperature_gradient_regular(u, scale):
     """
     u = np.asarray(u, dtype=float)
     cu = scale * u
-    a = np.abs(cu)
     # For small |cu| the two terms cancel to O(ln|cu|); form the difference with
     # the series of k1e to keep full relative accuracy there.
-    small = a < 1e-3
+    small = np.abs(cu) < 1e-3
     # Far upstream c M(c u) = c exp(-2cu) [...] is below half an ulp of 1/u
     # (x M(x) < 1e-18 for x >= 22): the kernel is -1/u there to the last bit, without
     # its Bessel functions.
     upstream = cu >= UPSTREAM_NEGLIGIBLE
-    big = ~(small | upstream)
-    out = np.empty_like(cu)
+    out = np.full_like(cu, np.nan)  # (NaN where u is)
     if np.any(upstream):
         out[upstream] = -1.0 / u[upstream]
-    if np.any(big):
-        # None of these points is beyond the gradient's own cut-off (|c u| < 22 here):
-        # its formula without its masks.
-        out[big] = scale * _gradient(cu[big], a[big]) - 1.0 / u[big]
+    # Between, M's two forms (_gradient's), each on its own side: none of these points
+    # is beyond the gradient's own cut-off (|c u| < 22 upstream).
+    near, wake = gradient_tables()
+    ahead = (cu >= 1e-3) & ~upstream
+    if np.any(ahead):
+        x = cu[ahead]
+        out[ahead] = scale * (np.exp(-2.0 * x) * near(x)) - 1.0 / u[ahead]
+    behind = cu <= -1e-3
+    if np.any(behind):
+        out[behind] = scale * wake(-cu[behind]) - 1.0 / u[behind]
     if np.any(small):
         x = cu[small]
         out[small] = scale * _regular_series(x)
@@ -273,7 +277,10 @@ def cylinder_displacement_drop(a, h):
     ``N H = -E'`` over ``[a, a + h]`` by 2-point Gauss–Legendre (relative error
     about ``h^4 / 4320``, 3e-15 at ``h = 1e-3``), accurate however close to the edge.
     """
-    a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
+    a, h = np.asarray(a, dtype=float), np.asarray(h, dtype=float)
+    if a.ndim == 2 and h.shape == (a.shape[0], 1):
+        return _drop_rows(a, h[:, 0])
+    a, h = np.broadcast_arrays(a, h)
     small = h < 1e-3
     if a.ndim and not small.any():
         return cylinder_displacement(a) - cylinder_displacement(a + h)
@@ -286,4 +293,25 @@ def cylinder_displacement_drop(a, h):
         hs = h[small][:, None]
         pts = a[small][:, None] + 0.5 * hs * (1.0 + x[None, :])
         out[small] = 0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)
+    return out
+
+
+def _drop_rows(a, h):
+    """:func:`cylinder_displacement_drop` of rows ``a`` (k, m) each with its own ``h``
+    (k,) (the gap's points, each its own distance past the edge): the same operations
+    on each value, the rows of small and wide ``h`` taken whole instead of value by
+    value."""
+    small = h < 1e-3
+    if not small.any():
+        return cylinder_displacement(a) - cylinder_displacement(a + h[:, None])
+    out = np.empty(a.shape)
+    wide = np.flatnonzero(~small)
+    if wide.size:
+        above = a[wide]
+        out[wide] = cylinder_displacement(above) - cylinder_displacement(above + h[wide, None])
+    narrow = np.flatnonzero(small)
+    x, wq = _GAUSS_2
+    hs = np.repeat(h[narrow], a.shape[1])[:, None]
+    pts = a[narrow].reshape(-1)[:, None] + 0.5 * hs * (1.0 + x[None, :])
+    out[narrow] = (0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)).reshape(narrow.size, -1)
     return out

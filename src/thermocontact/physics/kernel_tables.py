@@ -11,7 +11,7 @@ Bessel function by its own Chebyshev series, 40 to 60 ns a value on the benchmar
 machine, and a kernel needs two of them; a table evaluates the product at once, in
 about a third of that.
 
-Each table covers ``2^-10 <= x < 2^22`` in octaves ``[2^(e-1), 2^e)`` (``E`` and ``N``,
+Each table covers ``2^-10 <= x < 2^22`` in octaves ``[2^E, 2^(E + 1))`` (``E`` and ``N``,
 analytic at 0, also ``[0, 2^-10)`` as one more panel), each octave cut into
 :data:`PANELS` panels of equal length (the ratio of a panel's ends at most
 ``1 + 2/PANELS``), and holds on each panel the polynomial of degree :data:`DEGREE`
@@ -47,6 +47,9 @@ PANELS = 64
 DEGREE = 6
 #: The tables' range ``[2^-10, 2^22)``, as exponents of two.
 RANGE = (-10, 22)
+#: A double's mantissa bits below the top ``log2(PANELS)``: the position in a panel.
+_FRACTION_BITS = 52 - int(np.log2(PANELS))
+_FRACTION_MASK = (1 << _FRACTION_BITS) - 1
 
 
 class GeometricTable:
@@ -66,13 +69,15 @@ class GeometricTable:
         low, high = RANGE
         self.f = f
         self.low, self.high = 2.0**low, 2.0**high
-        # frexp's exponent e of x in [2^(e-1), 2^e): the lowest octave has e = low + 1.
-        self.first = low + 1
         panel = np.arange((high - low) * PANELS)
+        self.panels = panel.size
+        # Panel p of the octave [2^E, 2^(E + 1)): x's bits shifted (__call__), less the
+        # lowest octave's.
+        self.offset = (1023 + low) * PANELS
         octave, j = np.divmod(panel, PANELS)
-        scale = 2.0 ** (octave + self.first)
-        half = scale / (4 * PANELS)
-        centre = (0.5 + j / (2 * PANELS)) * scale + half
+        scale = 2.0 ** (octave + low)
+        half = scale / (2 * PANELS)
+        centre = (1.0 + j / PANELS) * scale + half
         #: The panel [0, 2^low) where f is analytic at 0 (None otherwise).
         self.bottom = None
         if analytic:
@@ -94,18 +99,19 @@ class GeometricTable:
     def __call__(self, x):
         """The function at ``x`` (an array of any shape)."""
         x = np.asarray(x, dtype=float)
-        m, e = np.frexp(x)
-        # x = m 2^e, m in [1/2, 1): panel j of the octave, and t in [-1, 1] on it.
-        u = (m - 0.5) * (2 * PANELS)
-        with np.errstate(invalid="ignore"):  # (NaN and infinities: outside, below)
-            j = u.astype(np.int64)
-        t = u - j
-        t *= 2.0
+        shape = x.shape
+        x = np.ascontiguousarray(x).reshape(-1)
+        # The bits of a double x = 2^E (1 + f): above the mantissa's top 46 bits, the
+        # biased exponent and f's top 6 bits, that is 64 E + floor(64 f) plus a
+        # constant: the panel; the 46 bits below, 64 f less its floor, in [0, 1): t.
+        # (A negative x, NaN or an infinity lands outside the panels.)
+        bits = x.view(np.int64)
+        j = bits >> _FRACTION_BITS
+        j -= self.offset
+        t = (bits & _FRACTION_MASK).astype(float)
+        t *= 2.0 ** (1 - _FRACTION_BITS)
         t -= 1.0
-        e -= self.first
-        e *= PANELS
-        j += e
-        outside = ~((x >= self.low) & (x < self.high))
+        outside = j.view(np.uint64) >= self.panels
         rest = None
         if outside.any():
             j[outside] = 0
@@ -123,7 +129,7 @@ class GeometricTable:
             y += np.take(c[k], j)
         if rest is not None:
             y[rest] = self.f(x[rest])
-        return y
+        return y.reshape(shape)
 
 
 @functools.cache
