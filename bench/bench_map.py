@@ -116,7 +116,7 @@ def systems(count):
     process (one BLAS thread, as a worker)."""
     from threadpoolctl import threadpool_limits
 
-    import thermocontact.solvers.single_patch as sp
+    import thermocontact.numerics.dense as sp
     from thermocontact.studies.maps import compute_map
 
     seen, inside = {}, [False]

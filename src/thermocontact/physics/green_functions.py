@@ -7,14 +7,18 @@ in the ``-x`` direction, so ``u > 0`` is upstream of the source (material that h
 not yet passed it) and ``u < 0`` is downstream (its hot wake).  See
 ``docs/derivation.md`` sections 2-4 for the derivations and checks.
 
-All functions are vectorised over ``u`` and use SciPy's exponentially scaled
-Bessel functions, so that no factor ``exp(+-u)`` is ever formed on its own.
+All functions are vectorised over ``u`` and use the exponentially scaled Bessel
+functions, so that no factor ``exp(+-u)`` is ever formed on its own: the products
+``E``, ``N`` and ``M`` by the tables of :mod:`.kernel_tables` (SciPy's values to a
+few ulps, at a third of their cost), the rest by SciPy's.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import i0e, i1e, k0e, k1e
+from scipy.special import k0e, k1e
+
+from .kernel_tables import displacement_table, gradient_tables, slope_table
 
 __all__ = [
     "cylinder_displacement",
@@ -48,10 +52,11 @@ def cylinder_displacement(u):
     """
     u = np.asarray(u, dtype=float)
     up = u > 0.0
+    table = displacement_table()
     if u.ndim and up.all():
-        return i0e(u)  # (an array of upstream points: no mask)
+        return table(u)  # (an array of upstream points: no mask)
     out = np.ones(u.shape)
-    out[up] = i0e(u[up])
+    out[up] = table(u[up])
     return out
 
 
@@ -77,8 +82,7 @@ def cylinder_slope(u):
     u = np.asarray(u, dtype=float)
     out = np.where(u == 0.0, 0.5, 0.0)
     up = u > 0.0  # the Bessel functions only upstream, where they are needed
-    x = u[up]
-    out[up] = i0e(x) - i1e(x)
+    out[up] = slope_table()(u[up])
     return out
 
 
@@ -133,8 +137,17 @@ def cylinder_temperature_gradient(u):
 
 def _gradient(x, a):
     """``M(x) = exp(-x - a) [k0e(a) + sgn(x) k1e(a)]`` with ``a = |x|``: the formula of
-    :func:`cylinder_temperature_gradient` without its cut-off (callers keep ``x < 372``)."""
-    return np.exp(-x - a) * (k0e(a) + np.sign(x) * k1e(a))
+    :func:`cylinder_temperature_gradient` without its cut-off (callers keep ``x < 372``).
+    Upstream ``exp(-2a) [k0e(a) + k1e(a)]``, in the wake ``k0e(a) - k1e(a)``, each by
+    its table (:func:`.kernel_tables.gradient_tables`)."""
+    upstream, wake = gradient_tables()
+    out = np.empty(np.shape(x))
+    up = x > 0.0
+    down = ~up
+    xu = a[up]
+    out[up] = np.exp(-2.0 * xu) * upstream(xu)
+    out[down] = wake(a[down])
+    return out
 
 
 #: ``c u`` beyond which ``c M(c u)`` no longer changes ``c M(c u) - 1/u`` in floating
@@ -162,22 +175,26 @@ def cylinder_temperature_gradient_regular(u, scale):
     """
     u = np.asarray(u, dtype=float)
     cu = scale * u
-    a = np.abs(cu)
     # For small |cu| the two terms cancel to O(ln|cu|); form the difference with
     # the series of k1e to keep full relative accuracy there.
-    small = a < 1e-3
+    small = np.abs(cu) < 1e-3
     # Far upstream c M(c u) = c exp(-2cu) [...] is below half an ulp of 1/u
     # (x M(x) < 1e-18 for x >= 22): the kernel is -1/u there to the last bit, without
     # its Bessel functions.
     upstream = cu >= UPSTREAM_NEGLIGIBLE
-    big = ~(small | upstream)
-    out = np.empty_like(cu)
+    out = np.full_like(cu, np.nan)  # (NaN where u is)
     if np.any(upstream):
         out[upstream] = -1.0 / u[upstream]
-    if np.any(big):
-        # None of these points is beyond the gradient's own cut-off (|c u| < 22 here):
-        # its formula without its masks.
-        out[big] = scale * _gradient(cu[big], a[big]) - 1.0 / u[big]
+    # Between, M's two forms (_gradient's), each on its own side: none of these points
+    # is beyond the gradient's own cut-off (|c u| < 22 upstream).
+    near, wake = gradient_tables()
+    ahead = (cu >= 1e-3) & ~upstream
+    if np.any(ahead):
+        x = cu[ahead]
+        out[ahead] = scale * (np.exp(-2.0 * x) * near(x)) - 1.0 / u[ahead]
+    behind = cu <= -1e-3
+    if np.any(behind):
+        out[behind] = scale * wake(-cu[behind]) - 1.0 / u[behind]
     if np.any(small):
         x = cu[small]
         out[small] = scale * _regular_series(x)
@@ -260,7 +277,10 @@ def cylinder_displacement_drop(a, h):
     ``N H = -E'`` over ``[a, a + h]`` by 2-point Gauss–Legendre (relative error
     about ``h^4 / 4320``, 3e-15 at ``h = 1e-3``), accurate however close to the edge.
     """
-    a, h = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(h, dtype=float))
+    a, h = np.asarray(a, dtype=float), np.asarray(h, dtype=float)
+    if a.ndim == 2 and h.shape == (a.shape[0], 1):
+        return _drop_rows(a, h[:, 0])
+    a, h = np.broadcast_arrays(a, h)
     small = h < 1e-3
     if a.ndim and not small.any():
         return cylinder_displacement(a) - cylinder_displacement(a + h)
@@ -273,4 +293,25 @@ def cylinder_displacement_drop(a, h):
         hs = h[small][:, None]
         pts = a[small][:, None] + 0.5 * hs * (1.0 + x[None, :])
         out[small] = 0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)
+    return out
+
+
+def _drop_rows(a, h):
+    """:func:`cylinder_displacement_drop` of rows ``a`` (k, m) each with its own ``h``
+    (k,) (the gap's points, each its own distance past the edge): the same operations
+    on each value, the rows of small and wide ``h`` taken whole instead of value by
+    value."""
+    small = h < 1e-3
+    if not small.any():
+        return cylinder_displacement(a) - cylinder_displacement(a + h[:, None])
+    out = np.empty(a.shape)
+    wide = np.flatnonzero(~small)
+    if wide.size:
+        above = a[wide]
+        out[wide] = cylinder_displacement(above) - cylinder_displacement(above + h[wide, None])
+    narrow = np.flatnonzero(small)
+    x, wq = _GAUSS_2
+    hs = np.repeat(h[narrow], a.shape[1])[:, None]
+    pts = a[narrow].reshape(-1)[:, None] + 0.5 * hs * (1.0 + x[None, :])
+    out[narrow] = (0.5 * hs[:, 0] * (cylinder_slope(pts) @ wq)).reshape(narrow.size, -1)
     return out
