@@ -59,6 +59,9 @@ Reference routes
 
 from __future__ import annotations
 
+import json
+import pathlib
+
 import mpmath
 import numpy as np
 import pytest
@@ -648,25 +651,43 @@ def test_moving_distortion_fourier(params, u):
     assert -s_scale * kernels.cylinder_slope(u) == pytest.approx(s, rel=1e-8, abs=1e-10 * s_scale)
 
 
-@pytest.mark.parametrize("params", PARAMS)
-@pytest.mark.parametrize("u", [-5.0, -0.5, 0.5, 2.0, 8.0])
-def test_moving_distortion_maysel(params, u):
+#: Maysel's route's nested quadratures at every parameter set and position, stored
+#: (``tests/data/make_maysel_references.py``: about ten seconds).
+MAYSEL = pathlib.Path(__file__).resolve().parent / "data" / "maysel_references.json"
+
+
+@pytest.mark.parametrize("index", range(10))
+def test_moving_distortion_maysel(index):
     """Claim (c) by the real-space route (route 3b): Maysel plus time superposition.
 
     This route has no free rigid-body constant: it gives ``w -> 0`` far upstream
     and ``w = 2 delta kappa Q / v`` downstream by itself.  Tolerance: rtol 1e-8 with
     an absolute floor of 1e-10 of the scale (the downstream slope is exactly
-    zero); the nested quadratures run at epsrel 1e-10/1e-11.
+    zero); the nested quadratures run at epsrel 1e-10/1e-11, stored.
     """
+    case = json.loads(MAYSEL.read_text())["cases"][index]
+    params, u = tuple(case["params"]), case["u"]
+    assert params in PARAMS
     Q, K, kappa, v, alpha, nu = params
     delta = alpha * (1 + nu) / K
-    x = 2 * kappa * u / v
     w_scale = 2 * delta * kappa * Q / v
     s_scale = delta * Q
-    w = maysel_moving_distortion(x, Q, K, kappa, v, alpha, nu)
+    w, s = case["w"], case["slope"]
     assert w_scale * kernels.cylinder_displacement(u) == pytest.approx(w, rel=1e-8, abs=1e-10 * w_scale)
-    s = maysel_moving_distortion(x, Q, K, kappa, v, alpha, nu, derivative=True)
     assert -s_scale * kernels.cylinder_slope(u) == pytest.approx(s, rel=1e-8, abs=1e-10 * s_scale)
+
+
+def test_maysel_reference_of_one_case_again():
+    """The stored quadratures of one case, computed again: the route gives what was
+    stored (to its own tolerance, 1e-9 relative)."""
+    cases = json.loads(MAYSEL.read_text())["cases"]
+    assert len(cases) == 10 == 5 * len(PARAMS)  # every case stored is tested above
+    case = cases[1]
+    Q, K, kappa, v, alpha, nu = params = tuple(case["params"])
+    x = 2 * kappa * case["u"] / v
+    assert maysel_moving_distortion(x, *params) == pytest.approx(case["w"], rel=1e-9)
+    assert maysel_moving_distortion(x, *params, derivative=True) == pytest.approx(
+        case["slope"], rel=1e-9, abs=1e-12 * alpha * (1 + nu) / K * Q)
 
 
 # ---------------------------------------------------------------------------
