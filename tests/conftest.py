@@ -1,4 +1,4 @@
-"""Shared test helpers: the stored independent references (tests/data/make_references.py)."""
+"""Shared test helpers: the stored independent references (tests/data/make_*.py)."""
 
 import json
 import pathlib
@@ -11,10 +11,26 @@ from threadpoolctl import threadpool_limits
 threadpool_limits(1)
 
 
+#: The stored references and the scripts that make them.
+DATA = pathlib.Path(__file__).parent / "data"
+
+
 @lru_cache(maxsize=None)
 def references() -> dict:
     """The values written by ``python tests/data/make_references.py``."""
-    return json.loads((pathlib.Path(__file__).parent / "data" / "references.json").read_text())
+    return json.loads((DATA / "references.json").read_text())
+
+
+def data_script(name):
+    """The script ``tests/data/<name>.py`` that makes a stored reference, as a module (its
+    cases and its independent computation, shared with the test that reads what it
+    stored)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, DATA / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def contact_keywords(state) -> dict:

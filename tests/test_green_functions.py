@@ -60,7 +60,6 @@ Reference routes
 from __future__ import annotations
 
 import json
-import pathlib
 
 import mpmath
 import numpy as np
@@ -68,7 +67,7 @@ import pytest
 from scipy.integrate import IntegrationWarning, quad
 from scipy.special import k0, wofz
 
-from conftest import assert_ulps
+from conftest import DATA, assert_ulps
 from thermocontact.physics import green_functions as kernels
 
 pytestmark = pytest.mark.filterwarnings(
@@ -653,7 +652,7 @@ def test_moving_distortion_fourier(params, u):
 
 #: Maysel's route's nested quadratures at every parameter set and position, stored
 #: (``tests/data/make_maysel_references.py``: about ten seconds).
-MAYSEL = pathlib.Path(__file__).resolve().parent / "data" / "maysel_references.json"
+MAYSEL = DATA / "maysel_references.json"
 
 
 @pytest.mark.parametrize("index", range(10))

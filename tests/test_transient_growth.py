@@ -3,31 +3,19 @@ contact set held fixed, and these grow at the eigenvalue of the contact with its
 held (derivation S17), which the stability analysis computes; not at the edges-free one."""
 
 import dataclasses
-import importlib.util
 import json
-import pathlib
 
 import numpy as np
 import pytest
 
+from conftest import DATA, data_script
 import thermocontact as tc
 from thermocontact.problem.validation import InputError
 from thermocontact.solvers.stability import linearised, newton
 from thermocontact.solvers.transient import TransientSpec, held_set_steps
 
-DATA = pathlib.Path(__file__).resolve().parent / "data"
 RECORD = json.loads((DATA / "transient_growth.json").read_text())
-
-
-def _make_script():
-    spec = importlib.util.spec_from_file_location("make_transient_growth",
-                                                  DATA / "make_transient_growth.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-MAKE = _make_script()
+MAKE = data_script("make_transient_growth")
 
 
 @pytest.fixture(scope="module")

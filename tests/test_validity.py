@@ -1,17 +1,13 @@
 """Contact inequalities: the gap's closed forms against brute-force quadrature, the
 Hertz gap, and detection of tensile pressure, interpenetration and negative load."""
 
-import importlib.util
 import json
-import pathlib
 
 import numpy as np
 import pytest
 
-from conftest import assert_ulps
+from conftest import DATA, assert_ulps, data_script
 from thermocontact import solve
-
-DATA = pathlib.Path(__file__).resolve().parent / "data"
 
 HERTZ_EDGE = 2 * np.sqrt(2) / 3  # g ~ (2 sqrt 2 / 3) (|s| - 1)^1.5 for Hertz
 
@@ -34,15 +30,7 @@ def test_hertz_gap_exact():
     # g/(|s|-1)^1.5 -> 2 sqrt2/3 at the edge; the grid starts at 1e-8 (next term O(1e-8)).
     assert abs(v.gap_margin - HERTZ_EDGE) < 1e-6
 
-def _gap_script():
-    spec = importlib.util.spec_from_file_location("make_gap_references",
-                                                  DATA / "make_gap_references.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-GAP = _gap_script()
+GAP = data_script("make_gap_references")
 GAP_RECORD = json.loads((DATA / "gap_references.json").read_text())
 
 
