@@ -81,7 +81,7 @@ def startup():
 
 def main(count=100):
     from playwright.sync_api import sync_playwright
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
     from thermocontact.explore.browser import launch, session
     from thermocontact.explore.server import Explorer, serve
@@ -98,7 +98,7 @@ def main(count=100):
             cpu.append(1e3 * (time.thread_time() - c))
         return out
     Explorer.handle = timed
-    threadpool_limits(limits=1, user_api="blas")  # as the command line serves it
+    one_blas_thread()  # as the command line serves it
     server = serve()
     warm, steps = changes(count + 8)[:8], changes(count + 8)[8:]
     with sync_playwright() as pw:

@@ -44,12 +44,12 @@ def tasks(lines):
 def run(lines):
     """Solve the lines; the loop runs inside ``functools.reduce``, the C function on
     which callgrind switches its collection on and off."""
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
     from thermocontact.studies.maps import evaluate_chunk
 
     first, chosen = tasks(lines)
-    with threadpool_limits(1):
+    with one_blas_thread():
         evaluate_chunk(first)
         t0 = time.process_time()
         functools.reduce(lambda _, task: evaluate_chunk(task), chosen, None)
@@ -73,7 +73,7 @@ def collections(lines):
     """``(collector's ms per line, line's ms)`` with the start frozen, then without."""
     import gc
 
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
     from thermocontact.numerics.cache import clear_caches
     from thermocontact.studies.maps import evaluate_chunk
@@ -89,7 +89,7 @@ def collections(lines):
     out = []
     gc.callbacks.append(timer)
     try:
-        with threadpool_limits(1):
+        with one_blas_thread():
             for frozen in (True, False):
                 clear_caches()
                 if frozen:

@@ -114,7 +114,7 @@ def systems(count):
     lines hand to LAPACK (``gesv``, or ``getrf`` above its size limit), counted by size,
     and the first :data:`KEPT` of each size as handed over, the map solved once in this
     process (one BLAS thread, as a worker)."""
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
     import thermocontact.numerics.dense as sp
     from thermocontact.studies.maps import compute_map
@@ -148,7 +148,7 @@ def systems(count):
         return getrf(a, **kwargs)
     sp._solve_chunk, sp.dgesv, sp.dgetrf = watched_chunk, watched_gesv, watched_getrf
     try:
-        with threadpool_limits(1):
+        with one_blas_thread():
             compute_map(map_spec(count), workers=1)
     finally:
         sp._solve_chunk, sp.dgesv, sp.dgetrf = chunk, gesv, getrf

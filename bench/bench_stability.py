@@ -90,7 +90,7 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         main(sys.argv[1:])

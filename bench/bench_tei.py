@@ -24,7 +24,7 @@ import math
 import time
 
 import numpy as np
-from threadpoolctl import threadpool_limits
+from thermocontact.execution.executors import one_blas_thread
 
 
 def _time(func, repeat=1):
@@ -73,7 +73,7 @@ def main():
     ]
     print("| task | wall (s) | CPU (s) | goal (s) | CPU / goal |")
     print("|---|---|---|---|---|")
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         for name, goal, func, repeat in rows:
             wall, cpu = _time(func, repeat)
             ratio = "" if goal is None else f"{cpu / goal:.2f}"

@@ -487,8 +487,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    from threadpoolctl import threadpool_limits
+    from thermocontact.execution.executors import one_blas_thread
 
     # Small matrices on two cores: one BLAS thread is fastest (as in the CLI).
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         sys.exit(main())

@@ -71,16 +71,17 @@ ALLOWED = {
     "numerics": {"problem"},
     "discretisation": {"problem", "physics", "numerics"},
     "analysis": {"problem", "io", "physics", "numerics", "discretisation"},
-    "solvers": {"_version", "problem", "io", "numerics", "discretisation", "analysis"},
+    "solvers": {"_version", "problem", "io", "execution", "numerics", "discretisation",
+                "analysis"},
     "studies": {"_version", "problem", "io", "execution", "physics", "numerics",
                 "discretisation", "analysis", "solvers"},
     "plotting": {"problem", "io"},
     "figures": {"problem", "io", "physics", "solvers", "studies", "plotting"},
-    "api": {"problem", "discretisation", "solvers", "studies"},
+    "api": {"problem", "execution", "discretisation", "solvers", "studies"},
     # The explorer calls the library through api (one module, explore.adapter), and
     # the lower layers only for what api does not offer: the materials' table, the
     # parsing of a quantity, Hertz's pressure, the writers of files.
-    "explore": {"problem", "io", "physics", "api"},
+    "explore": {"problem", "io", "execution", "physics", "api"},
     "cli": {"_version", "problem", "io", "execution", "discretisation", "plotting",
             "figures", "api", "explore"},
     "__main__": {"_version", "cli"},

@@ -726,3 +726,22 @@ def test_a_map_written_reads_back_identical_without_warnings(reference, tmp_path
         warnings.simplefilter("error")
         write_dataset(reference, path)
     xr.testing.assert_identical(read_dataset(path), reference)
+
+
+def test_one_blas_thread_holds_both_libraries_loaded_after_it_is_asked():
+    """Asked for before NumPy and SciPy are imported (as the command line asks), the
+    limit still holds both libraries' BLAS to one thread: threadpoolctl limits only the
+    libraries loaded when it is called, and the helper loads both first."""
+    import subprocess
+    import sys
+
+    code = ("from thermocontact.execution.executors import one_blas_thread\n"
+            "one_blas_thread()\n"
+            "import numpy, scipy.linalg\n"
+            "from threadpoolctl import threadpool_info\n"
+            "info = [i for i in threadpool_info() if i['user_api'] == 'blas']\n"
+            "print(len(info), max(i['num_threads'] for i in info))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, timeout=120)
+    count, threads = map(int, out.stdout.split())
+    assert count >= 1 and threads == 1

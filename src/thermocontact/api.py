@@ -1046,8 +1046,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
             raise InputError("brake_stop needs disc_radius (its amplification is per number "
                              "of hot spots)", parameters=("brake_stop", "disc_radius"))
         history = make_history(brake_stop, stop_history, stop_threshold)
-    from threadpoolctl import threadpool_limits
-
+    from .execution.executors import one_blas_thread
     from .studies.tei import analyse, check_geometry
 
     # The problem statement checked whole before any work (two non-conductors
@@ -1055,7 +1054,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
     check_geometry(s, c, slider_thickness=d, faces=faces, counterface_thickness=h,
                    backing=backing, separator=sep, separator_thickness=sep_t)
     # Small matrices: one BLAS thread is faster than several competing for the cores.
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         return analyse(s, c, friction, wl, speed=v, dundurs=dundurs, plane=plane,
                        slider_thickness=d, faces=faces, counterface_thickness=h,
                        backing=backing, separator=sep, separator_thickness=sep_t,

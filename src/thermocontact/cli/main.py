@@ -185,9 +185,9 @@ def main(argv=None) -> int:
         # The matrices here are small: one BLAS thread is faster than several
         # competing for two cores (measured: 3x on the benchmark).  Imported only
         # for work, so that a help text or the version answers at once.
-        from threadpoolctl import threadpool_limits
+        from ..execution.executors import one_blas_thread
 
-        limits = threadpool_limits(limits=1, user_api="blas")
+        limits = one_blas_thread()
     elif argv is None:  # this process's own command line: its exit is ours
         _nothing_to_collect_at_exit()
     try:

@@ -26,8 +26,8 @@ from functools import partial
 from ..problem.errors import ExecutionError
 from ..problem.validation import InputError, check_integer
 
-__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "run", "runs_elsewhere",
-           "side_process"]
+__all__ = ["ExecutionError", "check_scheduler", "connect", "cpu_count", "one_blas_thread", "run",
+           "runs_elsewhere", "side_process"]
 
 #: Tasks in flight per worker.
 IN_FLIGHT = 2
@@ -41,6 +41,22 @@ def cpu_count() -> int:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
         return os.cpu_count() or 1
+
+
+def one_blas_thread():
+    """NumPy's and SciPy's BLAS on one thread: the limits, applied at once (a context
+    manager that restores them at its exit).
+
+    The matrices of this package are small, and one thread is faster than several
+    competing for the cores.  ``threadpoolctl`` limits only the libraries loaded when it
+    is called, and NumPy and SciPy each bring their own, SciPy's loaded with
+    :mod:`scipy.linalg`: both are loaded here first, so that neither keeps its default
+    threads (asked for before them, the limit held nothing)."""
+    import numpy  # noqa: F401
+    import scipy.linalg  # noqa: F401
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def _start_method() -> str:
@@ -94,14 +110,10 @@ def _single_thread(ignore_interrupts=False):
     half the time) and leave the pages it shares with its parent unwritten."""
     import gc
 
-    # NumPy's and SciPy's BLAS loaded now (a fork server's worker has neither yet), so
-    # that their threads are limited here, before any task.
-    import numpy  # noqa: F401
-    import scipy.linalg  # noqa: F401
-    from threadpoolctl import threadpool_limits
-
     _admit_interrupts(ignore_interrupts)
-    threadpool_limits(1)
+    # NumPy's and SciPy's BLAS loaded now (a fork server's worker has neither yet) and
+    # limited here, before any task.
+    one_blas_thread()
     gc.freeze()
 
 
@@ -296,10 +308,8 @@ def _run(func, tasks, workers):
         n = cpu_count() if workers is None else check_integer("workers", workers, 1, MAX_WORKERS)
         n = min(n, max(len(tasks), 1))
         if n == 1:
-            from threadpoolctl import threadpool_limits
-
             # One BLAS thread here too: the same arithmetic as in a worker.
-            with threadpool_limits(1):
+            with one_blas_thread():
                 for i, task in enumerate(tasks):
                     yield i, func(task)
             return
@@ -337,9 +347,7 @@ def _run(func, tasks, workers):
 def _one_blas_thread(func, task):
     """``func(task)`` with BLAS on one thread: a Dask worker's tasks, like a pool's
     processes, must not each start a BLAS thread per core."""
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(1):
+    with one_blas_thread():
         return func(task)
 
 

@@ -615,7 +615,7 @@ def run_job(kind, state, folder, progress):
     ``[done, total]``."""
     import signal
 
-    from threadpoolctl import threadpool_limits
+    from ..execution.executors import one_blas_thread
 
     # Ctrl-C in the server's terminal reaches every process of its group: the server
     # ends the jobs itself, so a job does not answer it with a traceback of its own.
@@ -625,7 +625,7 @@ def run_job(kind, state, folder, progress):
         progress[0], progress[1] = float(done), float(total)
 
     try:
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             if kind == "map":
                 spec = map_spec_of(state)
                 ds = _call(api.compute_map, spec, progress=tell,

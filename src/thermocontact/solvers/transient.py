@@ -659,11 +659,11 @@ def run_transient(spec: TransientSpec, *, resume: TransientRun | None = None, pr
     SolveError
         When the steady start state does not exist on these elements.
     """
-    from threadpoolctl import threadpool_limits
+    from ..execution.executors import one_blas_thread
 
     # The step's matrices are small: one BLAS thread is faster than several competing
     # for the cores (path (a)'s 1000 steps: 7 s against 214 s on a loaded 2-core machine).
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         return _run(spec, resume, progress, save, save_every, preparing)
 
 
