@@ -110,10 +110,11 @@ def _single_thread(ignore_interrupts=False):
     half the time) and leave the pages it shares with its parent unwritten."""
     import gc
 
-    _admit_interrupts(ignore_interrupts)
     # NumPy's and SciPy's BLAS loaded now (a fork server's worker has neither yet) and
-    # limited here, before any task.
+    # limited here, before any task; loaded while Ctrl-C is still held, as every other
+    # step of the worker's start.
     one_blas_thread()
+    _admit_interrupts(ignore_interrupts)
     gc.freeze()
 
 
