@@ -113,7 +113,6 @@ def _temperatures(zones, rep, eta, units, at, s, half_plane=True):
         a = units[0] * 0.5 * ((1 + eta) * (tb @ z.phi) + tq @ z.psi)
         t1 = t1 + (a if z.half == 1.0 else z.half * a)
         if not half_plane:
-            t2 = None
             continue
         hb, hq = hp
         if z.parameters.half_plane_scale:
@@ -126,7 +125,7 @@ def _temperatures(zones, rep, eta, units, at, s, half_plane=True):
                 hq = hq + lg * rep.flux_rule.weights[None, :]
             b = -units[1] * 0.5 * ((1 - eta) * (hb @ z.phi) - hq @ z.psi)
         t2 = t2 + (b if z.half == 1.0 else z.half * b)
-    return t1, t2
+    return t1, (t2 if half_plane else None)
 
 
 def surface_temperatures(sol, s, *, zone=0, temperature_units=None):
