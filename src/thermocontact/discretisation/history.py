@@ -26,10 +26,11 @@ import numpy as np
 
 from .element_operators import ElementOperators, flamant_operator
 from ..numerics.cache import BoundedCache
+from ..numerics.online_convolution import OnlineConvolution
 from ..physics.impulse_responses import element_displacement, element_temperature_sigma
 
-__all__ = ["SpatialConvolution", "TABLES", "TransientOperators", "body_rates", "lag_tables",
-           "toeplitz", "transient_element_operators"]
+__all__ = ["HeatHistory", "SpatialConvolution", "TABLES", "TransientOperators", "body_rates",
+           "lag_tables", "toeplitz", "transient_element_operators"]
 
 #: The lag tables computed, by their inputs (a run and its resumption share them); the
 #: largest a run makes (3e6 steps x elements) holds about 100 MB per body.
@@ -172,6 +173,38 @@ class TransientOperators:
     current: ElementOperators
     kernels: tuple
     convolution: SpatialConvolution
+
+
+class HeatHistory:
+    """The heat both bodies took at the steps before the current one, and what it leaves
+    on the elements at the current step: the lag sums of eq. R8, ``sum_{m >= 1}
+    A[., m] q[n - m]``, by online convolution in time and FFT in space.
+
+    Parameters
+    ----------
+    operators : TransientOperators
+        The lags' responses (``kernels``) and the elements' convolution.
+    """
+
+    def __init__(self, operators: TransientOperators):
+        self.convolution = operators.convolution
+        self._bodies = [OnlineConvolution(k) for k in operators.kernels]
+
+    def known(self, n: int) -> tuple:
+        """Each body's gap and temperature rise at step ``n`` from the steps before it:
+        two arrays of shape ``(2, elements)`` (gap, then temperature)."""
+        return tuple(self.convolution.backward(body.history(n)) for body in self._bodies)
+
+    def skip(self, n: int) -> None:
+        """Step ``n``'s history formed and not evaluated (a step taken as it was)."""
+        for body in self._bodies:
+            body.history(n)
+
+    def push(self, q1, q2) -> None:
+        """Record each body's heat (per element, shape ``(elements,)``) at the current
+        step, after its :meth:`known` or :meth:`skip`."""
+        for body, q in zip(self._bodies, (q1, q2)):
+            body.push(self.convolution.forward(q)[None, :])
 
 
 def transient_element_operators(par, X, h, dt, steps, progress=None) -> TransientOperators:

@@ -31,9 +31,8 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ..discretisation.element_operators import steady_element_operators
-from ..discretisation.history import transient_element_operators
+from ..discretisation.history import HeatHistory, transient_element_operators
 from ..io.results import Result, dataset_attrs
-from ..numerics.online_convolution import OnlineConvolution
 from ..problem.errors import NotConvergedError
 from ..problem.parameters import DISTORTIVITY_RATIO_MAX, Parameters, SolveError
 from ..problem.validation import (InputError, check_choice, check_finite, check_integer,
@@ -731,20 +730,17 @@ def held_set_steps(spec: TransientSpec, active) -> tuple:
         raise InputError(f"active must be {X.size} flags with at least one set, got "
                          f"shape {active.shape}", parameters=("active",))
     tops = transient_element_operators(spec.parameters(), X, h, spec.dt, spec.steps)
-    ops, conv = tops.current, tops.convolution
-    histories = [OnlineConvolution(k) for k in tops.kernels]
+    ops, history = tops.current, HeatHistory(tops)
     p, q, D = (np.zeros((spec.steps, X.size)), np.zeros((spec.steps, X.size)),
                np.zeros(spec.steps))
     for n in range(1, spec.steps + 1):
-        y1 = conv.backward(histories[0].history(n))
-        y2 = conv.backward(histories[1].history(n))
+        y1, y2 = history.known(n)
         load = spec.perturb if n == 1 else 0.0
         closure = {"lam": spec.lam} if spec.hold == "lam" else {"theta": 0.0}
         p[n - 1], q[n - 1], _, D[n - 1], _ = solve_on_set(
             ops.Gp, ops.Gq, ops.Tp, ops.Tq, y1[0] + y2[0], y1[1] - y2[1], h, active,
             load=load, **closure)
-        histories[0].push(conv.forward(0.5 * (p[n - 1] + q[n - 1]))[None, :])
-        histories[1].push(conv.forward(0.5 * (p[n - 1] - q[n - 1]))[None, :])
+        history.push(0.5 * (p[n - 1] + q[n - 1]), 0.5 * (p[n - 1] - q[n - 1]))
     return spec.dt * np.arange(1, spec.steps + 1), p, q, D
 
 
@@ -763,8 +759,7 @@ class _Stepper:
         N = self.X.size
         tops = transient_element_operators(self.par, self.X, self.h, spec.dt, spec.steps,
                                            preparing)
-        self.ops, self.conv = tops.current, tops.convolution
-        self.histories = [OnlineConvolution(k) for k in tops.kernels]
+        self.ops, self.history = tops.current, HeatHistory(tops)
         self.g0 = 0.5 * self.X * self.X
         self.base_gap, self.base_t1, self.base_t2 = np.zeros(N), np.zeros(N), np.zeros(N)
         self.q1s, self.q2s = np.zeros(N), np.zeros(N)
@@ -819,14 +814,11 @@ class _Stepper:
         if resume.spec != self.spec:
             raise InputError("the partial run was computed with other inputs",
                              parameters=("resume",))
-        conv, histories = self.conv, self.histories
         done = resume.time.size - 1
         for n in range(1, done + 1):
-            for hist in histories:
-                hist.history(n)
+            self.history.skip(n)
             p, q = resume.pressure[n], resume.flux[n]
-            histories[0].push(conv.forward(0.5 * (p + q) - self.q1s)[None, :])
-            histories[1].push(conv.forward(0.5 * (p - q) - self.q2s)[None, :])
+            self.history.push(0.5 * (p + q) - self.q1s, 0.5 * (p - q) - self.q2s)
         self.state = _State()
         for n in range(done + 1):
             self.state.append(resume.pressure[n], resume.flux[n], resume.gap[n],
@@ -843,10 +835,9 @@ class _Stepper:
     def step(self, n) -> str | None:
         """Step ``n``: its state appended; or where and why the run stops (the state
         not appended)."""
-        spec, ops, conv, histories, h = self.spec, self.ops, self.conv, self.histories, self.h
+        spec, ops, h = self.spec, self.ops, self.h
         X, tol = self.X, self.TOL
-        y1 = conv.backward(histories[0].history(n))
-        y2 = conv.backward(histories[1].history(n))
+        y1, y2 = self.history.known(n)
         gap_known = self.g0 + self.base_gap + y1[0] + y2[0]
         t1_known = self.base_t1 + y1[1]
         t2_known = self.base_t2 + y2[1]
@@ -893,8 +884,7 @@ class _Stepper:
                     f"(x = {X[0] if active[0] else X[-1]:.4g}); give a wider window")
         q1, q2 = 0.5 * (p + q), 0.5 * (p - q)
         self.q1_last, self.q2_last = q1, q2
-        histories[0].push(conv.forward(q1 - self.q1s)[None, :])
-        histories[1].push(conv.forward(q2 - self.q2s)[None, :])
+        self.history.push(q1 - self.q1s, q2 - self.q2s)
         t1 = t1_known + ops.theta1 @ q1
         t2 = t2_known + ops.theta2 @ q2
         lam = float(np.sum(q) / np.sum(p))
