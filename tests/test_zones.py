@@ -121,28 +121,36 @@ def test_two_zones_of_a_quartic_profile_against_the_closed_form(quartic):
     assert sol.validity.gap_margin > 0
 
 
-def test_gap_of_two_zones_against_direct_quadrature(quartic):
-    """The gap outside two zones (D31a, section 14) against the slope mismatch
-    g0'(Y) - (1/2) int p(xi)/(Y - xi) dxi of the closed-form pressure integrated by
-    quadrature from the region's edge (the factor 1/2 is Hertz's: with p = (2/pi)
-    sqrt(1 - xi^2) it gives the slope X of X^2/2 inside); open between and beyond the
-    zones."""
+def test_gap_of_two_zones_against_the_closed_form(quartic):
+    """The gap outside two zones (D31a, section 14) against the closed form of the
+    quartic profile: the slope mismatch g0'(Y) - (1/2) int p(xi)/(Y - xi) dxi of the
+    closed-form pressure is 4 A Y X(Y), X(Y) = +-sqrt((Y^2 - a^2)(Y^2 - b^2)) (+ beyond b,
+    - between the zones), checked here by quadrature at three points (the factor 1/2 is
+    Hertz's: with p = (2/pi) sqrt(1 - xi^2) it gives the slope X of X^2/2 inside); its
+    integral from the edge, 2 A |F(u) - F(+-d)| with u = Y^2 - c^2 and d = (b^2 - a^2)/2,
+    against the solver's gap, open between and beyond the zones."""
     from scipy.integrate import quad
 
     from thermocontact.analysis.zone_validity import zone_gap
     sol, prof, A, a, b = quartic
+    c2, d = 0.5 * (a * a + b * b), 0.5 * (b * b - a * a)
 
     def p(x):
         return (8 * A / np.pi) * abs(x) * np.sqrt(max((x * x - a * a) * (b * b - x * x), 0.0))
 
-    def slope(Y):
+    for Y in (0.3, -0.5, 2.9):
         held = sum(quad(lambda x: p(x) / (Y - x), lo, hi, epsabs=1e-14, epsrel=1e-13,
                         limit=200)[0] for lo, hi in ((-b, -a), (a, b)))
-        return prof.deriv()(Y) - 0.5 * held
+        closed = 4 * A * Y * np.sqrt((Y * Y - a * a) * (Y * Y - b * b)) * np.sign(abs(Y) - b)
+        assert prof.deriv()(Y) - 0.5 * held == pytest.approx(closed, rel=1e-12)
+
+    def F(u):
+        r = np.sqrt(np.maximum(u * u - d * d, 0.0))  # 0 at an edge, less rounding
+        return 0.5 * (u * r - d * d * np.log(np.abs(u + r)))
     for X0, X in ((a, [0.5 * a, 0.0]), (b, [1.05 * b, 2 * b])):
         gap = zone_gap(sol.parameters, sol.representation, sol.edges, sol.phi, sol.psi,
                        prof, np.array(X), X0)
-        ref = [quad(slope, X0, x, epsabs=1e-13, epsrel=1e-12, limit=200)[0] for x in X]
+        ref = 2 * A * np.abs(F(np.array(X) ** 2 - c2) - F(X0 * X0 - c2))
         np.testing.assert_allclose(gap, ref, rtol=1e-11, atol=1e-12)
         assert np.all(gap > 0)
 
