@@ -795,7 +795,7 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
 
     found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate,
                          lambda i, result: (ended.append(i), tell(len(ended), total)))
-    out = []
+    out, chains = [], []
     for k, (family, anchor) in enumerate(zip(families, anchors)):
         V = np.full(ms.shape, np.inf)
         W = np.full(ms.shape, np.nan)
@@ -808,9 +808,13 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
                 starts.append((j + 1, float(ms[j]), (vc, b.imag)))
                 if vc < V[j]:
                     V[j], W[j] = vc, b.imag
-        _continue_starts(family, ms, starts, scanned, V, W)
-        V[~np.isfinite(V)] = np.nan
+        chains.append(lambda ask, f=family, s=starts, V=V, W=W: _continue_starts(
+            replace(f, ask=ask), ms, s, scanned, V, W))
         out.append((V, W))
+    # The families' continuations together too.
+    run_lockstep(chains, _evaluate)
+    for V, _ in out:
+        V[~np.isfinite(V)] = np.nan
     tell(total, total)
     return out
 
