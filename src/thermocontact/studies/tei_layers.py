@@ -20,7 +20,9 @@ growth), and counts the growing modes at every speed by the argument principle
 (:func:`speed_scan`, :func:`unstable_count`); a neutral mode, ``b = i omega``, is
 polished by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
 ``(V, omega)`` (L10); along a curve of wavelengths, scans at every
-:data:`SCAN_EVERY`-th are continued between them (:func:`continue_neutral`).
+:data:`SCAN_EVERY`-th are continued between them (:func:`neutral_curves`), the scans of
+every family and wavelength run in lockstep, their evaluations of the dispersion
+function answered together (:func:`~thermocontact.execution.lockstep.run_lockstep`).
 """
 
 from __future__ import annotations
