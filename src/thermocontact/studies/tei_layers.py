@@ -795,8 +795,15 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     def scan(family, m):
         return lambda ask: first_crossing(replace(family, ask=ask), m)
 
-    found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate,
-                         lambda i, result: (ended.append(i), tell(len(ended), total)))
+    def continuation(family, starts, V, W):
+        return lambda ask: _continue_starts(replace(family, ask=ask), ms, starts, scanned,
+                                            V, W)
+
+    def finished(i, result):
+        ended.append(i)
+        tell(len(ended), total)
+
+    found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate, finished)
     out, chains = [], []
     for k, (family, anchor) in enumerate(zip(families, anchors)):
         V = np.full(ms.shape, np.inf)
@@ -810,8 +817,7 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
                 starts.append((j + 1, float(ms[j]), (vc, b.imag)))
                 if vc < V[j]:
                     V[j], W[j] = vc, b.imag
-        chains.append(lambda ask, f=family, s=starts, V=V, W=W: _continue_starts(
-            replace(f, ask=ask), ms, s, scanned, V, W))
+        chains.append(continuation(family, starts, V, W))
         out.append((V, W))
     # The families' continuations together too.
     run_lockstep(chains, _evaluate)
