@@ -998,7 +998,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
         (default ``e^5``).
     progress : callable, optional
         ``progress(stage, done, total)``: the analysis's stages (each family's
-        critical speed, its curve over the wavelength, its hot-spot curve, the stop),
+        critical speed, its curve over the wavelength, the hot-spot curves, the stop),
         each counted in scans from the lowest speed; layers take seconds to minutes.
 
     Returns

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 
 import math
+from functools import lru_cache
 
 import numpy as np
 import scipy.linalg
@@ -35,9 +36,10 @@ from ..physics.tei import SlidingPair
 __all__ = ["depth_modes", "layup_modes", "layup_operator"]
 
 
+@lru_cache(maxsize=16)
 def _chebyshev(n):
     """Lobatto points ``cos(pi j/n)`` (1 first), differentiation matrix and
-    Clenshaw–Curtis weights on ``[-1, 1]``."""
+    Clenshaw–Curtis weights on ``[-1, 1]``; made once per ``n`` (read-only)."""
     j = np.arange(n + 1)
     x = np.cos(np.pi * j / n)
     c = np.where((j == 0) | (j == n), 2.0, 1.0) * (-1.0) ** j
@@ -58,6 +60,8 @@ def _chebyshev(n):
         for k in range(1, (n - 1) // 2 + 1):
             v -= 2.0 * np.cos(2 * k * theta[1:-1]) / (4 * k * k - 1)
     w[1:-1] = 2.0 * v / n
+    for a in (x, d, w):
+        a.flags.writeable = False
     return x, d, w
 
 

@@ -55,6 +55,7 @@ __all__ = [
     "condition_matrix",
     "condition_terms",
     "dispersion_matrix",
+    "dispersion_ratio",
     "face_fields",
     "layup_dispersion",
     "layups",
@@ -402,21 +403,30 @@ def _fields(sol: _Solutions, b, m, U, depths):
     """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
     ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
     of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
-    the thermal, one per start)."""
-    tau = m[..., None, None] * depths                                      # S + (nb, P)
-    t = (sol.sign[:, None, None] * tau[..., None]
-         - (m[..., None] * sol.thickness)[..., None, None] * sol.shift[:, None, :])
-    G = np.sqrt(1.0 + (b[..., None] + 1j * (m * U)[..., None] * sol.moving)
-                / (sol.kappa * (m * m)[..., None]))[..., None, None]        # L1
+    the thermal, one per start).
+
+    Computed with the points as the last axis (``N``, the size of ``S``), so that every
+    array operation runs over the points innermost, not over the few starts and
+    solutions; each point's values are those it has alone."""
+    shape = b.shape
+    b, m, U = b.reshape(-1), m.reshape(-1), U.reshape(-1)
+    tau = depths[..., None] * m                                            # (nb, P, N)
+    t = (sol.sign[:, None, None, None] * tau[:, :, None]
+         - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
+    G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
+                / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-        g = np.exp(sol.starts[:, None, :] * t)[..., None, :, None]         # S + (nb, P, 1, 2, 1)
-        el = (sol.A[:, None] + sol.B[:, None] * t[..., None, :, None]) * g  # S + (nb, P, 6, 2, 2)
+        g = np.exp(sol.starts[:, None, :, None] * t)[:, :, None, :, None]  # (nb, P, 1, 2, 1, N)
+        el = ((sol.A[:, None, ..., None] + sol.B[:, None, ..., None] * t[:, :, None, :, None])
+              * g)                                                         # (nb, P, 6, 2, 2, N)
         dist = np.abs(t)                   # m times the distance from the start face
         e = np.exp(-G * dist)
         D, dD = _potential_profile(G, dist, e)
-        th = (D[..., None, :] * sol.cD[:, None] + dD[..., None, :] * sol.cdD[:, None]
-              + e[..., None, :] * (sol.ce[:, None] + G[..., None] * sol.cG[:, None]))
-    return np.concatenate([el.reshape(el.shape[:-2] + (4,)), th], axis=-1)
+        th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
+              + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
+    nb, P = el.shape[:2]
+    out = np.concatenate([el.reshape(nb, P, 6, 4, -1), th], axis=-2)      # (nb, P, 6, 6, N)
+    return np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
 
 
 @lru_cache(maxsize=64)
@@ -610,6 +620,33 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
                         / (kap * (m * m)[..., None]))
             d = d / np.prod(G, axis=-1)
     return d
+
+
+def dispersion_ratio(layup: Layup, b, wavenumber, speed):
+    """``det M(b)/det M_0(b)`` (:func:`dispersion_matrix` with and without the
+    frictional heat), the function whose winding along the imaginary axis counts the
+    growing modes (L15): zero at the modes, no pole in ``Re b >= 0`` (those of ``det
+    M_0`` are free thermal modes, which decay), tending to 1 as ``|b| -> inf`` there.
+    Both determinants from one evaluation of the fields, as sign and logarithm (their
+    ratio stays finite where each over- or underflows).
+
+    Parameters
+    ----------
+    layup : Layup
+    b, wavenumber, speed : array_like
+        As for :func:`dispersion_matrix`, broadcast to a shape ``S``.
+
+    Returns
+    -------
+    ndarray, complex, shape ``S``
+    """
+    b, m, V = _broadcast(b, wavenumber, speed)
+    M0, M1 = condition_terms(layup, b, m, V)
+    h = _assembly(layup).heat * np.abs(V) / m
+    s1, l1 = np.linalg.slogdet(M0 + h[..., None, None] * M1)
+    s0, l0 = np.linalg.slogdet(M0)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        return s1 / s0 * np.exp(l1 - l0)
 
 
 #: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).

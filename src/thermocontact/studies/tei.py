@@ -551,12 +551,21 @@ def hot_spot_table(systems, radius, n1, n2, anchors=None, progress=None):
     """``HotSpot`` for ``n = n1 ... n2`` round a disc of radius ``radius``, and the
     governing ``n`` (lowest critical speed; None if none goes unstable).
     ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None;
-    ``progress(stage, done, total)``: each family's curve (:meth:`curve`)."""
+    ``progress(stage, done, total)``: the layered families' curves, their scans run
+    together (:func:`~thermocontact.studies.tei_layers.neutral_curves`), as the stage
+    "hot spots"."""
+    from .tei_layers import Layered, neutral_curves
+
     ns = np.arange(n1, n2 + 1)
     ms = ns / radius                                  # m = 2 pi/(2 pi R/n)
     anchors = anchors or [None] * len(systems)
-    speeds = np.array([system.curve(ms, a, _stage(progress, f"{system.name}: hot spots"))[0]
-                       for system, a in zip(systems, anchors)])
+    # The layered families' curves together (their scans batched), the others' each.
+    layered = [k for k, s in enumerate(systems) if isinstance(s, Layered)]
+    curves = dict(zip(layered, neutral_curves([systems[k] for k in layered], ms,
+                                              [anchors[k] for k in layered],
+                                              progress=_stage(progress, "hot spots"))))
+    speeds = np.array([curves[k][0] if k in curves else system.curve(ms, anchors[k])[0]
+                       for k, system in enumerate(systems)])
     table = []
     for k, n in enumerate(ns):
         col = speeds[:, k]
@@ -654,8 +663,8 @@ def analyse(slider, counterface, friction, wavelength, speed=None, dundurs=True,
         ``disc_radius`` and ``hot_spots``: each hot-spot number's amplification.
     progress : callable, optional
         ``progress(stage, done, total)``: each family's scan, its curve over the
-        wavelength and its hot-spot curve (a layup's analysis takes seconds to
-        minutes), and the stop.
+        wavelength, the families' hot-spot curves (one stage), and the stop (a
+        layup's analysis takes seconds to minutes).
 
     Returns
     -------

@@ -20,22 +20,26 @@ growth), and counts the growing modes at every speed by the argument principle
 (:func:`speed_scan`, :func:`unstable_count`); a neutral mode, ``b = i omega``, is
 polished by Newton's method on ``det M(i omega; V) = 0`` for the two real unknowns
 ``(V, omega)`` (L10); along a curve of wavelengths, scans at every
-:data:`SCAN_EVERY`-th are continued between them (:func:`continue_neutral`).
+:data:`SCAN_EVERY`-th are continued between them (:func:`neutral_curves`), the scans of
+every family and wavelength run in lockstep, their evaluations of the dispersion
+function answered together (:func:`~thermocontact.execution.lockstep.run_lockstep`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
-from ..physics.tei_layers import Layup, layup_dispersion, mode_shape
+from ..execution.lockstep import run_lockstep
+from ..physics.tei_layers import Layup, dispersion_ratio, layup_dispersion, mode_shape
 
 __all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
-           "first_crossing", "growth_rate", "neutral_point", "newton_roots", "pattern_frame",
-           "raw_seeds", "speed_scan", "unstable_count"]
+           "first_crossing", "growth_rate", "neutral_curves", "neutral_point", "newton_roots",
+           "pattern_frame", "raw_seeds", "speed_scan", "unstable_count"]
 
 #: Chebyshev intervals per body of the depth discretisation that seeds the roots.
 SEED_POINTS = 16
@@ -91,10 +95,16 @@ class Layered:
     name : str
         The family's name ("symmetric", "antisymmetric", ...; docs/tei.md).
     layup : Layup
+    ask : callable, optional
+        ``ask(key, payload)`` of :func:`~thermocontact.execution.lockstep.run_lockstep`:
+        the family's evaluations of :meth:`dispersion` and :meth:`dispersion_ratio`
+        handed to it, to be answered together with other computations' (None: each
+        evaluated at once, as asked).
     """
 
     name: str
     layup: Layup
+    ask: Callable | None = field(default=None, compare=False, repr=False)
 
     def scale(self, m) -> float:
         return _scale(self.layup, m)
@@ -106,7 +116,18 @@ class Layered:
         return -min(ks) * m * m if ks else -math.inf
 
     def dispersion(self, b, m, speed):
-        return layup_dispersion(self.layup, b, m, speed)
+        """The dispersion function at ``b`` (:func:`~thermocontact.physics.tei_layers.
+        layup_dispersion`), ``b``, ``m`` and ``speed`` broadcast."""
+        if self.ask is None:
+            return layup_dispersion(self.layup, b, m, speed)
+        return self.ask(("dispersion", self.layup), (b, m, speed))
+
+    def dispersion_ratio(self, b, m, speed):
+        """``det M/det M_0`` at ``b`` (:func:`~thermocontact.physics.tei_layers.
+        dispersion_ratio`), whose winding counts the growing modes."""
+        if self.ask is None:
+            return dispersion_ratio(self.layup, b, m, speed)
+        return self.ask(("ratio", self.layup), (b, m, speed))
 
     def in_continuum(self, b, m, speed):
         """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-2 of its
@@ -336,8 +357,8 @@ def unstable_count(family, m, speed, points=48):
     """The number of growing modes at one wavenumber and speed, by the argument
     principle, and whether the count is reliable (L15).
 
-    ``D(b) = det M(b)/det M_0(b)`` (:func:`~thermocontact.physics.tei_layers.
-    dispersion_matrix` with and without the frictional heat) has the modes as zeros,
+    ``D(b) = det M(b)/det M_0(b)`` (:meth:`Layered.dispersion_ratio`: ``M`` with and
+    without the frictional heat) has the modes as zeros,
     no pole in ``Re b >= 0`` (those of ``det M_0`` are free thermal modes, which
     decay) and tends to 1 as ``|b| -> inf`` there; so the number of its zeros in
     ``Re b > 0`` is minus its winding along the imaginary axis, ``-Delta arg D/(2
@@ -352,8 +373,6 @@ def unstable_count(family, m, speed, points=48):
         The count, and whether it is reliable: the steps resolved, the winding an
         integer to 1e-6, ``D`` within 0.05 of 1 at both ends.
     """
-    from ..physics.tei_layers import condition_terms, heat_coefficient
-
     layup = family.layup
     rates = [m * speed] if speed > 0.0 else []
     for body in layup.bodies:
@@ -368,14 +387,8 @@ def unstable_count(family, m, speed, points=48):
                        + [[-1e3 * hi - m * speed, 1e3 * hi]])
     w = np.unique(w)
 
-    h = heat_coefficient(layup, m, speed)
-
     def ratio(w):
-        M0, M1 = condition_terms(layup, 1j * w, m, speed)
-        s1, l1 = np.linalg.slogdet(M0 + h * M1)
-        s0, l0 = np.linalg.slogdet(M0)
-        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-            return s1 / s0 * np.exp(l1 - l0)
+        return family.dispersion_ratio(1j * w, m, speed)
 
     D = ratio(w)
     resolved = False
@@ -714,47 +727,112 @@ def continue_steps(family, m0, points, m1, depth=0):
 
 
 def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress=None):
-    """The critical speed and neutral ``omega`` along sorted wavenumbers (L15).
-
-    At every ``scan_every``-th wavenumber (default :data:`SCAN_EVERY`; the first and
-    the last included) a scan from the lowest speed (:func:`speed_scan`) finds the
-    critical speed; the neutral point found there (and ``anchor = (m, V, omega)``, a
-    neutral point already found by a scan) is continued both ways by Newton's method
-    (:func:`continue_step`) to the next scanned wavenumber, or until it fails (a
-    fold of the branch, where a window of growth closes).  At each wavenumber the
-    lowest of the points reaching it is kept: a branch that is the lowest at a scanned
-    wavenumber is followed over both neighbouring intervals, so a lower branch is
-    missed only if it is nowhere the lowest at a scanned wavenumber.  ``progress(done,
-    total)``, if given, is told after each scan and at the end (the continuations
-    the last of ``total``).
+    """The critical speed and neutral ``omega`` along sorted wavenumbers
+    (:func:`neutral_curves` of one family).
 
     Returns
     -------
     (V, omega) : ndarrays
         NaN where no mode grows below the scan's end.
     """
+    return neutral_curves([family], wavenumbers, [anchor], scan_every, progress)[0]
+
+
+def _evaluate(key, payloads):
+    """The answers to one kind of request of :meth:`Layered.dispersion` or
+    :meth:`Layered.dispersion_ratio` (``key = (kind, layup)``), each payload ``(b, m,
+    V)`` broadcast: all their points in one call, each point's value as alone."""
+    kind, layup = key
+    parts = [np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(m, dtype=float),
+                                 np.asarray(v, dtype=float)) for b, m, v in payloads]
+    b, m, v = (np.concatenate([p[i].ravel() for p in parts]) for i in range(3))
+    func = layup_dispersion if kind == "dispersion" else dispersion_ratio
+    out = func(layup, b, m, v)
+    ends = np.cumsum([p[0].size for p in parts])
+    return [o.reshape(p[0].shape) for o, p in zip(np.split(out, ends[:-1]), parts)]
+
+
+def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
+    """The critical speed and neutral ``omega`` of each family along sorted wavenumbers
+    (L15).
+
+    At every ``scan_every``-th wavenumber (default :data:`SCAN_EVERY`; the first and
+    the last included) a scan from the lowest speed (:func:`speed_scan`) finds the
+    critical speed; the neutral point found there (and ``anchors[k] = (m, V,
+    omega)``, a neutral point of family ``k`` already found by a scan) is continued
+    both ways by Newton's method (:func:`continue_step`) to the next scanned
+    wavenumber, or until it fails (a fold of the branch, where a window of growth
+    closes).  At each wavenumber the lowest of the points reaching it is kept: a
+    branch that is the lowest at a scanned wavenumber is followed over both
+    neighbouring intervals, so a lower branch is missed only if it is nowhere the
+    lowest at a scanned wavenumber.
+
+    The scans of every family and wavenumber run together
+    (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
+    needs the dispersion function (or the count's ratio), and the points all of them
+    need are evaluated in one call per family, each as it would be alone; so the
+    curves are those of the scans run one by one.  ``progress(done, total)``, if
+    given, is told as each scan ends and at the end (the continuations the last of
+    ``total``).
+
+    Returns
+    -------
+    list of (V, omega) : ndarrays
+        Per family; NaN where no mode grows below the scan's end.
+    """
     ms = np.asarray(wavenumbers, dtype=float)
     n = ms.size
     every = SCAN_EVERY if scan_every is None else scan_every
     scanned = sorted(set(range(0, n, every)) | {n - 1})
-    V = np.full(ms.shape, np.inf)
-    W = np.full(ms.shape, np.nan)
-    starts = []
-    if anchor is not None:
-        starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
-                       (float(anchor[1]), float(anchor[2]))))
+    anchors = [None] * len(families) if anchors is None else list(anchors)
+    jobs = [(k, j) for k, anchor in enumerate(anchors) for j in scanned
+            if anchor is None or ms[j] != anchor[0]]
+    total = len(jobs) + 1
     tell = progress or (lambda done, total: None)
-    for done, j in enumerate(scanned):
-        tell(done, len(scanned) + 1)
-        if anchor is not None and ms[j] == anchor[0]:
-            continue
-        vc, b = first_crossing(family, ms[j])
-        if vc is not None:
-            starts.append((j + 1, float(ms[j]), (vc, b.imag)))
-            if vc < V[j]:
-                V[j], W[j] = vc, b.imag
-    # Each start continued up and down: independent chains, stepped together.
-    # k: the first index above m0 (a scanned wavenumber's own index is k - 1).
+    tell(0, total)
+    ended = []
+
+    def scan(family, m):
+        return lambda ask: first_crossing(replace(family, ask=ask), m)
+
+    def continuation(family, starts, V, W):
+        return lambda ask: _continue_starts(replace(family, ask=ask), ms, starts, scanned,
+                                            V, W)
+
+    def finished(i, result):
+        ended.append(i)
+        tell(len(ended), total)
+
+    found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate, finished)
+    out, chains = [], []
+    for k, (family, anchor) in enumerate(zip(families, anchors)):
+        V = np.full(ms.shape, np.inf)
+        W = np.full(ms.shape, np.nan)
+        starts = []
+        if anchor is not None:
+            starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
+                           (float(anchor[1]), float(anchor[2]))))
+        for (kk, j), (vc, b) in zip(jobs, found):
+            if kk == k and vc is not None:
+                starts.append((j + 1, float(ms[j]), (vc, b.imag)))
+                if vc < V[j]:
+                    V[j], W[j] = vc, b.imag
+        chains.append(continuation(family, starts, V, W))
+        out.append((V, W))
+    # The families' continuations together too.
+    run_lockstep(chains, _evaluate)
+    for V, _ in out:
+        V[~np.isfinite(V)] = np.nan
+    tell(total, total)
+    return out
+
+
+def _continue_starts(family, ms, starts, scanned, V, W):
+    """Each start ``(k, m0, (V, omega))`` continued up and down the wavenumbers ``ms``
+    to the next scanned one (:func:`continue_steps`), the lowest speed kept in ``V``
+    and ``W`` at each: independent chains, stepped together.  ``k``: the first index
+    above ``m0`` (a scanned wavenumber's own index is ``k - 1``)."""
+    n = ms.size
     chains = [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
               for order in (range(k, n), range(k - 1, -1, -1))]
     while chains:
@@ -778,6 +856,3 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
                 V[i], W[i] = point
             if i not in scanned:
                 chains.append((order, m0, start, (float(ms[i]), point)))
-    tell(len(scanned) + 1, len(scanned) + 1)
-    V[~np.isfinite(V)] = np.nan
-    return V, W
