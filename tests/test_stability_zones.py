@@ -216,3 +216,92 @@ def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
         with pytest.raises(InputError, match="stationary half-plane"):
             LinearisedContactSet(replace(sol.parameters, **change), sol.representation,
                                  sol.edges, sol.phi, sol.psi, sol.profile)
+
+
+def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_zones,
+                                                                           monkeypatch):
+    """``stability(contact set)``: the set solved again at the analysis' ``n`` from its
+    edges, linearised with every edge free, rates in ``k2/l^2`` (the count itself is
+    the single patch's machinery, S22; a stand-in keeps this fast)."""
+    import thermocontact as tc
+    import thermocontact.solvers.stability as stability
+
+    seen = {}
+
+    def stand_in(solve_at, rate_unit=None, **region):
+        sol = solve_at(N)
+        seen.update(sol=sol, lin=linearised(sol), rate_unit=rate_unit, region=region)
+        return "verdict"
+    monkeypatch.setattr(stability, "stability_of", stand_in)
+    assert tc.stability(two_zones, n=N) == "verdict"
+    lin = seen["lin"]
+    assert isinstance(lin, LinearisedContactSet) and lin.RATE_UNITS == "k2/l^2"
+    assert seen["rate_unit"] is None and seen["region"]["n"] == N
+    assert np.abs(seen["sol"].edges - two_zones.edges).max() < 1e-12
+    assert lin.size == 2 * (2 * N + 2) + 1
+    assert list(lin.temperature_rows) == (list(range(N + 3, 2 * N + 3))
+                                          + list(range(3 * N + 5, 4 * N + 5)))
+
+
+def test_contact_zones_stability_adds_the_record(capsys, monkeypatch):
+    """``contact --zones --stability`` answers (it was refused): the contact set's
+    ``"stability"`` record (stand-ins for the set and its verdict keep it fast)."""
+    import json
+
+    import thermocontact.api as api
+    from thermocontact.cli import main
+
+    class Found:
+        def to_dict(self):
+            return {"status": "solved"}
+    seen = []
+
+    def verdict(found, progress):
+        seen.append(found)
+        return replace(single_verdict, eigenvalues=np.array([0.5 + 1j, 0.5 - 1j]))
+    from thermocontact.solvers.stability import StabilityResult
+    single_verdict = StabilityResult(np.array([]), 2, False, None, 0.5, (1e-3, 1e6),
+                                     "argument principle", None, None, None, 40, 12,
+                                     units="1/s")
+    monkeypatch.setattr(api, "contact_set", lambda **kw: Found())
+    monkeypatch.setattr(api, "stability", verdict)
+    assert main(["contact", "--cylinder", "steel", "--half-plane", "steel", "--radius",
+                 "10mm", "--load", "5kN/m", "--speed", "1m/s", "--friction", "0.3", "--lam",
+                 "0", "--no-dundurs", "--zones", "--stability", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert isinstance(seen[0], Found) and rec["stability"]["stable"] is False
+    assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
+
+
+class _ManyRows:
+    """A stand-in linearisation without eigenvalues whose ``2n`` temperature rows fall
+    like ``(1 + b/1000)^(-1/2)``: the scaled determinant ``((1 + b)/(1 + b/1000))^n``
+    turns its phase by up to ``n pi/2`` and back along the line, as a two-zone contact
+    set's does, whose temperature rows settle only at large ``|b|`` (S22)."""
+
+    n, moving, RATE_UNITS = 12, True, "k2/l^2"
+    temperature_rows = np.arange(24)
+
+    def matrix(self, b, split=False):
+        M = np.eye(25, dtype=complex)
+        M[self.temperature_rows, self.temperature_rows] = (1.0 + b / 1000.0) ** -0.5
+        return M
+
+
+@pytest.mark.parametrize("line_step, count", [(4.0, 2), (None, 0)])
+def test_the_count_follows_the_phase_of_many_temperature_rows(monkeypatch, line_step,
+                                                             count):
+    """Two zones' temperature rows, each scaled by ``sqrt(1 + b)``, turn the phase twice
+    as fast as a single patch's along the line: the single patch's first steps alias a
+    turn (two roots counted where there are none, as at two zones of the quartic at
+    fHPe_l = 0, n = 12, where a dense sampling of the contour finds none), steps halved
+    per zone do not."""
+    import thermocontact.solvers.stability as st
+
+    monkeypatch.setattr(st, "linearised", lambda sol: _ManyRows())
+    if line_step is None:
+        res = st.stability_of(lambda n: None, n=12, estimate=False)
+        assert res.stable is True and res.unstable_modes == 0
+    else:
+        winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step)
+        assert winding.count(1e6)[0] == count

@@ -15,9 +15,9 @@ unit (S19): Flamant's ``(1/pi) ln Delta_j int p~_j`` and the stationary half-pla
 ``int K(w) q~_j`` with ``w = c_i + Delta_i s - c_j - Delta_j r``, and the edges' terms
 ``int [K_0'(w) X~_i(s) - K_b'(w) Y~_j(r)] q0_j``, ``X~_i = Delta_i(sig~_i + del~_i s)``,
 ``Y~_j = Delta_j(sig~_j + del~_j r)``: the source's edges move, and so do the points;
-at separated arguments every kernel is smooth, and its integral is the
-representation's rule on the nodes (spectral in the zones' separation over their
-width).  The load row is the sum of the zones', and the stationary half-plane's
+at separated arguments every kernel is smooth, and its integral against the source
+zone's interpolant is the midpoint rule in ``tau`` (exponentially convergent, as the
+steady solver's product integration).  The load row is the sum of the zones', and the stationary half-plane's
 temperature constant ``l(b)`` multiplies the whole perturbed heat into it on every
 zone (S22): with each later zone's first temperature row less the first zone's, it
 stands on the first zone's alone, as the single patch's does, and ``M(0)`` is the
@@ -107,6 +107,16 @@ class LinearisedContactSet:
     def size(self) -> int:
         return len(self.edges) * (2 * self.n + 2) + 1
 
+    #: The unit of the rate ``b``.
+    RATE_UNITS = "k2/l^2"
+
+    @property
+    def temperature_rows(self) -> np.ndarray:
+        """The rows of :meth:`matrix` that are the temperature's, every zone's."""
+        n, m = self.n, len(self.edges)
+        starts = [n + 3] + [2 * n + 3 + k * (2 * n + 2) + n + 2 for k in range(m - 1)]
+        return np.concatenate([np.arange(s, s + n) for s in starts])
+
     @cached_property
     def _geometry(self):
         """Each zone's half-width and centre (units of ``l``)."""
@@ -115,12 +125,13 @@ class LinearisedContactSet:
 
     @property
     def moving(self) -> bool:
+        """False: the half-plane is at rest (its temperature constant, S22)."""
         return False
 
     @cached_property
     def zones(self) -> tuple:
         """Each zone's single patch (:class:`~.linearised.LinearisedContact`): its
-        equivalents, its densities times ``Delta_j`` (S18)."""
+        equivalents, its densities times ``Delta_j`` (S19)."""
         out = []
         for h, c, ph, ps in zip(*self._geometry, self.phi, self.psi):
             out.append(LinearisedContact(zone_parameters(self.parameters, float(h)),
