@@ -211,11 +211,20 @@ def test_two_zones_far_apart_factor_into_their_single_patches():
 
 
 def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
+    import thermocontact as tc
+    from thermocontact.problem.conductance import Conductance
+
     sol = two_zones
     for change in ({"speed_ratio": 0.3}, {"beta_f": 0.2}):
         with pytest.raises(InputError, match="stationary half-plane"):
             LinearisedContactSet(replace(sol.parameters, **change), sol.representation,
                                  sol.edges, sol.phi, sol.psi, sol.profile)
+    # A set solved with an interface conductance, before any work.
+    with pytest.raises(InputError, match="perfect thermal contact") as err:
+        tc.stability(replace(sol, conductance=Conductance.of((3.0, 0.0))))
+    assert err.value.parameters == ("conductance",)
+    with pytest.raises(InputError, match="perfect thermal contact"):
+        linearised(replace(sol, conductance=Conductance.of((3.0, 0.0))))
 
 
 def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_zones,

@@ -1187,10 +1187,10 @@ def _contact_set_stability(found, **region) -> StabilityResult:
         if sol is None:
             raise InputError(f"stability: no contact set at the point asked for "
                              f"({found.status}: {found.message})", parameters=("solution",))
+    if sol.conductance is not None:
+        raise InputError("stability of a contact set is modelled with perfect thermal "
+                         "contact: give no conductance", parameters=("conductance",))
     if isinstance(found, PhysicalContactSet):
-        if found.conductance is not None:
-            raise InputError("stability of a contact set is modelled with perfect thermal "
-                             "contact: give no conductance", parameters=("conductance",))
         par = sol.parameters
         if par.free_term or par.half_plane_scale:
             raise InputError("stability of a contact set is modelled without the Dundurs "

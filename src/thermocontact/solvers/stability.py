@@ -165,6 +165,10 @@ def linearised(solution) -> LinearisedContact | LinearisedContactSet:
     derivation section 18b)."""
     check_modelled(method=solution.method)
     if isinstance(solution, ZoneSolution):
+        if solution.conductance is not None:
+            raise InputError("the stability of a contact set is modelled with perfect "
+                             "thermal contact: solve it without a conductance",
+                             parameters=("conductance",))
         return LinearisedContactSet(solution.parameters, solution.representation,
                                     solution.edges, solution.phi, solution.psi,
                                     solution.profile)
