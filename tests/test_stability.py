@@ -207,10 +207,12 @@ class _Stand:
     for the temperature's (``n = size - 4``), the same at every ``n``."""
 
     moving = False
+    RATE_UNITS = "k2/Delta^2"
 
     def __init__(self, roots):
         self._M = _known_problem(roots)
         self.n = self._M(1.0).shape[0] - 4
+        self.temperature_rows = np.arange(self.n + 3, self.n + 4)
 
     def matrix(self, b, split=False):
         M = self._M(b)

@@ -1076,14 +1076,17 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
     stationary or a moving half-plane, with or without the Dundurs term; perfect
-    thermal contact only.
+    thermal contact only.  A contact set of one or more zones (:func:`contact_set`),
+    every edge free (section 18b): a stationary half-plane without the Dundurs term.
 
     Parameters
     ----------
-    solution : ContactSolution or PhysicalContact
+    solution : ContactSolution, PhysicalContact or ContactSetResult
         From :func:`solve` (edge-graded methods; eigenvalues in units of
-        ``k2/Delta^2``) or from :func:`contact` (its primary branch; eigenvalues in
-        1/s).
+        ``k2/Delta^2``), from :func:`contact` (its primary branch; eigenvalues in
+        1/s) or from :func:`contact_set` (the set at the point asked for, solved with
+        perfect thermal contact; eigenvalues, ``b_min`` and ``modulus_bound`` in units
+        of ``k2/l^2``, ``l`` the Hertz half-width, or in 1/s for a physical one).
     n : int, optional
         Unknowns per function of the analysis (default 12, even, from 8 to 64; the
         steady solution is solved again at ``n``, and at ``3n/2`` for the error
@@ -1110,7 +1113,8 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     ------
     InputError
         A solution of neither kind, an interface conductance, a Chebyshev method, a
-        physical contact without a branch, or a region out of range.
+        physical contact without a branch, a contact set not found at the point asked
+        for or with the Dundurs term or a moving half-plane, or a region out of range.
 
     Examples
     --------
@@ -1122,9 +1126,14 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     from .discretisation.linearised import check_modelled
     from .solvers.result import ContactSolution
     from .solvers.stability import stability_of
+    from .solvers.zones import ZoneSolution
+    from .studies.contact_sets import ContactSetResult
     from .studies.physical_contact import PhysicalContact
 
     rate_unit = None
+    if isinstance(solution, (ContactSetResult, ZoneSolution)):
+        return _contact_set_stability(solution, n=n, b_min=b_min,
+                                      modulus_bound=modulus_bound, progress=progress)
     if isinstance(solution, PhysicalContact):
         # A physical contact: its primary branch, rates in 1/s (k2/Delta^2).
         branch = solution.primary
@@ -1148,7 +1157,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
         conductance = None if cond is None else (cond.biot0, cond.exponent)
     else:
         raise InputError("solution must be a steady single patch of solve() or contact() "
-                         f"(a contact set's stability is not computed), got "
+                         f"or a contact set of contact_set(), got "
                          f"{type(solution).__name__}", parameters=("solution",))
     model = Model(kw["pe"], kw["K2_over_K1"], k2_over_k1=kw["k2_over_k1"],
                   delta1_over_delta2=kw["delta1_over_delta2"],
@@ -1159,6 +1168,44 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
         return model.solve_at(m, kw["fhpe"], lam=kw["lam"], check_validity=False)
     return stability_of(solve_at, n=n, b_min=b_min, modulus_bound=modulus_bound,
                         rate_unit=rate_unit, progress=progress)
+
+
+def _contact_set_stability(found, **region) -> StabilityResult:
+    """:func:`stability` of a contact set (derivation section 18b): each zone's edges
+    free, the eigenvalues in units of ``k2/l^2`` (``l`` the Hertz half-width), or 1/s
+    for a physical one.  The set is solved again at the analysis' ``n`` from its edges,
+    with its heat partition (the far temperatures' output, where they closed it: the
+    perturbation leaves the far field unchanged)."""
+    from .solvers.stability import stability_of
+    from .solvers.zones import ZoneModel, ZoneSolution
+    from .studies.contact_sets import PhysicalContactSet
+
+    rate_unit = None
+    sol = found
+    if not isinstance(found, ZoneSolution):
+        sol = found.answer
+        if sol is None:
+            raise InputError(f"stability: no contact set at the point asked for "
+                             f"({found.status}: {found.message})", parameters=("solution",))
+    if sol.conductance is not None:
+        raise InputError("stability of a contact set is modelled with perfect thermal "
+                         "contact: give no conductance", parameters=("conductance",))
+    if isinstance(found, PhysicalContactSet):
+        par = sol.parameters
+        if par.free_term or par.half_plane_scale:
+            raise InputError("stability of a contact set is modelled without the Dundurs "
+                             "term and with the half-plane at rest: give dundurs=False and "
+                             "speed2=0", parameters=("dundurs", "speed2"))
+        rate_unit = found.problem.half_plane.k / found.hertz_half_width ** 2
+    par = sol.parameters
+    model = ZoneModel(par.K2_over_K1, k2_over_k1=par.k2_over_k1,
+                      delta1_over_delta2=par.delta1_over_delta2, beta_f=par.beta_f,
+                      method=sol.method, profile=sol.profile, speed_ratio=par.speed_ratio)
+
+    def solve_at(m):
+        return model.at_n(m).solve(sol.edges, par.pe, par.fhpe, lam=sol.lam,
+                                   check_validity=False)
+    return stability_of(solve_at, rate_unit=rate_unit, **region)
 
 
 def _transient_closure(closure, lam) -> dict:

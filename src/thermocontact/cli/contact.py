@@ -161,7 +161,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--stability", is_flag=True,
               help="Also every growing mode of the primary branch linearised at fixed load, "
-                   "counted, in 1/s (derivation section 18; seconds).")
+                   "counted, in 1/s (derivation section 18; seconds); with --zones, of the "
+                   "contact set, every edge free (section 18b; with --no-dundurs).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
@@ -212,10 +213,9 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
-    if stability and (zones or conductance is not None):
-        raise InputError("--stability analyses the single patch: give neither --zones nor "
-                         "--conductance (a contact set's stability is not computed; "
-                         "solve --conductance gives the single patch's)",
+    if stability and conductance is not None:
+        raise InputError("--stability is modelled with perfect thermal contact: give no "
+                         "--conductance (solve --conductance gives the single patch's)",
                          parameters=("stability",))
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   closure=bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,
@@ -234,8 +234,11 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
                                                           physical=True),
                             progress=bar, **inputs)
         bar.close()
+        from .solve import record_of, stability_summary
+
+        record = record_of(found, stability)
         if as_json:
-            click.echo(json.dumps(found.to_dict(), allow_nan=False))
+            click.echo(json.dumps(record, allow_nan=False))
             return
         lines = [f"status: {found.status}: {found.message}",
                  f"  Hertz half-width {found.hertz_half_width:.6g} m"]
@@ -252,6 +255,8 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         if found.applicability is not None:
             lines.append("  theory applicable: yes" if found.applicable else
                          "  theory NOT applicable: " + "; ".join(found.applicability.reasons))
+        if stability:
+            lines.append(stability_summary(record["stability"]))
         click.echo("\n".join(lines))
         return
     from ..execution.executors import side_process

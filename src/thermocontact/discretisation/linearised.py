@@ -152,6 +152,14 @@ class LinearisedContact:
     def size(self) -> int:
         return 2 * self.n + 3
 
+    #: The unit of the rate ``b``.
+    RATE_UNITS = "k2/Delta^2"
+
+    @property
+    def temperature_rows(self) -> np.ndarray:
+        """The rows of :meth:`matrix` that are the temperature's (S4)."""
+        return np.arange(self.n + 3, self.size)
+
     @property
     def moving(self) -> bool:
         """Whether the half-plane moves through the contact (``c2 = R Pe != 0``): its

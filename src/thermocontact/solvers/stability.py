@@ -21,8 +21,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..discretisation.linearised import LinearisedContact, check_modelled
+from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
 from ..problem.validation import InputError, check_integer, check_positive
+from .zones import ZoneSolution
 
 __all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
            "linearised", "newton", "scaled_matrix", "stability_of"]
@@ -157,9 +159,19 @@ class StabilityResult(Result):
                 "evaluations": int(self.evaluations), "n": self.n}
 
 
-def linearised(solution) -> LinearisedContact:
-    """The linearised contact about a :class:`~.result.ContactSolution`."""
+def linearised(solution) -> LinearisedContact | LinearisedContactSet:
+    """The linearised contact about a :class:`~.result.ContactSolution`, or about a
+    contact set (:class:`~.zones.ZoneSolution`, perfect thermal contact: its edges free,
+    derivation section 18b)."""
     check_modelled(method=solution.method)
+    if isinstance(solution, ZoneSolution):
+        if solution.conductance is not None:
+            raise InputError("the stability of a contact set is modelled with perfect "
+                             "thermal contact: solve it without a conductance",
+                             parameters=("conductance",))
+        return LinearisedContactSet(solution.parameters, solution.representation,
+                                    solution.edges, solution.phi, solution.psi,
+                                    solution.profile)
     return LinearisedContact(solution.parameters, solution.representation, solution.phi,
                              solution.psi, solution.load_ratio, solution.sigma_over_delta,
                              solution.conductance)
@@ -184,10 +196,15 @@ class Winding:
         ``prepare(points)`` before the samples ``points`` of one round of refinement
         are evaluated by ``matrix`` one by one: for work shared by several (the
         linearised contact's kernel moments, :meth:`LinearisedContact.prepare`).
+    line_step : float, optional
+        The line's first steps in ``t`` (default :data:`_LINE_STEP`): shorter where
+        more rows are scaled by ``sqrt(1 + b)`` (a contact set's, derivation S22),
+        whose phase then turns faster along the line.
     """
 
-    def __init__(self, matrix, b_min, prepare=None):
+    def __init__(self, matrix, b_min, prepare=None, line_step=None):
         self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
+        self.line_step = _LINE_STEP if line_step is None else float(line_step)
         self.values, self.matrices = {}, {}
 
     def at(self, b):
@@ -267,7 +284,7 @@ class Winding:
         Y = np.sqrt(R * R - b_min * b_min)
         T = float(np.arcsinh(Y / b_min))
         # The line on a grid common to every R, then to its end at |b| = R.
-        grid = np.arange(0.0, T, _LINE_STEP)
+        grid = np.arange(0.0, T, self.line_step)
         pieces = [(self.line, t0, t1) for t0, t1 in zip(grid, list(grid[1:]) + [T])]
         theta0 = float(np.arctan2(Y, b_min))
         edges = np.linspace(theta0, 0.0, _ARC_STEPS + 1)
@@ -439,11 +456,11 @@ def scaled_matrix(lin):
     non-zero in ``Re b > 0``: the same eigenvalues; the rows' size and the
     determinant's phase then settle as ``|b|`` grows, where the temperature falls like
     ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``)."""
-    n = lin.n
+    rows = lin.temperature_rows
 
     def matrix(b):
         M = lin.matrix(b)
-        M[n + 3:] *= np.sqrt(1.0 + b)
+        M[rows] *= np.sqrt(1.0 + b)
         return M
     return matrix
 
@@ -527,7 +544,10 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     lin = linearised(solve_at(n))
     scaled = scaled_matrix(lin)
     evaluations = [0]
-    expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
+    # The first steps as the single patch's per n temperature rows scaled (a contact
+    # set's zones, S22): their phase turns as many times faster along the line.
+    line_step = _LINE_STEP / max(1, round(len(lin.temperature_rows) / lin.n))
+    expected = int(np.ceil(np.arcsinh(R / b_min) / line_step)) + _ARC_STEPS + 16
 
     def counted(b):
         evaluations[0] += 1
@@ -535,7 +555,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             progress(evaluations[0], max(expected, evaluations[0]))
         return scaled(b)
 
-    winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None))
+    winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
+                      line_step=line_step)
     N, reason = winding.count(R)
     found = np.array([], dtype=complex)
     change = None
@@ -564,7 +585,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         reason = ((reason + "; ") if reason else "") + (
             f"an eigenvalue changes by {change:.2g} of itself from n = {n} to a finer n: "
             "not resolved at this n (the count is this n's)")
-    units, region = "k2/Delta^2", (b_min, R)
+    units, region = lin.RATE_UNITS, (b_min, R)
     if rate_unit is not None:
         full = full * rate_unit
         region = tuple(x * rate_unit for x in region)

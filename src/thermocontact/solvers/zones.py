@@ -120,6 +120,9 @@ class ZoneSolution(Result):
     temperatures : Temperatures or None
         The far temperatures that closed the set (``Theta`` and the sink distance
         ``L/l``, section 17); None when ``lam`` or the offset did.
+    conductance : Conductance or None
+        The interface conductance it was solved with (section 15); None for perfect
+        thermal contact.
     """
 
     parameters: Parameters
@@ -136,6 +139,7 @@ class ZoneSolution(Result):
     profile: Polynomial = field(default_factory=lambda: CYLINDER)
     error_estimate: float | None = None
     temperatures: Temperatures | None = None
+    conductance: Conductance | None = None
 
     @property
     def n(self) -> int:
@@ -404,7 +408,7 @@ class ZoneModel:
                     if check_validity else None)
         sol = ZoneSolution(par, 0.0 if lam is None else lam, edges2, phi, psi, rep,
                            self.method, err, it, rcond, validity, self.profile,
-                           temperatures=temperatures)
+                           temperatures=temperatures, conductance=self.conductance)
         if lam is None:
             # The offset's or the temperatures' partition: the zones' shares summed (D19).
             sol = replace(sol, lam=float(np.sum(sol.heat_partitions)))

@@ -1,0 +1,339 @@
+"""A contact set of several zones linearised about a steady solution: ``M(b) c = 0``.
+
+Every zone's edges move (derivation section 18b, eqs. S18-S22): zone ``j``, of centre
+``c_j`` and half-width ``Delta_j`` (units of the Hertz half-width ``l``), carries its
+pressure and heat-flux difference in its own moving coordinate as the single patch
+does (:class:`~.linearised.LinearisedContact`, section 18), with the unknowns
+``phi~_j``, ``psi~_j``, ``sig~_j = c~_j/Delta_j``, ``del~_j = Delta~_j/Delta_j``; the rigid
+approach ``D~`` is shared.  Each zone's own block is the single patch's ``M`` of its
+equivalents (``Pe_j = Pe_l Delta_j``, ``fHPe_j = fHPe_l Delta_j``, ``P_H/P = Delta_j^2``,
+``sigma/Delta = c_j/Delta_j``) at its own rate ``b Delta_j^2``, its densities carried
+times ``Delta_j`` (unit integral for one zone), with two terms of the common length
+unit (S19): Flamant's ``(1/pi) ln Delta_j int p~_j`` and the stationary half-plane's
+``-ln Delta_j int q~_2j``, and the profile's slope where it is not the cylinder's
+(S20).  Zone ``j``'s terms at zone ``i``'s points (S21) are its sources' fields,
+``int K(w) q~_j`` with ``w = c_i + Delta_i s - c_j - Delta_j r``, and the edges' terms
+``int [K_0'(w) X~_i(s) - K_b'(w) Y~_j(r)] q0_j``, ``X~_i = Delta_i(sig~_i + del~_i s)``,
+``Y~_j = Delta_j(sig~_j + del~_j r)``: the source's edges move, and so do the points;
+at separated arguments every kernel is smooth, and its integral against the source
+zone's interpolant is the midpoint rule in ``tau`` (exponentially convergent, as the
+steady solver's product integration).  The load row is the sum of the zones', and the stationary half-plane's
+temperature constant ``l(b)`` multiplies the whole perturbed heat into it on every
+zone (S22): with each later zone's first temperature row less the first zone's, it
+stands on the first zone's alone, as the single patch's does, and ``M(0)`` is the
+Jacobian of the steady contact set at fixed load and fixed ``lam``.
+
+Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
+``del~``, then each later zone's ``phi~``, ``psi~``, ``sig~``, ``del~``
+(``m (2n + 2) + 1``); rows: the first zone's displacement (``n + 2``), the load and
+its temperature (``n``), then each later zone's displacement and temperature.  One
+zone is the single patch, its rows and unknowns in its order.
+
+Modelled: a stationary half-plane without the Dundurs term, with perfect thermal
+contact (the transient kernels of a moving half-plane at separated arguments, the
+Dundurs term's cross-zone constants and the interface's scaling are not yet
+derived for several zones).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+from numpy.polynomial import Polynomial
+
+from ..numerics.moment_engine import stretch
+from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
+                                       cylinder_temperature_gradient_regular, moving_slope)
+from ..physics.transient_green_functions import (transient_displacement_and_slope,
+                                                 transient_temperature,
+                                                 transient_temperature_gradient_regular)
+from ..problem.parameters import Parameters
+from ..problem.validation import InputError
+from .linearised import LinearisedContact, logarithm_constant, projections
+from .system import zone_parameters
+
+__all__ = ["LinearisedContactSet"]
+
+#: The cylinder's initial gap ``X^2/2`` (units ``l^2/R``), the default profile.
+CYLINDER_GAP = Polynomial([0.0, 0.0, 0.5])
+
+
+@dataclass(frozen=True, eq=False)
+class LinearisedContactSet:
+    """A steady contact set linearised with its edges free (derivation section 18b).
+
+    Attributes
+    ----------
+    parameters : Parameters
+        ``pe = Pe_l`` and ``fhpe = fHPe_l``, in units of the Hertz half-width ``l``
+        (a stationary half-plane, no Dundurs term).
+    representation : Representation
+        An edge-graded one (the steady solution's).
+    edges : ndarray, shape (m, 2)
+        ``(a_j, b_j)`` of each zone, ascending, units of ``l``.
+    phi, psi : ndarray, shape (m, n)
+        Each zone's steady factors in units of ``P/l`` and ``f v P/l``
+        (:class:`~thermocontact.solvers.zones.ZoneSolution`'s).
+    profile : Polynomial, optional
+        The initial gap against ``X`` in units of ``l^2/R`` (default ``X^2/2``).
+    """
+
+    parameters: Parameters
+    representation: object
+    edges: np.ndarray
+    phi: np.ndarray
+    psi: np.ndarray
+    profile: Polynomial = field(default_factory=lambda: CYLINDER_GAP)
+
+    def __post_init__(self):
+        par = self.parameters
+        if par.half_plane_scale or par.free_term:
+            raise InputError("the stability of a contact set is modelled for a stationary "
+                             "half-plane without the Dundurs term (speed_ratio = 0, "
+                             "beta_f = 0)", parameters=("speed_ratio", "beta_f"))
+        edges = np.asarray(self.edges, dtype=float).reshape(-1, 2)
+        if np.any(np.diff(edges.ravel()) <= 0.0):
+            raise InputError("edges must be increasing, a1 < b1 < a2 < ...",
+                             parameters=("edges",))
+        object.__setattr__(self, "edges", edges)
+
+    @property
+    def n(self) -> int:
+        return self.representation.n
+
+    @property
+    def size(self) -> int:
+        return len(self.edges) * (2 * self.n + 2) + 1
+
+    #: The unit of the rate ``b``.
+    RATE_UNITS = "k2/l^2"
+
+    @property
+    def temperature_rows(self) -> np.ndarray:
+        """The rows of :meth:`matrix` that are the temperature's, every zone's."""
+        n, m = self.n, len(self.edges)
+        starts = [n + 3] + [2 * n + 3 + k * (2 * n + 2) + n + 2 for k in range(m - 1)]
+        return np.concatenate([np.arange(s, s + n) for s in starts])
+
+    @cached_property
+    def _geometry(self):
+        """Each zone's half-width and centre (units of ``l``)."""
+        a, b = self.edges.T
+        return 0.5 * (b - a), 0.5 * (a + b)
+
+    @property
+    def moving(self) -> bool:
+        """False: the half-plane is at rest (its temperature constant, S22)."""
+        return False
+
+    @cached_property
+    def zones(self) -> tuple:
+        """Each zone's single patch (:class:`~.linearised.LinearisedContact`): its
+        equivalents, its densities times ``Delta_j`` (S19)."""
+        out = []
+        for h, c, ph, ps in zip(*self._geometry, self.phi, self.psi):
+            out.append(LinearisedContact(zone_parameters(self.parameters, float(h)),
+                                         self.representation, h * np.asarray(ph),
+                                         h * np.asarray(ps), float(h * h), float(c / h)))
+        return tuple(out)
+
+    @cached_property
+    def _layout(self):
+        """Where each zone's block of ``2n + 3`` rows and unknowns goes: the later
+        zones' ``D~`` columns join the first's, their load rows the first's."""
+        n, m = self.n, len(self.edges)
+        B = 2 * n + 3
+        rows = [i * B + n + 2 for i in range(1, m)]
+        cols = [j * B + 2 * n for j in range(1, m)]
+        keep_rows = np.setdiff1d(np.arange(m * B), rows)
+        keep_cols = np.setdiff1d(np.arange(m * B), cols)
+        # The first temperature row of each zone, in the folded rows.
+        first = np.searchsorted(keep_rows, [i * B + n + 3 for i in range(m)])
+        return B, rows, cols, keep_rows, keep_cols, first
+
+    @cached_property
+    def _sources(self):
+        """The rule of the cross-zone integrals (S21): ``r = cos T(tau)`` at ``N``
+        midpoints in ``tau`` (``N = max(64, 4n)``), the pressure's and the flux
+        difference's weights ``(pi/N) sin^2 T T'`` and ``(pi/N) T'`` (``p dr`` and
+        ``q' dr`` in ``tau``: smooth and periodic), and the cosine series taking nodal
+        values there: the moments of the zone's interpolant of its density against
+        the kernel, as the steady solver's product integration forms them, to the
+        midpoint rule's error (exponentially small in ``N``)."""
+        rep, n = self.representation, self.n
+        count = max(64, 4 * n)
+        tau = np.pi * (np.arange(count) + 0.5) / count
+        t = stretch(tau)
+        slope = 2.0 * np.sin(tau) ** 2                   # T'(tau)
+        series = np.cos(np.multiply.outer(tau, np.arange(n))) @ rep.to_cos
+        step = np.pi / count
+        return np.cos(t), step * np.sin(t) ** 2 * slope, step * slope, series
+
+    @cached_property
+    def _points(self):
+        """The projections and their points ``s`` in each zone's own coordinate."""
+        x, pd, pt = projections(self.n)
+        s, _ = self.representation.projection_points(x)
+        return pd, pt, s
+
+    def matrix(self, b, *, split=False):
+        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S22).
+
+        Parameters
+        ----------
+        b : complex
+            The rate in units of ``k2/l^2``, off the cut ``b < 0``; ``b = 0`` gives the
+            limit (S8, S22): the first zone's first temperature row is the heat
+            partition's.
+        split : bool
+            Return ``(M_reg, ell, row)`` with ``M = M_reg + ell * outer(e, row)``, ``e``
+            the first zone's first temperature row, as
+            :meth:`~.linearised.LinearisedContact.matrix`.
+
+        Returns
+        -------
+        ndarray, or tuple with ``split``
+        """
+        n, m = self.n, len(self.edges)
+        B, load_rows, d_cols, keep_rows, keep_cols, first = self._layout
+        pd, pt, s = self._points
+        h, c = self._geometry
+        full = np.zeros((m * B, m * B), dtype=complex)
+        w = np.zeros(m * B, dtype=complex)
+        ell = 0.0 if b == 0 else logarithm_constant(b)
+        for i, zone in enumerate(self.zones):
+            block = slice(i * B, (i + 1) * B)
+            reg, _, row = zone.matrix(b * h[i] ** 2, split=True)
+            reg = np.array(reg, dtype=complex)
+            # The common length unit (S19): Flamant's ln Delta_i int p~_i, the
+            # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i.
+            lnh = np.log(h[i])
+            wp = zone.representation.pressure_rule.weights
+            reg[:n + 2, :n] += (lnh / np.pi) * np.outer(pd.sum(axis=1), wp)
+            reg[n + 3] -= lnh * row
+            # Flamant's edges' term (1/pi) del~ int p0 (S5), the zone's load for the
+            # single patch's 1.
+            reg[:n + 2, 2 * n + 2] += pd.sum(axis=1) * (wp @ zone.phi - 1.0) / np.pi
+            # The profile's slope where it is not the cylinder's X (S20).
+            X = c[i] + h[i] * s
+            extra = -(2.0 / np.pi) * h[i] * (self.profile.deriv()(X) - X)
+            reg[:n + 2, 2 * n + 1] += pd @ extra
+            reg[:n + 2, 2 * n + 2] += pd @ (extra * s)
+            full[block, block] = reg
+            w[block] = row
+        for i in range(m):
+            for j in range(m):
+                if i != j:
+                    self._cross(full, i, j, b)
+        # Fold the shared approach and the one load row (S22).
+        for r in load_rows:
+            full[n + 2] += full[r]
+        for k in d_cols:
+            full[:, 2 * n] += full[:, k]
+        M = full[np.ix_(keep_rows, keep_cols)]
+        w = w[keep_cols]
+        # l(b) on every zone's first temperature row: on the first zone's alone.
+        M[first[1:]] -= M[first[0]]
+        if split:
+            return M, ell, w
+        if b == 0:
+            M[first[0]] = w
+            return M.real
+        else:
+            M[first[0]] += ell * w
+        return M
+
+    def _cross(self, full, i, j, b):
+        """Zone ``j``'s terms at zone ``i``'s points (S21), added into ``full``."""
+        par, n = self.parameters, self.n
+        B = 2 * n + 3
+        pd, pt, s = self._points
+        h, c = self._geometry
+        r, wp, wq, series = self._sources
+        zone = self.zones[j]
+        phi0, psi0 = series @ zone.phi, series @ zone.psi
+        eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
+        share = ((0.5 * (1.0 + eta), 0.5), (0.5 * (1.0 - eta), -0.5))
+        u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
+        P0 = wp * phi0
+        R = (i * B, (i + 1) * B)
+        own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
+        src = slice(j * B, j * B + 2 * n)                      # phi~_j, psi~_j
+        edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
+        disp = np.zeros((s.size, B), dtype=complex)
+        temp = np.zeros((s.size, B), dtype=complex)
+        moving_i = np.zeros((s.size, 2), dtype=complex)
+
+        def edges_of(K0p, Kbp, q0):
+            # int [K_0'(w) X~_i - K_b'(w) Y~_j] q0: the points' columns and the
+            # source's.
+            a = K0p @ q0
+            return (h[i] * np.stack([a, a * s], axis=1),
+                    -h[j] * np.stack([Kbp @ q0, Kbp @ (r * q0)], axis=1))
+
+        # Flamant's logarithm, its derivative 1/w (no rate).
+        disp[:, :n] += (np.log(np.abs(u)) / np.pi * wp) @ series
+        a, e = edges_of(1.0 / (np.pi * u), 1.0 / (np.pi * u), P0)
+        moving_i += a
+        disp[:, 2 * n + 1:] += e
+        for k, (weight, sign, values) in enumerate(zip(
+                (d, 1.0), (rho, -1.0), self._kernels(u, b))):
+            W, T, S0, Sb, G0, Gb = values
+            ap, aq = share[k]
+            q0 = ap * P0 + aq * wq * psi0
+            f = 2.0 * F * weight
+            # W' = -S, T' = -G.
+            if f:
+                disp[:, :n] += f * ap * (W * wp) @ series
+                disp[:, n:2 * n] += f * aq * (W * wq) @ series
+                a, e = edges_of(-S0, -Sb, q0)
+                moving_i += f * a
+                disp[:, 2 * n + 1:] += f * e
+            temp[:, :n] += sign * ap * (T * wp) @ series
+            temp[:, n:2 * n] += sign * aq * (T * wq) @ series
+            a, e = edges_of(-G0, -Gb, q0)
+            moving_i_t = sign * a
+            temp[:, 2 * n + 1:] += sign * e
+            full[R[0] + n + 3:R[1], own] += pt @ moving_i_t
+        full[R[0]:R[0] + n + 2, own] += pd @ moving_i
+        full[R[0]:R[0] + n + 2, src] += pd @ disp[:, :2 * n]
+        full[R[0]:R[0] + n + 2, edge] += pd @ disp[:, 2 * n + 1:]
+        full[R[0] + n + 3:R[1], src] += pt @ temp[:, :2 * n]
+        full[R[0] + n + 3:R[1], edge] += pt @ temp[:, 2 * n + 1:]
+
+    def _kernels(self, u, b):
+        """Each body's ``W``, ``T``, ``S_0``, ``S_b``, ``G_0``, ``G_b`` at the separated
+        arguments ``u`` (units of ``l``): the cylinder's with ``c_l`` and rate
+        ``b k2/k1``, the stationary half-plane's less the constants ``2/(pi sqrt b)``
+        and ``l(b)`` (S7, S21); at ``b = 0`` the steady kernels."""
+        par = self.parameters
+        cyl = par.cylinder_scale
+        out = []
+        S0c = moving_slope(u, cyl)
+        G0c = 1.0 / u + cylinder_temperature_gradient_regular(u, cyl)
+        S0h, G0h = 0.5 * np.sign(u), 1.0 / u
+        if b == 0:
+            out.append((cylinder_displacement(cyl * u) / cyl, cylinder_temperature(cyl * u),
+                        S0c, S0c, G0c, G0c))
+            out.append((-0.5 * np.abs(u), -np.log(np.abs(u)), S0h, S0h, G0h, G0h))
+            return out
+        b = complex(b)
+        for scale, rate, S0, G0 in ((cyl, b / par.k2_over_k1, S0c, G0c), (0.0, b, S0h, G0h)):
+            flat = u.ravel()
+            W, S = transient_displacement_and_slope(flat, scale, rate)
+            T = transient_temperature(flat, scale, rate)
+            G = transient_temperature_gradient_regular(flat, scale, rate) + 1.0 / flat
+            if scale == 0.0:
+                W = W - 2.0 / (np.pi * np.sqrt(rate))
+                T = T - logarithm_constant(rate)
+            out.append(tuple(np.reshape(v, u.shape) for v in (W, T)) + (
+                S0, np.reshape(S, u.shape), G0, np.reshape(G, u.shape)))
+        return out
+
+    def prepare(self, rates) -> None:
+        """Each zone's :meth:`~.linearised.LinearisedContact.prepare` at its own rates
+        ``b Delta_j^2``."""
+        for h, zone in zip(self._geometry[0], self.zones):
+            zone.prepare([b * h * h for b in rates])

@@ -1,0 +1,316 @@
+"""A contact set of several zones linearised with its edges free (docs/derivation.md,
+section 18b, S18-S22).
+
+* One zone is the single patch: ``M`` of the set at the rate ``b`` (units ``k2/l^2``)
+  equals the single patch's at ``b Delta^2`` but for Flamant's ``ln Delta`` on the load
+  (a row operation, S19).
+* ``M(0)`` against the Jacobian, by differences in each zone's centre and half-width, of
+  the steady contact set's residual at fixed load and heat partition in the
+  undifferentiated form (displacement and temperature continuity at points moving with
+  each zone, every zone's sources integrated by the moment engine at the other zones'
+  points): the cross-zone edges' terms and the zones' common constants against a
+  second computation.
+* Two zones far apart: ``det M`` of the set over the product of the two zones'
+  single-patch determinants grows by ``(2/pi) ln(d2/d1)`` from ``d1`` to ``d2``, its
+  sole dependence on the separation ``d`` (the two zones' loads exchanged through
+  Flamant's logarithm; every other coupling decays).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from numpy.polynomial import Polynomial
+
+from thermocontact import Model
+from thermocontact.discretisation.linearised import projections
+from thermocontact.discretisation.linearised_set import LinearisedContactSet
+from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
+from thermocontact.problem.validation import InputError
+from thermocontact.solvers.stability import linearised
+from thermocontact.solvers.zones import ZoneModel
+
+N = 10
+
+
+@pytest.fixture(scope="module")
+def single():
+    return Model(5.0, 10.0, n=N).solve_at(N, 0.2, lam=-1.0)
+
+
+def _as_zone(sol, centre_over_delta=None):
+    """The single patch ``sol`` as one zone in units of the Hertz half-width
+    (``Delta = sqrt(P_H/P)``, section 14), at ``centre_over_delta`` (default its own
+    offset): ``(parameters, edges, phi, psi)``."""
+    h = np.sqrt(sol.load_ratio)
+    c = h * (sol.sigma_over_delta if centre_over_delta is None else centre_over_delta)
+    par = replace(sol.parameters, pe=sol.parameters.pe / h, fhpe=sol.parameters.fhpe / h)
+    return par, np.array([c - h, c + h]), sol.phi / h, sol.psi / h
+
+
+def test_one_zone_is_the_single_patch(single):
+    par, edges, phi, psi = _as_zone(single)
+    h = 0.5 * (edges[1] - edges[0])
+    zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None])
+    lin = linearised(single)
+    _, pd, _ = projections(N)
+    wp = single.representation.pressure_rule.weights
+    assert zone.size == lin.size
+    for b in (0.0, 0.3 + 0.7j, 5.0, 2e-3 + 40j):
+        M = np.array(zone.matrix(b), dtype=complex)
+        M[:N + 2, :N] -= np.log(h) / np.pi * np.outer(pd.sum(axis=1), wp)
+        M1 = lin.matrix(b * h * h)
+        assert np.abs(M - M1).max() < 1e-12 * np.abs(M1).max(), b
+
+
+@pytest.fixture(scope="module")
+def two_zones():
+    """Two zones of a tilted quartic profile with frictional heat (section 14)."""
+    prof = Polynomial([0, 0.05]) + (1 / 32) * Polynomial([-4.0, 0, 1]) ** 2
+    return ZoneModel(10.0, n=N, profile=prof).solve([[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2,
+                                                   0.5)
+
+
+def _operator(sol, geometry):
+    """The steady contact set's residual in the undifferentiated form at points moving
+    with each zone, ``R = A z + r0``, for the zones' centres and half-widths
+    ``geometry`` (pairs ``(c_j, Delta_j)``, units of ``l``), ``z`` the unknowns of
+    :class:`LinearisedContactSet` but the edges: each zone's ``phi``, ``psi`` times its
+    steady half-width, then ``D``.  Every zone's sources by the moment engine at every
+    zone's points, kernels in units of ``l`` (Flamant's ``ln|Delta_j u|``, the
+    stationary half-plane's ``-ln|Delta_j u|``); each later zone's first temperature
+    row less the first's (the common temperature constant) and the first zone's the
+    heat partition."""
+    par, rep, n, m = sol.parameters, sol.representation, sol.n, sol.zones
+    x, pd, pt = projections(n)
+    s, aux = rep.projection_points(x)
+    eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
+    wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
+    cl = par.cylinder_scale
+    size = 2 * n * m + 1
+    A = np.zeros((m * (2 * n + 2) + 1, size))
+    r0 = np.zeros(A.shape[0])
+    rows = []
+    for i, (ci, hi) in enumerate(geometry):
+        X = ci + hi * s
+        disp = np.zeros((2 * n, size))
+        temp = np.zeros((2 * n, size))
+        for j, (cj, hj) in enumerate(geometry):
+            sj = (X - cj) / hj
+            a = aux if i == j else None
+            ce = cl * hj
+
+            def mom(kernel, scale, log=False):
+                return rep.integrate(kernel, sj, scale=scale, logarithmic=log, aux=a)
+            cols = slice(2 * n * j, 2 * n * j + 2 * n)
+
+            def heat(M, k):
+                ap, aq = (0.5 * (1 + eta), 0.5) if k == 0 else (0.5 * (1 - eta), -0.5)
+                return np.hstack([ap * M[0], aq * M[1]])
+            lb, _ = mom(lambda u: np.log(np.abs(u)), 1.0, True)
+            disp[:, cols.start:cols.start + n] += (lb + np.log(hj) * wp) / np.pi
+            w1 = mom(lambda u: cylinder_displacement(ce * u) / cl, ce)
+            w2 = mom(lambda u: -0.5 * hj * np.abs(u), 1.0)
+            disp[:, cols] += 2 * F * (d * heat(w1, 0) + heat(w2, 1))
+            t1 = mom(lambda u: cylinder_temperature(ce * u), ce, True)
+            t2 = mom(lambda u: -np.log(np.abs(u)), 1.0, True)
+            temp[:, cols] += rho * heat(t1, 0) - heat(t2, 1)
+            temp[:, cols.start:cols.start + n] -= 0.5 * (1 - eta) * (-np.log(hj)) * wp
+            temp[:, cols.start + n:cols.stop] -= -0.5 * (-np.log(hj)) * wq
+        disp[:, -1] = 1.0
+        rows.append((pd @ disp, -(2 / np.pi) * (pd @ sol.profile(X)), pt @ temp))
+    k = 0
+    first = []
+    for i, (dp, g, tp) in enumerate(rows):
+        A[k:k + n + 2], r0[k:k + n + 2] = dp, g
+        k += n + 2
+        if i == 0:
+            A[k, :-1] = np.concatenate([np.concatenate([wp, np.zeros(n)])] * m)
+            r0[k] = -1.0
+            k += 1
+        first.append(k)
+        A[k:k + n] = tp
+        k += n
+    A[first[1:]] -= A[first[0]]
+    heat2 = np.concatenate([0.5 * (1 - eta) * wp, -0.5 * wq])
+    A[first[0]] = -np.sum(pt[0]) * np.append(np.concatenate([heat2] * m), 0.0)
+    r0[first[0]] = np.sum(pt[0]) * 0.5 * (1 - sol.lam)
+    return A, r0
+
+
+def test_M0_is_the_jacobian_of_the_steady_contact_set(two_zones):
+    sol = two_zones
+    n, m = sol.n, sol.zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+    M0 = lin.matrix(0)
+    h, c = sol.half_widths, sol.centres
+    geometry = list(zip(c, h))
+    A, r0 = _operator(sol, geometry)
+    z = np.concatenate([np.concatenate([hj * sol.phi[j], hj * sol.psi[j]])
+                        for j, hj in enumerate(h)] + [[0.0]])
+    # The steady rigid approach: the first zone's displacement rows at rest.
+    z[-1] = -(A[0] @ z + r0[0]) / A[0, -1]
+    # The steady contact set is the undifferentiated residual's zero, the
+    # discretisation's error apart (at n = 10 largest in the temperature's highest
+    # projections, 4.5e-3; 3.2e-6 at n = 16, 7.9e-8 at n = 24, derivation S22): the
+    # zones' common approach and temperature constant, the profile and the length
+    # unit's logarithms are the steady solver's.
+    R = A @ z + r0
+    temperature = np.r_[n + 3:2 * n + 3, 3 * n + 5:4 * n + 5]
+    assert np.abs(np.delete(R, temperature)).max() < 1e-6
+    assert abs(R[3 * n + 5] - R[n + 3]) < 1e-3 and np.abs(R).max() < 1e-2
+    # M(0)'s columns: the linear unknowns as A's, each zone's (sig~, del~) by central
+    # differences of the residual in c_j/Delta_j and Delta_j/Delta_j.
+    J = np.zeros_like(M0)
+    lin_cols = [k for j in range(m) for k in range(j * (2 * n + 2) + (j > 0),
+                                                  j * (2 * n + 2) + (j > 0) + 2 * n)]
+    J[:, lin_cols] = A[:, :-1]
+    J[:, 2 * n] = A[:, -1]
+    for j in range(m):
+        base = 2 * n + 1 if j == 0 else j * (2 * n + 2) + 1 + 2 * n
+        for k in range(2):
+            step = 1e-5
+            cols = []
+            for sign in (1, -1):
+                g = list(geometry)
+                cj, hj = g[j]
+                g[j] = (cj + sign * step * h[j], hj) if k == 0 else (cj, hj + sign * step * h[j])
+                Ag, rg = _operator(sol, g)
+                cols.append(Ag @ z + rg)
+            J[:, base + k] = (cols[0] - cols[1]) / (2 * step)
+    scale = np.abs(J).max()
+    err = np.abs(M0 - J) / scale
+    assert err[:, lin_cols].max() < 1e-12
+    assert np.delete(err, lin_cols + [2 * n], axis=1).max() < 1e-9
+
+
+def test_two_zones_far_apart_factor_into_their_single_patches():
+    """Two copies of a single patch (heat into the cylinder alone, lam = 1) in the wells
+    of the double well ``(X^2 - c^2)^2/(8 c^2)``, whose curvature at each well is the
+    cylinder's: ``det M`` of the set over the single patches' ``det M`` grows by
+    ``(2/pi) ln 2`` as the separation ``2c`` doubles (S23), to ``O(1/c)``."""
+    sol = Model(5.0, 10.0, n=N).solve_at(N, 0.2, lam=1.0)
+    par, edges, phi, psi = _as_zone(sol)
+    h = 0.5 * (edges[1] - edges[0])
+    b = 0.5 + 1.0j
+    sign, single = np.linalg.slogdet(linearised(sol).matrix(b * h * h))
+    ratios = []
+    for c in (40.0, 80.0, 160.0):
+        well = Polynomial([-c * c, 0.0, 1.0]) ** 2 / (8.0 * c * c)
+        pair = LinearisedContactSet(par, sol.representation, [edges - c, edges + c],
+                                    np.stack([phi, phi]), np.stack([psi, psi]), well)
+        s, both = np.linalg.slogdet(pair.matrix(b))
+        ratios.append(s / sign ** 2 * np.exp(both - 2 * single))
+    steps = np.diff(ratios) / (2.0 / np.pi * np.log(2.0))
+    # Measured: 1.0047 + 0.0025i, then 0.99896 + 0.0011i.
+    assert abs(steps[1] - 1.0) < 2e-3
+    assert abs(steps[1] - 1.0) < 0.5 * abs(steps[0] - 1.0)
+
+
+def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
+    import thermocontact as tc
+    from thermocontact.problem.conductance import Conductance
+
+    sol = two_zones
+    for change in ({"speed_ratio": 0.3}, {"beta_f": 0.2}):
+        with pytest.raises(InputError, match="stationary half-plane"):
+            LinearisedContactSet(replace(sol.parameters, **change), sol.representation,
+                                 sol.edges, sol.phi, sol.psi, sol.profile)
+    # A set solved with an interface conductance, before any work.
+    with pytest.raises(InputError, match="perfect thermal contact") as err:
+        tc.stability(replace(sol, conductance=Conductance.of((3.0, 0.0))))
+    assert err.value.parameters == ("conductance",)
+    with pytest.raises(InputError, match="perfect thermal contact"):
+        linearised(replace(sol, conductance=Conductance.of((3.0, 0.0))))
+
+
+def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_zones,
+                                                                           monkeypatch):
+    """``stability(contact set)``: the set solved again at the analysis' ``n`` from its
+    edges, linearised with every edge free, rates in ``k2/l^2`` (the count itself is
+    the single patch's machinery, S22; a stand-in keeps this fast)."""
+    import thermocontact as tc
+    import thermocontact.solvers.stability as stability
+
+    seen = {}
+
+    def stand_in(solve_at, rate_unit=None, **region):
+        sol = solve_at(N)
+        seen.update(sol=sol, lin=linearised(sol), rate_unit=rate_unit, region=region)
+        return "verdict"
+    monkeypatch.setattr(stability, "stability_of", stand_in)
+    assert tc.stability(two_zones, n=N) == "verdict"
+    lin = seen["lin"]
+    assert isinstance(lin, LinearisedContactSet) and lin.RATE_UNITS == "k2/l^2"
+    assert seen["rate_unit"] is None and seen["region"]["n"] == N
+    assert np.abs(seen["sol"].edges - two_zones.edges).max() < 1e-12
+    assert lin.size == 2 * (2 * N + 2) + 1
+    assert list(lin.temperature_rows) == (list(range(N + 3, 2 * N + 3))
+                                          + list(range(3 * N + 5, 4 * N + 5)))
+
+
+def test_contact_zones_stability_adds_the_record(capsys, monkeypatch):
+    """``contact --zones --stability`` answers (it was refused): the contact set's
+    ``"stability"`` record (stand-ins for the set and its verdict keep it fast)."""
+    import json
+
+    import thermocontact.api as api
+    from thermocontact.cli import main
+
+    class Found:
+        def to_dict(self):
+            return {"status": "solved"}
+    seen = []
+
+    def verdict(found, progress):
+        seen.append(found)
+        return replace(single_verdict, eigenvalues=np.array([0.5 + 1j, 0.5 - 1j]))
+    from thermocontact.solvers.stability import StabilityResult
+    single_verdict = StabilityResult(np.array([]), 2, False, None, 0.5, (1e-3, 1e6),
+                                     "argument principle", None, None, None, 40, 12,
+                                     units="1/s")
+    monkeypatch.setattr(api, "contact_set", lambda **kw: Found())
+    monkeypatch.setattr(api, "stability", verdict)
+    assert main(["contact", "--cylinder", "steel", "--half-plane", "steel", "--radius",
+                 "10mm", "--load", "5kN/m", "--speed", "1m/s", "--friction", "0.3", "--lam",
+                 "0", "--no-dundurs", "--zones", "--stability", "--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert isinstance(seen[0], Found) and rec["stability"]["stable"] is False
+    assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
+
+
+class _ManyRows:
+    """A stand-in linearisation without eigenvalues whose ``2n`` temperature rows fall
+    like ``(1 + b/1000)^(-1/2)``: the scaled determinant ``((1 + b)/(1 + b/1000))^n``
+    turns its phase by up to ``n pi/2`` and back along the line, as a two-zone contact
+    set's does, whose temperature rows settle only at large ``|b|`` (S22)."""
+
+    n, moving, RATE_UNITS = 12, True, "k2/l^2"
+    temperature_rows = np.arange(24)
+
+    def matrix(self, b, split=False):
+        M = np.eye(25, dtype=complex)
+        M[self.temperature_rows, self.temperature_rows] = (1.0 + b / 1000.0) ** -0.5
+        return M
+
+
+@pytest.mark.parametrize("line_step, count", [(4.0, 2), (None, 0)])
+def test_the_count_follows_the_phase_of_many_temperature_rows(monkeypatch, line_step,
+                                                             count):
+    """Two zones' temperature rows, each scaled by ``sqrt(1 + b)``, turn the phase twice
+    as fast as a single patch's along the line: the single patch's first steps alias a
+    turn (two roots counted where there are none, as at two zones of the quartic at
+    fHPe_l = 0, n = 12, where a dense sampling of the contour finds none), steps halved
+    per zone do not."""
+    import thermocontact.solvers.stability as st
+
+    monkeypatch.setattr(st, "linearised", lambda sol: _ManyRows())
+    if line_step is None:
+        res = st.stability_of(lambda n: None, n=12, estimate=False)
+        assert res.stable is True and res.unstable_modes == 0
+    else:
+        winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step)
+        assert winding.count(1e6)[0] == count
