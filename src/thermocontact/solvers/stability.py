@@ -184,11 +184,34 @@ class Winding:
         ``prepare(points)`` before the samples ``points`` of one round of refinement
         are evaluated by ``matrix`` one by one: for work shared by several (the
         linearised contact's kernel moments, :meth:`LinearisedContact.prepare`).
+    many : callable, optional
+        ``points -> A``, the matrices at several points stacked (the linearised
+        contact's :meth:`LinearisedContact.matrices`): each round's samples evaluated
+        together, in place of ``prepare`` and ``matrix`` one by one (the same
+        matrices).
     """
 
-    def __init__(self, matrix, b_min, prepare=None):
+    def __init__(self, matrix, b_min, prepare=None, many=None):
         self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
+        self.many = many
         self.values, self.matrices = {}, {}
+
+    def evaluate(self, points):
+        """Evaluate and keep ``A`` and its determinant at ``points`` not yet kept, together
+        where ``many`` was given (otherwise after ``prepare``, one by one, as
+        :meth:`at` does on demand)."""
+        fresh = [z for z in dict.fromkeys(points) if z not in self.values]
+        if not fresh:
+            return
+        if self.many is None:
+            if self.prepare is not None:
+                self.prepare(fresh)
+            return
+        A = self.many(fresh)
+        signs, logdets = np.linalg.slogdet(A)
+        for z, Az, sign, logdet in zip(fresh, A, signs, logdets):
+            self.matrices[z] = Az
+            self.values[z] = (complex(sign), float(logdet))
 
     def at(self, b):
         """``(sign, log|det A(b)|)``, kept (with ``A(b)``)."""
@@ -232,13 +255,8 @@ class Winding:
         todo = [(point, float(a), float(b)) for point, a, b in pieces]
         total = 0.0
         while todo:
-            if self.prepare is not None:
-                # In order, once each (the same batch, the same rounding, every run).
-                fresh = dict.fromkeys(point(t) for point, a, b in todo
-                                      for t in (a, 0.5 * (a + b), b))
-                fresh = [z for z in fresh if z not in self.values]
-                if fresh:
-                    self.prepare(fresh)
+            # In order, once each (the same batch, the same rounding, every run).
+            self.evaluate([point(t) for point, a, b in todo for t in (a, 0.5 * (a + b), b)])
             refine = []
             for point, a, b in todo:
                 m = 0.5 * (a + b)
@@ -434,18 +452,25 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     return b, abs(step)
 
 
-def scaled_matrix(lin):
+def scaled_matrix(lin, *, many=False):
     """``b -> M(b)`` with its temperature rows times ``sqrt(1 + b)`` (analytic and
     non-zero in ``Re b > 0``: the same eigenvalues; the rows' size and the
     determinant's phase then settle as ``|b|`` grows, where the temperature falls like
-    ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``)."""
+    ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``).  With ``many``,
+    ``rates -> `` the matrices at several non-zero rates stacked
+    (:meth:`LinearisedContact.matrices`)."""
     n = lin.n
+
+    def matrices(rates):
+        M = lin.matrices(rates)
+        M[:, n + 3:] *= np.sqrt(1.0 + np.asarray(rates, dtype=complex))[:, None, None]
+        return M
 
     def matrix(b):
         M = lin.matrix(b)
         M[n + 3:] *= np.sqrt(1.0 + b)
         return M
-    return matrix
+    return matrices if many else matrix
 
 
 def _fold(lin):
@@ -525,17 +550,25 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
                          parameters=("n",))
     b_min, R = _check_region(b_min, modulus_bound)
     lin = linearised(solve_at(n))
-    scaled = scaled_matrix(lin)
+    scaled, scaled_many = scaled_matrix(lin), scaled_matrix(lin, many=True)
     evaluations = [0]
     expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
 
-    def counted(b):
-        evaluations[0] += 1
+    def told(count):
+        evaluations[0] += count
         if progress is not None:
             progress(evaluations[0], max(expected, evaluations[0]))
+
+    def counted(b):
+        told(1)
         return scaled(b)
 
-    winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None))
+    def counted_many(rates):
+        told(len(rates))
+        return scaled_many(rates)
+
+    winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
+                      many=counted_many if hasattr(lin, "matrices") else None)
     N, reason = winding.count(R)
     found = np.array([], dtype=complex)
     change = None
