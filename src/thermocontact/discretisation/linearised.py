@@ -169,16 +169,22 @@ class LinearisedContact:
         table = kernel_table(aux, n, rep.to_cos, graded_map(rep.alpha))
         u = kernel_nodes()
         c, c2 = par.cylinder_scale, par.half_plane_scale
-        # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes to
-        # D~; scale-invariant, it has no edges' terms, S15); u S_0 and u (G_0 - 1/u) of
-        # each body, the stationary half-plane's G_0 being 1/u.
-        steady = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
-                           u * moving_slope(u, c),
-                           u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
-                           u * cylinder_temperature_gradient_regular(u, c),
-                           u * cylinder_temperature_gradient_regular(u, c2) if c2
-                           else np.zeros_like(u)], axis=1)
-        mom = table.moments(steady)
+
+        def steady():
+            # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes
+            # to D~; scale-invariant, it has no edges' terms, S15); u S_0 and
+            # u (G_0 - 1/u) of each body, the stationary half-plane's G_0 being 1/u.
+            values = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
+                               u * moving_slope(u, c),
+                               u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
+                               u * cylinder_temperature_gradient_regular(u, c),
+                               u * cylinder_temperature_gradient_regular(u, c2) if c2
+                               else np.zeros_like(u)], axis=1)
+            return _frozen([table.moments(values)])
+        # Kept with the transient kernels' moments: the points of a map's row (one
+        # Peclet number) share them.
+        mom, = KERNEL_MOMENTS.get((table.key, "steady", float(c), float(c2),
+                                   float(par.free_term)), steady)
         return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
                     flamant_flux=mom[1][..., 0],
                     uS0=(mom[..., 1], mom[..., 2]),
@@ -342,9 +348,13 @@ class LinearisedContact:
             raise InputError("matrices: the rates must be non-zero (matrix(0) is the limit "
                              "b -> 0)", parameters=("rates",))
         self.prepare(rates)
-        both = [self.kernel_moments(b) for b in rates]
-        rows, ell, row = self._assemble(np.stack([m[0] for m in both]),
-                                        np.stack([m[1] for m in both]), rates)
+        table = self._fixed["table"]
+        # Each body's moments stacked over the rates, the bodies side by side.
+        bodies = [[_body_moments(table, *self._bodies(b)[body]) for b in rates]
+                  for body in range(2)]
+        bounded, singular = (np.concatenate([np.stack([m[w] for m in kept]) for kept in bodies],
+                                            axis=-1) for w in range(2))
+        rows, ell, row = self._assemble(bounded, singular, rates)
         rows[:, self.n + 3] += ell[:, None] * row
         return rows
 
