@@ -97,6 +97,10 @@ class StabilityResult(Result):
         Evaluations of ``M(b)``.
     n : int
     units : str
+    samples : tuple of complex
+        The rates on the region's boundary where the count evaluated ``M(b)``
+        (``k2/Delta^2`` whatever ``units``): a neighbouring contact's count evaluates
+        them first, together (:func:`stability_of`); not part of the record.
     """
 
     eigenvalues: np.ndarray
@@ -112,6 +116,7 @@ class StabilityResult(Result):
     evaluations: int
     n: int
     units: str = "k2/Delta^2"
+    samples: tuple = ()
 
     STATUSES = {"stable": "no eigenvalue in the region, the count certified",
                 "unstable": "eigenvalues in the region (unstable_modes), the count certified",
@@ -222,15 +227,22 @@ class Winding:
             self.values[b] = (complex(sign), float(logdet))
         return self.values[b]
 
+    def boundary(self, R, points):
+        """``(arc, line)``: those of ``points`` on the arc ``|b| = R`` (by angle) and on
+        the line ``Re b = b_min``, ``|b| <= R`` (by imaginary part), the upper half of
+        the boundary for ``R``."""
+        b_min = self.b_min
+        line = sorted((b for b in points if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
+                      key=lambda b: b.imag)
+        arc = sorted((b for b in points if abs(abs(b) - R) <= 1e-12 * R and b.real > b_min),
+                     key=lambda b: np.angle(b))
+        return arc, line
+
     def contour(self, R):
         """The samples on the upper half of the boundary for ``R`` (counterclockwise:
         the arc from ``b = R``, then down the line) with trapezoidal weights ``dz``,
         after :meth:`count` for ``R``."""
-        b_min = self.b_min
-        line = sorted((b for b in self.values if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
-                      key=lambda b: b.imag)
-        arc = sorted((b for b in self.values if abs(abs(b) - R) <= 1e-12 * R
-                      and b.real != b_min), key=lambda b: np.angle(b))
+        arc, line = self.boundary(R, self.values)
         z = np.array(arc + line[::-1], dtype=complex)
         dz = np.zeros_like(z)
         step = np.diff(z)
@@ -506,7 +518,8 @@ def _check_region(b_min, modulus_bound):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
-                 rate_unit=None, progress=None, guesses=(), estimate=True) -> StabilityResult:
+                 rate_unit=None, progress=None, guesses=(), samples=(),
+                 estimate=True) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Parameters
@@ -535,6 +548,11 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         is sought from the one that holds them with a margin.  Where they miss, the search is the one
         without them.  They change neither the count (the certificate) nor, beyond
         Newton's tolerance, the eigenvalues.
+    samples : sequence of complex, optional
+        A neighbouring contact's ``samples`` (its result's, ``k2/Delta^2``): those on
+        this region's boundary are evaluated first, together, and the count's
+        refinement finds them kept (a map's row, whose points share the kernels and
+        mostly the samples).  They change neither the count nor the eigenvalues.
     estimate : bool
         Compute the error estimate (the eigenvalues again at ``3n/2``); without it
         ``error_estimate`` is None and the reason does not say whether an eigenvalue
@@ -569,7 +587,11 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
 
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
                       many=counted_many if hasattr(lin, "matrices") else None)
+    if len(samples):
+        winding.evaluate([z for part in winding.boundary(R, map(complex, samples))
+                          for z in part])
     N, reason = winding.count(R)
+    sampled = tuple(complex(z) for part in winding.boundary(R, winding.values) for z in part)
     found = np.array([], dtype=complex)
     change = None
     if N:
@@ -608,7 +630,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
         region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
         error_estimate=change, fold=fold, slow_root=slow,
-        evaluations=evaluations[0], n=n, units=units)
+        evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
 
 def _locate(winding, matrix, N, b_min, R, guesses=()):
