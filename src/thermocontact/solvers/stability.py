@@ -518,7 +518,7 @@ def _check_region(b_min, modulus_bound):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
-                 rate_unit=None, progress=None, guesses=(), samples=(),
+                 rate_unit=None, progress=None, guesses=(), predictions=(), samples=(),
                  estimate=True) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
@@ -548,6 +548,11 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         is sought from the one that holds them with a margin.  Where they miss, the search is the one
         without them.  They change neither the count (the certificate) nor, beyond
         Newton's tolerance, the eigenvalues.
+    predictions : sequence of complex, optional
+        A real eigenvalue predicted here (``k2/Delta^2``; extrapolated from two
+        neighbours' along a map's row): where one root is counted, Newton's method
+        from it first, then (where it does not confirm one) the search without it.
+        It changes neither the count nor, beyond Newton's tolerance, the eigenvalue.
     samples : sequence of complex, optional
         A neighbouring contact's ``samples`` (its result's, ``k2/Delta^2``): those on
         this region's boundary are evaluated first, together, and the count's
@@ -573,9 +578,10 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     expected = int(np.ceil(np.arcsinh(R / b_min) / _LINE_STEP)) + _ARC_STEPS + 16
 
     def told(count):
-        evaluations[0] += count
-        if progress is not None:
-            progress(evaluations[0], max(expected, evaluations[0]))
+        for _ in range(count):
+            evaluations[0] += 1
+            if progress is not None:
+                progress(evaluations[0], max(expected, evaluations[0]))
 
     def counted(b):
         told(1)
@@ -595,7 +601,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     found = np.array([], dtype=complex)
     change = None
     if N:
-        found, reason = _locate(winding, counted, N, b_min, R, guesses)
+        found, reason = _locate(winding, counted, N, b_min, R, guesses, predictions)
         if found.size and estimate:
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
@@ -633,10 +639,11 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
 
-def _locate(winding, matrix, N, b_min, R, guesses=()):
+def _locate(winding, matrix, N, b_min, R, guesses=(), predictions=()):
     """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
     real (the region is symmetric about the real axis), where ``det M`` changes sign
-    between ``b_min`` and ``R``: Brent's method in ``ln b``, in a bracket narrowed by a
+    between ``b_min`` and ``R``: Newton's method from a prediction where one is given
+    and confirms it; otherwise Brent's method in ``ln b``, in a bracket narrowed by a
     real guess (a neighbour's root).  Otherwise the smallest half-disc ``|b| <= R_j``
     (``R_j = 4^j``: ``j`` doubled from 1, or from the one that holds the guesses with a
     margin, then bisected, the count growing with the radius) holding all ``N`` by the
@@ -666,6 +673,14 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
 
     good = [complex(g) for g in guesses if np.isfinite(g) and g.real >= b_min and abs(g) <= R]
     if N == 1:
+        # A predicted root (continued from two neighbours along a map's row, the same
+        # count at each): Newton's method from it first.
+        predicted = [complex(p.real, 0.0) for p in predictions
+                     if np.isfinite(p) and b_min <= p.real <= R and p.imag == 0]
+        if predicted:
+            confirm(predicted[:1])
+            if located() == N:
+                return np.array(roots, dtype=complex), None
         from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
         # det M at b = e^x, real, relative to the geometric mean of its ends (the

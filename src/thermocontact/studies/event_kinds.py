@@ -87,12 +87,13 @@ def classify(path: Path, *, n=STABILITY_N, progress=None, **region) -> Path:
 
 
 def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, guesses=(),
-                 samples=(), estimate=True, **region):
+                 predictions=(), samples=(), estimate=True, **region):
     """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
     single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
     ``lam``, ``sigma_over_delta`` or the far temperatures ``theta``), eigenvalues in
-    units of ``k2/Delta^2``; ``guesses`` and ``samples`` (a neighbour's eigenvalues and
-    contour samples) and ``estimate`` as in
+    units of ``k2/Delta^2``; ``guesses``, ``predictions`` and ``samples`` (a neighbour's
+    eigenvalues, a real one continued from two, and a neighbour's contour samples) and
+    ``estimate`` as in
     :func:`~thermocontact.solvers.stability.stability_of`."""
     model = model_for(kw, method=method)
 
@@ -102,6 +103,8 @@ def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, guesses=(),
         region = {**region, "guesses": guesses}
     if len(samples):
         region = {**region, "samples": samples}
+    if len(predictions):
+        region = {**region, "predictions": predictions}
     if not estimate:
         region = {**region, "estimate": False}
     return stability_of(solve_at, n=n, progress=progress, **region)
@@ -198,7 +201,7 @@ def _row_stability(row, *, method, n, region):
     guesses are the eigenvalues of the point before it in the row, and the samples of
     its count those of the row's last point analysed."""
     _, points = row
-    out, before, last = [], None, None
+    out, before, last, single = [], None, None, []
     for i, kw in points:
         extra = {}
         if before is not None:
@@ -206,8 +209,17 @@ def _row_stability(row, *, method, n, region):
             # no kernel's evaluation here.
             extra = {"samples": before.samples,
                      "guesses": before.eigenvalues if last == i - 1 else ()}
+        if len(single) == 2 and single[0][0] == i - 2 and single[1][0] == i - 1:
+            # One real root at each of the two points before: its logarithm continued
+            # linearly, where it moved by less than a factor 1.5.
+            (_, b2), (_, b1) = single
+            if max(b1 / b2, b2 / b1) < 1.5:
+                extra["predictions"] = [b1 * b1 / b2]
         res = stability_at(kw, method, n=n, estimate=False, **region, **extra)
         before, last = res, i
+        ev = res.eigenvalues
+        real = len(ev) == 1 and ev[0].imag == 0 and res.unstable_modes == 1
+        single = (single + [(i, float(ev[0].real))])[-2:] if real else []
         out.append((i, -2 if res.stable is None else int(res.stable),
                     -1 if res.unstable_modes is None else res.unstable_modes,
                     np.nan if res.growth_rate is None else res.growth_rate))
