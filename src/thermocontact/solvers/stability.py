@@ -234,7 +234,7 @@ class Winding:
         b_min = self.b_min
         line = sorted((b for b in points if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
                       key=lambda b: b.imag)
-        arc = sorted((b for b in points if abs(abs(b) - R) <= 1e-12 * R and b.real > b_min),
+        arc = sorted((b for b in points if abs(abs(b) - R) <= 1e-12 * R and b.real != b_min),
                      key=lambda b: np.angle(b))
         return arc, line
 
