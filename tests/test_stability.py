@@ -218,6 +218,9 @@ class _Stand:
         M = self._M(b)
         return (M, 0.0, M[self.n + 3].copy()) if split else M
 
+    def matrices(self, rates):
+        return np.stack([self._M(b) for b in rates])
+
 
 ROOTS = [1.5 + 2.0j, 1.5 - 2.0j, 0.7 + 0j, -1.0 + 0j, 4.0 + 0.5j, 4.0 - 0.5j, 12.0 + 0j,
          2e-4 + 0j, 0.3 + 40.0j, 0.3 - 40.0j]
@@ -531,7 +534,9 @@ def test_a_neighbours_eigenvalues_change_nothing_but_the_work(monkeypatch, roots
     """``stability_of(..., guesses=...)`` (a neighbour's eigenvalues, continued across a
     map): the same count and the same eigenvalues (to Newton's tolerance) as without
     them, whether the guesses are close, far or outside the region; where a single real
-    root's guess is close, fewer evaluations of M (Brent's bracket narrowed)."""
+    root's guess is close, fewer evaluations of M (Brent's bracket narrowed).  The same
+    with a neighbour's contour samples (``samples``) and a predicted real root
+    (``predictions``: Newton's method from it where one root is counted)."""
     import thermocontact.solvers.stability as st
 
     monkeypatch.setattr(st, "linearised", lambda n: _Stand(roots))
@@ -544,6 +549,24 @@ def test_a_neighbours_eigenvalues_change_nothing_but_the_work(monkeypatch, roots
                                sorted(roots, key=_order), rtol=1e-9)
     if len(roots) == 1 and abs(guesses[0] - roots[0]) < 0.5 * abs(roots[0]):
         assert guessed.evaluations < plain.evaluations
+    # A neighbour's contour samples (here the same contact's), evaluated first: the
+    # same count, the same samples, the same eigenvalues.
+    seeded = st.stability_of(lambda n: n, n=12, modulus_bound=1e3, guesses=guesses,
+                             samples=plain.samples)
+    assert seeded.unstable_modes == plain.unstable_modes and seeded.reason is None
+    assert sorted(seeded.samples, key=_order) == sorted(plain.samples, key=_order)
+    np.testing.assert_allclose(seeded.eigenvalues, guessed.eigenvalues, rtol=1e-12)
+    # A real root predicted close by: Newton's method from it, fewer evaluations; one
+    # predicted off the sheet or far away changes nothing but the work.
+    for predictions in ([0.97 * roots[-1].real], [-3.0], [9e5]):
+        predicted = st.stability_of(lambda n: n, n=12, modulus_bound=1e3,
+                                    predictions=predictions)
+        assert predicted.unstable_modes == plain.unstable_modes
+        np.testing.assert_allclose(predicted.eigenvalues, plain.eigenvalues, rtol=1e-9)
+    if len(roots) == 1:
+        close = st.stability_of(lambda n: n, n=12, modulus_bound=1e3,
+                                predictions=[0.97 * roots[0].real])
+        assert close.evaluations < plain.evaluations
 
 
 def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):

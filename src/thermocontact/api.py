@@ -857,7 +857,7 @@ def compute_map(spec, *, workers=1, store=None, progress=None, command=None,
     if isinstance(spec, MapSpec):
         ds = dimensionless(spec, workers=workers, store_path=store, progress=progress,
                            command=command)
-        return map_stability(ds, spec) if stability else ds
+        return map_stability(ds, spec, workers=workers) if stability else ds
     if spec.bulk_temperatures is not None:
         # Each point its own contact at the temperatures (section 17).
         from .studies.temperature_maps import temperature_map

@@ -177,16 +177,22 @@ class LinearisedContact:
         table = kernel_table(aux, n, rep.to_cos, graded_map(rep.alpha))
         u = kernel_nodes()
         c, c2 = par.cylinder_scale, par.half_plane_scale
-        # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes to
-        # D~; scale-invariant, it has no edges' terms, S15); u S_0 and u (G_0 - 1/u) of
-        # each body, the stationary half-plane's G_0 being 1/u.
-        steady = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
-                           u * moving_slope(u, c),
-                           u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
-                           u * cylinder_temperature_gradient_regular(u, c),
-                           u * cylinder_temperature_gradient_regular(u, c2) if c2
-                           else np.zeros_like(u)], axis=1)
-        mom = table.moments(steady)
+
+        def steady():
+            # Flamant's logarithm with the Dundurs term's -b H(u) (its constant half goes
+            # to D~; scale-invariant, it has no edges' terms, S15); u S_0 and
+            # u (G_0 - 1/u) of each body, the stationary half-plane's G_0 being 1/u.
+            values = np.stack([np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u),
+                               u * moving_slope(u, c),
+                               u * moving_slope(u, c2) if c2 else 0.5 * np.abs(u),
+                               u * cylinder_temperature_gradient_regular(u, c),
+                               u * cylinder_temperature_gradient_regular(u, c2) if c2
+                               else np.zeros_like(u)], axis=1)
+            return _frozen([table.moments(values)])
+        # Kept with the transient kernels' moments: the points of a map's row (one
+        # Peclet number) share them.
+        mom, = KERNEL_MOMENTS.get((table.key, "steady", float(c), float(c2),
+                                   float(par.free_term)), steady)
         return dict(pd=pd, pt=pt, s=s, table=table, u=u, flamant=mom[0][..., 0],
                     flamant_flux=mom[1][..., 0],
                     uS0=(mom[..., 1], mom[..., 2]),
@@ -326,14 +332,50 @@ class LinearisedContact:
         -------
         ndarray, or tuple with ``split``
         """
-        par, rep, n = self.parameters, self.representation, self.n
-        fixed = self._fixed
-        pd, pt, s = fixed["pd"], fixed["pt"], fixed["s"]
         if values is None:
             bounded, singular = self.kernel_moments(b)
         else:
-            bounded, singular = fixed["table"].moments(values)
-        ell = 0.0 if b == 0 or self.moving else logarithm_constant(b)
+            bounded, singular = self._fixed["table"].moments(values)
+        rows, ell, row = self._assemble(bounded[None], singular[None], [b])
+        rows = rows[0]
+        if split:
+            return rows, ell[0], row
+        n = self.n
+        if b == 0 and not self.moving:
+            rows[n + 3] = row
+        elif b != 0:
+            rows[n + 3] += ell[0] * row
+        return rows
+
+    def matrices(self, rates):
+        """``M(b)`` at several non-zero rates at once, shape ``(len(rates), 2n + 3,
+        2n + 3)``: :meth:`matrix` of each (the same assembly, on a stack), their kernel
+        moments prepared together (:meth:`prepare`)."""
+        rates = [complex(b) for b in rates]
+        if any(b == 0 for b in rates):
+            raise InputError("matrices: the rates must be non-zero (matrix(0) is the limit "
+                             "b -> 0)", parameters=("rates",))
+        self.prepare(rates)
+        table = self._fixed["table"]
+        # Each body's moments stacked over the rates, the bodies side by side.
+        bodies = [[_body_moments(table, *self._bodies(b)[body]) for b in rates]
+                  for body in range(2)]
+        bounded, singular = (np.concatenate([np.stack([m[w] for m in kept]) for kept in bodies],
+                                            axis=-1) for w in range(2))
+        rows, ell, row = self._assemble(bounded, singular, rates)
+        rows[:, self.n + 3] += ell[:, None] * row
+        return rows
+
+    def _assemble(self, bounded, singular, rates):
+        """``(M_reg, ell, row)`` of :meth:`matrix` (``split``) at each of ``rates``,
+        all zero or none, from their kernel moments stacked on a first axis: shapes
+        ``(rates, 2n + 3, 2n + 3)``, ``(rates,)`` and ``(2n + 3,)``."""
+        par, rep, n = self.parameters, self.representation, self.n
+        fixed = self._fixed
+        pd, pt, s = fixed["pd"], fixed["pt"], fixed["s"]
+        nonzero = rates[0] != 0
+        ell = np.array([0.0 if b == 0 or self.moving else logarithm_constant(b)
+                        for b in rates])
         eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
         phi0, psi0 = self.phi, self.psi
         L0, sig0 = self.load_ratio, self.sigma_over_delta
@@ -348,7 +390,7 @@ class LinearisedContact:
 
         def on_heat(m, i):
             (ap, aq), (Mb, Ms) = share[i], m
-            return np.hstack([ap * Mb, aq * Ms])
+            return np.concatenate([ap * Mb, aq * Ms], axis=-1)
 
         def steady_heat(m, i, weight=1.0):
             # int K q0_i dr for the steady heat times ``weight`` at the nodes.
@@ -356,43 +398,44 @@ class LinearisedContact:
             return ap * (Mb @ (weight * phi0)) + aq * (Ms @ (weight * psi0))
 
         dtype = bounded.dtype
+        count = bounded.shape[0]
 
         def edges(diff, u_steady, i):
             # The columns (sig~, del~) of int (K_b - K_0)(u)(sig~ + del~ r) q0_i
             # - del~ int u K_0(u) q0_i (S6).
-            out = np.zeros((s.size, 2), dtype=dtype)
-            if b != 0:
-                out[:, 0] = steady_heat(diff, i)
-                out[:, 1] = steady_heat(diff, i, r)
+            out = np.zeros((count, s.size, 2), dtype=dtype)
+            if nonzero:
+                out[..., 0] = steady_heat(diff, i)
+                out[..., 1] = steady_heat(diff, i, r)
             if u_steady is not None:
-                out[:, 1] -= steady_heat(u_steady, i)
+                out[..., 1] -= steady_heat(u_steady, i)
             return out
 
         size = self.size
-        disp = np.zeros((s.size, size), dtype=dtype)
-        temp = np.zeros((s.size, size), dtype=dtype)
+        disp = np.zeros((count, s.size, size), dtype=dtype)
+        temp = np.zeros((count, s.size, size), dtype=dtype)
         cols = slice(0, 2 * n)
         # Elastic (Flamant, and the Dundurs term) on phi~; the edges' elastic and
         # profile terms (S5).
-        disp[:, :n] += fixed["flamant"]
-        disp[:, 2 * n] = 1.0
-        disp[:, 2 * n + 1] = -(2.0 * L0 / np.pi) * (sig0 + s)
-        disp[:, 2 * n + 2] = 1.0 / np.pi - (2.0 * L0 / np.pi) * s * (sig0 + s)
+        disp[..., :n] += fixed["flamant"]
+        disp[..., 2 * n] = 1.0
+        disp[..., 2 * n + 1] = -(2.0 * L0 / np.pi) * (sig0 + s)
+        disp[..., 2 * n + 2] = 1.0 / np.pi - (2.0 * L0 / np.pi) * s * (sig0 + s)
         # Each body's thermal displacement (factor 2 F d_i) and its edges' terms.
         uS0 = [(m[0], m[1]) for m in fixed["uS0"]]
         for i, weight in enumerate((d, 1.0)):
             if weight == 0.0:
                 continue
             f = 2.0 * F * weight
-            disp[:, cols] += f * on_heat(mom(i, 0), i)
-            disp[:, 2 * n + 1:] += f * edges(mom(i, 2), uS0[i], i)
+            disp[..., cols] += f * on_heat(mom(i, 0), i)
+            disp[..., 2 * n + 1:] += f * edges(mom(i, 2), uS0[i], i)
         # Temperatures: rho times body 1's minus body 2's (S4), u G_0 = 1 + u (G_0 - 1/u).
         uG0 = [None if m is None else (m[0], m[1]) for m in fixed["uG0"]]
         for i, sign in enumerate((rho, -1.0)):
-            temp[:, cols] += sign * on_heat(mom(i, 1), i)
+            temp[..., cols] += sign * on_heat(mom(i, 1), i)
             e = edges(mom(i, 3), uG0[i], i)
-            e[:, 1] -= share[i][0] * (wp @ phi0) + share[i][1] * (wq @ psi0)
-            temp[:, 2 * n + 1:] += sign * e
+            e[..., 1] -= share[i][0] * (wp @ phi0) + share[i][1] * (wq @ psi0)
+            temp[..., 2 * n + 1:] += sign * e
         if fixed["interface"] is not None:
             temp += fixed["interface"]
         if fixed["held"] is not None:
@@ -400,27 +443,21 @@ class LinearisedContact:
             # each kernel's flux-type moments on g, at fixed points; its heat shared as
             # the pressure's.
             g = fixed["held"]
-            disp[:, 2 * n + 1:] = -fixed["flamant_flux"] @ g
-            temp[:, 2 * n + 1:] = 0.0
+            disp[..., 2 * n + 1:] = -fixed["flamant_flux"] @ g
+            temp[..., 2 * n + 1:] = 0.0
             for i, (weight, sign) in enumerate(zip((d, 1.0), (rho, -1.0))):
-                disp[:, 2 * n + 1:] -= 2.0 * F * weight * share[i][0] * (mom(i, 0)[1] @ g)
-                temp[:, 2 * n + 1:] -= sign * share[i][0] * (mom(i, 1)[1] @ g)
-        rows = np.zeros((size, size), dtype=dtype)
-        rows[:n + 2] = pd @ disp
-        rows[n + 2, :n] = rep.pressure_rule.weights
-        rows[n + 3:] = pt @ temp
+                disp[..., 2 * n + 1:] -= 2.0 * F * weight * share[i][0] * (mom(i, 0)[1] @ g)
+                temp[..., 2 * n + 1:] -= sign * share[i][0] * (mom(i, 1)[1] @ g)
+        rows = np.zeros((count, size, size), dtype=dtype)
+        rows[:, :n + 2] = pd @ disp
+        rows[:, n + 2, :n] = rep.pressure_rule.weights
+        rows[:, n + 3:] = pt @ temp
         # -l(b) int q2~ dr, a constant: on the temperature's first projection only (the
         # stationary half-plane's; a moving one's temperature has no free constant).
         row = -np.sum(pt[0]) * np.concatenate([share[1][0] * wp, share[1][1] * wq, np.zeros(3)])
         if self.moving:
             row = np.zeros_like(row)
-        if split:
-            return rows, ell, row
-        if b == 0 and not self.moving:
-            rows[n + 3] = row
-        elif b != 0:
-            rows[n + 3] += ell * row
-        return rows
+        return rows, ell, row
 
 
 #: Each body's kernel moments per table, scale and rate, kept per process: a map's

@@ -178,8 +178,15 @@ class KernelTable:
             # Per interval and weight, (n x G) @ (G x NODES), as stacked products.
             contrib = np.stack([np.matmul((basis * (wt * wts)[..., None]).transpose(0, 2, 1),
                                           lag) for wt in (wb, ws)])   # (2, I, n, NODES)
-            out = np.zeros((2, tau_k.size, npan, n, NODES))
-            np.add.at(out, (slice(None), kk, q), contrib)
+            # Summed per (point, panel): the intervals sorted by it (stably: each sum in
+            # the intervals' order), one reduction per run.
+            cell = kk * npan + q
+            order = np.argsort(cell, kind="stable")
+            cell = cell[order]
+            starts = np.flatnonzero(np.r_[True, cell[1:] != cell[:-1]])
+            out = np.zeros((2, tau_k.size * npan, n, NODES))
+            out[:, cell[starts]] = np.add.reduceat(contrib[:, order], starts, axis=1)
+            out = out.reshape(2, tau_k.size, npan, n, NODES)
             # Panel p's nodes in ascending |u|: Chebyshev x descends.
             out = out[..., ::-1].transpose(0, 1, 3, 2, 4).reshape(2, tau_k.size, n, -1)
             if side < 0:
@@ -187,7 +194,7 @@ class KernelTable:
             rows.append(out)
         cos = np.concatenate(rows, axis=-1)                 # (2, k, n, nodes)
         # Cosine coefficients -> nodal values: the representation's basis.
-        self.matrix = np.einsum("wkjm,ji->wkim", cos, to_cos)
+        self.matrix = np.matmul(np.asarray(to_cos).T, cos)
         self.shape = (tau_k.size, n)
 
     def moments(self, values):

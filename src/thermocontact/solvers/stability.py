@@ -99,6 +99,10 @@ class StabilityResult(Result):
         Evaluations of ``M(b)``.
     n : int
     units : str
+    samples : tuple of complex
+        The rates on the region's boundary where the count evaluated ``M(b)``
+        (``k2/Delta^2`` whatever ``units``): a neighbouring contact's count evaluates
+        them first, together (:func:`stability_of`); not part of the record.
     """
 
     eigenvalues: np.ndarray
@@ -114,6 +118,7 @@ class StabilityResult(Result):
     evaluations: int
     n: int
     units: str = "k2/Delta^2"
+    samples: tuple = ()
 
     STATUSES = {"stable": "no eigenvalue in the region, the count certified",
                 "unstable": "eigenvalues in the region (unstable_modes), the count certified",
@@ -200,12 +205,35 @@ class Winding:
         The line's first steps in ``t`` (default :data:`_LINE_STEP`): shorter where
         more rows are scaled by ``sqrt(1 + b)`` (a contact set's, derivation S22),
         whose phase then turns faster along the line.
+    many : callable, optional
+        ``points -> A``, the matrices at several points stacked (the linearised
+        contact's :meth:`LinearisedContact.matrices`): each round's samples evaluated
+        together, in place of ``prepare`` and ``matrix`` one by one (the same
+        matrices).
     """
 
-    def __init__(self, matrix, b_min, prepare=None, line_step=None):
+    def __init__(self, matrix, b_min, prepare=None, line_step=None, many=None):
         self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
         self.line_step = _LINE_STEP if line_step is None else float(line_step)
+        self.many = many
         self.values, self.matrices = {}, {}
+
+    def evaluate(self, points):
+        """Evaluate and keep ``A`` and its determinant at ``points`` not yet kept, together
+        where ``many`` was given (otherwise after ``prepare``, one by one, as
+        :meth:`at` does on demand)."""
+        fresh = [z for z in dict.fromkeys(points) if z not in self.values]
+        if not fresh:
+            return
+        if self.many is None:
+            if self.prepare is not None:
+                self.prepare(fresh)
+            return
+        A = self.many(fresh)
+        signs, logdets = np.linalg.slogdet(A)
+        for z, Az, sign, logdet in zip(fresh, A, signs, logdets):
+            self.matrices[z] = Az
+            self.values[z] = (complex(sign), float(logdet))
 
     def at(self, b):
         """``(sign, log|det A(b)|)``, kept (with ``A(b)``)."""
@@ -216,15 +244,22 @@ class Winding:
             self.values[b] = (complex(sign), float(logdet))
         return self.values[b]
 
+    def boundary(self, R, points):
+        """``(arc, line)``: those of ``points`` on the arc ``|b| = R`` (by angle) and on
+        the line ``Re b = b_min``, ``|b| <= R`` (by imaginary part), the upper half of
+        the boundary for ``R``."""
+        b_min = self.b_min
+        line = sorted((b for b in points if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
+                      key=lambda b: b.imag)
+        arc = sorted((b for b in points if abs(abs(b) - R) <= 1e-12 * R and b.real != b_min),
+                     key=lambda b: np.angle(b))
+        return arc, line
+
     def contour(self, R):
         """The samples on the upper half of the boundary for ``R`` (counterclockwise:
         the arc from ``b = R``, then down the line) with trapezoidal weights ``dz``,
         after :meth:`count` for ``R``."""
-        b_min = self.b_min
-        line = sorted((b for b in self.values if b.real == b_min and abs(b) <= R * (1 + 1e-12)),
-                      key=lambda b: b.imag)
-        arc = sorted((b for b in self.values if abs(abs(b) - R) <= 1e-12 * R
-                      and b.real != b_min), key=lambda b: np.angle(b))
+        arc, line = self.boundary(R, self.values)
         z = np.array(arc + line[::-1], dtype=complex)
         dz = np.zeros_like(z)
         step = np.diff(z)
@@ -249,13 +284,8 @@ class Winding:
         todo = [(point, float(a), float(b)) for point, a, b in pieces]
         total = 0.0
         while todo:
-            if self.prepare is not None:
-                # In order, once each (the same batch, the same rounding, every run).
-                fresh = dict.fromkeys(point(t) for point, a, b in todo
-                                      for t in (a, 0.5 * (a + b), b))
-                fresh = [z for z in fresh if z not in self.values]
-                if fresh:
-                    self.prepare(fresh)
+            # In order, once each (the same batch, the same rounding, every run).
+            self.evaluate([point(t) for point, a, b in todo for t in (a, 0.5 * (a + b), b)])
             refine = []
             for point, a, b in todo:
                 m = 0.5 * (a + b)
@@ -451,18 +481,25 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     return b, abs(step)
 
 
-def scaled_matrix(lin):
+def scaled_matrix(lin, *, many=False):
     """``b -> M(b)`` with its temperature rows times ``sqrt(1 + b)`` (analytic and
     non-zero in ``Re b > 0``: the same eigenvalues; the rows' size and the
     determinant's phase then settle as ``|b|`` grows, where the temperature falls like
-    ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``)."""
+    ``b^(-1/2)``, derivation S11, and are unchanged near ``b = 0``).  With ``many``,
+    ``rates -> `` the matrices at several non-zero rates stacked
+    (:meth:`LinearisedContact.matrices`)."""
     rows = lin.temperature_rows
+
+    def matrices(rates):
+        M = lin.matrices(rates)
+        M[:, rows] *= np.sqrt(1.0 + np.asarray(rates, dtype=complex))[:, None, None]
+        return M
 
     def matrix(b):
         M = lin.matrix(b)
         M[rows] *= np.sqrt(1.0 + b)
         return M
-    return matrix
+    return matrices if many else matrix
 
 
 def _fold(lin):
@@ -498,7 +535,8 @@ def _check_region(b_min, modulus_bound):
 
 
 def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_BOUND,
-                 rate_unit=None, progress=None, guesses=(), estimate=True) -> StabilityResult:
+                 rate_unit=None, progress=None, guesses=(), predictions=(), samples=(),
+                 estimate=True) -> StabilityResult:
     """The eigenvalues of a steady single patch with ``Re b >= b_min``, counted.
 
     Parameters
@@ -527,6 +565,16 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         is sought from the one that holds them with a margin.  Where they miss, the search is the one
         without them.  They change neither the count (the certificate) nor, beyond
         Newton's tolerance, the eigenvalues.
+    predictions : sequence of complex, optional
+        A real eigenvalue predicted here (``k2/Delta^2``; extrapolated from two
+        neighbours' along a map's row): where one root is counted, Newton's method
+        from it first, then (where it does not confirm one) the search without it.
+        It changes neither the count nor, beyond Newton's tolerance, the eigenvalue.
+    samples : sequence of complex, optional
+        A neighbouring contact's ``samples`` (its result's, ``k2/Delta^2``): those on
+        this region's boundary are evaluated first, together, and the count's
+        refinement finds them kept (a map's row, whose points share the kernels and
+        mostly the samples).  They change neither the count nor the eigenvalues.
     estimate : bool
         Compute the error estimate (the eigenvalues again at ``3n/2``); without it
         ``error_estimate`` is None and the reason does not say whether an eigenvalue
@@ -542,26 +590,39 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
                          parameters=("n",))
     b_min, R = _check_region(b_min, modulus_bound)
     lin = linearised(solve_at(n))
-    scaled = scaled_matrix(lin)
+    scaled, scaled_many = scaled_matrix(lin), scaled_matrix(lin, many=True)
     evaluations = [0]
     # The first steps as the single patch's per n temperature rows scaled (a contact
     # set's zones, S22): their phase turns as many times faster along the line.
     line_step = _LINE_STEP / max(1, round(len(lin.temperature_rows) / lin.n))
     expected = int(np.ceil(np.arcsinh(R / b_min) / line_step)) + _ARC_STEPS + 16
 
+    def told(count):
+        for _ in range(count):
+            evaluations[0] += 1
+            if progress is not None:
+                progress(evaluations[0], max(expected, evaluations[0]))
+
     def counted(b):
-        evaluations[0] += 1
-        if progress is not None:
-            progress(evaluations[0], max(expected, evaluations[0]))
+        told(1)
         return scaled(b)
 
+    def counted_many(rates):
+        told(len(rates))
+        return scaled_many(rates)
+
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
-                      line_step=line_step)
+                      line_step=line_step,
+                      many=counted_many if hasattr(lin, "matrices") else None)
+    if len(samples):
+        winding.evaluate([z for part in winding.boundary(R, map(complex, samples))
+                          for z in part])
     N, reason = winding.count(R)
+    sampled = tuple(complex(z) for part in winding.boundary(R, winding.values) for z in part)
     found = np.array([], dtype=complex)
     change = None
     if N:
-        found, reason = _locate(winding, counted, N, b_min, R, guesses)
+        found, reason = _locate(winding, counted, N, b_min, R, guesses, predictions)
         if found.size and estimate:
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
@@ -596,13 +657,14 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
         region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
         error_estimate=change, fold=fold, slow_root=slow,
-        evaluations=evaluations[0], n=n, units=units)
+        evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
 
-def _locate(winding, matrix, N, b_min, R, guesses=()):
+def _locate(winding, matrix, N, b_min, R, guesses=(), predictions=()):
     """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
     real (the region is symmetric about the real axis), where ``det M`` changes sign
-    between ``b_min`` and ``R``: Brent's method in ``ln b``, in a bracket narrowed by a
+    between ``b_min`` and ``R``: Newton's method from a prediction where one is given
+    and confirms it; otherwise Brent's method in ``ln b``, in a bracket narrowed by a
     real guess (a neighbour's root).  Otherwise the smallest half-disc ``|b| <= R_j``
     (``R_j = 4^j``: ``j`` doubled from 1, or from the one that holds the guesses with a
     margin, then bisected, the count growing with the radius) holding all ``N`` by the
@@ -632,6 +694,14 @@ def _locate(winding, matrix, N, b_min, R, guesses=()):
 
     good = [complex(g) for g in guesses if np.isfinite(g) and g.real >= b_min and abs(g) <= R]
     if N == 1:
+        # A predicted root (continued from two neighbours along a map's row, the same
+        # count at each): Newton's method from it first.
+        predicted = [complex(p.real, 0.0) for p in predictions
+                     if np.isfinite(p) and b_min <= p.real <= R and p.imag == 0]
+        if predicted:
+            confirm(predicted[:1])
+            if located() == N:
+                return np.array(roots, dtype=complex), None
         from scipy.optimize import brentq  # here: scipy.optimize is slow to import
 
         # det M at b = e^x, real, relative to the geometric mean of its ends (the

@@ -14,11 +14,13 @@ each point of a map its verdict, count and largest growth rate.
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
-from ..problem.validation import InputError
 from ..discretisation.linearised import check_modelled
+from ..execution.executors import run
+from ..problem.validation import InputError
 from ..solvers.stability import STABILITY_N, stability_of
 from .boundaries import Path, closure, model_for
 
@@ -85,18 +87,24 @@ def classify(path: Path, *, n=STABILITY_N, progress=None, **region) -> Path:
 
 
 def stability_at(kw: dict, method, *, n=STABILITY_N, progress=None, guesses=(),
-                 estimate=True, **region):
+                 predictions=(), samples=(), estimate=True, **region):
     """The :class:`~thermocontact.solvers.stability.StabilityResult` of the steady
     single patch of the dimensionless inputs ``kw`` (those of ``solve``, closed by
     ``lam``, ``sigma_over_delta`` or the far temperatures ``theta``), eigenvalues in
-    units of ``k2/Delta^2``; ``guesses`` (a neighbour's eigenvalues) and ``estimate``
-    as in :func:`~thermocontact.solvers.stability.stability_of`."""
+    units of ``k2/Delta^2``; ``guesses``, ``predictions`` and ``samples`` (a neighbour's
+    eigenvalues, a real one continued from two, and a neighbour's contour samples) and
+    ``estimate`` as in
+    :func:`~thermocontact.solvers.stability.stability_of`."""
     model = model_for(kw, method=method)
 
     def solve_at(m):
         return model.solve_at(m, kw["fhpe"], check_validity=False, **closure(kw))
     if guesses is not None and len(guesses):
         region = {**region, "guesses": guesses}
+    if len(samples):
+        region = {**region, "samples": samples}
+    if len(predictions):
+        region = {**region, "predictions": predictions}
     if not estimate:
         region = {**region, "estimate": False}
     return stability_of(solve_at, n=n, progress=progress, **region)
@@ -114,7 +122,7 @@ def check_map_stability(spec) -> None:
     check_modelled(method=spec.method)
 
 
-def map_stability(ds, spec, *, n=STABILITY_N, **region):
+def map_stability(ds, spec, *, n=STABILITY_N, workers=1, **region):
     """A dimensionless map with the stability of its solved points.
 
     Each point not ``"failed"`` is analysed at its own inputs and heat partition
@@ -122,8 +130,9 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     is the same, and the perturbation leaves the far field unchanged), by
     :func:`stability_at` without the error estimate (which the map does not hold),
     row by row (the points of a row of constant Peclet number share the cylinder's
-    kernels), the eigenvalues of the neighbours before it in its row and column given
-    as guesses to locate its own (the count at the point is the certificate).
+    kernels; the rows run where ``workers`` says), the eigenvalues of the point before
+    it in its row given as guesses to locate its own (the count at the point is the
+    certificate).
 
     Parameters
     ----------
@@ -133,6 +142,9 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
         Its specification.
     n : int
         Unknowns per function of the stability analysis.
+    workers : int, executor, dask Client or callable
+        Where the rows run (:func:`thermocontact.execution.executors.run`): the map's
+        own.
     **region
         ``b_min``, ``modulus_bound`` of
         :func:`~thermocontact.solvers.stability.stability_of`.
@@ -150,22 +162,23 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     modes = np.full(ds["valid"].shape, -1, dtype=np.int32)
     rate = np.full(ds["valid"].shape, np.nan)
     lam = ds["lam"].broadcast_like(ds["valid"]).transpose(*ds["valid"].dims).values
-    roots = {}
-    for (j, i), status in np.ndenumerate(np.asarray(ds["status"].values)):
-        if status == "failed":
-            continue
-        kw = {**spec.fixed, spec.y.name: float(spec.y.values[j]),
-              spec.x.name: float(spec.x.values[i])}
-        kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
-        kw["lam"] = float(lam[j, i])
-        guesses = [b for key in ((j, i - 1), (j - 1, i)) for b in roots.get(key, ())]
-        res = stability_at(kw, spec.method, n=n, guesses=guesses, estimate=False, **region)
-        roots[j, i] = res.eigenvalues
-        stable[j, i] = -2 if res.stable is None else int(res.stable)
-        if res.unstable_modes is not None:
-            modes[j, i] = res.unstable_modes
-        if res.growth_rate is not None:
-            rate[j, i] = res.growth_rate
+    status = np.asarray(ds["status"].values)
+    rows = []
+    for j in range(status.shape[0]):
+        points = []
+        for i in range(status.shape[1]):
+            if status[j, i] == "failed":
+                continue
+            kw = {**spec.fixed, spec.y.name: float(spec.y.values[j]),
+                  spec.x.name: float(spec.x.values[i])}
+            kw = {k: v for k, v in kw.items() if k not in _CLOSURES}
+            kw["lam"] = float(lam[j, i])
+            points.append((i, kw))
+        rows.append((j, points))
+    row_task = partial(_row_stability, method=spec.method, n=n, region=region)
+    for j, verdicts in run(row_task, rows, workers=workers):
+        for i, verdict, count, growth in verdicts:
+            stable[j, i], modes[j, i], rate[j, i] = verdict, count, growth
     out = ds.assign(stable=(dims, stable), unstable_modes=(dims, modes),
                     growth_rate=(dims, rate))
     out["stable"].attrs.update(
@@ -179,4 +192,35 @@ def map_stability(ds, spec, *, n=STABILITY_N, **region):
     out["growth_rate"].attrs.update(
         long_name="largest real part of an eigenvalue located (NaN where none)",
         units="k2/Delta^2")
+    return out
+
+
+def _row_stability(row, *, method, n, region):
+    """``[(i, stable, unstable_modes, growth_rate), ...]`` of one row of a map
+    (:func:`map_stability`): ``row`` is ``(j, [(i, inputs), ...])``; each point's
+    guesses are the eigenvalues of the point before it in the row, and the samples of
+    its count those of the row's last point analysed."""
+    _, points = row
+    out, before, last, single = [], None, None, []
+    for i, kw in points:
+        extra = {}
+        if before is not None:
+            # The row's points share the kernels: the samples of the point before cost
+            # no kernel's evaluation here.
+            extra = {"samples": before.samples,
+                     "guesses": before.eigenvalues if last == i - 1 else ()}
+        if len(single) == 2 and single[0][0] == i - 2 and single[1][0] == i - 1:
+            # One real root at each of the two points before: its logarithm continued
+            # linearly, where it moved by less than a factor 1.5.
+            (_, b2), (_, b1) = single
+            if max(b1 / b2, b2 / b1) < 1.5:
+                extra["predictions"] = [b1 * b1 / b2]
+        res = stability_at(kw, method, n=n, estimate=False, **region, **extra)
+        before, last = res, i
+        ev = res.eigenvalues
+        real = len(ev) == 1 and ev[0].imag == 0 and res.unstable_modes == 1
+        single = (single + [(i, float(ev[0].real))])[-2:] if real else []
+        out.append((i, -2 if res.stable is None else int(res.stable),
+                    -1 if res.unstable_modes is None else res.unstable_modes,
+                    np.nan if res.growth_rate is None else res.growth_rate))
     return out
