@@ -245,13 +245,35 @@ def test_the_argument_principle_counts_known_roots():
 
 def test_a_negative_winding_is_no_count():
     """det M(b) is analytic in the region, so its winding is a count of roots, never
-    negative: a negative one (a phase lost to rounding: n = 48 at Pe = fHPe = 1.5,
-    K2/K1 = 1, lam = 1, past the fold, gave -2) is refused, not reported as a count.  Here
+    negative: a negative one (a phase lost between samples: n = 48 at Pe = fHPe = 1.5,
+    K2/K1 = 1, lam = 1, past the fold, gave -2 before the power was divided out) is
+    refused, not reported as a count.  Here
     a function with a double pole inside winds -2."""
     def pole(b):
         return np.array([[1.0 / (b - 1.0) ** 2]])
     count, why = Winding(pole, 1e-3).count(10.0)
     assert count is None and "negative" in why
+
+
+@pytest.mark.parametrize("k", [0, 16, 40])
+def test_a_power_of_b_turning_the_phase_is_divided_out(k):
+    """det M(b) growing like b^k turns its phase by about k pi/2 along the line, several
+    turns within one first step at large k: followed as it is, the count of the three
+    roots of (1 + b)^k (b - 0.3 -+ 40i)(b - 2)/(b + 3)^3 is lost at k = 16 (the winding
+    -5); with the measured power (1 + b)^p divided out (the same zeros, derivation S12)
+    it is 3 at every k, from the same 47 evaluations."""
+    def f(b):
+        b = complex(b)
+        return np.array([[np.exp(k * np.log1p(b)) * (b - (0.3 + 40j)) * (b - (0.3 - 40j))
+                          * (b - 2.0) / (b + 3.0) ** 3]])
+    winding = Winding(f, 1e-3)
+    assert winding.count(1e6) == (3, None)
+    assert winding.power == pytest.approx(k, abs=1e-3)
+    assert len(winding.values) == 47
+    if k == 16:
+        raw = Winding(f, 1e-3)
+        raw.power = 0.0
+        assert raw.count(1e6)[0] is None
 
 
 def test_a_root_on_the_contour_is_not_counted_but_said():

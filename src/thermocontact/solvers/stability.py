@@ -49,6 +49,8 @@ PHASE_STEP = np.pi / 4
 SMALLEST_STEP = 1e-9
 #: The line's parameter ``t`` (``b = b_min (1 + i sinh t)``): first steps this long.
 _LINE_STEP = 4.0
+#: Above this ``n`` the line's first steps are ``_LINE_STEP * _LINE_STEP_N / n``.
+_LINE_STEP_N = 16
 #: The arc's first steps (of ``theta`` in ``[0, pi/2]``).
 _ARC_STEPS = 2
 
@@ -217,6 +219,9 @@ class Winding:
         self.line_step = _LINE_STEP if line_step is None else float(line_step)
         self.many = many
         self.values, self.matrices = {}, {}
+        #: ``p`` of the factor ``(1 + b)^p`` divided out of ``f`` before its phase is
+        #: followed (:meth:`settled`); set by the first :meth:`count`.
+        self.power = None
 
     def evaluate(self, points):
         """Evaluate and keep ``A`` and its determinant at ``points`` not yet kept, together
@@ -243,6 +248,35 @@ class Winding:
             self.matrices[b] = A
             self.values[b] = (complex(sign), float(logdet))
         return self.values[b]
+
+    def settled(self, b):
+        """``(phase, log|g(b)|)`` of ``g = f / (1 + b)^p`` (derivation S12).
+
+        ``det M(b)`` grows like a power ``b^p`` for large ``|b|`` (``p`` about ``n/5``
+        for the single patch: the rows and columns the scaling does not settle), and
+        its phase turns by about ``p pi/2`` along the line, fastest where ``|b|``
+        passes 1: at large ``n`` several turns within one first step, which three
+        samples cannot tell from none.  ``(1 + b)^p`` (principal branch) is analytic
+        and non-zero in ``Re b > -1`` for every real ``p``, so ``g`` has the zeros of
+        ``f`` in the region: the count is the same whatever ``p``, which only removes
+        turning that is no root's."""
+        sign, logdet = self.at(b)
+        if not self.power:
+            return sign, logdet
+        w = np.log1p(b)
+        return sign * np.exp(-1j * self.power * w.imag), logdet - self.power * w.real
+
+    def _measure_power(self, R):
+        """``p`` from ``log|f|`` at ``b = R`` and ``R/16`` on the real axis (both in the
+        region; 0 where the region is too small to tell)."""
+        low = max(R / 16.0, self.b_min)
+        if low >= 0.5 * R:
+            self.power = 0.0
+            return
+        points = [complex(R), complex(low)]
+        self.evaluate(points)
+        (_, high_log), (_, low_log) = (self.at(z) for z in points)
+        self.power = float((high_log - low_log) / np.log((1.0 + R) / (1.0 + low)))
 
     def boundary(self, R, points):
         """``(arc, line)``: those of ``points`` on the arc ``|b| = R`` (by angle) and on
@@ -289,7 +323,7 @@ class Winding:
             refine = []
             for point, a, b in todo:
                 m = 0.5 * (a + b)
-                (pa, la), (pm, lm), (pb, lb) = (self.at(point(t)) for t in (a, m, b))
+                (pa, la), (pm, lm), (pb, lb) = (self.settled(point(t)) for t in (a, m, b))
                 if pa == 0 or pm == 0 or pb == 0:
                     return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
                 first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
@@ -311,6 +345,8 @@ class Winding:
         be followed or the winding is not an integer, or is negative (no analytic
         ``f`` winds so: its phase was lost)."""
         b_min = self.b_min
+        if self.power is None:
+            self._measure_power(R)
         Y = np.sqrt(R * R - b_min * b_min)
         T = float(np.arcsinh(Y / b_min))
         # The line on a grid common to every R, then to its end at |b| = R.
@@ -333,9 +369,9 @@ class Winding:
             return None, f"the winding {winding:.3f} is not an integer"
         if N < 0:
             # An analytic det M(b) winds zero or more times; a negative winding is a
-            # phase lost along the way (det M(b) of a large n, its rounding), no count.
+            # phase lost along the way (whole turns between samples), no count.
             return None, (f"the winding {N} is negative: the phase of det M(b) was lost "
-                          f"(a smaller n keeps it)")
+                          f"between its samples")
         return N, None
 
 
@@ -593,8 +629,10 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     scaled, scaled_many = scaled_matrix(lin), scaled_matrix(lin, many=True)
     evaluations = [0]
     # The first steps as the single patch's per n temperature rows scaled (a contact
-    # set's zones, S22): their phase turns as many times faster along the line.
-    line_step = _LINE_STEP / max(1, round(len(lin.temperature_rows) / lin.n))
+    # set's zones, S22): their phase turns as many times faster along the line; and
+    # shorter above n = 16, where what settled() leaves still turns faster with n.
+    line_step = (_LINE_STEP * min(1.0, _LINE_STEP_N / n)
+                 / max(1, round(len(lin.temperature_rows) / lin.n)))
     expected = int(np.ceil(np.arcsinh(R / b_min) / line_step)) + _ARC_STEPS + 16
 
     def told(count):
