@@ -24,9 +24,13 @@ _ALL: dict[str, "BoundedCache"] = {}
 _SMALL: list = []
 
 
-def nbytes(value) -> int:
+def nbytes(value, _seen=None) -> int:
     """Bytes of the arrays held by ``value`` (arrays, tuples, lists, dicts, objects' dicts;
-    a broadcast view by the entries it holds distinct)."""
+    a broadcast view by the entries it holds distinct; an array held twice once)."""
+    seen = set() if _seen is None else _seen
+    if id(value) in seen:
+        return 0
+    seen.add(id(value))
     if isinstance(value, np.ndarray):
         if value.size and 0 in value.strides:
             # A broadcast view: its distinct entries only.
@@ -34,11 +38,11 @@ def nbytes(value) -> int:
                                                  if st != 0]))
         return value.nbytes
     if isinstance(value, (tuple, list)):
-        return sum(nbytes(v) for v in value)
+        return sum(nbytes(v, seen) for v in value)
     if isinstance(value, dict):
-        return sum(nbytes(v) for v in value.values())
+        return sum(nbytes(v, seen) for v in value.values())
     if hasattr(value, "__dict__"):
-        return sum(nbytes(v) for v in vars(value).values())
+        return sum(nbytes(v, seen) for v in vars(value).values())
     return 0
 
 
@@ -79,6 +83,14 @@ class BoundedCache:
                     old, _ = self._data.popitem(last=False)
                     self._bytes -= self._sizes.pop(old)
         return value
+
+    def find(self, key):
+        """The value under ``key`` (counted as used), or None when absent."""
+        with self._lock:
+            if key not in self._data:
+                return None
+            self._data.move_to_end(key)
+            return self._data[key]
 
     @contextmanager
     def transient(self, when=True):
