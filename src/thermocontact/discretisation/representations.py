@@ -226,9 +226,10 @@ class Representation:
         representation does not hold them exactly (derivation section 12)."""
         return None
 
-    def rows(self, key, build):
-        """A row operator of this representation, cached under ``key``."""
-        return ROWS.get(self._rows_key(key), build)
+    def rows(self, key, build, exponent=True):
+        """A row operator of this representation, cached under ``key`` (with
+        ``exponent=False``, one that is the same for every edge exponent)."""
+        return ROWS.get(self._rows_key(key, exponent), build)
 
     def _rows_key(self, key, exponent=True):
         """``key`` in :data:`ROWS`: with this representation's identity, or without its
@@ -559,7 +560,8 @@ class EdgeGraded(Representation):
             cosines = np.multiply.outer(tau[k], np.arange(self.n))
             return np.cos(cosines, out=cosines)  # in place
         if count * self.n <= SAMPLE_TABLE_ENTRIES:
-            cosines = self.rows(("phi_samples", count), lambda: table(slice(None)))
+            cosines = self.rows(("phi_samples", count), lambda: table(slice(None)),
+                                exponent=False)
             return np.cos(graded.stretch(tau)), stacked(cosines, coefficients)
         step = max(1, SAMPLE_TABLE_ENTRIES // (8 * self.n))
         values = np.concatenate([stacked(table(slice(i, i + step)), coefficients)
@@ -595,7 +597,7 @@ class EdgeGraded(Representation):
     def psi_edges_many(self, psi):
         # psi(tau = pi) and psi(0): the cosine series' alternating and plain sums.
         edges = self.rows(("psi edges",), lambda: np.vstack(
-            [(-1.0) ** np.arange(self.n), np.ones(self.n)]) @ self.to_cos)
+            [(-1.0) ** np.arange(self.n), np.ones(self.n)]) @ self.to_cos, exponent=False)
         return stacked(edges, psi)
 
     def _pressure_row(self, key, kernel, points, from_edge=False):
