@@ -290,8 +290,6 @@ def test_the_geometry_cache_counts_everything_it_holds():
     assert nbytes(np.broadcast_to(row, (1000, 6))) == row.nbytes
     assert nbytes(np.broadcast_to(row[:, None], (6, 7))) == row.nbytes
     assert nbytes(np.zeros((0, 3))) == 0 and nbytes(np.zeros((4, 3))) == 96
-    # An array held twice (a point geometry's distances inside the contact) once.
-    assert nbytes((row, [row, {"again": row}])) == row.nbytes
 
 
 def test_transient_entries_are_dropped_and_the_others_kept():

@@ -24,13 +24,9 @@ _ALL: dict[str, "BoundedCache"] = {}
 _SMALL: list = []
 
 
-def nbytes(value, _seen=None) -> int:
+def nbytes(value) -> int:
     """Bytes of the arrays held by ``value`` (arrays, tuples, lists, dicts, objects' dicts;
-    a broadcast view by the entries it holds distinct; an array held twice once)."""
-    seen = set() if _seen is None else _seen
-    if id(value) in seen:
-        return 0
-    seen.add(id(value))
+    a broadcast view by the entries it holds distinct)."""
     if isinstance(value, np.ndarray):
         if value.size and 0 in value.strides:
             # A broadcast view: its distinct entries only.
@@ -38,11 +34,11 @@ def nbytes(value, _seen=None) -> int:
                                                  if st != 0]))
         return value.nbytes
     if isinstance(value, (tuple, list)):
-        return sum(nbytes(v, seen) for v in value)
+        return sum(nbytes(v) for v in value)
     if isinstance(value, dict):
-        return sum(nbytes(v, seen) for v in value.values())
+        return sum(nbytes(v) for v in value.values())
     if hasattr(value, "__dict__"):
-        return sum(nbytes(v, seen) for v in vars(value).values())
+        return sum(nbytes(v) for v in vars(value).values())
     return 0
 
 

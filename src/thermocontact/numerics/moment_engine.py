@@ -299,9 +299,9 @@ def _u(s, tau_s, t_s, d, wq, cmap):
     """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``, and the weights.
 
     Returns ``(u, e)`` with ``e = u - (s - clip(s))``, the part measured from the
-    nearer edge for points outside ``[-1, 1]``, formed separately (inside, ``u`` is
-    ``e``, the same array, unless ``e`` holds a ``-0.0`` that ``0 + e`` would make
-    ``+0.0``); and both weights of ``cmap`` (the point geometry's: ``alpha = 1/2``)
+    nearer edge for points outside ``[-1, 1]``, formed separately; inside, ``(u,)``,
+    ``u`` being ``e`` (unless ``e`` holds a ``-0.0``, which ``0 + e`` makes ``+0.0``):
+    ``e`` is the last; and both weights of ``cmap`` (the point geometry's: ``alpha = 1/2``)
     at ``tau_s + d`` times ``wq``, shape ``(2,) + d.shape``, with
     ``T(tau_s + d) = t_s + dT`` (an absolute error of rounding, all a weight needs).
     ``e = cos t_s - cos T(tau_s + d)``: with the weights' ratio ``sin^2 T``, what
@@ -315,7 +315,7 @@ def _u(s, tau_s, t_s, d, wq, cmap):
     past = _past_edge(s)[:, None]
     if past.any() or np.any(np.signbit(e) & (e == 0.0)):
         return (past + e, e), np.stack([bounded, singular])
-    return (e, e), np.stack([bounded, singular])
+    return (e,), np.stack([bounded, singular])
 
 
 def _past_edge(s):
@@ -404,7 +404,7 @@ class _Side:
         new.rows = tuple(np.arange(k) if r.size else r for r in self.rows)
         if not self.live:
             return new
-        e = self.outer_u[1]
+        e = self.outer_u[-1]
         new.outer_u = (offset[:, None] + e, _rows(e, k))
         new.outer_w = np.broadcast_to(self.outer_w, (2, k) + self.outer_w.shape[2:])
         new.outer_live, new.n_fixed = _rows(self.outer_live, k), self.n_fixed
@@ -530,7 +530,8 @@ def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes 
             return side.inner_parts(geo, levels)
         edge_key = side.template
         edge_geo = _geometry(edge_key, geo.n, None, geo.cmap)
-        (_, e), live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
+        u, live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
+        e = u[-1]
         k = geo.s.size
         return ((_past_edge(geo.s)[:, None] + e, _rows(e, k)), _rows(live, k),
                 np.broadcast_to(wq, (2, k) + wq.shape[2:]), lagr)
@@ -581,11 +582,11 @@ def _pressure_weights(geo: _Geometry, key: bytes, tau_key: bytes | None, levels,
                 edge_geo, edge_key, None, levels, edge_parts, alpha)]
         cos_t = np.cos(geo.t_s)[:, None]
         out = []
-        for index, ((_, e), _, wq, _) in parts.items():
+        for index, (u, _, wq, _) in parts.items():
             side = geo.sides[index]
-            out.append((_edge_power(wq[0], wq[1], cos_t - e, alpha),
+            out.append((_edge_power(wq[0], wq[1], cos_t - u[-1], alpha),
                         _edge_power(side.outer_w[0], side.outer_w[1],
-                                    cos_t - side.outer_u[1], alpha)))
+                                    cos_t - side.outer_u[-1], alpha)))
         return out
     return geometry_cache(geo.n).get((key, geo.n, tau_key, geo.cmap.name, levels, alpha),
                                      build)
@@ -717,7 +718,7 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
     key = s.tobytes()
     geo = _geometry(key, n, tau_key, cmap.base)
-    pick = 1 if from_edge else 0
+    pick = -1 if from_edge else 0  # e, or u (the same where only e is held)
     levels = levels_for(n, scale, logarithmic)
     far = geo.far_e if from_edge else geo.far_u
     live = [(index, side) for index, side in enumerate(geo.sides) if side.live]
