@@ -488,9 +488,10 @@ class EdgeGraded(Representation):
         """:meth:`integrate`'s row operators, the pressure's and the flux's each only
         where asked for (None otherwise); ``how`` as
         :func:`~thermocontact.numerics.moment_engine.moments` takes it."""
-        moments = graded.moments(kernel, np.asarray(s, dtype=float), self.n, tau=aux,
-                                 cmap=self._cmap, pressure=pressure, flux=flux, **how)
-        return tuple(None if m is None else m @ self.to_cos for m in moments)
+        b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, tau=aux,
+                              cmap=self._cmap, pressure=pressure, flux=flux, **how)
+        to_cos = self.to_cos
+        return (None if b is None else b @ to_cos, None if q is None else q @ to_cos)
 
     def prolong(self, values, finer):
         """A cosine series of ``n`` terms in ``tau`` is one of any ``m >= n`` terms: its

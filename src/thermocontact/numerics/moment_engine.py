@@ -594,9 +594,10 @@ def _pressure_weights(geo: _Geometry, key: bytes, tau_key: bytes | None, levels,
 
 def _weighted(values, weights, halves):
     """``values`` times each of ``halves``' ``weights`` (0 the pressure's, 1 the
-    flux's), stacked along a first axis, each product formed in its place."""
-    out = np.empty((len(halves),) + np.broadcast_shapes(values.shape, weights[0].shape),
-                   dtype=np.result_type(values, weights[0]))
+    flux's; each of ``values``' shape, or a view broadcast to it), stacked along a first
+    axis, each product formed in its place."""
+    out = np.empty((len(halves),) + values.shape,
+                   dtype=np.result_type(values.dtype, weights[0].dtype))
     for i, h in enumerate(halves):
         np.multiply(values, weights[h], out=out[i])
     return out
