@@ -64,6 +64,15 @@ def _log_abs(u):
     return np.log(np.abs(u))
 
 
+#: How :meth:`Representation.logarithm` integrates its kernel.
+_LOGARITHMIC = {"scale": 1.0, "logarithmic": True}
+
+
+def _reciprocal(u):
+    """``1/u``, the kernel of :meth:`EdgeGraded.cauchy` (its principal value)."""
+    return 1.0 / u
+
+
 def _read_only(arrays):
     """``arrays`` (a tuple), each made read-only: shared from a cache."""
     for a in arrays:
@@ -209,8 +218,7 @@ class Representation:
         """Row operators ``(I_p, I_q)`` of ``integral ln|s - r| (p, q')(r) dr``: a
         stationary half-plane's surface temperature kernel (D12), the same for every
         ``Pe``."""
-        return self.integrate(_log_abs, np.asarray(s, dtype=float), scale=1.0,
-                              logarithmic=True, aux=aux)
+        return self.integrate(_log_abs, np.asarray(s, dtype=float), aux=aux, **_LOGARITHMIC)
 
     def prolong(self, values, finer):
         """``finer``'s nodal values (m, finer.n) of the functions whose nodal values here
@@ -218,9 +226,17 @@ class Representation:
         representation does not hold them exactly (derivation section 12)."""
         return None
 
-    def rows(self, key, build):
-        """A row operator of this representation, cached under ``key``."""
-        return ROWS.get((type(self).__name__,) + self._identity() + tuple(key), build)
+    def rows(self, key, build, exponent=True):
+        """A row operator of this representation, cached under ``key`` (with
+        ``exponent=False``, one that is the same for every edge exponent)."""
+        return ROWS.get(self._rows_key(key, exponent), build)
+
+    def _rows_key(self, key, exponent=True):
+        """``key`` in :data:`ROWS`: with this representation's identity, or without its
+        edge exponent (``exponent=False``: a row operator of the flux, the same for
+        every exponent)."""
+        identity = self._identity() if exponent else (self.n,)
+        return (type(self).__name__,) + identity + tuple(key)
 
     # Quantities every representation derives the same way.
     def pressure_weight(self, s):
@@ -465,11 +481,17 @@ class EdgeGraded(Representation):
         """Row operators ``(I_p, I_q)``; ``aux`` is the points' ``tau`` (keeps points
         within rounding of an edge apart from it), ``from_edge`` as in
         :func:`~thermocontact.numerics.moment_engine.moments`."""
-        b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, scale=scale,
-                              logarithmic=logarithmic, tau=aux, from_edge=from_edge,
-                              cmap=self._cmap)
+        return self._moments(kernel, s, aux, scale=scale, logarithmic=logarithmic,
+                             from_edge=from_edge)
+
+    def _moments(self, kernel, s, aux, pressure=True, flux=True, **how):
+        """:meth:`integrate`'s row operators, the pressure's and the flux's each only
+        where asked for (None otherwise); ``how`` as
+        :func:`~thermocontact.numerics.moment_engine.moments` takes it."""
+        b, q = graded.moments(kernel, np.asarray(s, dtype=float), self.n, tau=aux,
+                              cmap=self._cmap, pressure=pressure, flux=flux, **how)
         to_cos = self.to_cos
-        return b @ to_cos, q @ to_cos
+        return (None if b is None else b @ to_cos, None if q is None else q @ to_cos)
 
     def prolong(self, values, finer):
         """A cosine series of ``n`` terms in ``tau`` is one of any ``m >= n`` terms: its
@@ -482,32 +504,36 @@ class EdgeGraded(Representation):
         return graded.cosine_value(coefficients, graded.nodes(finer.n))  # (m, finer.n)
 
     def cauchy(self, s, aux=None):
-        s = np.asarray(s, dtype=float)
-
-        def build():
-            b, q = graded.moments(lambda u: 1.0 / u, s, self.n, scale=1.0, cauchy=True,
-                                  tau=aux, cmap=self._cmap)
-            return b @ self.to_cos, q @ self.to_cos
-        return self._kept("cauchy", s, aux, build)
+        return self._kept("cauchy", s, aux, _reciprocal, scale=1.0, cauchy=True)
 
     def sign(self, s, aux=None):
-        s = np.asarray(s, dtype=float)
-        return self._kept("sign", s, aux,
-                          lambda: self.integrate(np.sign, s, scale=1.0, aux=aux))
+        return self._kept("sign", s, aux, np.sign, scale=1.0)
 
     def logarithm(self, s, aux=None):
-        s = np.asarray(s, dtype=float)
-        return self._kept("logarithm", s, aux, lambda: super(EdgeGraded, self).logarithm(s, aux))
+        return self._kept("logarithm", s, aux, _log_abs, **_LOGARITHMIC)
 
-    def _kept(self, name, s, aux, build):
+    def _kept(self, name, s, aux, kernel, **how):
         """The row operators of a kernel that depends on the points alone (``1/u``,
         ``sgn u``, ``ln|u|``), read-only, kept in the row-operator cache below
         :data:`KEPT_MOMENTS_N`: a map's lines assemble them at the same points for every
-        ``Pe`` (a fifth of an assembly's time)."""
+        ``Pe`` (a fifth of an assembly's time).
+
+        The flux's rows are kept apart from the pressure's and without the edge
+        exponent: a contact of another friction (another exponent, with the Dundurs
+        term) forms the pressure's rows alone."""
+        s = np.asarray(s, dtype=float)
         if self.n >= KEPT_MOMENTS_N:
-            return build()
-        key = (name, s.tobytes(), None if aux is None else np.asarray(aux, float).tobytes())
-        return self.rows(key, lambda: _read_only(build()))
+            return self._moments(kernel, s, aux, **how)
+        points = (s.tobytes(), None if aux is None else np.asarray(aux, float).tobytes())
+        keys = (self._rows_key((name, "pressure") + points),
+                self._rows_key((name, "flux") + points, exponent=False))
+        held = [ROWS.find(key) for key in keys]
+        missing = [h is None for h in held]
+        if any(missing):
+            made = self._moments(kernel, s, aux, *missing, **how)
+            held = [h if h is not None else ROWS.get(key, lambda m=m: _read_only((m,))[0])
+                    for h, key, m in zip(held, keys, made)]
+        return tuple(held)
 
     def phi_at(self, phi, s):
         return graded.cosine_value(self.to_cos @ phi, graded.tau_of(s))
@@ -535,7 +561,8 @@ class EdgeGraded(Representation):
             cosines = np.multiply.outer(tau[k], np.arange(self.n))
             return np.cos(cosines, out=cosines)  # in place
         if count * self.n <= SAMPLE_TABLE_ENTRIES:
-            cosines = self.rows(("phi_samples", count), lambda: table(slice(None)))
+            cosines = self.rows(("phi_samples", count), lambda: table(slice(None)),
+                                exponent=False)
             return np.cos(graded.stretch(tau)), stacked(cosines, coefficients)
         step = max(1, SAMPLE_TABLE_ENTRIES // (8 * self.n))
         values = np.concatenate([stacked(table(slice(i, i + step)), coefficients)
@@ -571,14 +598,15 @@ class EdgeGraded(Representation):
     def psi_edges_many(self, psi):
         # psi(tau = pi) and psi(0): the cosine series' alternating and plain sums.
         edges = self.rows(("psi edges",), lambda: np.vstack(
-            [(-1.0) ** np.arange(self.n), np.ones(self.n)]) @ self.to_cos)
+            [(-1.0) ** np.arange(self.n), np.ones(self.n)]) @ self.to_cos, exponent=False)
         return stacked(edges, psi)
 
     def _pressure_row(self, key, kernel, points, from_edge=False):
         points = np.asarray(points, dtype=float)
 
         def build():
-            b, _ = self.integrate(kernel, points, scale=1.0, from_edge=from_edge)
+            b, _ = self._moments(kernel, points, None, flux=False, scale=1.0,
+                                 from_edge=from_edge)
             return b / np.pi
         return self.rows((key, _key(points)), build)
 

@@ -80,6 +80,14 @@ class BoundedCache:
                     self._bytes -= self._sizes.pop(old)
         return value
 
+    def find(self, key):
+        """The value under ``key`` (counted as used), or None when absent."""
+        with self._lock:
+            if key not in self._data:
+                return None
+            self._data.move_to_end(key)
+            return self._data[key]
+
     @contextmanager
     def transient(self, when=True):
         """Drop, at the end of the block, the entries added within it: for work whose

@@ -170,14 +170,28 @@ class CoordinateMap:
     ``cos(j x)``.  The edge-graded map (:data:`GRADED`, section 12) has
     ``T(x) = x - sin(2x)/2`` and the weights ``sin^2 T T'`` (pressure) and ``T'``
     (flux); the identity (:data:`IDENTITY`, ``x = t = arccos r``) with weight 1 gives
-    the Chebyshev moments of section 10 (:func:`chebyshev_moments`).
+    the Chebyshev moments of section 10 (:func:`chebyshev_moments`).  A graded map
+    whose pressure has the edge exponent ``alpha`` (:func:`graded_map`) has the
+    weight ``w(cos T) sin T T'`` (:func:`pressure_weight`) and, as its ``base``, the
+    map of the same stretch with ``alpha = 1/2``: the point geometry, which does not
+    depend on ``alpha``, is the base's.
     """
 
-    def __init__(self, name, T, dT, increment, inverse, pressure_factor):
+    def __init__(self, name, T, dT, increment, inverse, pressure_factor, alpha=0.5,
+                 base=None):
         self.name = name
         self.T, self.dT, self.increment, self.inverse = T, dT, increment, inverse
-        #: ``sin^2 T`` for the graded pressure weight, 1 for the identity map.
+        #: ``w(cos T) sin T`` for the graded pressure weight (``sin^2 T`` when
+        #: ``alpha = 1/2``), 1 for the identity map.
         self.pressure_factor = pressure_factor
+        #: The pressure's edge exponent at ``s = 1``.
+        self.alpha = alpha
+        self._base = base
+
+    @property
+    def base(self):
+        """The map of the same stretch with ``alpha = 1/2`` (itself when it is one)."""
+        return self if self._base is None else self._base
 
     def weights(self, x):
         """The pressure's and the flux's weight at ``x``."""
@@ -201,7 +215,7 @@ def graded_map(alpha=0.5) -> CoordinateMap:
         return GRADED
     return CoordinateMap(f"graded alpha={alpha!r}", stretch, stretch_derivative,
                          stretch_increment, stretch_inverse,
-                         lambda t: _pressure_factor(t, alpha))
+                         lambda t: _pressure_factor(t, alpha), alpha=alpha, base=GRADED)
 IDENTITY = CoordinateMap("identity", lambda x: np.asarray(x, dtype=float),
                          lambda x: np.ones_like(np.asarray(x, dtype=float)),
                          lambda x, d: np.broadcast_to(d, np.broadcast_shapes(np.shape(x), np.shape(d))).astype(float),
@@ -245,11 +259,12 @@ BASES = BoundedCache("moment bases", 40 * 2**20)
 
 
 def _common(n: int, cmap=None):
-    """Common panel rule in ``x``, the bases and weights at its nodes."""
+    """Common panel rule in ``x``, the bases and weights at its nodes (the bases and
+    nodes those of ``cmap``'s stretch, whatever its ``alpha``)."""
     cmap = GRADED if cmap is None else cmap
 
     def build():
-        m, h, tau, wt, panel = panel_rule(n)
+        m, h, tau, _, panel = panel_rule(n)
         # The rule is symmetric about pi/2 (node N - 1 - k is pi - tau_k), and
         # cos(j (pi - tau)) = (-1)^j cos(j tau): the bases at the first half's nodes
         # serve both halves (17 MB at n = 1024), even and odd j apart (_far_product).
@@ -257,10 +272,15 @@ def _common(n: int, cmap=None):
         np.cos(half, out=half)  # in place
         g = (np.ascontiguousarray(half[:, 0::2]), np.ascontiguousarray(half[:, 1::2]))
         del half
-        r = np.cos(cmap.T(tau))
-        wts = np.stack(cmap.weights(tau)) * wt[None, :]
-        return m, h, r, g, panel, wts
-    return BASES.get((n, cmap.name), build)
+        r = np.cos(cmap.base.T(tau))
+        return m, h, r, g, panel
+
+    def weights():
+        _, _, tau, wt, _ = panel_rule(n)
+        return np.stack(cmap.weights(tau)) * wt[None, :]
+    # The bases for every alpha; the weights, shape (2, nodes), of this one.
+    return (BASES.get((n, cmap.base.name), build)
+            + (BASES.get((n, cmap.name, "weights"), weights),))
 
 
 def _far_product(values, bases, out):
@@ -279,17 +299,23 @@ def _u(s, tau_s, t_s, d, wq, cmap):
     """``s - cos T(tau_s + d)`` without cancellation next to ``tau_s``, and the weights.
 
     Returns ``(u, e)`` with ``e = u - (s - clip(s))``, the part measured from the
-    nearer edge for points outside ``[-1, 1]`` (``u`` itself inside), formed
-    separately; and both weights at ``tau_s + d`` times ``wq``, shape
-    ``(2,) + d.shape``, with ``T(tau_s + d) = t_s + dT`` (an absolute error of
-    rounding, all a weight needs).
+    nearer edge for points outside ``[-1, 1]``, formed separately; inside, ``(u,)``,
+    ``u`` being ``e`` (unless ``e`` holds a ``-0.0``, which ``0 + e`` makes ``+0.0``):
+    ``e`` is the last; and both weights of ``cmap`` (the point geometry's: ``alpha = 1/2``)
+    at ``tau_s + d`` times ``wq``, shape ``(2,) + d.shape``, with
+    ``T(tau_s + d) = t_s + dT`` (an absolute error of rounding, all a weight needs).
+    ``e = cos t_s - cos T(tau_s + d)``: with the weights' ratio ``sin^2 T``, what
+    the weights of another ``alpha`` are formed from (:func:`_edge_power`).
     """
     dt = cmap.increment(tau_s[:, None], d)
     half = t_s[:, None] + 0.5 * dt
     e = 2.0 * np.sin(half) * np.sin(0.5 * dt)
     singular = cmap.dT(tau_s[:, None] + d) * wq
     bounded = cmap.pressure_factor(half + 0.5 * dt) * singular
-    return (_past_edge(s)[:, None] + e, e), np.stack([bounded, singular])
+    past = _past_edge(s)[:, None]
+    if past.any() or np.any(np.signbit(e) & (e == 0.0)):
+        return (past + e, e), np.stack([bounded, singular])
+    return (e,), np.stack([bounded, singular])
 
 
 def _past_edge(s):
@@ -378,7 +404,7 @@ class _Side:
         new.rows = tuple(np.arange(k) if r.size else r for r in self.rows)
         if not self.live:
             return new
-        e = self.outer_u[1]
+        e = self.outer_u[-1]
         new.outer_u = (offset[:, None] + e, _rows(e, k))
         new.outer_w = np.broadcast_to(self.outer_w, (2, k) + self.outer_w.shape[2:])
         new.outer_live, new.n_fixed = _rows(self.outer_live, k), self.n_fixed
@@ -504,12 +530,77 @@ def _inner_parts(geo: _Geometry, index: int, levels, key: bytes, tau_key: bytes 
             return side.inner_parts(geo, levels)
         edge_key = side.template
         edge_geo = _geometry(edge_key, geo.n, None, geo.cmap)
-        (_, e), live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
+        u, live, wq, lagr = _inner_parts(edge_geo, index, levels, edge_key, None)
+        e = u[-1]
         k = geo.s.size
         return ((_past_edge(geo.s)[:, None] + e, _rows(e, k)), _rows(live, k),
                 np.broadcast_to(wq, (2, k) + wq.shape[2:]), lagr)
     return geometry_cache(geo.n).get((key, geo.n, tau_key, geo.cmap.name, index, levels),
                                      build)
+
+
+def _edge_power(bounded, singular, cos_t, alpha):
+    """The pressure's weight ``w(cos t) sin t T' wq`` of the edge exponent ``alpha``
+    (:func:`pressure_weight`) from the point geometry's ``bounded = sin^2 t T' wq``
+    (``alpha = 1/2``), ``singular = T' wq`` and ``cos t``.
+
+    ``w(cos t) sin t = sin^2 t tan(t/2)^(2 alpha - 1)``, and with
+    ``q = sin^2 t / (1 + |cos t|)^2``, ``tan^2(t/2)`` is ``q`` where ``cos t >= 0``
+    and ``1/q`` where ``cos t < 0``: ``sin^2 t``, the weights' ratio, is relative to
+    rounding, and ``1 + |cos t| >= 1`` needs ``cos t`` to rounding only, so that the
+    power keeps its relative accuracy next to either edge.  Zero where ``bounded``
+    is (an edge, a node of zero weight).
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = np.divide(bounded, singular)
+        a = np.abs(cos_t)
+        a += 1.0
+        a *= a
+        q /= a
+        out = np.power(q, alpha - 0.5, out=q)
+        np.reciprocal(out, out=out, where=cos_t < 0.0)
+        out *= bounded
+    np.copyto(out, 0.0, where=bounded == 0.0)
+    return out
+
+
+def _pressure_weights(geo: _Geometry, key: bytes, tau_key: bytes | None, levels, parts,
+                      alpha):
+    """The pressure's weights of the edge exponent ``alpha`` on the live sides' nodes of
+    ``geo`` (whose own are those of ``alpha = 1/2``): per live side, the innermost
+    interval's and the outer panels' (:func:`_edge_power`), kept beside the geometry
+    in its cache (a moved geometry's from its edge point's, as :func:`_inner_parts`).
+    ``parts``: the live sides' innermost intervals, by index."""
+    def build():
+        edge_key = geo.sides[0].template
+        if edge_key is not None:
+            edge_geo = _geometry(edge_key, geo.n, None, geo.cmap)
+            edge_parts = {index: _inner_parts(edge_geo, index, levels, edge_key, None)
+                          for index in parts}
+            k = geo.s.size
+            return [tuple(_rows(w, k) for w in pair) for pair in _pressure_weights(
+                edge_geo, edge_key, None, levels, edge_parts, alpha)]
+        cos_t = np.cos(geo.t_s)[:, None]
+        out = []
+        for index, (u, _, wq, _) in parts.items():
+            side = geo.sides[index]
+            out.append((_edge_power(wq[0], wq[1], cos_t - u[-1], alpha),
+                        _edge_power(side.outer_w[0], side.outer_w[1],
+                                    cos_t - side.outer_u[-1], alpha)))
+        return out
+    return geometry_cache(geo.n).get((key, geo.n, tau_key, geo.cmap.name, levels, alpha),
+                                     build)
+
+
+def _weighted(values, weights, halves):
+    """``values`` times each of ``halves``' ``weights`` (0 the pressure's, 1 the
+    flux's; each of ``values``' shape, or a view broadcast to it), stacked along a first
+    axis, each product formed in its place."""
+    out = np.empty((len(halves),) + values.shape,
+                   dtype=np.result_type(values.dtype, weights[0].dtype))
+    for i, h in enumerate(halves):
+        np.multiply(values, weights[h], out=out[i])
+    return out
 
 
 def _kernel_values(kernel, far, near):
@@ -544,13 +635,15 @@ def _kernel_values(kernel, far, near):
 
 
 def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=False,
-            logarithmic=False, cmap=GRADED):
+            logarithmic=False, cmap=GRADED, pressure=True, flux=True):
     """Moments of a convolution kernel against the graded bases.
 
     ``B[k, j] = integral_0^pi K(s_k - cos T(tau)) sin^2 T(tau) T'(tau) cos(j tau) dtau``
     and ``S[k, j] = integral_0^pi K(s_k - cos T(tau)) T'(tau) cos(j tau) dtau``: the
     integrals of ``K(s_k - r)`` against the pressure and the heat-flux difference
-    whose factors ``phi``, ``psi`` are ``cos(j tau)``.
+    whose factors ``phi``, ``psi`` are ``cos(j tau)`` (the pressure's weight
+    ``w(cos T) sin T T'`` in place of ``sin^2 T T'`` for a map of another edge
+    exponent, :func:`graded_map`).
 
     Parameters
     ----------
@@ -579,10 +672,17 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
         Call the kernel with ``e = u - (s - clip(s))`` instead of ``u``: for points
         outside ``[-1, 1]``, ``u`` less the distance past the edge, formed without
         that subtraction (``1 - r`` right of the contact, ``-(1 + r)`` left of it).
+    cmap : CoordinateMap
+        The map and the weights: :data:`GRADED`, :func:`graded_map` of the pressure's
+        edge exponent, or :data:`IDENTITY`.
+    pressure, flux : bool
+        Whether to compute the bounded (pressure's) and the singular (flux's) moments:
+        one alone costs the kernel's values and half the products.
 
     Returns
     -------
     bounded, singular : ndarray, shape (k, n)
+        Each None where not asked for.
 
     Notes
     -----
@@ -596,7 +696,10 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
     ``D = sin t_s T'(tau_s)``, the two graded sides of lengths ``a`` and ``b`` are
     the same rule scaled, so their divergent parts cancel and the principal value
     of the omitted central interval, ``W(tau_s) cos(j tau_s) ln(b/a) / D``, is
-    added (derivation section 12).
+    added (derivation section 12).  The geometry of the points (everything but the
+    pressure's weight) is the same for every edge exponent ``alpha`` and kept once;
+    another ``alpha``'s pressure weights on its graded nodes are formed from it
+    (:func:`_edge_power`) and kept beside it.
     """
     s = np.ascontiguousarray(np.atleast_1d(np.asarray(s, dtype=float)))
     m, h, r, g, panel, wts = _common(n, cmap)
@@ -607,37 +710,48 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
         rows = max(rows, MIN_BLOCK)
         parts = [moments(kernel, s[i:i + rows], n, scale=scale, cauchy=cauchy,
                          tau=None if tau is None else np.asarray(tau)[i:i + rows],
-                         from_edge=from_edge, logarithmic=logarithmic, cmap=cmap)
+                         from_edge=from_edge, logarithmic=logarithmic, cmap=cmap,
+                         pressure=pressure, flux=flux)
                  for i in range(0, s.size, rows)]
-        return (np.concatenate([b for b, _ in parts]), np.concatenate([q for _, q in parts]))
+        return tuple(None if parts[0][h] is None else np.concatenate([p[h] for p in parts])
+                     for h in (0, 1))
+    halves = [h for h, asked in ((0, pressure), (1, flux)) if asked]
     tau_key = None if tau is None else np.ascontiguousarray(tau, dtype=float).tobytes()
     key = s.tobytes()
-    geo = _geometry(key, n, tau_key, cmap)
-    pick = 1 if from_edge else 0
+    geo = _geometry(key, n, tau_key, cmap.base)
+    pick = -1 if from_edge else 0  # e, or u (the same where only e is held)
     levels = levels_for(n, scale, logarithmic)
     far = geo.far_e if from_edge else geo.far_u
     live = [(index, side) for index, side in enumerate(geo.sides) if side.live]
     parts = {index: _inner_parts(geo, index, levels, key, tau_key) for index, _ in live}
+    # Per live side, the innermost interval's and the outer panels' weights, each a
+    # pair (pressure, flux): the geometry's, or with another alpha's pressure weights.
+    side_weights = [(parts[index][2], side.outer_w) for index, side in live]
+    if pressure and cmap.alpha != 0.5:
+        side_weights = [((b_in, w_in[1]), (b_out, w_out[1])) for (w_in, w_out), (b_in, b_out)
+                        in zip(side_weights, _pressure_weights(geo, key, tau_key, levels,
+                                                               parts, cmap.alpha))]
     # The graded sides' nodes (innermost interval, then outer panels, per side).
     near = [u for index, side in live for u in (parts[index][0][pick], side.outer_u[pick])]
     with np.errstate(divide="ignore", invalid="ignore"):
         kf, near_values = _kernel_values(kernel, far, near)
     kf[geo.near] = 0.0
-    # Both weights' products into one array, through one temporary.
-    out = np.empty((2, kf.shape[0], n), dtype=np.result_type(kf, g[0]))
-    weighted = np.multiply(kf, wts[0])
-    _far_product(weighted, g, out[0])
-    np.multiply(kf, wts[1], out=weighted)
-    _far_product(weighted, g, out[1])
+    # The weights' products into one array, through one temporary.
+    out = np.empty((len(halves), kf.shape[0], n), dtype=np.result_type(kf, g[0]))
+    weighted = np.empty_like(kf, dtype=np.result_type(kf, wts))
+    for i, h in enumerate(halves):
+        np.multiply(kf, wts[h], out=weighted)
+        _far_product(weighted, g, out[i])
     del weighted
     # A side without points (every point at or beyond its edge: a block of the gap's
     # points) has nothing to integrate and no kernel values.
-    for k, (index, side) in enumerate(live):
+    for k, ((index, side), (w_in, w_out)) in enumerate(zip(live, side_weights)):
         full, short = side.rows
-        _, inside, wq, lagr = parts[index]
+        _, inside, _, lagr = parts[index]
         # Rows of a side of zero length (points at or beyond an edge) hold dummies.
-        inner = (np.where(inside, near_values[2 * k], 0.0)[None] * wq) @ lagr
-        outer = np.where(side.outer_live, near_values[2 * k + 1], 0.0)[None] * side.outer_w
+        inner = _weighted(np.where(inside, near_values[2 * k], 0.0), w_in, halves) @ lagr
+        outer = _weighted(np.where(side.outer_live, near_values[2 * k + 1], 0.0), w_out,
+                          halves)
         if full.size:
             nf = side.n_fixed
             own = np.matmul(outer[:, full, None, nf:], side.own_lagrange)[:, :, 0]
@@ -645,9 +759,17 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
             out[:, full] += (geo.cos_s[full] * (v @ side.fixed_cos)
                              - geo.sin_s[full] * (v @ side.fixed_sin))
         if short.size:
-            v = np.concatenate([inner[:, short], outer[:, short]], axis=2).transpose(1, 0, 2)
-            c = np.matmul(v, side.short_cos).transpose(1, 0, 2)
-            sn = np.matmul(v, side.short_sin).transpose(1, 0, 2)
+            v = np.concatenate([inner[:, short], outer[:, short]], axis=2)
+            if len(halves) == 1:
+                # A row's product (the BLAS's vector times matrix) is not the same
+                # numbers as the same row's in a product of two: one half alone takes
+                # its place beside a zero other half.
+                both = np.zeros((2,) + v.shape[1:], dtype=v.dtype)
+                both[halves[0]] = v[0]
+                v = both
+            v = v.transpose(1, 0, 2)
+            c = np.matmul(v, side.short_cos).transpose(1, 0, 2)[halves]
+            sn = np.matmul(v, side.short_sin).transpose(1, 0, 2)[halves]
             out[:, short] += geo.cos_s[short] * c - geo.sin_s[short] * sn
     if cauchy:
         a_in, b_in = (side.inner for side in geo.sides)
@@ -657,10 +779,13 @@ def moments(kernel, s, n: int, scale=None, cauchy=False, tau=None, from_edge=Fal
             log_ratio = np.log(b_in[interior] / a_in[interior]) / (
                 np.sin(geo.t_s[interior]) * cmap.dT(ts))
             basis = np.cos(np.arange(n)[None, :] * ts[:, None])
-            w_b, w_s = cmap.weights(ts)
-            out[0][interior] += (w_b * log_ratio)[:, None] * basis
-            out[1][interior] += (w_s * log_ratio)[:, None] * basis
-    return out[0], out[1]
+            w = cmap.weights(ts)
+            for i, h in enumerate(halves):
+                out[i][interior] += (w[h] * log_ratio)[:, None] * basis
+    moments_of = [None, None]
+    for i, h in enumerate(halves):
+        moments_of[h] = out[i]
+    return tuple(moments_of)
 
 
 def chebyshev_moments(kernel, s, n: int, scale=None, logarithmic=False):
