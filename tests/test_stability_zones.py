@@ -282,6 +282,42 @@ def test_contact_zones_stability_adds_the_record(capsys, monkeypatch):
     assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
 
 
+def test_zones_stability_adds_the_record_and_refuses_a_conductance(capsys, monkeypatch):
+    """``zones --stability`` (the dimensionless command) adds the contact set's
+    ``"stability"`` record, in its JSON and its text, as ``contact --zones --stability``
+    does (stand-ins keep it fast); with ``--conductance`` it is refused in one line, as
+    there."""
+    import json
+
+    import thermocontact.api as api
+    from thermocontact.cli import main
+    from thermocontact.solvers.stability import StabilityResult
+
+    class Found:
+        status, message, answer = "solved", "one zone", None
+
+        def to_dict(self):
+            return {"status": "solved"}
+    seen = []
+
+    def verdict(found, progress):
+        seen.append(found)
+        return StabilityResult(np.array([]), 0, True, None, None, (1e-3, 1e6),
+                               "argument principle", None, None, None, 40, 12)
+    monkeypatch.setattr(api, "contact_set", lambda *a, **kw: Found())
+    monkeypatch.setattr(api, "stability", verdict)
+    args = ["zones", "--pe-hertz", "1", "--fhpe-hertz", "0.05", "--K2-over-K1", "1",
+            "--lam", "1", "--stability"]
+    assert main(args + ["--json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert isinstance(seen[0], Found) and rec["stability"]["stable"] is True
+    assert main(args) == 0
+    assert "stable        = True" in capsys.readouterr().out
+    assert main(args + ["--conductance", "1:0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "perfect thermal contact" in err[0]
+
+
 class _ManyRows:
     """A stand-in linearisation without eigenvalues whose ``2n`` temperature rows fall
     like ``(1 + b/1000)^(-1/2)``: the scaled determinant ``((1 + b)/(1 + b/1000))^n``

@@ -99,9 +99,12 @@ def contact_summary(res) -> str:
                    "[default: perfect thermal contact].")
 @click.option("-n", "n", type=int, default=32, show_default=True,
               help="Unknowns per function per zone, in [8, 256].")
+@click.option("--stability", is_flag=True,
+              help="Also count the contact set's growing modes (every edge free; rates in "
+                   "k2/l^2), as contact --zones --stability.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam,
-              sigma, theta, sink_distance, conductance, n, as_json):
+              sigma, theta, sink_distance, conductance, n, stability, as_json):
     """The contact set at one load: one zone or several, or why there is none.
 
     Lengths in units of the Hertz half-width l of the load, from the undeformed
@@ -114,14 +117,18 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     # Shown once the command has run 2 s: the share of the path to fHPe_l followed.
     bar = ProgressLine("zones: fHPe_l followed", "%")
     one_closure(lam, sigma, theta)
+    _stability_in_perfect_contact(stability, conductance)
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
                       closure=far_temperatures(theta, sink_distance), k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,
                       conductance=parse_conductance(conductance, "the Biot number h0 l/K2"),
                       progress=lambda fraction: bar(round(100 * fraction), 100))
     bar.close()
+    from .solve import record_of, stability_summary
+
+    record = record_of(res, stability)
     if as_json:
-        click.echo(json.dumps(res.to_dict(), allow_nan=False))
+        click.echo(json.dumps(record, allow_nan=False))
         return
     lines = [f"status: {res.status}: {res.message}"]
     if res.answer is not None:
@@ -131,7 +138,18 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
         for k, z in enumerate(res.answer.zone_records(), 1):
             lines.append(f"  zone {k}: {z['a']:.6f} < x/l < {z['b']:.6f}, load "
                          f"{z['load']:.6f} P, peak pressure {z['peak_pressure']:.6f} P/l")
+    if stability:
+        lines.append(stability_summary(record["stability"]))
     click.echo("\n".join(lines))
+
+
+def _stability_in_perfect_contact(stability, conductance):
+    """The stability is modelled with perfect thermal contact: ``--conductance`` refused
+    beside ``--stability``."""
+    if stability and conductance is not None:
+        raise InputError("--stability is modelled with perfect thermal contact: give no "
+                         "--conductance (solve --conductance gives the single patch's)",
+                         parameters=("stability",))
 
 
 @click.command("contact")
@@ -213,10 +231,7 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
-    if stability and conductance is not None:
-        raise InputError("--stability is modelled with perfect thermal contact: give no "
-                         "--conductance (solve --conductance gives the single patch's)",
-                         parameters=("stability",))
+    _stability_in_perfect_contact(stability, conductance)
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   closure=bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,
                                                     layer_thickness),
