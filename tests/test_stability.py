@@ -276,6 +276,39 @@ def test_a_power_of_b_turning_the_phase_is_divided_out(k):
         assert raw.count(1e6)[0] is None
 
 
+def test_the_determinant_equilibrated_and_its_phase_bounded():
+    """``log_determinant`` of badly scaled complex matrices (rows and columns scaled by
+    e^+-20) equals slogdet's phase and logarithm (to 1e-13 and 1e-12 of its size), and
+    its rcond is that of the equilibrated matrix by explicit inverse within the factor 3
+    of LAPACK's estimate; an exactly singular matrix gives a zero phase."""
+    from thermocontact.numerics.dense import log_determinant, row_scales
+
+    rng = np.random.default_rng(3)
+    for N in (3, 17, 40):
+        A = rng.normal(size=(N, N)) + 1j * rng.normal(size=(N, N))
+        A *= np.exp(rng.uniform(-20, 20, N))[:, None] * np.exp(rng.uniform(-20, 20, N))
+        sign, logdet, rcond = log_determinant(A)
+        s0, l0 = np.linalg.slogdet(A)
+        assert abs(sign - s0) < 1e-13 and abs(logdet - l0) < 1e-12 * abs(l0)
+        r = row_scales(np.abs(A))
+        B = A * r[:, None]
+        B = B * row_scales(np.abs(B), axis=0)[None, :]
+        exact = 1.0 / (np.abs(B).sum(axis=0).max() * np.abs(np.linalg.inv(B)).sum(axis=0).max())
+        assert exact / 3 <= rcond <= 3 * exact
+    assert log_determinant(np.ones((3, 3), dtype=complex))[0] == 0
+
+
+def test_a_phase_rounding_cannot_certify_a_count():
+    """``det [[1, 1], [1, 1 + e (b + 1)]] = e (b + 1)`` has no root in the region, but at
+    e = 1e-17 its phase is rounding (the bound N^2 u / rcond above PHASE_ERROR_MAX): no
+    count, and the reason says so; at e = 1e-3 the count is 0."""
+    def matrix(e):
+        return lambda b: np.array([[1.0, 1.0], [1.0, 1.0 + e * (b + 1.0)]], dtype=complex)
+    assert Winding(matrix(1e-3), 1e-3).count(100.0) == (0, None)
+    count, why = Winding(matrix(1e-17), 1e-3).count(100.0)
+    assert count is None and "uncertain" in why
+
+
 def test_a_root_on_the_contour_is_not_counted_but_said():
     winding = Winding(_known_problem([1e-3 + 0.5j, 1e-3 - 0.5j]), 1e-3)
     count, why = winding.count(10.0)

@@ -17,14 +17,14 @@ from collections import deque
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetri, dgetrs
+from scipy.linalg.lapack import dgecon, dgesv, dgetrf, dgetri, dgetrs, zgecon, zgetrf
 
 from ..problem.errors import SolveError
 from ..problem.validation import check_choice
 
 __all__ = ["CERTIFIED_RCOND", "ConditionBounds", "GESV_ENTRIES", "RCOND_CHOICES", "RCOND_MIN",
            "STACK_ENTRIES",
-           "condition_bounds", "factorise", "ill_conditioned", "not_finite",
+           "condition_bounds", "factorise", "ill_conditioned", "log_determinant", "not_finite",
            "not_finite_solution", "row_scales", "solve_equilibrated", "solve_stack"]
 
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
@@ -40,6 +40,36 @@ def row_scales(A, axis=1):
 
 #: What ``rcond`` of :func:`solve_stack` (and ``Model.solve_many``) may be.
 RCOND_CHOICES = ("estimate", "bound")
+
+
+def log_determinant(A):
+    """``(sign, log|det A|, rcond)`` of a square complex matrix, by LU of ``A`` with its
+    rows and then its columns equilibrated (positive real scalings, which leave the
+    phase ``sign = det A/|det A|`` unchanged and make the factorisation's backward
+    error small in every row and column, not only in the largest), and ``rcond``, the
+    reciprocal 1-norm condition number of the equilibrated matrix (``gecon``).
+
+    The computed ``det`` is that of ``A + E`` with ``|E| <~ n u |A|`` entrywise after
+    the scaling, so its phase is off by at most about ``|tr(A^-1 E)| <= n^2 u / rcond``
+    radians, times the growth factor of the pivots (derivation S12, *Large n*);
+    ``(0, -inf, 0)`` where ``A`` is exactly singular.
+    """
+    A = np.asarray(A, dtype=complex)
+    mod = np.abs(A)
+    r = row_scales(mod)
+    c = row_scales(mod * r[:, None], axis=0)
+    B = A * r[:, None] * c[None, :]
+    anorm = float((mod * r[:, None] * c[None, :]).sum(axis=0).max())
+    lu, piv, info = zgetrf(B, overwrite_a=True)
+    if info > 0:
+        return 0j, -np.inf, 0.0
+    d = np.diagonal(lu)
+    ad = np.abs(d)
+    swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
+    sign = complex(np.prod(d / ad)) * (-1.0 if swaps % 2 else 1.0)
+    logdet = float(np.sum(np.log(ad)) - np.sum(np.log(r)) - np.sum(np.log(c)))
+    rcond, _ = zgecon(lu, anorm, norm="1")
+    return sign / abs(sign), logdet, float(rcond)
 
 
 def solve_equilibrated(A, b, what="the linear system"):

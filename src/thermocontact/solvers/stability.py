@@ -23,6 +23,7 @@ import numpy as np
 from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
+from ..numerics.dense import log_determinant
 from ..problem.validation import InputError, check_integer, check_positive
 from .zones import ZoneSolution
 
@@ -47,6 +48,12 @@ PHASE_STEP = np.pi / 4
 #: Below this step of the contour's parameter a sample interval is not refined further:
 #: a root on or against the contour, and the count is not certified.
 SMALLEST_STEP = 1e-9
+#: The largest bound on a sample's phase error (radians: ``N^2 u / rcond`` of the
+#: equilibrated ``N x N`` matrix, :func:`~thermocontact.numerics.dense.log_determinant`)
+#: with which a count is certified: the phase change along the contour is then off by
+#: at most twice that, a third of a root's pi.
+PHASE_ERROR_MAX = 0.5
+_U = np.finfo(float).eps / 2
 #: The line's parameter ``t`` (``b = b_min (1 + i sinh t)``): first steps this long.
 _LINE_STEP = 4.0
 #: Above this ``n`` the line's first steps are ``_LINE_STEP * _LINE_STEP_N / n``.
@@ -190,7 +197,10 @@ class Winding:
     the number of its zeros inside (the argument principle).
 
     ``f = det A(b)`` of a matrix function ``A``; its phase and ``log|f|`` come from
-    :func:`numpy.linalg.slogdet`.  The matrices are kept, so that the boundaries of
+    the LU factors of ``A`` equilibrated, with a bound on the phase's rounding that a
+    certified count respects at every sample
+    (:func:`~thermocontact.numerics.dense.log_determinant`, :data:`PHASE_ERROR_MAX`).
+    The matrices are kept, so that the boundaries of
     several ``R`` share the line's samples and :meth:`contour` can serve Beyn's
     method.
 
@@ -218,7 +228,7 @@ class Winding:
         self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
         self.line_step = _LINE_STEP if line_step is None else float(line_step)
         self.many = many
-        self.values, self.matrices = {}, {}
+        self.values, self.matrices, self.phase_errors = {}, {}, {}
         #: ``p`` of the factor ``(1 + b)^p`` divided out of ``f`` before its phase is
         #: followed (:meth:`settled`); set by the first :meth:`count`.
         self.power = None
@@ -234,19 +244,21 @@ class Winding:
             if self.prepare is not None:
                 self.prepare(fresh)
             return
-        A = self.many(fresh)
-        signs, logdets = np.linalg.slogdet(A)
-        for z, Az, sign, logdet in zip(fresh, A, signs, logdets):
-            self.matrices[z] = Az
-            self.values[z] = (complex(sign), float(logdet))
+        for z, Az in zip(fresh, self.many(fresh)):
+            self._keep(z, Az)
+
+    def _keep(self, b, A):
+        """Keep ``A(b)``, the phase and ``log|det A(b)|``, and a bound on the phase's
+        rounding (``N^2 u / rcond``: :func:`~thermocontact.numerics.dense.log_determinant`)."""
+        sign, logdet, rcond = log_determinant(A)
+        self.matrices[b] = A
+        self.values[b] = (sign, logdet)
+        self.phase_errors[b] = A.shape[0] ** 2 * _U / rcond if rcond > 0 else np.inf
 
     def at(self, b):
         """``(sign, log|det A(b)|)``, kept (with ``A(b)``)."""
         if b not in self.values:
-            A = self.matrix(b)
-            sign, logdet = np.linalg.slogdet(A)
-            self.matrices[b] = A
-            self.values[b] = (complex(sign), float(logdet))
+            self._keep(b, self.matrix(b))
         return self.values[b]
 
     def settled(self, b):
@@ -326,6 +338,11 @@ class Winding:
                 (pa, la), (pm, lm), (pb, lb) = (self.settled(point(t)) for t in (a, m, b))
                 if pa == 0 or pm == 0 or pb == 0:
                     return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
+                worst = max(self.phase_errors[point(t)] for t in (a, m, b))
+                if worst > PHASE_ERROR_MAX:
+                    return None, (f"the phase of det M(b) is uncertain near b = "
+                                  f"{point(m):.6g} (its rounding up to {worst:.2g} rad: M(b) "
+                                  f"too ill-conditioned at this n)")
                 first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
                 whole = float(np.angle(pb / pa))
                 agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
