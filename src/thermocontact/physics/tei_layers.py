@@ -54,6 +54,7 @@ __all__ = [
     "body_fields",
     "condition_matrix",
     "condition_terms",
+    "dispersion_log_derivatives",
     "dispersion_matrix",
     "dispersion_ratio",
     "face_fields",
@@ -261,6 +262,35 @@ def _potential_profile(G, tau, e=None):
     return D, -G * D - e_t / (G + 1.0)
 
 
+def _phi2(z):
+    """``(e^z - 1 - z)/z^2`` (1/2 at 0), by its series where ``|z| < 1``."""
+    z = np.asarray(z, dtype=complex)
+    small = np.abs(z) < 1.0
+    zs = np.where(small, z, 0.0)
+    series = np.full(z.shape, 1.0 / math.factorial(22), dtype=complex)
+    for k in range(19, -1, -1):            # sum of z^k/(k + 2)! to k = 20, Horner's rule
+        series = series * zs + 1.0 / math.factorial(k + 2)
+    zb = np.where(small, 1.0, z)
+    with np.errstate(over="ignore", invalid="ignore"):
+        direct = (np.exp(zb) - 1.0 - zb) / (zb * zb)
+    return np.where(small, series, direct)
+
+
+def _potential_profile_dG(G, tau, e, D):
+    """``(dD/dG, dD'/dG)`` of :func:`_potential_profile` (``e = e^{-G tau}``, ``D``
+    its profile): with ``f(x) = e^{-x tau}``, ``D = f[G, 1]/(G + 1)``, so ``dD/dG =
+    (f[G, G, 1] - D)/(G + 1)``, the second divided difference ``f[G, G, 1] = tau^2
+    e^{-G tau} phi_2(tau (G - 1))`` without cancellation near ``G = 1``
+    (``phi_2(z) = (e^z - 1 - z)/z^2``); and ``D' = -G D - e^{-tau}/(G + 1)``."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        d = G - 1.0
+        near = np.abs(d * tau) < 1.0
+        far = (-tau * e - (G + 1.0) * D) / np.where(near, 1.0, d)
+        f2 = np.where(near, tau * tau * e * _phi2(np.where(near, d * tau, 0.0)), far)
+        dD = (f2 - D) / (G + 1.0)
+        return dD, -D - G * dD + np.exp(-tau) / (G + 1.0) ** 2
+
+
 def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None):
     """The six face fields of each of a body's solutions (L2-L4).
 
@@ -399,11 +429,13 @@ class _Solutions:
                           cG, np.array(columns))
 
 
-def _fields(sol: _Solutions, b, m, U, depths):
+def _fields(sol: _Solutions, b, m, U, depths, derivative=False):
     """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
     ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
     of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
-    the thermal, one per start).
+    the thermal, one per start).  With ``derivative``: also their derivatives in the
+    body's ``gamma/m = G`` (L1) of its thermal columns, the only ones that depend
+    on it, ``S + (bodies, P, 6, 2)``, and ``G`` itself, ``S + (bodies,)``.
 
     Computed with the points as the last axis (``N``, the size of ``S``), so that every
     array operation runs over the points innermost, not over the few starts and
@@ -424,9 +456,21 @@ def _fields(sol: _Solutions, b, m, U, depths):
         D, dD = _potential_profile(G, dist, e)
         th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
               + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
+        if derivative:
+            dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
+            dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
+                   + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
+                   + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
+                                      * (sol.ce[:, None, ..., None]
+                                         + G[:, :, None] * sol.cG[:, None, ..., None])))
     nb, P = el.shape[:2]
+
     out = np.concatenate([el.reshape(nb, P, 6, 4, -1), th], axis=-2)      # (nb, P, 6, 6, N)
-    return np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
+    out = np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
+    if not derivative:
+        return out
+    return (out, np.moveaxis(dth, -1, 0).reshape(shape + dth.shape[:-1]),
+            np.moveaxis(G[:, 0, 0], -1, 0).reshape(shape + (nb,)))
 
 
 @lru_cache(maxsize=64)
@@ -522,10 +566,20 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     """
     b, m, V = _broadcast(b, wavenumber, speed)
     asm = _assembly(layup)
-    F = _fields(asm.solutions, b, m, V, asm.depths)                     # S + (nb, 2, 6, 6)
-    nb = F.shape[-4]
+    return _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths))
+
+
+def _condition_rows(asm, F):
+    """``(M_0, M_1)`` of :func:`condition_terms` from the face fields ``F``, ``S + (nb,
+    2, 6, 6)``."""
     # Transposed, each body's columns become rows, which stack without copying.
-    MT = F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT    # S + (nb, 6, 2n)
+    return _rows_of(asm, F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT)
+
+
+def _rows_of(asm, MT):
+    """``(M_0, M_1)`` from the transposed ``MT``, ``S + (nb, 6, 2n)``: every body's
+    solutions' face fields with the rows of :func:`condition_matrix` applied."""
+    nb = MT.shape[-3]
     MT = MT.reshape(MT.shape[:-3] + (6 * nb, MT.shape[-1]))
     if asm.own is not None:
         MT = MT[..., asm.own, :]
@@ -620,6 +674,98 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
                         / (kap * (m * m)[..., None]))
             d = d / np.prod(G, axis=-1)
     return d
+
+
+def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed):
+    """``d ln D/db`` and ``d ln D/dV`` of the dispersion function ``D`` of
+    :func:`layup_dispersion` (L8, L16), in closed form: by Jacobi's formula ``d ln
+    det M = tr(M^{-1} dM)``, with ``dM/db`` and ``dM/dV`` from the derivatives of the
+    thermal solutions in ``G = gamma/m`` (``dG/db = 1/(2 G kappa m^2)``, ``dG/dV = i m
+    /(2 G kappa m^2)`` on a moving body) and of the frictional heat's ``h`` in ``V``;
+    less the conducting layers' ``d ln G/db``, ``d ln G/dV``.  A Newton step on ``D``
+    in ``b`` is ``-1/(d ln D/db)``; a root's speed of travel ``db/dV = -(d ln
+    D/dV)/(d ln D/db)``.
+
+    Parameters
+    ----------
+    layup : Layup
+    b, wavenumber, speed : array_like
+        As for :func:`dispersion_matrix`, broadcast to a shape ``S``; ``speed > 0``.
+
+    Returns
+    -------
+    ndarray, complex, shape ``S + (2,)``
+        ``[d ln D/db, d ln D/dV]``, s and s/m; NaN where ``M`` is singular.
+    """
+    b, m, V = _broadcast(b, wavenumber, speed)
+    asm = _assembly(layup)
+    sol = asm.solutions
+    cols, bodies, heat_rows = _derivative_terms(layup)
+    F, dF, G = _fields(sol, b, m, V, asm.depths, derivative=True)
+    with np.errstate(all="ignore"):
+        # dM/db: nonzero in the thermal columns only, each of one body; the same
+        # columns of dM/dV are i m U/V times them (G depends on b + i m U).  Both
+        # mapped by the face conditions in one product.
+        dG_db = 1.0 / (2.0 * G * sol.kappa * (m * m)[..., None])          # S + (nb,)
+        nb = dG_db.shape[-1]
+        th = dF.reshape(dF.shape[:-3] + (12, 2)) * dG_db[..., None, None]
+        MT = np.concatenate([F.reshape(F.shape[:-3] + (12, 6)), th],
+                            axis=-1).swapaxes(-1, -2) @ asm.CT         # S + (nb, 8, 2n)
+        M0, M1 = _rows_of(asm, MT[..., :6, :])
+        hq = asm.heat / m
+        M = M0 + (hq * np.abs(V))[..., None, None] * M1
+        dT = MT[..., 6:, :].reshape(MT.shape[:-3] + (2 * nb, MT.shape[-1]))[..., cols, :]
+        n = M.shape[-1]
+        dMb = dT[..., :n] + (hq * np.abs(V))[..., None, None] * dT[..., n:]
+        # tr(M^-1 M_1): M_1 nonzero in the rows of the frictional heat only.
+        unit = np.zeros((n, len(heat_rows)))
+        unit[heat_rows, np.arange(len(heat_rows))] = 1.0
+        X = _solve(M, np.concatenate(
+            [dMb.swapaxes(-1, -2), np.broadcast_to(unit, M.shape[:-2] + unit.shape)], axis=-1))
+        k = len(cols)
+        own = np.arange(6 * nb) if asm.own is None else asm.own
+        at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
+        diag = X[..., at, np.arange(k)]                                   # S + (k,)
+        heat = np.einsum("...rc,...cr->...", M1[..., heat_rows, :], X[..., k:])
+        moving = 1j * m[..., None] * sol.moving[bodies]
+        out = np.stack([np.sum(diag, axis=-1),
+                        np.sum(moving * diag, axis=-1) + hq * np.sign(V) * heat], axis=-1)
+        kap, mov = asm.layers
+        if kap.size:
+            Gl = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
+                         / (kap * (m * m)[..., None]))
+            dl = 1.0 / (2.0 * Gl * Gl * kap * (m * m)[..., None])          # d ln G/db
+            out[..., 0] -= np.sum(dl, axis=-1)
+            out[..., 1] -= np.sum(1j * m[..., None] * mov * dl, axis=-1)
+    return out
+
+
+@lru_cache(maxsize=64)
+def _derivative_terms(layup: Layup):
+    """What :func:`dispersion_log_derivatives` needs of a layup: the thermal columns of
+    ``M`` as indices into the bodies' thermal columns ``(body, start)`` flattened,
+    the body of each, and the rows of ``M`` that carry the frictional heat."""
+    asm = _assembly(layup)
+    nb = len(layup.bodies)
+    own = np.arange(6 * nb) if asm.own is None else asm.own
+    thermal = own[own % 6 >= 4]
+    C1 = condition_matrix(layup)[1]
+    heat_rows = np.flatnonzero(np.any(C1.reshape(C1.shape[0], -1) != 0, axis=1))
+    return 2 * (thermal // 6) + thermal % 6 - 4, thermal // 6, heat_rows
+
+
+def _solve(M, rhs):
+    """``M^{-1} rhs`` for a stack; NaN for the singular matrices of it."""
+    try:
+        return np.linalg.solve(M, rhs)
+    except np.linalg.LinAlgError:
+        out = np.full(rhs.shape, np.nan, dtype=complex)
+        for i in np.ndindex(M.shape[:-2]):
+            try:
+                out[i] = np.linalg.solve(M[i], rhs[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
 
 
 def dispersion_ratio(layup: Layup, b, wavenumber, speed):

@@ -35,7 +35,8 @@ import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
 from ..execution.lockstep import run_lockstep
-from ..physics.tei_layers import Layup, dispersion_ratio, layup_dispersion, mode_shape
+from ..physics.tei_layers import (Layup, dispersion_log_derivatives, dispersion_ratio,
+                                  layup_dispersion, mode_shape)
 
 __all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
            "first_crossing", "growth_rate", "neutral_curves", "neutral_point", "newton_roots",
@@ -55,14 +56,15 @@ def _scale(layup: Layup, m) -> float:
     return min(b.material.k for b in layup.bodies if b.conducts) * m * m
 
 
-def newton_roots(func, x0, scale, iters=25):
-    """Newton's method on an analytic ``func`` (vectorised), the derivative by central
-    differences of step ``1e-6 scale``; returns the roots and which converged: a step
+def newton_roots(log_derivative, x0, scale, iters=25):
+    """Newton's method on an analytic function ``f`` given its logarithmic derivative
+    ``f'/f`` (vectorised; the step ``-f/f'``); returns the roots and which converged: a step
     below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
     falls (the rounding of the determinant reached).  Each root is iterated only
     until it has converged, or given up (NaN) if its step is still above ``1e-6 (|x| +
     scale)`` after 12 iterations (no quadratic convergence in sight: a seed of the
-    continuous spectrum); ``func(z, active)`` gets the indices of those iterated."""
+    continuous spectrum); ``log_derivative(z, active)`` gets the indices of those
+    iterated."""
     x = np.array(x0, dtype=complex)
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
@@ -73,11 +75,9 @@ def newton_roots(func, x0, scale, iters=25):
         act = np.flatnonzero(~done & np.isfinite(x))
         if not act.size:
             break
-        xa, h = x[act], 1e-6 * scale[act]
-        f = func(np.stack([xa, xa + h, xa - h]), act)
-        d = (f[1] - f[2]) / (2.0 * h)
+        xa = x[act]
         with np.errstate(invalid="ignore", divide="ignore"):
-            step = f[0] / d
+            step = 1.0 / log_derivative(xa, act)
         step = np.where(np.isfinite(step), step, np.nan)
         x[act] = xa - step
         size, unit = np.abs(step), np.abs(x[act]) + scale[act]
@@ -121,6 +121,14 @@ class Layered:
         if self.ask is None:
             return layup_dispersion(self.layup, b, m, speed)
         return self.ask(("dispersion", self.layup), (b, m, speed))
+
+    def log_derivatives(self, b, m, speed):
+        """``[d ln D/db, d ln D/dV]`` of the dispersion function at ``b``, shape of the
+        broadcast ``+ (2,)`` (:func:`~thermocontact.physics.tei_layers.
+        dispersion_log_derivatives`)."""
+        if self.ask is None:
+            return dispersion_log_derivatives(self.layup, b, m, speed)
+        return self.ask(("log_derivatives", self.layup), (b, m, speed))
 
     def dispersion_ratio(self, b, m, speed):
         """``det M/det M_0`` at ``b`` (:func:`~thermocontact.physics.tei_layers.
@@ -237,17 +245,14 @@ def neutral_point(family, m, speed, omega, iters=40):
         return -phi * m * V + sig * s
 
     for _ in range(iters):
-        hs = 1e-6 * (1.0 + np.abs(s))
-        hv = 1e-7 * V
-        f = family.dispersion(1j * np.stack([omega_of(V, s), omega_of(V, s + hs),
-                                             omega_of(V, s - hs), omega_of(V + hv, s)]),
-                              np.stack([m] * 4), np.stack([V, V, V, V + hv]))
-        ds = (f[1] - f[2]) / (2.0 * hs)
-        dv = (f[3] - f[0]) / hv
+        # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
+        L = family.log_derivatives(1j * omega_of(V, s), m, V)
+        ds = 1j * sig * L[..., 0]
+        dv = L[..., 1] - 1j * phi * m * L[..., 0]
         det = dv.real * ds.imag - dv.imag * ds.real
         with np.errstate(invalid="ignore", divide="ignore"):
-            sV = (-f[0].real * ds.imag + f[0].imag * ds.real) / det
-            sS = (-dv.real * f[0].imag + dv.imag * f[0].real) / det
+            sV = -ds.imag / det
+            sS = dv.imag / det
         sV = np.where(done | ~np.isfinite(sV), 0.0, sV)
         sS = np.where(done | ~np.isfinite(sS), 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
@@ -283,8 +288,8 @@ def _polish(family, m, speed, b0, reach=None):
     phi = pattern_frame(m, speed, b0.imag)
     shift = 1j * phi * m * speed
     z0 = b0 + shift
-    roots, ok = newton_roots(lambda z, act: family.dispersion(z - shift[act], m, speed), z0,
-                             scale)
+    roots, ok = newton_roots(
+        lambda z, act: family.log_derivatives(z - shift[act], m, speed)[..., 0], z0, scale)
     lim = 0.5 * np.abs(z0) + 10.0 * scale if reach is None else reach
     b = roots - shift
     good = ok & (np.abs(roots - z0) <= lim) & ~family.on_cut(b, m, speed)
@@ -329,20 +334,11 @@ def _cubic_peak(lo, hi):
 
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
-    ``D`` (implicit differentiation), both by central differences in the root's frame."""
+    ``D`` (implicit differentiation), in closed form (:meth:`Layered.log_derivatives`)."""
     b = np.asarray(b, dtype=complex)
-    phi = pattern_frame(m, speed, b.imag)
-    z = b + 1j * phi * m * speed
-    hz = 1e-6 * (np.abs(z) + family.scale(m))
-    hv = 1e-6 * speed
-    # The four differences in one evaluation.
-    zz = np.stack([z + hz, z - hz, z, z])
-    vv = np.stack([np.full(z.shape, v) for v in (speed, speed, speed + hv, speed - hv)])
-    f = family.dispersion(zz - 1j * phi * m * vv, m, vv)
-    dz = (f[0] - f[1]) / (2.0 * hz)
-    dv = (f[2] - f[3]) / (2.0 * hv)
+    L = family.log_derivatives(b, m, speed)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return -dv / dz - 1j * phi * m
+        return -L[..., 1] / L[..., 0]
 
 
 def _follow(family, m, v0, b0, slope0, v1):
@@ -746,10 +742,12 @@ def _evaluate(key, payloads):
     parts = [np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(m, dtype=float),
                                  np.asarray(v, dtype=float)) for b, m, v in payloads]
     b, m, v = (np.concatenate([p[i].ravel() for p in parts]) for i in range(3))
-    func = layup_dispersion if kind == "dispersion" else dispersion_ratio
+    func = {"dispersion": layup_dispersion, "ratio": dispersion_ratio,
+            "log_derivatives": dispersion_log_derivatives}[kind]
     out = func(layup, b, m, v)
     ends = np.cumsum([p[0].size for p in parts])
-    return [o.reshape(p[0].shape) for o, p in zip(np.split(out, ends[:-1]), parts)]
+    return [o.reshape(p[0].shape + o.shape[1:])
+            for o, p in zip(np.split(out, ends[:-1]), parts)]
 
 
 def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
