@@ -773,8 +773,10 @@ def dispersion_ratio(layup: Layup, b, wavenumber, speed):
     frictional heat), the function whose winding along the imaginary axis counts the
     growing modes (L15): zero at the modes, no pole in ``Re b >= 0`` (those of ``det
     M_0`` are free thermal modes, which decay), tending to 1 as ``|b| -> inf`` there.
-    Both determinants from one evaluation of the fields, as sign and logarithm (their
-    ratio stays finite where each over- or underflows).
+    ``M_1`` is nonzero only in the rows of the frictional heat (one per sliding
+    interface), so by the matrix determinant lemma the ratio is ``det(I + h E^T M_1
+    M_0^{-1} E)``, ``E`` the unit columns of those rows: one factorisation of
+    ``M_0``, no determinant that over- or underflows.
 
     Parameters
     ----------
@@ -789,10 +791,13 @@ def dispersion_ratio(layup: Layup, b, wavenumber, speed):
     b, m, V = _broadcast(b, wavenumber, speed)
     M0, M1 = condition_terms(layup, b, m, V)
     h = _assembly(layup).heat * np.abs(V) / m
-    s1, l1 = np.linalg.slogdet(M0 + h[..., None, None] * M1)
-    s0, l0 = np.linalg.slogdet(M0)
+    rows = _derivative_terms(layup)[2]
+    unit = np.zeros((M0.shape[-1], rows.size))
+    unit[rows, np.arange(rows.size)] = 1.0
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        return s1 / s0 * np.exp(l1 - l0)
+        Y = _solve(M0, np.broadcast_to(unit, M0.shape[:-2] + unit.shape))
+        K = np.eye(rows.size) + h[..., None, None] * (M1[..., rows, :] @ Y)
+        return K[..., 0, 0] if rows.size == 1 else np.linalg.det(K)
 
 
 #: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).

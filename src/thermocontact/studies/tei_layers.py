@@ -361,7 +361,8 @@ def unstable_count(family, m, speed, points=48):
     pi)`` for ``omega`` from ``-inf`` to ``inf``.  The frequencies: ``points`` per
     decade-spaced side about each body's frame (``0`` and ``-m V``), from ``1e-4``
     times the smallest rate (``kappa m^2``, ``kappa/h^2``, ``m V``) to ``1e6`` times
-    the largest, each step refined until the argument changes by less than 0.25.
+    the largest, each step refined (cut into about ``|Delta arg|/0.25`` parts a
+    round) until the argument changes by less than 0.25.
 
     Returns
     -------
@@ -394,10 +395,19 @@ def unstable_count(family, m, speed, points=48):
         if not bad.any():
             resolved = True
             break
+        # Each unresolved step cut into about |step|/0.25 parts (2 to 16; a root near
+        # the axis turns the argument by about pi however short the step, until it is
+        # resolved): a few rounds of evaluations instead of one per halving.
         idx = np.flatnonzero(bad)
-        mid = 0.5 * (w[idx] + w[idx + 1])
-        w = np.insert(w, idx + 1, mid)
-        D = np.insert(D, idx + 1, ratio(mid))
+        with np.errstate(invalid="ignore"):
+            parts = np.clip(np.nan_to_num(np.ceil(np.abs(step[idx]) / 0.25), nan=2.0), 2, 16)
+        parts = parts.astype(int)
+        at = np.repeat(idx, parts - 1)
+        frac = (np.arange(at.size) - np.repeat(np.cumsum(parts - 1) - (parts - 1), parts - 1)
+                + 1) / np.repeat(parts, parts - 1)
+        new = w[at] + frac * (w[at + 1] - w[at])
+        w = np.insert(w, at + 1, new)
+        D = np.insert(D, at + 1, ratio(new))
     total = np.sum(np.angle(D[1:] / D[:-1])) + np.angle(D[0]) - np.angle(D[-1])
     n = -total / (2.0 * math.pi)
     count = int(round(n)) if np.isfinite(n) else -1
