@@ -58,6 +58,7 @@ __all__ = [
     "dispersion_matrix",
     "dispersion_ratio",
     "face_fields",
+    "field_group",
     "layup_dispersion",
     "layups",
     "mode_shape",
@@ -263,17 +264,11 @@ def _potential_profile(G, tau, e=None):
 
 
 def _phi2(z):
-    """``(e^z - 1 - z)/z^2`` (1/2 at 0), by its series where ``|z| < 1``."""
-    z = np.asarray(z, dtype=complex)
-    small = np.abs(z) < 1.0
-    zs = np.where(small, z, 0.0)
+    """``(e^z - 1 - z)/z^2`` at ``|z| < 1``, by its series to ``z^20`` (1/2 at 0)."""
     series = np.full(z.shape, 1.0 / math.factorial(22), dtype=complex)
-    for k in range(19, -1, -1):            # sum of z^k/(k + 2)! to k = 20, Horner's rule
-        series = series * zs + 1.0 / math.factorial(k + 2)
-    zb = np.where(small, 1.0, z)
-    with np.errstate(over="ignore", invalid="ignore"):
-        direct = (np.exp(zb) - 1.0 - zb) / (zb * zb)
-    return np.where(small, series, direct)
+    for k in range(19, -1, -1):            # sum of z^k/(k + 2)!, Horner's rule
+        series = series * z + 1.0 / math.factorial(k + 2)
+    return series
 
 
 def _potential_profile_dG(G, tau, e, D):
@@ -282,11 +277,16 @@ def _potential_profile_dG(G, tau, e, D):
     (f[G, G, 1] - D)/(G + 1)``, the second divided difference ``f[G, G, 1] = tau^2
     e^{-G tau} phi_2(tau (G - 1))`` without cancellation near ``G = 1``
     (``phi_2(z) = (e^z - 1 - z)/z^2``); and ``D' = -G D - e^{-tau}/(G + 1)``."""
-    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
         d = G - 1.0
-        near = np.abs(d * tau) < 1.0
-        far = (-tau * e - (G + 1.0) * D) / np.where(near, 1.0, d)
-        f2 = np.where(near, tau * tau * e * _phi2(np.where(near, d * tau, 0.0)), far)
+        z = d * tau
+        near = np.abs(z) < 1.0
+        if near.all():
+            f2 = tau * tau * e * _phi2(z)
+        else:
+            f2 = (-tau * e - (G + 1.0) * D) / d
+            if near.any():
+                f2[near] = (tau * tau * e)[near] * _phi2(z[near])
         dD = (f2 - D) / (G + 1.0)
         return dD, -D - G * dD + np.exp(-tau) / (G + 1.0) ** 2
 
@@ -569,11 +569,48 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     return _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths))
 
 
-def _condition_rows(asm, F):
+def _condition_rows(asm, F, group=None):
     """``(M_0, M_1)`` of :func:`condition_terms` from the face fields ``F``, ``S + (nb,
-    2, 6, 6)``."""
+    2, 6, 6)`` (``group``: see :func:`_conditions_applied`)."""
     # Transposed, each body's columns become rows, which stack without copying.
-    return _rows_of(asm, F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT)
+    return _rows_of(asm, _conditions_applied(
+        asm, F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2), group))
+
+
+def _conditions_applied(asm, FT, group=None):
+    """``FT @ CT``: the rows of :func:`condition_matrix` applied to the transposed face
+    fields ``FT``, ``S + (nb, c, 12)``; with ``group = (assemblies, which)`` (``S`` of
+    one axis), point ``i`` by the conditions of ``assemblies[which[i]]``."""
+    if group is None:
+        return FT @ asm.CT
+    assemblies, which = group
+    out = np.empty(FT.shape[:-1] + (asm.CT.shape[-1],), dtype=complex)
+    for k, a in enumerate(assemblies):
+        sel = which == k
+        out[sel] = FT[sel] @ a.CT
+    return out
+
+
+def field_group(layup: Layup):
+    """A key shared by the layups whose dispersion matrices differ only in the rows of
+    their outer faces (a disc's symmetric and antisymmetric families): the same bodies,
+    interfaces and plane, hence the same solutions, unknowns and rows of the
+    frictional heat.  :func:`dispersion_log_derivatives` and
+    :func:`dispersion_ratio` evaluate points of several such layups together."""
+    return (layup.bodies, layup.interfaces, layup.friction, layup.dundurs, layup.plane,
+            layup.bottom == "periodic")
+
+
+def _grouped(layup, which):
+    """``(the first layup, group)`` for :func:`_conditions_applied`: ``layup`` one
+    layup (``which`` None), or a sequence of layups of one :func:`field_group`."""
+    if which is None:
+        return layup, None
+    layup = tuple(layup)
+    if len({field_group(lay) for lay in layup}) != 1:
+        raise ValueError("layups of one field_group only")
+    which = np.asarray(which).reshape(-1)
+    return layup[0], (tuple(_assembly(lay) for lay in layup), which)
 
 
 def _rows_of(asm, MT):
@@ -676,7 +713,7 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
     return d
 
 
-def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed):
+def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
     """``d ln D/db`` and ``d ln D/dV`` of the dispersion function ``D`` of
     :func:`layup_dispersion` (L8, L16), in closed form: by Jacobi's formula ``d ln
     det M = tr(M^{-1} dM)``, with ``dM/db`` and ``dM/dV`` from the derivatives of the
@@ -688,15 +725,19 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed):
 
     Parameters
     ----------
-    layup : Layup
+    layup : Layup, or sequence of Layup
+        With ``which``: layups of one :func:`field_group`.
     b, wavenumber, speed : array_like
         As for :func:`dispersion_matrix`, broadcast to a shape ``S``; ``speed > 0``.
+    which : array_like of int, optional
+        Of shape ``S`` (one axis): the layup of each point.
 
     Returns
     -------
     ndarray, complex, shape ``S + (2,)``
         ``[d ln D/db, d ln D/dV]``, s and s/m; NaN where ``M`` is singular.
     """
+    layup, group = _grouped(layup, which)
     b, m, V = _broadcast(b, wavenumber, speed)
     asm = _assembly(layup)
     sol = asm.solutions
@@ -709,8 +750,8 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed):
         dG_db = 1.0 / (2.0 * G * sol.kappa * (m * m)[..., None])          # S + (nb,)
         nb = dG_db.shape[-1]
         th = dF.reshape(dF.shape[:-3] + (12, 2)) * dG_db[..., None, None]
-        MT = np.concatenate([F.reshape(F.shape[:-3] + (12, 6)), th],
-                            axis=-1).swapaxes(-1, -2) @ asm.CT         # S + (nb, 8, 2n)
+        MT = _conditions_applied(asm, np.concatenate(
+            [F.reshape(F.shape[:-3] + (12, 6)), th], axis=-1).swapaxes(-1, -2), group)
         M0, M1 = _rows_of(asm, MT[..., :6, :])
         hq = asm.heat / m
         M = M0 + (hq * np.abs(V))[..., None, None] * M1
@@ -768,7 +809,7 @@ def _solve(M, rhs):
         return out
 
 
-def dispersion_ratio(layup: Layup, b, wavenumber, speed):
+def dispersion_ratio(layup: Layup, b, wavenumber, speed, which=None):
     """``det M(b)/det M_0(b)`` (:func:`dispersion_matrix` with and without the
     frictional heat), the function whose winding along the imaginary axis counts the
     growing modes (L15): zero at the modes, no pole in ``Re b >= 0`` (those of ``det
@@ -780,16 +821,21 @@ def dispersion_ratio(layup: Layup, b, wavenumber, speed):
 
     Parameters
     ----------
-    layup : Layup
+    layup : Layup, or sequence of Layup
+        As for :func:`dispersion_log_derivatives`.
     b, wavenumber, speed : array_like
         As for :func:`dispersion_matrix`, broadcast to a shape ``S``.
+    which : array_like of int, optional
+        As for :func:`dispersion_log_derivatives`.
 
     Returns
     -------
     ndarray, complex, shape ``S``
     """
+    layup, group = _grouped(layup, which)
     b, m, V = _broadcast(b, wavenumber, speed)
-    M0, M1 = condition_terms(layup, b, m, V)
+    asm = _assembly(layup)
+    M0, M1 = _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths), group)
     h = _assembly(layup).heat * np.abs(V) / m
     rows = _derivative_terms(layup)[2]
     unit = np.zeros((M0.shape[-1], rows.size))

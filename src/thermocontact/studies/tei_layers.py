@@ -36,7 +36,7 @@ import numpy as np
 from ..discretisation.tei_depth import layup_modes
 from ..execution.lockstep import run_lockstep
 from ..physics.tei_layers import (Layup, dispersion_log_derivatives, dispersion_ratio,
-                                  layup_dispersion, mode_shape)
+                                  field_group, layup_dispersion, mode_shape)
 
 __all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
            "first_crossing", "growth_rate", "neutral_curves", "neutral_point", "newton_roots",
@@ -120,7 +120,7 @@ class Layered:
         layup_dispersion`), ``b``, ``m`` and ``speed`` broadcast."""
         if self.ask is None:
             return layup_dispersion(self.layup, b, m, speed)
-        return self.ask(("dispersion", self.layup), (b, m, speed))
+        return self.ask(("dispersion", self.layup), (self.layup, b, m, speed))
 
     def log_derivatives(self, b, m, speed):
         """``[d ln D/db, d ln D/dV]`` of the dispersion function at ``b``, shape of the
@@ -128,14 +128,15 @@ class Layered:
         dispersion_log_derivatives`)."""
         if self.ask is None:
             return dispersion_log_derivatives(self.layup, b, m, speed)
-        return self.ask(("log_derivatives", self.layup), (b, m, speed))
+        return self.ask(("log_derivatives", field_group(self.layup)),
+                        (self.layup, b, m, speed))
 
     def dispersion_ratio(self, b, m, speed):
         """``det M/det M_0`` at ``b`` (:func:`~thermocontact.physics.tei_layers.
         dispersion_ratio`), whose winding counts the growing modes."""
         if self.ask is None:
             return dispersion_ratio(self.layup, b, m, speed)
-        return self.ask(("ratio", self.layup), (b, m, speed))
+        return self.ask(("ratio", field_group(self.layup)), (self.layup, b, m, speed))
 
     def in_continuum(self, b, m, speed):
         """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-2 of its
@@ -745,16 +746,23 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
 
 
 def _evaluate(key, payloads):
-    """The answers to one kind of request of :meth:`Layered.dispersion` or
-    :meth:`Layered.dispersion_ratio` (``key = (kind, layup)``), each payload ``(b, m,
-    V)`` broadcast: all their points in one call, each point's value as alone."""
-    kind, layup = key
+    """The answers to one kind of request of :meth:`Layered.dispersion`,
+    :meth:`Layered.log_derivatives` or :meth:`Layered.dispersion_ratio` (``key = (kind,
+    group)``: the layup, or its :func:`~thermocontact.physics.tei_layers.field_group`),
+    each payload ``(layup, b, m, V)`` broadcast: all their points in one call, each
+    point's value as alone."""
+    kind = key[0]
     parts = [np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(m, dtype=float),
-                                 np.asarray(v, dtype=float)) for b, m, v in payloads]
+                                 np.asarray(v, dtype=float)) for _, b, m, v in payloads]
     b, m, v = (np.concatenate([p[i].ravel() for p in parts]) for i in range(3))
-    func = {"dispersion": layup_dispersion, "ratio": dispersion_ratio,
-            "log_derivatives": dispersion_log_derivatives}[kind]
-    out = func(layup, b, m, v)
+    layups = list(dict.fromkeys(p[0] for p in payloads))
+    if kind == "dispersion":
+        out = layup_dispersion(layups[0], b, m, v)
+    else:
+        func = dispersion_ratio if kind == "ratio" else dispersion_log_derivatives
+        which = None if len(layups) == 1 else np.concatenate(
+            [np.full(p[0].size, layups.index(q[0])) for p, q in zip(parts, payloads)])
+        out = func(layups if which is not None else layups[0], b, m, v, which=which)
     ends = np.cumsum([p[0].size for p in parts])
     return [o.reshape(p[0].shape + o.shape[1:])
             for o, p in zip(np.split(out, ends[:-1]), parts)]
