@@ -767,17 +767,27 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
         own = np.arange(6 * nb) if asm.own is None else asm.own
         at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
         diag = X[..., at, np.arange(k)]                                   # S + (k,)
-        heat = np.einsum("...rc,...cr->...", M1[..., heat_rows, :], X[..., k:])
+        heat = (M1[..., heat_rows, :] * X[..., k:].swapaxes(-1, -2)).reshape(
+            M1.shape[:-2] + (len(heat_rows) * n,))
         moving = 1j * m[..., None] * sol.moving[bodies]
-        out = np.stack([np.sum(diag, axis=-1),
-                        np.sum(moving * diag, axis=-1) + hq * np.sign(V) * heat], axis=-1)
+        out = np.stack([_sum(diag), _sum(moving * diag) + hq * np.sign(V) * _sum(heat)],
+                       axis=-1)
         kap, mov = asm.layers
         if kap.size:
             Gl = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
                          / (kap * (m * m)[..., None]))
             dl = 1.0 / (2.0 * Gl * Gl * kap * (m * m)[..., None])          # d ln G/db
-            out[..., 0] -= np.sum(dl, axis=-1)
-            out[..., 1] -= np.sum(1j * m[..., None] * mov * dl, axis=-1)
+            out[..., 0] -= _sum(dl)
+            out[..., 1] -= _sum(1j * m[..., None] * mov * dl)
+    return out
+
+
+def _sum(a):
+    """The sum over the last (short) axis, term by term in order: each point's value
+    the same in a batch of any size (a reduction's order may depend on the layout)."""
+    out = a[..., 0].copy()
+    for i in range(1, a.shape[-1]):
+        out += a[..., i]
     return out
 
 
