@@ -264,9 +264,10 @@ def _potential_profile(G, tau, e=None):
 
 
 def _phi2(z):
-    """``(e^z - 1 - z)/z^2`` at ``|z| < 1``, by its series to ``z^20`` (1/2 at 0)."""
-    series = np.full(z.shape, 1.0 / math.factorial(22), dtype=complex)
-    for k in range(19, -1, -1):            # sum of z^k/(k + 2)!, Horner's rule
+    """``(e^z - 1 - z)/z^2`` at ``|z| < 1/2``, by its series to ``z^13`` (1/2 at 0; the
+    rest below ``|z|^14/16! < 4e-18``)."""
+    series = np.full(z.shape, 1.0 / math.factorial(15), dtype=complex)
+    for k in range(12, -1, -1):            # sum of z^k/(k + 2)!, Horner's rule
         series = series * z + 1.0 / math.factorial(k + 2)
     return series
 
@@ -280,7 +281,7 @@ def _potential_profile_dG(G, tau, e, D):
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
         d = G - 1.0
         z = d * tau
-        near = np.abs(z) < 1.0
+        near = np.abs(z) < 0.5
         if near.all():
             f2 = tau * tau * e * _phi2(z)
         else:
@@ -767,8 +768,7 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
         own = np.arange(6 * nb) if asm.own is None else asm.own
         at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
         diag = X[..., at, np.arange(k)]                                   # S + (k,)
-        heat = (M1[..., heat_rows, :] * X[..., k:].swapaxes(-1, -2)).reshape(
-            M1.shape[:-2] + (len(heat_rows) * n,))
+        heat = np.diagonal(M1[..., heat_rows, :] @ X[..., k:], axis1=-2, axis2=-1)
         moving = 1j * m[..., None] * sol.moving[bodies]
         out = np.stack([_sum(diag), _sum(moving * diag) + hq * np.sign(V) * _sum(heat)],
                        axis=-1)
