@@ -793,7 +793,8 @@ def _sum(a):
 
 @lru_cache(maxsize=64)
 def _derivative_terms(layup: Layup):
-    """What :func:`dispersion_log_derivatives` needs of a layup: the thermal columns of
+    """What :func:`dispersion_log_derivatives` (and :func:`dispersion_ratio`, the rows of the
+    heat) need of a layup: the thermal columns of
     ``M`` as indices into the bodies' thermal columns ``(body, start)`` flattened,
     the body of each, and the rows of ``M`` that carry the frictional heat."""
     asm = _assembly(layup)

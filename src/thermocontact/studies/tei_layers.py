@@ -13,7 +13,8 @@ works for every geometry.
 For a layup the modes are roots of ``det M(b)`` off the half-planes' branch cuts (L8,
 L15): the rightmost few are seeded by the eigenvalues of the depth discretisation
 (:func:`thermocontact.discretisation.tei_depth.layup_modes`) and polished by Newton's
-method on the determinant, each in the frame it is nearer to rest in.  The critical
+method on the determinant (its logarithmic derivative in closed form, L16), each in the
+frame it is nearer to rest in.  The critical
 speed comes from a scan that follows the modes in speed with step control, locates
 every change of sign and every interior maximum of a mode's growth rate (windows of
 growth), and counts the growing modes at every speed by the argument principle
