@@ -73,6 +73,38 @@ def test_solutions_satisfy_the_discretised_equations(plane):
             assert np.max(np.abs(F @ X - faces[:, :, c])) <= 1e-9 * np.max(np.abs(faces[:, :, c]))
 
 
+# --- the derivatives of the dispersion function in closed form (L16) -----------------
+
+@pytest.mark.parametrize("geometry", [
+    dict(slider_thickness=0.012, counterface_thickness=0.010),
+    dict(counterface_thickness=0.010),
+    dict(slider_thickness=0.012, faces=1),
+    dict(slider_thickness=0.004, counterface_thickness=0.002, separator=STEEL,
+         separator_thickness=0.002)])
+def test_log_derivatives_against_finite_differences(geometry):
+    """d ln D/db and d ln D/dV (Jacobi's formula) against fourth-order central
+    differences of D, to 1e-7: growing and decaying b, a mode's frequency on either
+    body (Gamma near 1, the divided difference of (L3) in series, and far from it)."""
+    V = 20.0
+    for name, lay in layups(IRON, PAD, 0.4, **geometry).items():
+        fam = Layered(name, lay)
+        for b in (3.0 + 40j, -1.0 - 1000j, 0.3j * fam.scale(M), -1j * M * V + 0.2 * fam.scale(M)):
+            got = fam.log_derivatives(b, M, V)
+
+            def D(db, dv):
+                return layup_dispersion(lay, b + db, M, V + dv)
+
+            # Steps of a thousandth of the scale D varies on: in b about either body's
+            # frame, in V about the moving bodies' (L10).
+            hb = 1e-3 * (min(abs(b), abs(b + 1j * M * V)) + fam.scale(M))
+            hv = 1e-3 * (abs(b + 1j * M * V) + fam.scale(M)) / M
+            fd = [(-D(2 * h * e, 2 * h * (1 - e)) + 8 * D(h * e, h * (1 - e))
+                   - 8 * D(-h * e, -h * (1 - e)) + D(-2 * h * e, -2 * h * (1 - e)))
+                  / (12 * h * D(0, 0)) for h, e in ((hb, 1), (hv, 0))]
+            assert abs(got[0] - fd[0]) < 1e-7 * abs(fd[0]), (name, b)
+            assert abs(got[1] - fd[1]) < 1e-7 * abs(fd[1]), (name, b)
+
+
 # --- every thickness to infinity: the half-planes ------------------------------------
 
 @pytest.mark.parametrize("dundurs", [True, False])
@@ -91,7 +123,8 @@ def test_thick_layers_are_half_planes(geometry, dundurs):
         V, w, ok = neutral_point(fam, M, vc * 1.001, -mode.migration_speed * M)
         assert ok and _rel(V, vc) < 1e-10
         assert abs(-w / M - mode.migration_speed) < 1e-10 * vc
-        root, ok = newton_roots(lambda z, _: fam.dispersion(z, M, 60.0), [b * (1 + 1e-6)],
+        root, ok = newton_roots(lambda z, _: fam.log_derivatives(z, M, 60.0)[..., 0],
+                                [b * (1 + 1e-6)],
                                 fam.scale(M))
         assert ok[0] and abs(root[0] - b) < 1e-10 * abs(b)
 

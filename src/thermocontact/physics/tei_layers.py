@@ -54,9 +54,11 @@ __all__ = [
     "body_fields",
     "condition_matrix",
     "condition_terms",
+    "dispersion_log_derivatives",
     "dispersion_matrix",
     "dispersion_ratio",
     "face_fields",
+    "field_group",
     "layup_dispersion",
     "layups",
     "mode_shape",
@@ -261,6 +263,35 @@ def _potential_profile(G, tau, e=None):
     return D, -G * D - e_t / (G + 1.0)
 
 
+def _phi2(z):
+    """``(e^z - 1 - z)/z^2`` at ``|z| < 1/2``, by its series to ``z^13`` (1/2 at 0; the
+    rest below ``|z|^14/16! < 4e-18``)."""
+    series = np.full(z.shape, 1.0 / math.factorial(15), dtype=complex)
+    for k in range(12, -1, -1):            # sum of z^k/(k + 2)!, Horner's rule
+        series = series * z + 1.0 / math.factorial(k + 2)
+    return series
+
+
+def _potential_profile_dG(G, tau, e, D):
+    """``(dD/dG, dD'/dG)`` of :func:`_potential_profile` (``e = e^{-G tau}``, ``D``
+    its profile): with ``f(x) = e^{-x tau}``, ``D = f[G, 1]/(G + 1)``, so ``dD/dG =
+    (f[G, G, 1] - D)/(G + 1)``, the second divided difference ``f[G, G, 1] = tau^2
+    e^{-G tau} phi_2(tau (G - 1))`` without cancellation near ``G = 1``
+    (``phi_2(z) = (e^z - 1 - z)/z^2``); and ``D' = -G D - e^{-tau}/(G + 1)``."""
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
+        d = G - 1.0
+        z = d * tau
+        near = np.abs(z) < 0.5
+        if near.all():
+            f2 = tau * tau * e * _phi2(z)
+        else:
+            f2 = (-tau * e - (G + 1.0) * D) / d
+            if near.any():
+                f2[near] = (tau * tau * e)[near] * _phi2(z[near])
+        dD = (f2 - D) / (G + 1.0)
+        return dD, -D - G * dD + np.exp(-tau) / (G + 1.0) ** 2
+
+
 def face_fields(body: Body, b, wavenumber, velocity, refs, upper=True, mat=None):
     """The six face fields of each of a body's solutions (L2-L4).
 
@@ -399,11 +430,13 @@ class _Solutions:
                           cG, np.array(columns))
 
 
-def _fields(sol: _Solutions, b, m, U, depths):
+def _fields(sol: _Solutions, b, m, U, depths, derivative=False):
     """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
     ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
     of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
-    the thermal, one per start).
+    the thermal, one per start).  With ``derivative``: also their derivatives in the
+    body's ``gamma/m = G`` (L1) of its thermal columns, the only ones that depend
+    on it, ``S + (bodies, P, 6, 2)``, and ``G`` itself, ``S + (bodies,)``.
 
     Computed with the points as the last axis (``N``, the size of ``S``), so that every
     array operation runs over the points innermost, not over the few starts and
@@ -424,9 +457,21 @@ def _fields(sol: _Solutions, b, m, U, depths):
         D, dD = _potential_profile(G, dist, e)
         th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
               + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
+        if derivative:
+            dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
+            dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
+                   + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
+                   + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
+                                      * (sol.ce[:, None, ..., None]
+                                         + G[:, :, None] * sol.cG[:, None, ..., None])))
     nb, P = el.shape[:2]
+
     out = np.concatenate([el.reshape(nb, P, 6, 4, -1), th], axis=-2)      # (nb, P, 6, 6, N)
-    return np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
+    out = np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
+    if not derivative:
+        return out
+    return (out, np.moveaxis(dth, -1, 0).reshape(shape + dth.shape[:-1]),
+            np.moveaxis(G[:, 0, 0], -1, 0).reshape(shape + (nb,)))
 
 
 @lru_cache(maxsize=64)
@@ -522,10 +567,57 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     """
     b, m, V = _broadcast(b, wavenumber, speed)
     asm = _assembly(layup)
-    F = _fields(asm.solutions, b, m, V, asm.depths)                     # S + (nb, 2, 6, 6)
-    nb = F.shape[-4]
+    return _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths))
+
+
+def _condition_rows(asm, F, group=None):
+    """``(M_0, M_1)`` of :func:`condition_terms` from the face fields ``F``, ``S + (nb,
+    2, 6, 6)`` (``group``: see :func:`_conditions_applied`)."""
     # Transposed, each body's columns become rows, which stack without copying.
-    MT = F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2) @ asm.CT    # S + (nb, 6, 2n)
+    return _rows_of(asm, _conditions_applied(
+        asm, F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2), group))
+
+
+def _conditions_applied(asm, FT, group=None):
+    """``FT @ CT``: the rows of :func:`condition_matrix` applied to the transposed face
+    fields ``FT``, ``S + (nb, c, 12)``; with ``group = (assemblies, which)`` (``S`` of
+    one axis), point ``i`` by the conditions of ``assemblies[which[i]]``."""
+    if group is None:
+        return FT @ asm.CT
+    assemblies, which = group
+    out = np.empty(FT.shape[:-1] + (asm.CT.shape[-1],), dtype=complex)
+    for k, a in enumerate(assemblies):
+        sel = which == k
+        out[sel] = FT[sel] @ a.CT
+    return out
+
+
+def field_group(layup: Layup):
+    """A key shared by the layups whose dispersion matrices differ only in the rows of
+    their outer faces (a disc's symmetric and antisymmetric families): the same bodies,
+    interfaces and plane, hence the same solutions, unknowns and rows of the
+    frictional heat.  :func:`dispersion_log_derivatives` and
+    :func:`dispersion_ratio` evaluate points of several such layups together."""
+    return (layup.bodies, layup.interfaces, layup.friction, layup.dundurs, layup.plane,
+            layup.bottom == "periodic")
+
+
+def _grouped(layup, which):
+    """``(the first layup, group)`` for :func:`_conditions_applied`: ``layup`` one
+    layup (``which`` None), or a sequence of layups of one :func:`field_group`."""
+    if which is None:
+        return layup, None
+    layup = tuple(layup)
+    if len({field_group(lay) for lay in layup}) != 1:
+        raise ValueError("layups of one field_group only")
+    which = np.asarray(which).reshape(-1)
+    return layup[0], (tuple(_assembly(lay) for lay in layup), which)
+
+
+def _rows_of(asm, MT):
+    """``(M_0, M_1)`` from the transposed ``MT``, ``S + (nb, 6, 2n)``: every body's
+    solutions' face fields with the rows of :func:`condition_matrix` applied."""
+    nb = MT.shape[-3]
     MT = MT.reshape(MT.shape[:-3] + (6 * nb, MT.shape[-1]))
     if asm.own is not None:
         MT = MT[..., asm.own, :]
@@ -622,31 +714,147 @@ def layup_dispersion(layup: Layup, b, wavenumber, speed):
     return d
 
 
-def dispersion_ratio(layup: Layup, b, wavenumber, speed):
+def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
+    """``d ln D/db`` and ``d ln D/dV`` of the dispersion function ``D`` of
+    :func:`layup_dispersion` (L8, L16), in closed form: by Jacobi's formula ``d ln
+    det M = tr(M^{-1} dM)``, with ``dM/db`` and ``dM/dV`` from the derivatives of the
+    thermal solutions in ``G = gamma/m`` (``dG/db = 1/(2 G kappa m^2)``, ``dG/dV = i m
+    /(2 G kappa m^2)`` on a moving body) and of the frictional heat's ``h`` in ``V``;
+    less the conducting layers' ``d ln G/db``, ``d ln G/dV``.  A Newton step on ``D``
+    in ``b`` is ``-1/(d ln D/db)``; a root's speed of travel ``db/dV = -(d ln
+    D/dV)/(d ln D/db)``.
+
+    Parameters
+    ----------
+    layup : Layup, or sequence of Layup
+        With ``which``: layups of one :func:`field_group`.
+    b, wavenumber, speed : array_like
+        As for :func:`dispersion_matrix`, broadcast to a shape ``S``; ``speed > 0``.
+    which : array_like of int, optional
+        Of shape ``S`` (one axis): the layup of each point.
+
+    Returns
+    -------
+    ndarray, complex, shape ``S + (2,)``
+        ``[d ln D/db, d ln D/dV]``, s and s/m; NaN where ``M`` is singular.
+    """
+    layup, group = _grouped(layup, which)
+    b, m, V = _broadcast(b, wavenumber, speed)
+    asm = _assembly(layup)
+    sol = asm.solutions
+    cols, bodies, heat_rows = _derivative_terms(layup)
+    F, dF, G = _fields(sol, b, m, V, asm.depths, derivative=True)
+    with np.errstate(all="ignore"):
+        # dM/db: nonzero in the thermal columns only, each of one body; the same
+        # columns of dM/dV are i m U/V times them (G depends on b + i m U).  Both
+        # mapped by the face conditions in one product.
+        dG_db = 1.0 / (2.0 * G * sol.kappa * (m * m)[..., None])          # S + (nb,)
+        nb = dG_db.shape[-1]
+        th = dF.reshape(dF.shape[:-3] + (12, 2)) * dG_db[..., None, None]
+        MT = _conditions_applied(asm, np.concatenate(
+            [F.reshape(F.shape[:-3] + (12, 6)), th], axis=-1).swapaxes(-1, -2), group)
+        M0, M1 = _rows_of(asm, MT[..., :6, :])
+        hq = asm.heat / m
+        M = M0 + (hq * np.abs(V))[..., None, None] * M1
+        dT = MT[..., 6:, :].reshape(MT.shape[:-3] + (2 * nb, MT.shape[-1]))[..., cols, :]
+        n = M.shape[-1]
+        dMb = dT[..., :n] + (hq * np.abs(V))[..., None, None] * dT[..., n:]
+        # tr(M^-1 M_1): M_1 nonzero in the rows of the frictional heat only.
+        unit = np.zeros((n, len(heat_rows)))
+        unit[heat_rows, np.arange(len(heat_rows))] = 1.0
+        X = _solve(M, np.concatenate(
+            [dMb.swapaxes(-1, -2), np.broadcast_to(unit, M.shape[:-2] + unit.shape)], axis=-1))
+        k = len(cols)
+        own = np.arange(6 * nb) if asm.own is None else asm.own
+        at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
+        diag = X[..., at, np.arange(k)]                                   # S + (k,)
+        heat = np.diagonal(M1[..., heat_rows, :] @ X[..., k:], axis1=-2, axis2=-1)
+        moving = 1j * m[..., None] * sol.moving[bodies]
+        out = np.stack([_sum(diag), _sum(moving * diag) + hq * np.sign(V) * _sum(heat)],
+                       axis=-1)
+        kap, mov = asm.layers
+        if kap.size:
+            Gl = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
+                         / (kap * (m * m)[..., None]))
+            dl = 1.0 / (2.0 * Gl * Gl * kap * (m * m)[..., None])          # d ln G/db
+            out[..., 0] -= _sum(dl)
+            out[..., 1] -= _sum(1j * m[..., None] * mov * dl)
+    return out
+
+
+def _sum(a):
+    """The sum over the last (short) axis, term by term in order: each point's value
+    the same in a batch of any size (a reduction's order may depend on the layout)."""
+    out = a[..., 0].copy()
+    for i in range(1, a.shape[-1]):
+        out += a[..., i]
+    return out
+
+
+@lru_cache(maxsize=64)
+def _derivative_terms(layup: Layup):
+    """What :func:`dispersion_log_derivatives` (and :func:`dispersion_ratio`, the rows of the
+    heat) need of a layup: the thermal columns of
+    ``M`` as indices into the bodies' thermal columns ``(body, start)`` flattened,
+    the body of each, and the rows of ``M`` that carry the frictional heat."""
+    asm = _assembly(layup)
+    nb = len(layup.bodies)
+    own = np.arange(6 * nb) if asm.own is None else asm.own
+    thermal = own[own % 6 >= 4]
+    C1 = condition_matrix(layup)[1]
+    heat_rows = np.flatnonzero(np.any(C1.reshape(C1.shape[0], -1) != 0, axis=1))
+    return 2 * (thermal // 6) + thermal % 6 - 4, thermal // 6, heat_rows
+
+
+def _solve(M, rhs):
+    """``M^{-1} rhs`` for a stack; NaN for the singular matrices of it."""
+    try:
+        return np.linalg.solve(M, rhs)
+    except np.linalg.LinAlgError:
+        out = np.full(rhs.shape, np.nan, dtype=complex)
+        for i in np.ndindex(M.shape[:-2]):
+            try:
+                out[i] = np.linalg.solve(M[i], rhs[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
+def dispersion_ratio(layup: Layup, b, wavenumber, speed, which=None):
     """``det M(b)/det M_0(b)`` (:func:`dispersion_matrix` with and without the
     frictional heat), the function whose winding along the imaginary axis counts the
     growing modes (L15): zero at the modes, no pole in ``Re b >= 0`` (those of ``det
     M_0`` are free thermal modes, which decay), tending to 1 as ``|b| -> inf`` there.
-    Both determinants from one evaluation of the fields, as sign and logarithm (their
-    ratio stays finite where each over- or underflows).
+    ``M_1`` is nonzero only in the rows of the frictional heat (one per sliding
+    interface), so by the matrix determinant lemma the ratio is ``det(I + h E^T M_1
+    M_0^{-1} E)``, ``E`` the unit columns of those rows: one factorisation of
+    ``M_0``, no determinant that over- or underflows.
 
     Parameters
     ----------
-    layup : Layup
+    layup : Layup, or sequence of Layup
+        As for :func:`dispersion_log_derivatives`.
     b, wavenumber, speed : array_like
         As for :func:`dispersion_matrix`, broadcast to a shape ``S``.
+    which : array_like of int, optional
+        As for :func:`dispersion_log_derivatives`.
 
     Returns
     -------
     ndarray, complex, shape ``S``
     """
+    layup, group = _grouped(layup, which)
     b, m, V = _broadcast(b, wavenumber, speed)
-    M0, M1 = condition_terms(layup, b, m, V)
+    asm = _assembly(layup)
+    M0, M1 = _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths), group)
     h = _assembly(layup).heat * np.abs(V) / m
-    s1, l1 = np.linalg.slogdet(M0 + h[..., None, None] * M1)
-    s0, l0 = np.linalg.slogdet(M0)
+    rows = _derivative_terms(layup)[2]
+    unit = np.zeros((M0.shape[-1], rows.size))
+    unit[rows, np.arange(rows.size)] = 1.0
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        return s1 / s0 * np.exp(l1 - l0)
+        Y = _solve(M0, np.broadcast_to(unit, M0.shape[:-2] + unit.shape))
+        K = np.eye(rows.size) + h[..., None, None] * (M1[..., rows, :] @ Y)
+        return K[..., 0, 0] if rows.size == 1 else np.linalg.det(K)
 
 
 #: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).

@@ -163,7 +163,7 @@ def _track(system, ms, speeds):
         scale = np.broadcast_to(scale1[:, None], tracked.shape)
         good = np.isfinite(tracked)
         mg = mm[good]
-        roots, ok = newton_roots(lambda z, act: system.dispersion(z, mg[act], v),
+        roots, ok = newton_roots(lambda z, act: system.log_derivatives(z, mg[act], v)[..., 0],
                                  tracked[good], scale[good])
         near = np.abs(roots - tracked[good]) <= (0.2 * np.abs(tracked[good].real) + 10.0
                                                   * scale[good] + mm[good] * abs(v - (

@@ -13,7 +13,8 @@ works for every geometry.
 For a layup the modes are roots of ``det M(b)`` off the half-planes' branch cuts (L8,
 L15): the rightmost few are seeded by the eigenvalues of the depth discretisation
 (:func:`thermocontact.discretisation.tei_depth.layup_modes`) and polished by Newton's
-method on the determinant, each in the frame it is nearer to rest in.  The critical
+method on the determinant (its logarithmic derivative in closed form, L16), each in the
+frame it is nearer to rest in.  The critical
 speed comes from a scan that follows the modes in speed with step control, locates
 every change of sign and every interior maximum of a mode's growth rate (windows of
 growth), and counts the growing modes at every speed by the argument principle
@@ -35,7 +36,8 @@ import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
 from ..execution.lockstep import run_lockstep
-from ..physics.tei_layers import Layup, dispersion_ratio, layup_dispersion, mode_shape
+from ..physics.tei_layers import (Layup, dispersion_log_derivatives, dispersion_ratio,
+                                  field_group, layup_dispersion, mode_shape)
 
 __all__ = ["Layered", "SpeedScan", "continue_neutral", "continue_step", "continue_steps",
            "first_crossing", "growth_rate", "neutral_curves", "neutral_point", "newton_roots",
@@ -55,14 +57,15 @@ def _scale(layup: Layup, m) -> float:
     return min(b.material.k for b in layup.bodies if b.conducts) * m * m
 
 
-def newton_roots(func, x0, scale, iters=25):
-    """Newton's method on an analytic ``func`` (vectorised), the derivative by central
-    differences of step ``1e-6 scale``; returns the roots and which converged: a step
+def newton_roots(log_derivative, x0, scale, iters=25):
+    """Newton's method on an analytic function ``f`` given its logarithmic derivative
+    ``f'/f`` (vectorised; the step ``-f/f'``); returns the roots and which converged: a step
     below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
     falls (the rounding of the determinant reached).  Each root is iterated only
     until it has converged, or given up (NaN) if its step is still above ``1e-6 (|x| +
     scale)`` after 12 iterations (no quadratic convergence in sight: a seed of the
-    continuous spectrum); ``func(z, active)`` gets the indices of those iterated."""
+    continuous spectrum); ``log_derivative(z, active)`` gets the indices of those
+    iterated."""
     x = np.array(x0, dtype=complex)
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
@@ -73,11 +76,9 @@ def newton_roots(func, x0, scale, iters=25):
         act = np.flatnonzero(~done & np.isfinite(x))
         if not act.size:
             break
-        xa, h = x[act], 1e-6 * scale[act]
-        f = func(np.stack([xa, xa + h, xa - h]), act)
-        d = (f[1] - f[2]) / (2.0 * h)
+        xa = x[act]
         with np.errstate(invalid="ignore", divide="ignore"):
-            step = f[0] / d
+            step = 1.0 / log_derivative(xa, act)
         step = np.where(np.isfinite(step), step, np.nan)
         x[act] = xa - step
         size, unit = np.abs(step), np.abs(x[act]) + scale[act]
@@ -120,14 +121,23 @@ class Layered:
         layup_dispersion`), ``b``, ``m`` and ``speed`` broadcast."""
         if self.ask is None:
             return layup_dispersion(self.layup, b, m, speed)
-        return self.ask(("dispersion", self.layup), (b, m, speed))
+        return self.ask(("dispersion", self.layup), (self.layup, b, m, speed))
+
+    def log_derivatives(self, b, m, speed):
+        """``[d ln D/db, d ln D/dV]`` of the dispersion function at ``b``, shape of the
+        broadcast ``+ (2,)`` (:func:`~thermocontact.physics.tei_layers.
+        dispersion_log_derivatives`)."""
+        if self.ask is None:
+            return dispersion_log_derivatives(self.layup, b, m, speed)
+        return self.ask(("log_derivatives", field_group(self.layup)),
+                        (self.layup, b, m, speed))
 
     def dispersion_ratio(self, b, m, speed):
         """``det M/det M_0`` at ``b`` (:func:`~thermocontact.physics.tei_layers.
         dispersion_ratio`), whose winding counts the growing modes."""
         if self.ask is None:
             return dispersion_ratio(self.layup, b, m, speed)
-        return self.ask(("ratio", self.layup), (b, m, speed))
+        return self.ask(("ratio", field_group(self.layup)), (self.layup, b, m, speed))
 
     def in_continuum(self, b, m, speed):
         """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-2 of its
@@ -237,17 +247,14 @@ def neutral_point(family, m, speed, omega, iters=40):
         return -phi * m * V + sig * s
 
     for _ in range(iters):
-        hs = 1e-6 * (1.0 + np.abs(s))
-        hv = 1e-7 * V
-        f = family.dispersion(1j * np.stack([omega_of(V, s), omega_of(V, s + hs),
-                                             omega_of(V, s - hs), omega_of(V + hv, s)]),
-                              np.stack([m] * 4), np.stack([V, V, V, V + hv]))
-        ds = (f[1] - f[2]) / (2.0 * hs)
-        dv = (f[3] - f[0]) / hv
+        # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
+        L = family.log_derivatives(1j * omega_of(V, s), m, V)
+        ds = 1j * sig * L[..., 0]
+        dv = L[..., 1] - 1j * phi * m * L[..., 0]
         det = dv.real * ds.imag - dv.imag * ds.real
         with np.errstate(invalid="ignore", divide="ignore"):
-            sV = (-f[0].real * ds.imag + f[0].imag * ds.real) / det
-            sS = (-dv.real * f[0].imag + dv.imag * f[0].real) / det
+            sV = -ds.imag / det
+            sS = dv.imag / det
         sV = np.where(done | ~np.isfinite(sV), 0.0, sV)
         sS = np.where(done | ~np.isfinite(sS), 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
@@ -283,8 +290,8 @@ def _polish(family, m, speed, b0, reach=None):
     phi = pattern_frame(m, speed, b0.imag)
     shift = 1j * phi * m * speed
     z0 = b0 + shift
-    roots, ok = newton_roots(lambda z, act: family.dispersion(z - shift[act], m, speed), z0,
-                             scale)
+    roots, ok = newton_roots(
+        lambda z, act: family.log_derivatives(z - shift[act], m, speed)[..., 0], z0, scale)
     lim = 0.5 * np.abs(z0) + 10.0 * scale if reach is None else reach
     b = roots - shift
     good = ok & (np.abs(roots - z0) <= lim) & ~family.on_cut(b, m, speed)
@@ -329,20 +336,11 @@ def _cubic_peak(lo, hi):
 
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
-    ``D`` (implicit differentiation), both by central differences in the root's frame."""
+    ``D`` (implicit differentiation), in closed form (:meth:`Layered.log_derivatives`)."""
     b = np.asarray(b, dtype=complex)
-    phi = pattern_frame(m, speed, b.imag)
-    z = b + 1j * phi * m * speed
-    hz = 1e-6 * (np.abs(z) + family.scale(m))
-    hv = 1e-6 * speed
-    # The four differences in one evaluation.
-    zz = np.stack([z + hz, z - hz, z, z])
-    vv = np.stack([np.full(z.shape, v) for v in (speed, speed, speed + hv, speed - hv)])
-    f = family.dispersion(zz - 1j * phi * m * vv, m, vv)
-    dz = (f[0] - f[1]) / (2.0 * hz)
-    dv = (f[2] - f[3]) / (2.0 * hv)
+    L = family.log_derivatives(b, m, speed)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return -dv / dz - 1j * phi * m
+        return -L[..., 1] / L[..., 0]
 
 
 def _follow(family, m, v0, b0, slope0, v1):
@@ -365,7 +363,8 @@ def unstable_count(family, m, speed, points=48):
     pi)`` for ``omega`` from ``-inf`` to ``inf``.  The frequencies: ``points`` per
     decade-spaced side about each body's frame (``0`` and ``-m V``), from ``1e-4``
     times the smallest rate (``kappa m^2``, ``kappa/h^2``, ``m V``) to ``1e6`` times
-    the largest, each step refined until the argument changes by less than 0.25.
+    the largest, each step refined (cut into about ``|Delta arg|/0.25`` parts a
+    round) until the argument changes by less than 0.25.
 
     Returns
     -------
@@ -398,10 +397,19 @@ def unstable_count(family, m, speed, points=48):
         if not bad.any():
             resolved = True
             break
+        # Each unresolved step cut into about |step|/0.25 parts (2 to 16; a root near
+        # the axis turns the argument by about pi however short the step, until it is
+        # resolved): a few rounds of evaluations instead of one per halving.
         idx = np.flatnonzero(bad)
-        mid = 0.5 * (w[idx] + w[idx + 1])
-        w = np.insert(w, idx + 1, mid)
-        D = np.insert(D, idx + 1, ratio(mid))
+        with np.errstate(invalid="ignore"):
+            parts = np.clip(np.nan_to_num(np.ceil(np.abs(step[idx]) / 0.25), nan=2.0), 2, 16)
+        parts = parts.astype(int)
+        at = np.repeat(idx, parts - 1)
+        frac = (np.arange(at.size) - np.repeat(np.cumsum(parts - 1) - (parts - 1), parts - 1)
+                + 1) / np.repeat(parts, parts - 1)
+        new = w[at] + frac * (w[at + 1] - w[at])
+        w = np.insert(w, at + 1, new)
+        D = np.insert(D, at + 1, ratio(new))
     total = np.sum(np.angle(D[1:] / D[:-1])) + np.angle(D[0]) - np.angle(D[-1])
     n = -total / (2.0 * math.pi)
     count = int(round(n)) if np.isfinite(n) else -1
@@ -739,17 +747,26 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
 
 
 def _evaluate(key, payloads):
-    """The answers to one kind of request of :meth:`Layered.dispersion` or
-    :meth:`Layered.dispersion_ratio` (``key = (kind, layup)``), each payload ``(b, m,
-    V)`` broadcast: all their points in one call, each point's value as alone."""
-    kind, layup = key
+    """The answers to one kind of request of :meth:`Layered.dispersion`,
+    :meth:`Layered.log_derivatives` or :meth:`Layered.dispersion_ratio` (``key = (kind,
+    group)``: the layup, or its :func:`~thermocontact.physics.tei_layers.field_group`),
+    each payload ``(layup, b, m, V)`` broadcast: all their points in one call, each
+    point's value as alone."""
+    kind = key[0]
     parts = [np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(m, dtype=float),
-                                 np.asarray(v, dtype=float)) for b, m, v in payloads]
+                                 np.asarray(v, dtype=float)) for _, b, m, v in payloads]
     b, m, v = (np.concatenate([p[i].ravel() for p in parts]) for i in range(3))
-    func = layup_dispersion if kind == "dispersion" else dispersion_ratio
-    out = func(layup, b, m, v)
+    layups = list(dict.fromkeys(p[0] for p in payloads))
+    if kind == "dispersion":
+        out = layup_dispersion(layups[0], b, m, v)
+    else:
+        func = dispersion_ratio if kind == "ratio" else dispersion_log_derivatives
+        which = None if len(layups) == 1 else np.concatenate(
+            [np.full(p[0].size, layups.index(q[0])) for p, q in zip(parts, payloads)])
+        out = func(layups if which is not None else layups[0], b, m, v, which=which)
     ends = np.cumsum([p[0].size for p in parts])
-    return [o.reshape(p[0].shape) for o, p in zip(np.split(out, ends[:-1]), parts)]
+    return [o.reshape(p[0].shape + o.shape[1:])
+            for o, p in zip(np.split(out, ends[:-1]), parts)]
 
 
 def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
