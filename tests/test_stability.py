@@ -277,25 +277,27 @@ def test_a_power_of_b_turning_the_phase_is_divided_out(k):
 
 
 def test_the_determinant_equilibrated_and_its_phase_bounded():
-    """``log_determinant`` of badly scaled complex matrices (rows and columns scaled by
+    """``log_determinants`` of badly scaled complex matrices (rows and columns scaled by
     e^+-20) equals slogdet's phase and logarithm (to 1e-13 and 1e-12 of its size), and
     its rcond is that of the equilibrated matrix by explicit inverse within the factor 3
     of LAPACK's estimate; an exactly singular matrix gives a zero phase."""
-    from thermocontact.numerics.dense import log_determinant, row_scales
+    from thermocontact.numerics.dense import log_determinants, row_scales
 
     rng = np.random.default_rng(3)
     for N in (3, 17, 40):
-        A = rng.normal(size=(N, N)) + 1j * rng.normal(size=(N, N))
-        A *= np.exp(rng.uniform(-20, 20, N))[:, None] * np.exp(rng.uniform(-20, 20, N))
-        sign, logdet, rcond = log_determinant(A)
-        s0, l0 = np.linalg.slogdet(A)
-        assert abs(sign - s0) < 1e-13 and abs(logdet - l0) < 1e-12 * abs(l0)
-        r = row_scales(np.abs(A))
-        B = A * r[:, None]
-        B = B * row_scales(np.abs(B), axis=0)[None, :]
-        exact = 1.0 / (np.abs(B).sum(axis=0).max() * np.abs(np.linalg.inv(B)).sum(axis=0).max())
-        assert exact / 3 <= rcond <= 3 * exact
-    assert log_determinant(np.ones((3, 3), dtype=complex))[0] == 0
+        stack = rng.normal(size=(3, N, N)) + 1j * rng.normal(size=(3, N, N))
+        stack *= (np.exp(rng.uniform(-20, 20, (3, N, 1)))
+                  * np.exp(rng.uniform(-20, 20, (3, 1, N))))
+        for A, sign, logdet, rcond in zip(stack, *log_determinants(stack)):
+            s0, l0 = np.linalg.slogdet(A)
+            assert abs(sign - s0) < 1e-13 and abs(logdet - l0) < 1e-12 * abs(l0)
+            r = row_scales(np.abs(A))
+            B = A * r[:, None]
+            B = B * row_scales(np.abs(B), axis=0)[None, :]
+            exact = 1.0 / (np.abs(B).sum(axis=0).max()
+                           * np.abs(np.linalg.inv(B)).sum(axis=0).max())
+            assert exact / 3 <= rcond <= 3 * exact
+    assert log_determinants(np.ones((1, 3, 3), dtype=complex))[0][0] == 0
 
 
 def test_a_phase_rounding_cannot_certify_a_count():

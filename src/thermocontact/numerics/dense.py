@@ -24,7 +24,7 @@ from ..problem.validation import check_choice
 
 __all__ = ["CERTIFIED_RCOND", "ConditionBounds", "GESV_ENTRIES", "RCOND_CHOICES", "RCOND_MIN",
            "STACK_ENTRIES",
-           "condition_bounds", "factorise", "ill_conditioned", "log_determinant", "not_finite",
+           "condition_bounds", "factorise", "ill_conditioned", "log_determinants", "not_finite",
            "not_finite_solution", "row_scales", "solve_equilibrated", "solve_stack"]
 
 #: Systems whose reciprocal 1-norm condition number is below this are refused.
@@ -42,34 +42,45 @@ def row_scales(A, axis=1):
 RCOND_CHOICES = ("estimate", "bound")
 
 
-def log_determinant(A):
-    """``(sign, log|det A|, rcond)`` of a square complex matrix, by LU of ``A`` with its
-    rows and then its columns equilibrated (positive real scalings, which leave the
-    phase ``sign = det A/|det A|`` unchanged and make the factorisation's backward
-    error small in every row and column, not only in the largest), and ``rcond``, the
-    reciprocal 1-norm condition number of the equilibrated matrix (``gecon``).
+def log_determinants(A):
+    """``(sign, log|det A|, rcond)`` of each of a stack of square complex matrices
+    (shape ``(k, N, N)``; arrays of shape ``(k,)``), by LU of each with its rows and then
+    its columns equilibrated (positive real scalings, which leave the phase
+    ``sign = det A/|det A|`` unchanged and make the factorisation's backward error small
+    in every row and column, not only in the largest), and ``rcond``, LAPACK's estimate
+    (``gecon``) of the reciprocal 1-norm condition number of the equilibrated matrix.
 
-    The computed ``det`` is that of ``A + E`` with ``|E| <~ n u |A|`` entrywise after
-    the scaling, so its phase is off by at most about ``|tr(A^-1 E)| <= n^2 u / rcond``
-    radians, times the growth factor of the pivots (derivation S12, *Large n*);
-    ``(0, -inf, 0)`` where ``A`` is exactly singular.
+    The computed ``det`` is that of ``A + E`` with ``|E| <~ N u |A|`` entrywise after
+    the scaling, so its phase is off by at most about ``|tr(A^-1 E)| <= N^2 u / rcond``
+    radians, times the growth factor of the pivots (derivation S12, *Large n*); an
+    exactly singular matrix has ``sign`` 0, ``log|det|`` ``-inf`` and ``rcond`` 0.  The
+    scalings are formed for the whole stack; only LAPACK's calls are one per matrix.
     """
     A = np.asarray(A, dtype=complex)
+    k, N = A.shape[0], A.shape[-1]
     mod = np.abs(A)
-    r = row_scales(mod)
-    c = row_scales(mod * r[:, None], axis=0)
-    B = A * r[:, None] * c[None, :]
-    anorm = float((mod * r[:, None] * c[None, :]).sum(axis=0).max())
-    lu, piv, info = zgetrf(B, overwrite_a=True)
-    if info > 0:
-        return 0j, -np.inf, 0.0
-    d = np.diagonal(lu)
-    ad = np.abs(d)
-    swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
-    sign = complex(np.prod(d / ad)) * (-1.0 if swaps % 2 else 1.0)
-    logdet = float(np.sum(np.log(ad)) - np.sum(np.log(r)) - np.sum(np.log(c)))
-    rcond, _ = zgecon(lu, anorm, norm="1")
-    return sign / abs(sign), logdet, float(rcond)
+    r = row_scales(mod, axis=-1)
+    mod *= r[:, :, None]
+    c = row_scales(mod, axis=-2)
+    mod *= c[:, None, :]
+    B = A * (r[:, :, None] * c[:, None, :])
+    anorm = mod.sum(axis=-2).max(axis=-1)
+    diag, rcond = np.empty((k, N), dtype=complex), np.zeros(k)
+    odd = np.zeros(k, dtype=bool)
+    idx = np.arange(N)
+    for j in range(k):
+        lu, piv, info = zgetrf(B[j], overwrite_a=True)
+        diag[j] = lu[idx, idx]
+        odd[j] = np.count_nonzero(piv != idx) % 2 == 1
+        if info == 0:
+            rcond[j] = zgecon(lu, anorm[j], norm="1")[0]
+    ad = np.abs(diag)
+    regular = np.all(ad > 0.0, axis=-1)
+    with np.errstate(divide="ignore"):
+        logdet = np.log(ad).sum(axis=-1) - np.log(r).sum(axis=-1) - np.log(c).sum(axis=-1)
+    sign = np.prod(np.where(ad > 0.0, diag / np.where(ad > 0.0, ad, 1.0), 1.0), axis=-1)
+    sign = np.where(regular, np.where(odd, -sign, sign) / np.abs(sign), 0.0)
+    return sign, logdet, rcond
 
 
 def solve_equilibrated(A, b, what="the linear system"):

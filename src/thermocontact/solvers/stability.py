@@ -23,7 +23,7 @@ import numpy as np
 from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
-from ..numerics.dense import log_determinant
+from ..numerics.dense import log_determinants
 from ..problem.validation import InputError, check_integer, check_positive
 from .zones import ZoneSolution
 
@@ -49,7 +49,7 @@ PHASE_STEP = np.pi / 4
 #: a root on or against the contour, and the count is not certified.
 SMALLEST_STEP = 1e-9
 #: The largest bound on a sample's phase error (radians: ``N^2 u / rcond`` of the
-#: equilibrated ``N x N`` matrix, :func:`~thermocontact.numerics.dense.log_determinant`)
+#: equilibrated ``N x N`` matrix, :func:`~thermocontact.numerics.dense.log_determinants`)
 #: with which a count is certified: the phase change along the contour is then off by
 #: at most twice that, a third of a root's pi.
 PHASE_ERROR_MAX = 0.5
@@ -199,7 +199,7 @@ class Winding:
     ``f = det A(b)`` of a matrix function ``A``; its phase and ``log|f|`` come from
     the LU factors of ``A`` equilibrated, with a bound on the phase's rounding that a
     certified count respects at every sample
-    (:func:`~thermocontact.numerics.dense.log_determinant`, :data:`PHASE_ERROR_MAX`).
+    (:func:`~thermocontact.numerics.dense.log_determinants`, :data:`PHASE_ERROR_MAX`).
     The matrices are kept, so that the boundaries of
     several ``R`` share the line's samples and :meth:`contour` can serve Beyn's
     method.
@@ -244,21 +244,23 @@ class Winding:
             if self.prepare is not None:
                 self.prepare(fresh)
             return
-        for z, Az in zip(fresh, self.many(fresh)):
-            self._keep(z, Az)
+        self._keep(fresh, self.many(fresh))
 
-    def _keep(self, b, A):
-        """Keep ``A(b)``, the phase and ``log|det A(b)|``, and a bound on the phase's
-        rounding (``N^2 u / rcond``: :func:`~thermocontact.numerics.dense.log_determinant`)."""
-        sign, logdet, rcond = log_determinant(A)
-        self.matrices[b] = A
-        self.values[b] = (sign, logdet)
-        self.phase_errors[b] = A.shape[0] ** 2 * _U / rcond if rcond > 0 else np.inf
+    def _keep(self, points, A):
+        """Keep the stack ``A`` at ``points``, the phases and ``log|det|``, and a bound
+        on each phase's rounding (``N^2 u / rcond``:
+        :func:`~thermocontact.numerics.dense.log_determinants`)."""
+        signs, logdets, rconds = log_determinants(A)
+        bound = A.shape[-1] ** 2 * _U
+        for b, Ab, sign, logdet, rcond in zip(points, A, signs, logdets, rconds):
+            self.matrices[b] = Ab
+            self.values[b] = (complex(sign), float(logdet))
+            self.phase_errors[b] = bound / rcond if rcond > 0 else np.inf
 
     def at(self, b):
         """``(sign, log|det A(b)|)``, kept (with ``A(b)``)."""
         if b not in self.values:
-            self._keep(b, self.matrix(b))
+            self._keep([b], self.matrix(b)[None])
         return self.values[b]
 
     def settled(self, b):
