@@ -205,7 +205,7 @@ class LinearisedContactSet:
         ell = 0.0 if b == 0 else logarithm_constant(b)
         for i, zone in enumerate(self.zones):
             block = slice(i * B, (i + 1) * B)
-            reg, _, row = zone.matrix(b * h[i] ** 2, split=True)
+            reg, _, row = zone.matrix(self._zone_rate(b, i), split=True)
             reg = np.array(reg, dtype=complex)
             # The common length unit (S19): Flamant's ln Delta_i int p~_i, the
             # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i.
@@ -332,8 +332,13 @@ class LinearisedContactSet:
                 S0, np.reshape(S, u.shape), G0, np.reshape(G, u.shape)))
         return out
 
+    def _zone_rate(self, b, j):
+        """Zone ``j``'s own rate ``b Delta_j^2`` (one expression, so that what
+        :meth:`prepare` keeps is what :meth:`matrix` asks for, to the last bit)."""
+        return b * self._geometry[0][j] ** 2
+
     def prepare(self, rates) -> None:
         """Each zone's :meth:`~.linearised.LinearisedContact.prepare` at its own rates
         ``b Delta_j^2``."""
-        for h, zone in zip(self._geometry[0], self.zones):
-            zone.prepare([b * h * h for b in rates])
+        for j, zone in enumerate(self.zones):
+            zone.prepare([self._zone_rate(b, j) for b in rates])
