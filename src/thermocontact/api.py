@@ -1176,6 +1176,7 @@ def _contact_set_stability(found, **region) -> StabilityResult:
     for a physical one.  The set is solved again at the analysis' ``n`` from its edges,
     with its heat partition (the far temperatures' output, where they closed it: the
     perturbation leaves the far field unchanged)."""
+    from .problem.validation import check_perfect_contact
     from .solvers.stability import stability_of
     from .solvers.zones import ZoneModel, ZoneSolution
     from .studies.contact_sets import PhysicalContactSet
@@ -1187,9 +1188,7 @@ def _contact_set_stability(found, **region) -> StabilityResult:
         if sol is None:
             raise InputError(f"stability: no contact set at the point asked for "
                              f"({found.status}: {found.message})", parameters=("solution",))
-    if sol.conductance is not None:
-        raise InputError("stability of a contact set is modelled with perfect thermal "
-                         "contact: give no conductance", parameters=("conductance",))
+    check_perfect_contact(sol.conductance)
     if isinstance(found, PhysicalContactSet):
         par = sol.parameters
         if par.free_term or par.half_plane_scale:

@@ -24,7 +24,8 @@ from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
 from ..numerics.dense import log_determinants
-from ..problem.validation import InputError, check_integer, check_positive
+from ..problem.validation import (InputError, check_integer, check_perfect_contact,
+                                  check_positive)
 from .zones import ZoneSolution
 
 __all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
@@ -179,10 +180,7 @@ def linearised(solution) -> LinearisedContact | LinearisedContactSet:
     derivation section 18b)."""
     check_modelled(method=solution.method)
     if isinstance(solution, ZoneSolution):
-        if solution.conductance is not None:
-            raise InputError("the stability of a contact set is modelled with perfect "
-                             "thermal contact: solve it without a conductance",
-                             parameters=("conductance",))
+        check_perfect_contact(solution.conductance)
         return LinearisedContactSet(solution.parameters, solution.representation,
                                     solution.edges, solution.phi, solution.psi,
                                     solution.profile)
