@@ -553,7 +553,7 @@ def hot_spot_table(systems, radius, n1, n2, anchors=None, progress=None):
     ``anchors``: a neutral point ``(m, V, omega)`` of each family, or None;
     ``progress(stage, done, total)``: the layered families' curves, their scans run
     together (:func:`~thermocontact.studies.tei_layers.neutral_curves`), as the stage
-    "hot spots"."""
+    "hot spots"; each other family's curve as its own stage."""
     from .tei_layers import Layered, neutral_curves
 
     ns = np.arange(n1, n2 + 1)
@@ -564,7 +564,8 @@ def hot_spot_table(systems, radius, n1, n2, anchors=None, progress=None):
     curves = dict(zip(layered, neutral_curves([systems[k] for k in layered], ms,
                                               [anchors[k] for k in layered],
                                               progress=_stage(progress, "hot spots"))))
-    speeds = np.array([curves[k][0] if k in curves else system.curve(ms, anchors[k])[0]
+    speeds = np.array([curves[k][0] if k in curves else system.curve(
+                           ms, anchors[k], _stage(progress, f"{system.name}: hot spots"))[0]
                        for k, system in enumerate(systems)])
     table = []
     for k, n in enumerate(ns):
