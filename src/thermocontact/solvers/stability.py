@@ -264,8 +264,9 @@ class Winding:
     def settled(self, b):
         """``(phase, log|g(b)|)`` of ``g = f / (1 + b)^p`` (derivation S12).
 
-        ``det M(b)`` grows like a power ``b^p`` for large ``|b|`` (``p`` about ``n/5``
-        for the single patch: the rows and columns the scaling does not settle), and
+        ``det M(b)`` grows like a power ``b^p`` for large ``|b|`` (``p`` about ``n/8``
+        to ``n/6`` for the single patch: the rows and columns the scaling does not
+        settle), and
         its phase turns by about ``p pi/2`` along the line, fastest where ``|b|``
         passes 1: at large ``n`` several turns within one first step, which three
         samples cannot tell from none.  ``(1 + b)^p`` (principal branch) is analytic
