@@ -626,6 +626,33 @@ def test_a_neighbours_eigenvalues_change_nothing_but_the_work(monkeypatch, roots
         assert close.evaluations < plain.evaluations
 
 
+@pytest.mark.parametrize("root", [1.2e-3, 0.9, 40.0, 3.3e4, 9.7e5])
+def test_a_single_real_root_is_found_on_the_grid_by_the_secant_method(monkeypatch, root):
+    """One root in the region, real, next to ``b_min`` and to ``R`` too (other roots left
+    of the line): bracketed on the grid of real rates and found by the secant method
+    from the polynomial's estimate (Newton's method, the fallback, never called) to
+    rounding, with or without a start; a close start (a neighbour's root or a
+    prediction) costs fewer evaluations of M than none, a far one changes nothing but
+    the work."""
+    import thermocontact.solvers.stability as st
+
+    roots = [complex(root), -1.0 + 0j, -0.5 + 3j, -0.5 - 3j, -2.0 + 0j]
+    monkeypatch.setattr(st, "linearised", lambda n: _Stand(roots))
+
+    def no_newton(*args, **kwargs):
+        raise AssertionError("Newton's method called")
+    monkeypatch.setattr(st, "newton", no_newton)
+    plain = st.stability_of(lambda n: n, n=12, estimate=False)
+    for start in (dict(), dict(guesses=[root * (1.15 if root < 1 else 0.8)]),
+                  dict(predictions=[root * (1.02 if root < 1 else 0.98)]),
+                  dict(guesses=[2e-3 if root > 0.1 else 5e5])):
+        res = st.stability_of(lambda n: n, n=12, estimate=False, **start)
+        assert res.unstable_modes == 1 and res.reason is None
+        assert abs(res.eigenvalues[0] - root) <= 1e-12 * max(1.0, root)
+        if start and abs(next(iter(start.values()))[0] / root - 1) < 0.25:
+            assert res.evaluations < plain.evaluations
+
+
 def test_map_gains_stable_and_growth_rate(tmp_path, capsys, monkeypatch):
     """``parameter_map(..., stability=True)`` (a 2 x 2 map, the smallest): each point
     analysed at its own inputs and at the map's heat partition there (the solution

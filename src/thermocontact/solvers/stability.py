@@ -716,12 +716,111 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
 
+#: Real rates per octave of the grid ``b = 2^(k/4)`` on which a single real root is
+#: bracketed: the same grid for every contact, so that the points of a map's row, which
+#: share the kernels at a rate (:data:`~thermocontact.discretisation.linearised.KERNEL_MOMENTS`),
+#: find most of it kept.
+_GRID = 4
+#: Grid points of the polynomial interpolating ``det M`` around a bracket (degree 7:
+#: its root and slope start the secant method close enough that two steps, one
+#: evaluation of ``M`` each, mostly confirm the root; a map's row of 200 points took
+#: 3.5 evaluations at new rates a root with 4 points an octave and 8 here, 5.3 with 8 and
+#: 4).
+_STENCIL = 8
+
+
+def _real_root(winding, b_min, R, starts=(), *, tol=1e-10, steps=8):
+    """The real root of ``det M`` in ``[b_min, R]``, where its sign changes once (one
+    root counted: derivation S12, *Locating a real root*).
+
+    The sign of ``det M`` at the grid's rates ``2^(k/4)`` brackets it: from ``starts[0]``
+    (the grid point nearest, then steps of 1, 2, 4, ... points toward the sign change),
+    else from the whole region, then by bisection of the grid's indices (the region's
+    ends ``b_min`` and ``R``, whose signs the count kept, standing for the points beyond
+    them).  The polynomial through ``det M`` at the :data:`_STENCIL` grid points around
+    the bracket, in ``x = ln b``, gives the estimate and the first slope; the secant method on
+    ``det M(e^x)`` from it (each step one evaluation of ``M`` at a new rate) converges
+    to the root, its last step ``tol`` of ``b`` or less.
+
+    Returns
+    -------
+    root, step, estimate
+        The last iterate, its last step (``|b|``'s, ``inf`` where none converged in
+        ``steps``) and the polynomial's estimate; ``None, inf, None`` where the signs at
+        the ends agree or the grid holds no point of the region.
+    """
+    scale = _GRID / np.log(2.0)      # grid points per unit of ln b
+    first, last = int(np.ceil(scale * np.log(b_min))), int(np.floor(scale * np.log(R)))
+
+    def at(x):
+        return winding.at(complex(np.exp(x), 0.0))
+
+    def rate(k):
+        return np.log(b_min) if k < first else (np.log(R) if k > last else k / scale)
+
+    def negative(k):
+        return float(np.real(at(rate(k))[0])) < 0.0
+    low, high = first - 1, last + 1
+    below = negative(low)
+    if first > last or negative(high) == below:
+        return None, np.inf, None
+    if len(starts):
+        k = int(np.clip(np.rint(scale * np.log(starts[0])), first, last))
+        up = negative(k) == below
+        low, high = (k, high) if up else (low, k)
+        step = 1
+        while high - low > 1:
+            j = k + step if up else k - step
+            if not low < j < high:
+                break
+            same = negative(j) == below
+            low, high = (j, high) if same else (low, j)
+            if same != up:
+                break
+            step *= 2
+    while high - low > 1:
+        mid = (low + high) // 2
+        low, high = (mid, high) if negative(mid) == below else (low, mid)
+    # The polynomial in x through det M at the grid points around the bracket (beyond
+    # the region's ends too: every b > 0 is on the sheet), relative to the largest.
+    x = np.arange(low - _STENCIL // 2 + 1, low + _STENCIL // 2 + 1) / scale
+    values = [at(xi) for xi in x]
+    ref = max(v[1] for v in values)
+    f = np.array([float(np.real(s)) * np.exp(v - ref) for s, v in values])
+    poly = np.polynomial.Polynomial.fit(x, f, _STENCIL - 1)
+    inside = [r.real for r in poly.roots() if abs(r.imag) <= 1e-12
+              and x[_STENCIL // 2 - 1] <= r.real <= x[_STENCIL // 2]]
+    if not inside:
+        return None, np.inf, None
+    x0 = inside[0]
+    estimate = float(np.exp(x0))
+
+    def value(x):
+        s, v = at(x)
+        return float(np.real(s)) * np.exp(np.clip(v - ref, -700.0, 700.0))
+    slope, before = poly.deriv()(x0), None
+    for _ in range(steps):
+        fx = value(x0)
+        if fx == 0.0:
+            return float(np.exp(x0)), 0.0, estimate
+        if before is not None and before[0] != x0:
+            slope = (fx - before[1]) / (x0 - before[0])
+        if not (np.isfinite(slope) and slope != 0.0):
+            break
+        move = fx / slope
+        before, x0 = (x0, fx), x0 - move
+        if abs(move) <= tol:
+            return float(np.exp(x0)), float(np.exp(x0) * abs(move)), estimate
+    return float(np.exp(x0)), np.inf, estimate
+
+
 def _locate(winding, matrix, N, b_min, R, guesses=(), predictions=()):
     """The ``N`` roots counted, with ``Im b >= 0`` (one of each pair).  A single root is
     real (the region is symmetric about the real axis), where ``det M`` changes sign
-    between ``b_min`` and ``R``: Newton's method from a prediction where one is given
-    and confirms it; otherwise Brent's method in ``ln b``, in a bracket narrowed by a
-    real guess (a neighbour's root).  Otherwise the smallest half-disc ``|b| <= R_j``
+    between ``b_min`` and ``R``: bracketed on the grid of real rates and found by the
+    secant method there (:func:`_real_root`), from a prediction or a real guess (a
+    neighbour's root) where one is given; Newton's method from its estimate where the
+    secant method does not converge.  Otherwise the smallest half-disc ``|b| <= R_j``
     (``R_j = 4^j``: ``j`` doubled from 1, or from the one that holds the guesses with a
     margin, then bisected, the count growing with the radius) holding all ``N`` by the
     same count (with guesses, the first that holds them); Beyn's method on
@@ -750,55 +849,20 @@ def _locate(winding, matrix, N, b_min, R, guesses=(), predictions=()):
 
     good = [complex(g) for g in guesses if np.isfinite(g) and g.real >= b_min and abs(g) <= R]
     if N == 1:
-        # A predicted root (continued from two neighbours along a map's row, the same
-        # count at each): Newton's method from it first.
-        predicted = [complex(p.real, 0.0) for p in predictions
-                     if np.isfinite(p) and b_min <= p.real <= R and p.imag == 0]
-        if predicted:
-            confirm(predicted[:1])
+        # One real root: bracketed on the grid of real rates, from a predicted root
+        # (continued from two neighbours along a map's row) or a real guess (a
+        # neighour's root) where one is given.
+        starts = [p.real for p in predictions
+                  if np.isfinite(p) and b_min <= p.real <= R and p.imag == 0]
+        starts += [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
+        root, step, estimate = _real_root(winding, b_min, R, starts[:1])
+        if root is not None and step <= 1e-8 * max(1.0, root) and b_min <= root <= R:
+            roots.append(complex(root, 0.0))
+            return np.array(roots, dtype=complex), None
+        if estimate is not None:
+            confirm([complex(estimate, 0.0)])
             if located() == N:
                 return np.array(roots, dtype=complex), None
-        from scipy.optimize import brentq  # here: scipy.optimize is slow to import
-
-        # det M at b = e^x, real, relative to the geometric mean of its ends (the
-        # contour's samples at b_min and R) and, where they differ by more than
-        # e^1000, to a power that keeps it in range; the sign, all that brackets the
-        # root, is det M's wherever the exponent is clipped.  (A size-th root of
-        # det M, |b - b*|^(1/27) at the root, left Brent's steps to bisection: 30
-        # evaluations where this takes 17-19.)
-        ends = [winding.at(complex(b)) for b in (b_min, R)]
-        ref = 0.5 * (ends[0][1] + ends[1][1])
-        power = max(1.0, abs(ends[0][1] - ends[1][1]) / 1000.0)
-
-        def real_det(x):
-            sign, logdet = winding.at(complex(np.exp(x), 0.0))
-            return float(np.real(sign)) * np.exp(np.clip((logdet - ref) / power, -700.0, 700.0))
-        low, high = np.log(b_min), np.log(R)
-        # A neighbour's real eigenvalue narrows the bracket (det M changes sign once
-        # on the real axis: the one root): the sign there, then at steps from it of a
-        # factor 1.1, 1.1^4, 1.1^16, ... until the sign changes.
-        real = [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
-        if real:
-            first = np.sign(real_det(low))
-            y = float(np.clip(np.log(real[0]), low, high))
-            up = np.sign(real_det(y)) == first
-            low, high = (y, high) if up else (low, y)
-            step = np.log(1.1)
-            while True:
-                y += step if up else -step
-                step *= 4.0
-                if not low < y < high:
-                    break
-                same = np.sign(real_det(y)) == first
-                low, high = (y, high) if same else (low, y)
-                if same != up:
-                    break
-        try:
-            confirm([complex(np.exp(brentq(real_det, low, high, xtol=1e-7)), 0.0)])
-        except ValueError:
-            pass     # no sign change seen: Beyn's method below
-        if located() == N:
-            return np.array(roots, dtype=complex), None
     top = int(np.ceil(np.log(R) / np.log(4.0)))
 
     def holds(j):
