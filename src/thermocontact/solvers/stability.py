@@ -7,10 +7,11 @@ verdict is a count: the roots of ``det M`` in the region ``Re b >= b_min``,
 ``|b| <= R`` (``R`` the modulus bound, the model's range, eq. S11) by the argument
 principle on its boundary (:class:`Winding`: the phase of the determinant followed
 with steps each confirmed by its midpoint, eq. S12).  Where the count is positive the
-roots are located (a single one, real, by Brent's method on the real axis; several by
-Beyn's contour integral on the smallest half-disc holding them all, :func:`beyn`) and
-each is confirmed by Newton's method on ``det M`` kept on the principal sheet
-(:func:`newton`, eq. S13); the error estimate is the change of the eigenvalues between
+roots are located (a single one, real, bracketed on a fixed grid of real rates and
+found by the secant method, :func:`_real_root`; several by Beyn's contour integral on the
+smallest half-disc holding them all, :func:`beyn`) and each is confirmed by the secant
+method or Newton's method on ``det M`` kept on the principal sheet (:func:`newton`,
+eq. S13); the error estimate is the change of the eigenvalues between
 ``n`` and ``3n/2``.
 """
 
@@ -65,8 +66,8 @@ _ARC_STEPS = 2
 COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows times "
                 "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
                 "confirmed by its midpoint (both halves change it by less than pi/4 and add "
-                "up to the whole); roots located by Brent's method (one, real) or Beyn's "
-                "contour integral and confirmed by Newton's method")
+                "up to the whole); roots located by the secant method in a bracket on a grid "
+                "of real rates (one, real) or Beyn's contour integral and Newton's method")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -613,17 +614,17 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         estimate).
     guesses : sequence of complex, optional
         Where the eigenvalues are expected (``k2/Delta^2``): a neighbouring contact's,
-        continued along a path or across a map.  A real one narrows the bracket of a
-        single real eigenvalue (the sign of ``det M`` there, then at steps of a factor
-        1.1, 1.1^4, ... to the sign change); otherwise the half-disc of Beyn's method
-        is sought from the one that holds them with a margin.  Where they miss, the search is the one
+        continued along a path or across a map.  A real one starts the bracket of a
+        single real eigenvalue on the grid of real rates (:func:`_real_root`);
+        otherwise the half-disc of Beyn's method is sought from the one that holds them
+        with a margin.  Where they miss, the search is the one
         without them.  They change neither the count (the certificate) nor, beyond
         Newton's tolerance, the eigenvalues.
     predictions : sequence of complex, optional
         A real eigenvalue predicted here (``k2/Delta^2``; extrapolated from two
-        neighbours' along a map's row): where one root is counted, Newton's method
-        from it first, then (where it does not confirm one) the search without it.
-        It changes neither the count nor, beyond Newton's tolerance, the eigenvalue.
+        neighbours' along a map's row): where one root is counted, its bracket on the
+        grid of real rates starts there (before a guess).  It changes neither the
+        count nor, beyond the secant method's tolerance, the eigenvalue.
     samples : sequence of complex, optional
         A neighbouring contact's ``samples`` (its result's, ``k2/Delta^2``): those on
         this region's boundary are evaluated first, together, and the count's
@@ -851,7 +852,7 @@ def _locate(winding, matrix, N, b_min, R, guesses=(), predictions=()):
     if N == 1:
         # One real root: bracketed on the grid of real rates, from a predicted root
         # (continued from two neighbours along a map's row) or a real guess (a
-        # neighour's root) where one is given.
+        # neighbour's root) where one is given.
         starts = [p.real for p in predictions
                   if np.isfinite(p) and b_min <= p.real <= R and p.imag == 0]
         starts += [g.real for g in good if abs(g.imag) <= 1e-9 * abs(g)]
