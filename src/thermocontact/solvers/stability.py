@@ -785,6 +785,7 @@ def _real_root(winding, b_min, R, starts=(), *, tol=1e-10, steps=8):
     # The polynomial in x through det M at the grid points around the bracket (beyond
     # the region's ends too: every b > 0 is on the sheet), relative to the largest.
     x = np.arange(low - _STENCIL // 2 + 1, low + _STENCIL // 2 + 1) / scale
+    winding.evaluate([complex(np.exp(xi), 0.0) for xi in x])     # together: one product
     values = [at(xi) for xi in x]
     ref = max(v[1] for v in values)
     f = np.array([float(np.real(s)) * np.exp(v - ref) for s, v in values])
