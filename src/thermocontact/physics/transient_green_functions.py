@@ -229,8 +229,12 @@ def _phi_quadrature(u, c, b, integrand):
     # An integrand may return several at once (one pass over the panels for all).
     count = getattr(integrand, "count", None)
     out = np.empty((count or 1,) + u.shape, dtype=dtype)
+    # The stationary half-plane's points by |u|: a point and its mirror image in one
+    # block, where they share their quadrature (_phi_graded).
+    order = np.argsort(np.abs(u), kind="stable") if c == 0.0 else None
     for i in range(0, u.size, _BLOCK):
-        out[:, i:i + _BLOCK] = _phi_block(u[i:i + _BLOCK], c, b, integrand)
+        at = slice(i, i + _BLOCK) if order is None else order[i:i + _BLOCK]
+        out[:, at] = _phi_block(u[at], c, b, integrand)
     if count is None:
         return out[0].reshape(shape)
     return tuple(o.reshape(shape) for o in out)
@@ -294,6 +298,16 @@ def _phi_series(u, c, b, integrand):
 def _phi_graded(u, c, b, integrand):
     a = np.abs(u)[:, None]
     sg = np.sign(u)[:, None]
+    sides = None
+    if c == 0.0:
+        # D = rho on either side: the rule and the exponentials of each |u| serve both
+        # sides (the integrand of each on them), each |u| once.
+        sides = np.unique(sg)
+        at_side = np.searchsorted(sides, sg[:, 0])
+        a, at_a = np.unique(a[:, 0], return_inverse=True)
+        a = a[:, None]
+        sg = np.ones_like(a)
+    size = a.shape[0]
     half_pi = 0.5 * np.pi
 
     def exponent(phi):
@@ -309,11 +323,11 @@ def _phi_graded(u, c, b, integrand):
     first = np.minimum(half_pi, 0.5 / np.maximum(lam, 1e-300))
     levels = max(1, int(np.ceil(np.log2(half_pi / first.min()))) + 1)
     coarse = np.minimum(half_pi, first[:, None] * 2.0 ** np.arange(levels)[None, :])
-    coarse = np.concatenate([np.zeros((u.size, 1)), coarse, np.full((u.size, 1), half_pi)], axis=1)
+    coarse = np.concatenate([np.zeros((size, 1)), coarse, np.full((size, 1), half_pi)], axis=1)
     re = exponent(coarse)[3].real
     cut = np.min(re, axis=1, keepdims=True) + _NEGLIGIBLE
     above = np.flip(np.logical_and.accumulate(np.flip(re >= cut, axis=1), axis=1), axis=1)
-    end = np.full(u.size, half_pi)
+    end = np.full(size, half_pi)
     has = above.any(axis=1) & ~above[:, 0]
     if np.any(has):
         k = np.argmax(above[has], axis=1)
@@ -336,7 +350,8 @@ def _phi_graded(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = np.maximum(small, 1e-15)
-    total = np.zeros((getattr(integrand, "count", None) or 1, u.size),
+    total = np.zeros((getattr(integrand, "count", None) or 1,
+                      1 if sides is None else sides.size, a.shape[0]),
                      dtype=np.result_type(np.asarray(b), float))
     # Points of one side and similar |u| share the rule in phi: the integrand's
     # factors are formed once per node, the exponential once per point and node.
@@ -345,8 +360,9 @@ def _phi_graded(u, c, b, integrand):
     for run in np.split(order, cuts):
         for i in range(0, run.size, _GROUP):
             idx = run[i:i + _GROUP]
-            total[:, idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
-                                       c, b, integrand)
+            total[..., idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
+                                         c, b, integrand, sides)
+    total = total[:, 0] if sides is None else total[:, at_side, at_a]
     return (2.0 / np.pi) * total
 
 
@@ -379,16 +395,21 @@ def _phi_rule(a, sg, end, small, c, b):
     return w, sd(phi)
 
 
-def _phi_group(a, sg, end, small, c, b, integrand):
+def _phi_group(a, sg, end, small, c, b, integrand, sides=None):
     """The integrals of :func:`_phi_block` for points ``a = |u|`` of one side ``sg`` on
-    their shared rule (:func:`_phi_rule`)."""
+    their shared rule (:func:`_phi_rule`), shape ``(kernels, 1, points)``; with
+    ``sides`` (``c = 0``, where the rule is that of either side) those of each side,
+    ``(kernels, sides, points)``."""
     w, (s, rho, d, e) = _phi_rule(a, sg, end, small, c, b)
-    f = integrand(s, rho, d, sg)
     weighted = np.exp(-np.multiply.outer(a, e)) * w
-    # Each kernel by its own sum (the same rounding alone or with the other; no
-    # threaded BLAS for these small products).
-    return np.stack([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
-                     for v in (f if isinstance(f, tuple) else (f,))])
+    out = []
+    for side in (sg,) if sides is None else sides:
+        f = integrand(s, rho, d, side)
+        # Each kernel by its own sum (the same rounding alone or with the other; no
+        # threaded BLAS for these small products).
+        out.append([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
+                    for v in (f if isinstance(f, tuple) else (f,))])
+    return np.array(out).transpose(1, 0, 2)
 
 
 def transient_displacement(u, c, b):
