@@ -274,24 +274,26 @@ def _phi_series(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = max(small, 1e-15)
+    # The terms' factors x^k/k!, x = -|u|, by their running product.
+    terms = np.ones((u.size, _SERIES_TERMS))
+    terms[:, 1:] = np.cumprod(-a[:, None] / np.arange(1, _SERIES_TERMS), axis=1)
+    rule = None
     for side in np.unique(sg):
         at = sg == side
-        w, (s_, rho, d, e) = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
-                                       np.array([small]), c, b)
+        if rule is None or c != 0.0:
+            # The stationary half-plane's rule is that of either side (D = rho).
+            w, (s_, rho, d, e) = rule = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
+                                                  np.array([small]), c, b)
+            # The powers (s D)^k times the weights.
+            powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
+            powers[0] = w
+            for k in range(1, _SERIES_TERMS):
+                powers[k] = powers[k - 1] * e
         f = integrand(s_, rho, d, side)
-        # The powers (s D)^k times the weights: the moments of each kernel by one product.
-        powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
-        powers[0] = w
-        for k in range(1, _SERIES_TERMS):
-            powers[k] = powers[k - 1] * e
-        x = -a[at]
-        for i, v in enumerate(f if isinstance(f, tuple) else (f,)):
-            m = np.einsum("kn,n->k", powers, np.broadcast_to(v, e.shape))
-            # Horner: m_0 + x (m_1 + x/2 (m_2 + x/3 (...))).
-            total = np.full(x.shape, m[-1])
-            for j in range(_SERIES_TERMS - 1, 0, -1):
-                total = m[j - 1] + (x / j) * total
-            out[i, at] = total
+        # The moments of each kernel, then the series at every point, by one product each.
+        m = powers @ np.stack([np.broadcast_to(v, e.shape)
+                               for v in (f if isinstance(f, tuple) else (f,))], axis=1)
+        out[:, at] = (terms[at] @ m).T
     return (2.0 / np.pi) * out
 
 
