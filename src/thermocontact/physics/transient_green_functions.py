@@ -376,9 +376,13 @@ def _phi_rule(a, sg, end, small, c, b):
     weights and ``(s, rho, D, s D)`` at the nodes."""
     def sd(phi):
         s = np.sin(phi)
-        rho = _sqrt(b + (c * s) ** 2)
-        with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-            d = np.where(sg * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+        if c == 0.0:
+            # rho = sqrt(b) = D at every node.
+            rho = d = np.full(s.shape, _sqrt(np.asarray(b))[()])
+        else:
+            rho = _sqrt(b + (c * s) ** 2)
+            with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+                d = rho + abs(c) * s if sg * c >= 0.0 else b / (rho + abs(c) * s)
         return s, rho, d, np.where(s == 0.0, 0.0, s * d)
 
     top = float(np.max(end))
