@@ -335,16 +335,17 @@ def _phi_graded(u, c, b, integrand):
         k = np.argmax(above[has], axis=1)
         rows = np.flatnonzero(has)
         lo, hi = coarse[rows, k - 1], coarse[rows, k]
-        sub_a, sub_sg, sub_cut = a[rows], sg[rows], cut[rows, 0]
-        for _ in range(40):
-            mid = 0.5 * (lo + hi)
-            s = np.sin(mid)
-            rho = _sqrt(b + (c * s) ** 2)
-            d = np.where(sub_sg[:, 0] * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
-            over = (sub_a[:, 0] * s * d).real >= sub_cut
-            hi = np.where(over, mid, hi)
-            lo = np.where(over, lo, mid)
-        end[rows] = hi
+        sub_a, sub_sg, sub_cut = a[rows, 0], sg[rows, 0], cut[rows, 0]
+        for side in np.unique(sub_sg):
+            on = sub_sg == side
+            lo_on, hi_on = lo[on], hi[on]
+            for _ in range(40):
+                mid = 0.5 * (lo_on + hi_on)
+                s = np.sin(mid)
+                over = (sub_a[on] * s * _rho_and_rate(s, c, b, side)[1]).real >= sub_cut[on]
+                hi_on = np.where(over, mid, hi_on)
+                lo_on = np.where(over, lo_on, mid)
+            end[rows[on]] = hi_on
     # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
     # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
     # below 1e-15, where the omitted part is below 1e-15 of the integral.
@@ -368,6 +369,18 @@ def _phi_graded(u, c, b, integrand):
     return (2.0 / np.pi) * total
 
 
+def _rho_and_rate(s, c, b, side):
+    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side (in
+    the wake ``b/(rho + |c| s)``, free of cancellation); for ``c = 0`` both are
+    ``sqrt(b)``, without a square root per node."""
+    if c == 0.0:
+        rho = np.full(np.shape(s), _sqrt(np.asarray(b))[()])
+        return rho, rho
+    rho = _sqrt(b + (c * s) ** 2)
+    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+        return rho, (rho + abs(c) * s if side * c >= 0.0 else b / (rho + abs(c) * s))
+
+
 def _phi_rule(a, sg, end, small, c, b):
     """The rule in ``phi`` shared by points ``a = |u|`` of one side ``sg``: from the
     largest end, graded to the smallest scale, each level in parts over which the
@@ -376,13 +389,7 @@ def _phi_rule(a, sg, end, small, c, b):
     weights and ``(s, rho, D, s D)`` at the nodes."""
     def sd(phi):
         s = np.sin(phi)
-        if c == 0.0:
-            # rho = sqrt(b) = D at every node.
-            rho = d = np.full(s.shape, _sqrt(np.asarray(b))[()])
-        else:
-            rho = _sqrt(b + (c * s) ** 2)
-            with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-                d = rho + abs(c) * s if sg * c >= 0.0 else b / (rho + abs(c) * s)
+        rho, d = _rho_and_rate(s, c, b, sg)
         return s, rho, d, np.where(s == 0.0, 0.0, s * d)
 
     top = float(np.max(end))
