@@ -4,8 +4,9 @@ Run: ``python bench/bench_stability.py [--workers W] [--no-points] [--map N|NxM 
 benchmark, not a test: it prints tables and asserts nothing. For each case the steady solution
 is solved first (not timed), then ``thermocontact.stability`` with its defaults (n = 12, Re b
 >= 1e-3, |b| <= 1e6) is timed five times: fresh (a new process's first verdict, its own wall
-and processor time: imports done and the steady contact solved before the clock starts,
-everything the verdict builds on the clock), cold (the per-process caches cleared: the kernel
+and processor time: imports done, the modules ``thermocontact.stability`` loads on first use
+among them, and the steady contact solved before the clock starts, everything the verdict
+builds on the clock), cold (the per-process caches cleared: the kernel
 table built, every kernel evaluated), a neighbour (the point at 1.05 Pe next: the table and
 the half-plane's kernel moments kept, the cylinder's evaluated anew, as for the first point of
 a map's row or a new point of a path), warm (the same point again: every kernel's moments
@@ -48,6 +49,9 @@ import sys, time
 from thermocontact.execution.executors import one_blas_thread
 with one_blas_thread():
     import thermocontact as tc
+    # What tc.stability imports on its first call.
+    import thermocontact.api, thermocontact.solvers.stability
+    import thermocontact.studies.contact_sets, thermocontact.studies.physical_contact
     sol = tc.solve(**{kw})
     w0, c0 = time.perf_counter(), time.process_time()
     tc.stability(sol)

@@ -340,6 +340,21 @@ def test_displacement_and_slope_in_one_pass(c, b):
     assert_ulps(s, tk.transient_slope(u, c, b))
 
 
+@pytest.mark.parametrize("b", [1.0 + 1.0j, 1e-3 + 1e4j, 0.4])
+def test_stationary_half_plane_at_a_point_and_its_mirror_image(b):
+    """The stationary half-plane's quadrature in phi is formed once for ``u`` and ``-u``
+    (``D = rho`` on either side), each side's integrand on it: at points of both signs
+    in one call, each side's values are those of a call at that side's points alone, to
+    1e-14 of the largest, the displacement even and the slope odd."""
+    u = np.geomspace(1e-8, 2.0, 120)
+    w, s = tk.transient_displacement_and_slope(np.concatenate([-u[::-1], u]), 0.0, b)
+    wp, sp = tk.transient_displacement_and_slope(u, 0.0, b)
+    wn, sn = tk.transient_displacement_and_slope(-u[::-1], 0.0, b)
+    for got, ref in ((w, np.concatenate([wn, wp])), (s, np.concatenate([sn, sp])),
+                     (wn[::-1], wp), (-sn[::-1], sp)):
+        assert np.abs(got - ref).max() < 1e-14 * np.abs(ref).max()
+
+
 @pytest.mark.parametrize("c, b", [(0.0, 1e-4 + 1e-4j), (50.0, 1e-3 + 0.5j), (-30.0, 1e-3 + 2e3j),
                                   (1000.0, 1e-3 + 30j)])
 def test_series_next_to_the_source_is_the_quadrature(monkeypatch, c, b):

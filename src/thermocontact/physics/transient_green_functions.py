@@ -58,9 +58,9 @@ _PANEL_VARIATION = 8.0
 _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
-#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: four panels of the
+#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: two panels of the
 #: stability tables' nodes, ``|u|`` within a factor of 4).
-_GROUP = 64
+_GROUP = 32
 #: Points with ``lam <= _SERIES_REACH``, ``lam = |u| (sqrt|b| + 2|c|)`` (in the wake
 #: ``|u| min(sqrt|b| + 2|c|, |b|/|c|)``), take the series in ``|u|``
 #: (:func:`_phi_series`): ``|u s D| <= lam`` on the whole interval, so its terms fall like
@@ -229,8 +229,12 @@ def _phi_quadrature(u, c, b, integrand):
     # An integrand may return several at once (one pass over the panels for all).
     count = getattr(integrand, "count", None)
     out = np.empty((count or 1,) + u.shape, dtype=dtype)
+    # The stationary half-plane's points by |u|: a point and its mirror image in one
+    # block, where they share their quadrature (_phi_graded).
+    order = np.argsort(np.abs(u), kind="stable") if c == 0.0 else None
     for i in range(0, u.size, _BLOCK):
-        out[:, i:i + _BLOCK] = _phi_block(u[i:i + _BLOCK], c, b, integrand)
+        at = slice(i, i + _BLOCK) if order is None else order[i:i + _BLOCK]
+        out[:, at] = _phi_block(u[at], c, b, integrand)
     if count is None:
         return out[0].reshape(shape)
     return tuple(o.reshape(shape) for o in out)
@@ -270,30 +274,42 @@ def _phi_series(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = max(small, 1e-15)
+    # The terms' factors x^k/k!, x = -|u|, by their running product.
+    terms = np.ones((u.size, _SERIES_TERMS))
+    terms[:, 1:] = np.cumprod(-a[:, None] / np.arange(1, _SERIES_TERMS), axis=1)
+    rule = None
     for side in np.unique(sg):
         at = sg == side
-        w, (s_, rho, d, e) = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
-                                       np.array([small]), c, b)
+        if rule is None or c != 0.0:
+            # The stationary half-plane's rule is that of either side (D = rho).
+            w, (s_, rho, d, e) = rule = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
+                                                  np.array([small]), c, b)
+            # The powers (s D)^k times the weights.
+            powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
+            powers[0] = w
+            for k in range(1, _SERIES_TERMS):
+                powers[k] = powers[k - 1] * e
         f = integrand(s_, rho, d, side)
-        # The powers (s D)^k times the weights: the moments of each kernel by one product.
-        powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
-        powers[0] = w
-        for k in range(1, _SERIES_TERMS):
-            powers[k] = powers[k - 1] * e
-        x = -a[at]
-        for i, v in enumerate(f if isinstance(f, tuple) else (f,)):
-            m = np.einsum("kn,n->k", powers, np.broadcast_to(v, e.shape))
-            # Horner: m_0 + x (m_1 + x/2 (m_2 + x/3 (...))).
-            total = np.full(x.shape, m[-1])
-            for j in range(_SERIES_TERMS - 1, 0, -1):
-                total = m[j - 1] + (x / j) * total
-            out[i, at] = total
+        # The moments of each kernel, then the series at every point, by one product each.
+        m = powers @ np.stack([np.broadcast_to(v, e.shape)
+                               for v in (f if isinstance(f, tuple) else (f,))], axis=1)
+        out[:, at] = (terms[at] @ m).T
     return (2.0 / np.pi) * out
 
 
 def _phi_graded(u, c, b, integrand):
     a = np.abs(u)[:, None]
     sg = np.sign(u)[:, None]
+    sides = None
+    if c == 0.0:
+        # D = rho on either side: the rule and the exponentials of each |u| serve both
+        # sides (the integrand of each on them), each |u| once.
+        sides = np.unique(sg)
+        at_side = np.searchsorted(sides, sg[:, 0])
+        a, at_a = np.unique(a[:, 0], return_inverse=True)
+        a = a[:, None]
+        sg = np.ones_like(a)
+    size = a.shape[0]
     half_pi = 0.5 * np.pi
 
     def exponent(phi):
@@ -309,26 +325,27 @@ def _phi_graded(u, c, b, integrand):
     first = np.minimum(half_pi, 0.5 / np.maximum(lam, 1e-300))
     levels = max(1, int(np.ceil(np.log2(half_pi / first.min()))) + 1)
     coarse = np.minimum(half_pi, first[:, None] * 2.0 ** np.arange(levels)[None, :])
-    coarse = np.concatenate([np.zeros((u.size, 1)), coarse, np.full((u.size, 1), half_pi)], axis=1)
+    coarse = np.concatenate([np.zeros((size, 1)), coarse, np.full((size, 1), half_pi)], axis=1)
     re = exponent(coarse)[3].real
     cut = np.min(re, axis=1, keepdims=True) + _NEGLIGIBLE
     above = np.flip(np.logical_and.accumulate(np.flip(re >= cut, axis=1), axis=1), axis=1)
-    end = np.full(u.size, half_pi)
+    end = np.full(size, half_pi)
     has = above.any(axis=1) & ~above[:, 0]
     if np.any(has):
         k = np.argmax(above[has], axis=1)
         rows = np.flatnonzero(has)
         lo, hi = coarse[rows, k - 1], coarse[rows, k]
-        sub_a, sub_sg, sub_cut = a[rows], sg[rows], cut[rows, 0]
-        for _ in range(40):
-            mid = 0.5 * (lo + hi)
-            s = np.sin(mid)
-            rho = _sqrt(b + (c * s) ** 2)
-            d = np.where(sub_sg[:, 0] * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
-            over = (sub_a[:, 0] * s * d).real >= sub_cut
-            hi = np.where(over, mid, hi)
-            lo = np.where(over, lo, mid)
-        end[rows] = hi
+        sub_a, sub_sg, sub_cut = a[rows, 0], sg[rows, 0], cut[rows, 0]
+        for side in np.unique(sub_sg):
+            on = sub_sg == side
+            lo_on, hi_on = lo[on], hi[on]
+            for _ in range(40):
+                mid = 0.5 * (lo_on + hi_on)
+                s = np.sin(mid)
+                over = (sub_a[on] * s * _rho_and_rate(s, c, b, side)[1]).real >= sub_cut[on]
+                hi_on = np.where(over, mid, hi_on)
+                lo_on = np.where(over, lo_on, mid)
+            end[rows[on]] = hi_on
     # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
     # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
     # below 1e-15, where the omitted part is below 1e-15 of the integral.
@@ -336,7 +353,8 @@ def _phi_graded(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = np.maximum(small, 1e-15)
-    total = np.zeros((getattr(integrand, "count", None) or 1, u.size),
+    total = np.zeros((getattr(integrand, "count", None) or 1,
+                      1 if sides is None else sides.size, a.shape[0]),
                      dtype=np.result_type(np.asarray(b), float))
     # Points of one side and similar |u| share the rule in phi: the integrand's
     # factors are formed once per node, the exponential once per point and node.
@@ -345,9 +363,22 @@ def _phi_graded(u, c, b, integrand):
     for run in np.split(order, cuts):
         for i in range(0, run.size, _GROUP):
             idx = run[i:i + _GROUP]
-            total[:, idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
-                                       c, b, integrand)
+            total[..., idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
+                                         c, b, integrand, sides)
+    total = total[:, 0] if sides is None else total[:, at_side, at_a]
     return (2.0 / np.pi) * total
+
+
+def _rho_and_rate(s, c, b, side):
+    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side (in
+    the wake ``b/(rho + |c| s)``, free of cancellation); for ``c = 0`` both are
+    ``sqrt(b)``, without a square root per node."""
+    if c == 0.0:
+        rho = np.full(np.shape(s), _sqrt(np.asarray(b))[()])
+        return rho, rho
+    rho = _sqrt(b + (c * s) ** 2)
+    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+        return rho, (rho + abs(c) * s if side * c >= 0.0 else b / (rho + abs(c) * s))
 
 
 def _phi_rule(a, sg, end, small, c, b):
@@ -358,9 +389,7 @@ def _phi_rule(a, sg, end, small, c, b):
     weights and ``(s, rho, D, s D)`` at the nodes."""
     def sd(phi):
         s = np.sin(phi)
-        rho = _sqrt(b + (c * s) ** 2)
-        with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-            d = np.where(sg * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+        rho, d = _rho_and_rate(s, c, b, sg)
         return s, rho, d, np.where(s == 0.0, 0.0, s * d)
 
     top = float(np.max(end))
@@ -379,16 +408,21 @@ def _phi_rule(a, sg, end, small, c, b):
     return w, sd(phi)
 
 
-def _phi_group(a, sg, end, small, c, b, integrand):
+def _phi_group(a, sg, end, small, c, b, integrand, sides=None):
     """The integrals of :func:`_phi_block` for points ``a = |u|`` of one side ``sg`` on
-    their shared rule (:func:`_phi_rule`)."""
+    their shared rule (:func:`_phi_rule`), shape ``(kernels, 1, points)``; with
+    ``sides`` (``c = 0``, where the rule is that of either side) those of each side,
+    ``(kernels, sides, points)``."""
     w, (s, rho, d, e) = _phi_rule(a, sg, end, small, c, b)
-    f = integrand(s, rho, d, sg)
     weighted = np.exp(-np.multiply.outer(a, e)) * w
-    # Each kernel by its own sum (the same rounding alone or with the other; no
-    # threaded BLAS for these small products).
-    return np.stack([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
-                     for v in (f if isinstance(f, tuple) else (f,))])
+    out = []
+    for side in (sg,) if sides is None else sides:
+        f = integrand(s, rho, d, side)
+        # Each kernel by its own sum (the same rounding alone or with the other; no
+        # threaded BLAS for these small products).
+        out.append([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
+                    for v in (f if isinstance(f, tuple) else (f,))])
+    return np.array(out).transpose(1, 0, 2)
 
 
 def transient_displacement(u, c, b):
