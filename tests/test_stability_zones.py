@@ -14,6 +14,8 @@ section 18b, S18-S22).
   single-patch determinants grows by ``(2/pi) ln(d2/d1)`` from ``d1`` to ``d2``, its
   sole dependence on the separation ``d`` (the two zones' loads exchanged through
   Flamant's logarithm; every other coupling decays).
+* The zones' transient kernels at each other's points, interpolated on Chebyshev
+  panels, against their values there (and ``M(b)`` built either way).
 """
 
 from __future__ import annotations
@@ -350,3 +352,51 @@ def test_the_count_follows_the_phase_of_many_temperature_rows(monkeypatch, line_
     else:
         winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step)
         assert winding.count(1e6)[0] == count
+
+
+def test_panel_interpolation_resolves_a_boundary_layer_and_evaluates_a_jump_directly():
+    """A boundary layer ``exp(-beta u)`` (``|arg beta| < pi/4``, the transient kernels'
+    form) and a logarithm on intervals of either sign, to their tolerance of the
+    scale; a jump no panel resolves is evaluated at its points directly."""
+    from thermocontact.numerics.interpolation import panel_interpolation
+
+    beta = 40.0 * np.exp(0.6j)
+    calls = []
+
+    def f(x):
+        calls.append(x.size)
+        return np.stack([np.exp(-beta * np.abs(x)), np.log(np.abs(x)),
+                         np.where(x > 1.3, 1.0, 0.0)])
+    rng = np.random.default_rng(1)
+    targets = [rng.uniform(0.01, 3.0, (7, 9)), rng.uniform(-4.0, -0.5, 40)]
+    got = panel_interpolation(f, [(0.01, 3.0), (-4.0, -0.5)], targets, tol=1e-14)
+    for u, g in zip(targets, got):
+        exact = f(u.ravel()).reshape(g.shape)
+        scale = np.maximum(1.0, np.abs(exact).reshape(3, -1).max(axis=1))
+        # The jump's panels, halved ten times, unresolved: its points evaluated.
+        assert np.abs(g - exact).reshape(3, -1).max(axis=1).max() < 1e-13 * scale.max()
+    # Fewer evaluations than a graded rule that resolves the layer everywhere would take.
+    assert sum(calls) < 3000
+
+
+def test_the_zones_kernels_interpolated_agree_with_their_values(two_zones):
+    """The transient kernels of zone j at zone i's points, interpolated on Chebyshev
+    panels of the pair's interval of ``u`` (S21), against their quadrature at every
+    point; and ``M(b)`` assembled from either, from the slow rates to the arc."""
+    sol = two_zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+
+    def direct(b):
+        return {pair: lin._kernels(u, b) for pair, (u, _, _) in lin._pairs.items()}
+    for b in (2e-3 + 0.02j, 1e-3 + 1e4j):
+        fast, slow = lin._cross_kernels(b), direct(b)
+        for pair in slow:
+            for body_f, body_s in zip(fast[pair], slow[pair]):
+                for kf, ks in zip(body_f, body_s):
+                    assert np.abs(kf - ks).max() <= 2e-14 * max(1.0, np.abs(ks).max())
+        M = lin.matrix(b)
+        object.__setattr__(lin, "_cross_kernels", direct)
+        M_direct = lin.matrix(b)
+        del lin.__dict__["_cross_kernels"]
+        assert np.abs(M - M_direct).max() < 1e-14 * np.abs(M_direct).max()

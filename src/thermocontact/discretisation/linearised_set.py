@@ -43,6 +43,7 @@ from functools import cached_property
 import numpy as np
 from numpy.polynomial import Polynomial
 
+from ..numerics.interpolation import panel_interpolation
 from ..numerics.moment_engine import stretch
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
@@ -55,6 +56,12 @@ from .linearised import LinearisedContact, logarithm_constant, projections
 from .system import zone_parameters
 
 __all__ = ["LinearisedContactSet"]
+
+#: The zones' transient kernels at each other's points are interpolated to this, of
+#: their scale (:meth:`LinearisedContactSet._cross_kernels`): ten times the rounding
+#: of their quadrature's values (the last Chebyshev coefficients of a resolved panel
+#: are that rounding, up to 3e-15 of the kernel's size).
+CROSS_TOLERANCE = 1e-14
 
 #: The cylinder's initial gap ``X^2/2`` (units ``l^2/R``), the default profile.
 CYLINDER_GAP = Polynomial([0.0, 0.0, 0.5])
@@ -223,10 +230,9 @@ class LinearisedContactSet:
             reg[:n + 2, 2 * n + 2] += pd @ (extra * s)
             full[block, block] = reg
             w[block] = row
-        for i in range(m):
-            for j in range(m):
-                if i != j:
-                    self._cross(full, i, j, b)
+        full += self._cross_constant
+        for pair, kernels in self._cross_kernels(b).items():
+            self._cross(full, *pair, kernels)
         # Fold the shared approach and the one load row (S22).
         for r in load_rows:
             full[n + 2] += full[r]
@@ -245,91 +251,143 @@ class LinearisedContactSet:
             M[first[0]] += ell * w
         return M
 
-    def _cross(self, full, i, j, b):
-        """Zone ``j``'s terms at zone ``i``'s points (S21), added into ``full``."""
-        par, n = self.parameters, self.n
-        B = 2 * n + 3
+    @cached_property
+    def _pairs(self) -> dict:
+        """For each zone ``j`` at each other zone ``i``'s points (S21), what does not
+        depend on ``b``: the separated arguments ``u`` (points by sources), the steady
+        densities at the sources (the pressure's ``P0`` and each body's heat ``q0``)."""
+        n, par = self.n, self.parameters
         pd, pt, s = self._points
         h, c = self._geometry
         r, wp, wq, series = self._sources
-        zone = self.zones[j]
-        phi0, psi0 = series @ zone.phi, series @ zone.psi
-        eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
+        eta = par.eta
         share = ((0.5 * (1.0 + eta), 0.5), (0.5 * (1.0 - eta), -0.5))
-        u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
-        P0 = wp * phi0
-        R = (i * B, (i + 1) * B)
-        own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
-        src = slice(j * B, j * B + 2 * n)                      # phi~_j, psi~_j
-        edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
-        disp = np.zeros((s.size, B), dtype=complex)
-        temp = np.zeros((s.size, B), dtype=complex)
-        moving_i = np.zeros((s.size, 2), dtype=complex)
+        out = {}
+        for i in range(len(h)):
+            for j in range(len(h)):
+                if i == j:
+                    continue
+                zone = self.zones[j]
+                P0, psi0 = wp * (series @ zone.phi), series @ zone.psi
+                u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
+                out[i, j] = u, P0, [ap * P0 + aq * wq * psi0 for ap, aq in share]
+        return out
 
-        def edges_of(K0p, Kbp, q0):
-            # int [K_0'(w) X~_i - K_b'(w) Y~_j] q0: the points' columns and the
-            # source's.
-            a = K0p @ q0
-            return (h[i] * np.stack([a, a * s], axis=1),
-                    -h[j] * np.stack([Kbp @ q0, Kbp @ (r * q0)], axis=1))
+    def _weights(self):
+        """Each body's ``(f, sign, share of p, share of q')``: its thermal displacement's
+        factor ``2 F d_k`` and its temperature's sign (S3-S4)."""
+        par = self.parameters
+        eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
+        return ((2.0 * F * d, rho, 0.5 * (1.0 + eta), 0.5),
+                (2.0 * F, -1.0, 0.5 * (1.0 - eta), -0.5))
 
-        # Flamant's logarithm, its derivative 1/w (no rate).
-        disp[:, :n] += (np.log(np.abs(u)) / np.pi * wp) @ series
-        a, e = edges_of(1.0 / (np.pi * u), 1.0 / (np.pi * u), P0)
-        moving_i += a
-        disp[:, 2 * n + 1:] += e
-        for k, (weight, sign, values) in enumerate(zip(
-                (d, 1.0), (rho, -1.0), self._kernels(u, b))):
-            W, T, S0, Sb, G0, Gb = values
-            ap, aq = share[k]
-            q0 = ap * P0 + aq * wq * psi0
-            f = 2.0 * F * weight
-            # W' = -S, T' = -G.
-            if f:
-                disp[:, :n] += f * ap * (W * wp) @ series
-                disp[:, n:2 * n] += f * aq * (W * wq) @ series
-                a, e = edges_of(-S0, -Sb, q0)
-                moving_i += f * a
-                disp[:, 2 * n + 1:] += f * e
-            temp[:, :n] += sign * ap * (T * wp) @ series
-            temp[:, n:2 * n] += sign * aq * (T * wq) @ series
-            a, e = edges_of(-G0, -Gb, q0)
-            moving_i_t = sign * a
-            temp[:, 2 * n + 1:] += sign * e
-            full[R[0] + n + 3:R[1], own] += pt @ moving_i_t
-        full[R[0]:R[0] + n + 2, own] += pd @ moving_i
-        full[R[0]:R[0] + n + 2, src] += pd @ disp[:, :2 * n]
-        full[R[0]:R[0] + n + 2, edge] += pd @ disp[:, 2 * n + 1:]
-        full[R[0] + n + 3:R[1], src] += pt @ temp[:, :2 * n]
-        full[R[0] + n + 3:R[1], edge] += pt @ temp[:, 2 * n + 1:]
-
-    def _kernels(self, u, b):
-        """Each body's ``W``, ``T``, ``S_0``, ``S_b``, ``G_0``, ``G_b`` at the separated
-        arguments ``u`` (units of ``l``): the cylinder's with ``c_l`` and rate
-        ``b k2/k1``, the stationary half-plane's less the constants ``2/(pi sqrt b)``
-        and ``l(b)`` (S7, S21); at ``b = 0`` the steady kernels."""
+    @cached_property
+    def _cross_constant(self) -> np.ndarray:
+        """The zones' terms at each other's points that do not depend on ``b`` (S18,
+        S21): Flamant's logarithm and its edges' terms, and each body's steady slope
+        and temperature gradient at the receiver's moving points (``K_0' X~_i``)."""
+        n, m = self.n, len(self.edges)
+        B = 2 * n + 3
+        pd, pt, s = self._points
+        h, _ = self._geometry
+        r, wp, _, series = self._sources
         par = self.parameters
         cyl = par.cylinder_scale
-        out = []
-        S0c = moving_slope(u, cyl)
-        G0c = 1.0 / u + cylinder_temperature_gradient_regular(u, cyl)
-        S0h, G0h = 0.5 * np.sign(u), 1.0 / u
+        full = np.zeros((m * B, m * B))
+        for (i, j), (u, P0, q0) in self._pairs.items():
+            R = slice(i * B, i * B + n + 2)
+            T = slice(i * B + n + 3, (i + 1) * B)
+            own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
+            edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
+            # Flamant's logarithm, its derivative 1/w (no rate).
+            full[R, j * B:j * B + n] += pd @ ((np.log(np.abs(u)) / np.pi * wp) @ series)
+            K = 1.0 / (np.pi * u)
+            full[R, own] += pd @ self._moved_points(K, P0, i)
+            full[R, edge] += pd @ self._moved_sources(K, P0, j)
+            S0 = (moving_slope(u, cyl), 0.5 * np.sign(u))
+            G0 = (1.0 / u + cylinder_temperature_gradient_regular(u, cyl), 1.0 / u)
+            # W' = -S, T' = -G: the steady fields at the moved points.
+            for (f, sign, _, _), q, S, G in zip(self._weights(), q0, S0, G0):
+                full[R, own] += f * (pd @ self._moved_points(-S, q, i))
+                full[T, own] += sign * (pt @ self._moved_points(-G, q, i))
+        return full
+
+    def _moved_points(self, K, q0, i):
+        """``int K(w) X~_i q0`` (S18): the receiver's columns ``sig~_i``, ``del~_i``."""
+        a = K @ q0
+        return self._geometry[0][i] * np.stack([a, a * self._points[2]], axis=1)
+
+    def _moved_sources(self, K, q0, j):
+        """``-int K(w) Y~_j q0`` (S18): the source's columns ``sig~_j``, ``del~_j``."""
+        r = self._sources[0]
+        return -self._geometry[0][j] * np.stack([K @ q0, K @ (r * q0)], axis=1)
+
+    def _cross(self, full, i, j, kernels):
+        """Zone ``j``'s terms at zone ``i``'s points that depend on ``b`` (S18, S21),
+        added into ``full``: each body's ``W`` and ``T`` on the perturbed sources, its
+        ``S_b`` and ``G_b`` on the moved sources (``kernels``, at the pair's ``u``)."""
+        n = self.n
+        B = 2 * n + 3
+        pd, pt, s = self._points
+        r, wp, wq, series = self._sources
+        _, _, q0 = self._pairs[i, j]
+        R = slice(i * B, i * B + n + 2)
+        T = slice(i * B + n + 3, (i + 1) * B)
+        src = slice(j * B, j * B + 2 * n)                      # phi~_j, psi~_j
+        edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
+        for (f, sign, ap, aq), q, (W, Tb, Sb, Gb) in zip(self._weights(), q0, kernels):
+            if f:
+                full[R, src] += f * (pd @ np.hstack([ap * (W * wp) @ series,
+                                                     aq * (W * wq) @ series]))
+                full[R, edge] += f * (pd @ self._moved_sources(-Sb, q, j))
+            full[T, src] += sign * (pt @ np.hstack([ap * (Tb * wp) @ series,
+                                                    aq * (Tb * wq) @ series]))
+            full[T, edge] += sign * (pt @ self._moved_sources(-Gb, q, j))
+
+    def _cross_kernels(self, b) -> dict:
+        """Each body's ``(W, T, S_b, G_b)`` at each pair's ``u`` (S21): the steady kernels
+        at ``b = 0``; otherwise the transient ones (:meth:`_kernels`), interpolated on
+        Chebyshev panels of each pair's interval of ``u`` to :data:`CROSS_TOLERANCE`
+        (:func:`~thermocontact.numerics.interpolation.panel_interpolation`: a few dozen
+        evaluations where the pair has ``N (n + 12)``)."""
+        pairs = self._pairs
         if b == 0:
-            out.append((cylinder_displacement(cyl * u) / cyl, cylinder_temperature(cyl * u),
-                        S0c, S0c, G0c, G0c))
-            out.append((-0.5 * np.abs(u), -np.log(np.abs(u)), S0h, S0h, G0h, G0h))
-            return out
+            return {pair: self._kernels(u, 0) for pair, (u, _, _) in pairs.items()}
+
+        def f(x):
+            return np.concatenate(self._kernels(x, b, constants=False))
+        us = [u for u, _, _ in pairs.values()]
+        values = panel_interpolation(f, [(u.min(), u.max()) for u in us], us,
+                                     tol=CROSS_TOLERANCE)
+        # The half-plane's constants, taken off the values interpolated (the kernels'
+        # scale, not theirs, sets the tolerance).
+        W0, T0 = 2.0 / (np.pi * np.sqrt(complex(b))), logarithm_constant(complex(b))
+        return {pair: (v[:4], (v[4] - W0, v[5] - T0, v[6], v[7]))
+                for pair, v in zip(pairs, values)}
+
+    def _kernels(self, u, b, constants=True):
+        """Each body's ``(W, T, S_b, G_b)`` at the separated arguments ``u`` (units of
+        ``l``): the cylinder's with ``c_l`` and rate ``b k2/k1``, the stationary
+        half-plane's less the constants ``2/(pi sqrt b)`` and ``l(b)`` (S7, S21; not
+        without ``constants``); at ``b = 0`` the steady kernels."""
+        par = self.parameters
+        cyl = par.cylinder_scale
+        if b == 0:
+            S0c = moving_slope(u, cyl)
+            return ((cylinder_displacement(cyl * u) / cyl, cylinder_temperature(cyl * u), S0c,
+                     1.0 / u + cylinder_temperature_gradient_regular(u, cyl)),
+                    (-0.5 * np.abs(u), -np.log(np.abs(u)), 0.5 * np.sign(u), 1.0 / u))
         b = complex(b)
-        for scale, rate, S0, G0 in ((cyl, b / par.k2_over_k1, S0c, G0c), (0.0, b, S0h, G0h)):
-            flat = u.ravel()
+        out = []
+        for scale, rate in ((cyl, b / par.k2_over_k1), (0.0, b)):
+            flat = np.ravel(u)
             W, S = transient_displacement_and_slope(flat, scale, rate)
             T = transient_temperature(flat, scale, rate)
             G = transient_temperature_gradient_regular(flat, scale, rate) + 1.0 / flat
-            if scale == 0.0:
+            if scale == 0.0 and constants:
                 W = W - 2.0 / (np.pi * np.sqrt(rate))
                 T = T - logarithm_constant(rate)
-            out.append(tuple(np.reshape(v, u.shape) for v in (W, T)) + (
-                S0, np.reshape(S, u.shape), G0, np.reshape(G, u.shape)))
+            out.append(tuple(np.reshape(v, np.shape(u)) for v in (W, T, S, G)))
         return out
 
     def _zone_rate(self, b, j):
