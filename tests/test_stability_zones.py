@@ -248,6 +248,12 @@ def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_
     lin = seen["lin"]
     assert isinstance(lin, LinearisedContactSet) and lin.RATE_UNITS == "k2/l^2"
     assert seen["rate_unit"] is None and seen["region"]["n"] == N
+    # The modulus bound: the single patch's for the narrowest zone (S24), unless given.
+    h = two_zones.half_widths
+    assert seen["region"]["modulus_bound"] == pytest.approx(1e6 / h.min() ** 2, rel=1e-15)
+    assert 1.5 < h.max() / h.min() and h.min() < 1.0
+    tc.stability(two_zones, n=N, modulus_bound=5e3)
+    assert seen["region"]["modulus_bound"] == 5e3
     assert np.abs(seen["sol"].edges - two_zones.edges).max() < 1e-12
     assert lin.size == 2 * (2 * N + 2) + 1
     assert list(lin.temperature_rows) == (list(range(N + 3, 2 * N + 3))
@@ -400,3 +406,40 @@ def test_the_zones_kernels_interpolated_agree_with_their_values(two_zones):
         M_direct = lin.matrix(b)
         del lin.__dict__["_cross_kernels"]
         assert np.abs(M - M_direct).max() < 1e-14 * np.abs(M_direct).max()
+
+
+def test_at_large_rates_the_zones_couple_only_through_terms_free_of_b(two_zones):
+    """S24: at large ``|b|`` zone j's transient fields at zone i's points fall off (its
+    temperature like ``exp(-Re sqrt(b) d)`` across the gap, beyond the cylinder's wake
+    scale; the half-plane's displacement to its constant ``-2/(pi sqrt b)``, the
+    rest like ``|b|^(-3/2)``), so that ``M(b)`` tends to ``M_inf(b)``, each zone's own
+    block (its single patch's at ``b Delta_j^2``) coupled by what does not depend on
+    ``b``: ``det M / det M_inf -> 1``, and the entries' difference falls at least like
+    ``|b|^(-3/2)``."""
+    from thermocontact.discretisation.linearised import logarithm_constant
+
+    sol = two_zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+
+    def limit(b):
+        out = {}
+        for pair, (u, _, _) in lin._pairs.items():
+            z = np.zeros(u.shape, dtype=complex)
+            out[pair] = ((z, z, z, z), (z - 2.0 / (np.pi * np.sqrt(b)),
+                                        z - logarithm_constant(b), z, z))
+        return out
+    ratios, entries = [], []
+    for b in 1e3 * np.exp(1j * np.pi / 3), 1e5 * np.exp(1j * np.pi / 3):
+        M = lin.matrix(b)
+        object.__setattr__(lin, "_cross_kernels", limit)
+        M_inf = lin.matrix(b)
+        del lin.__dict__["_cross_kernels"]
+        s, ld = np.linalg.slogdet(M)
+        s_inf, ld_inf = np.linalg.slogdet(M_inf)
+        ratios.append(abs(s / s_inf * np.exp(ld - ld_inf) - 1.0))
+        entries.append(np.abs(M - M_inf).max() / np.abs(M).max())
+    # Measured (n = 10): 3.1e-5 and 1.2e-7; entries 2.1e-4 (the cylinder's wake,
+    # Re mu - c = 2.6 at |b| = 1e3) and 1.7e-9.
+    assert ratios[1] < 1e-6 and ratios[1] < 1e-2 * ratios[0]
+    assert entries[1] < 1e-8

@@ -55,7 +55,7 @@ from ..problem.validation import InputError
 from .linearised import LinearisedContact, logarithm_constant, projections
 from .system import zone_parameters
 
-__all__ = ["LinearisedContactSet"]
+__all__ = ["LinearisedContactSet", "modulus_bound"]
 
 #: The zones' transient kernels at each other's points are interpolated to this, of
 #: their scale (:meth:`LinearisedContactSet._cross_kernels`): ten times the rounding
@@ -65,6 +65,16 @@ CROSS_TOLERANCE = 1e-14
 
 #: The cylinder's initial gap ``X^2/2`` (units ``l^2/R``), the default profile.
 CYLINDER_GAP = Polynomial([0.0, 0.0, 0.5])
+
+
+def modulus_bound(half_widths, single) -> float:
+    """A contact set's modulus bound in ``k2/l^2`` from the single patch's ``single``
+    (``k2/Delta^2``): ``single / Delta_min^2``, ``Delta_min`` the narrowest zone's
+    half-width in units of ``l`` (derivation S24: at large ``|b|`` the zones couple
+    through terms that do not depend on ``b``, each zone's block is its single
+    patch's at ``b Delta_j^2``, and beyond this bound every zone's thermal layer is
+    thinner than ``Delta_j/sqrt(single)``).  One zone: the single patch's bound."""
+    return float(single) / float(np.min(half_widths)) ** 2
 
 
 @dataclass(frozen=True, eq=False)
