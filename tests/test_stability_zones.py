@@ -443,3 +443,24 @@ def test_at_large_rates_the_zones_couple_only_through_terms_free_of_b(two_zones)
     # Re mu - c = 2.6 at |b| = 1e3) and 1.7e-9.
     assert ratios[1] < 1e-6 and ratios[1] < 1e-2 * ratios[0]
     assert entries[1] < 1e-8
+
+
+def test_a_fold_is_recorded_for_a_contact_set_as_for_the_single_patch():
+    """Next to the fold of the load on the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.22; the
+    fold at 1.235) ``det M(0)`` is small and the exponentially slow real root of (S8)
+    lies below b_min: the single patch as one zone records both, the root in
+    ``k2/l^2`` (``b*/Delta^2``, as ``l(b Delta^2) = l(b) - ln Delta`` moves the ratio
+    ``det M_reg(0)/det M(0)`` by ``-ln Delta``: S22), and a fold measure of the same
+    size."""
+    from thermocontact.solvers.stability import _fold
+
+    sol = Model(1.22, 1.0, n=N).solve_at(N, 1.22, lam=1.0, check_validity=False)
+    par, edges, phi, psi = _as_zone(sol)
+    h = 0.5 * (edges[1] - edges[0])
+    zone = LinearisedContactSet(par, sol.representation, [edges], phi[None], psi[None])
+    fold, slow = _fold(linearised(sol))
+    fold_set, slow_set = _fold(zone)
+    assert slow is not None and slow < 1e-10
+    assert slow_set * h * h == pytest.approx(slow, rel=1e-8)
+    assert 1.0 / fold_set == pytest.approx(1.0 / fold + np.log(h), rel=1e-8)
+    assert fold < 0.1 and fold_set < 0.1
