@@ -360,6 +360,43 @@ def test_the_count_follows_the_phase_of_many_temperature_rows(monkeypatch, line_
         assert winding.count(1e6)[0] == count
 
 
+def test_the_phase_of_a_step_is_the_sum_of_its_eigenvalues_arguments():
+    """``step_phase(A, B)`` (S25) against the phase of ``det(A + s(B - A))`` followed on
+    a fine grid of ``s``; a step whose eigenvalue turns by pi/4 or more is refused."""
+    from thermocontact.solvers.stability import step_phase
+
+    rng = np.random.default_rng(7)
+    A = rng.standard_normal((8, 8)) + 1j * rng.standard_normal((8, 8))
+    for E in (0.15 * rng.standard_normal((8, 8)), 0.1j * rng.standard_normal((8, 8))):
+        B = A @ (np.eye(8) + E)
+        s = np.linspace(0.0, 1.0, 2001)
+        dets = [np.linalg.det(A + x * (B - A)) for x in s]
+        followed = np.unwrap(np.angle(dets))
+        assert step_phase(A, B) == pytest.approx(followed[-1] - followed[0], abs=1e-10)
+    assert step_phase(A, A @ np.diag(np.r_[np.exp(1j), np.ones(7)])) == np.inf
+
+
+@pytest.mark.parametrize("line_step", [4.0, 8.0])
+def test_steps_by_eigenvalues_do_not_alias_the_turns_of_many_rows(line_step):
+    """The aliasing of the many temperature rows (above: the determinant's phase counts
+    2 from first steps of 4 units) is gone when each step's phase is the sum of the
+    arguments of the eigenvalues of ``A(a)^-1 A(b)`` (S25): 0, from steps of 4 or 8,
+    with fewer samples; and the count of known roots is unchanged."""
+    import thermocontact.solvers.stability as st
+    from test_stability import ROOTS, _known_problem
+
+    winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step,
+                         ratios=True)
+    assert winding.count(1e6) == (0, None) and len(winding.values) < 40
+    known = st.Winding(_known_problem(ROOTS), 1e-3, ratios=True)
+    assert known.count(30.0) == (6, None) and known.count(1e4) == (8, None)
+    double = st.Winding(_known_problem([2.0 + 0j, 2.0 + 0j]), 1e-3, ratios=True)
+    assert double.count(100.0) == (2, None)
+    count, why = st.Winding(_known_problem([1e-3 + 0.5j, 1e-3 - 0.5j]), 1e-3,
+                            ratios=True).count(10.0)
+    assert count is None and "contour" in why
+
+
 def test_panel_interpolation_resolves_a_boundary_layer_and_evaluates_a_jump_directly():
     """A boundary layer ``exp(-beta u)`` (``|arg beta| < pi/4``, the transient kernels'
     form) and a logarithm on intervals of either sign, to their tolerance of the
