@@ -52,7 +52,16 @@ def _as_zone(sol, centre_over_delta=None):
     return par, np.array([c - h, c + h]), sol.phi / h, sol.psi / h
 
 
-def test_one_zone_is_the_single_patch(single):
+@pytest.fixture(scope="module")
+def single_dundurs():
+    return Model(5.0, 10.0, n=N, beta_f=0.6).solve_at(N, 0.2, lam=-1.0)
+
+
+@pytest.mark.parametrize("which", ["single", "single_dundurs"])
+def test_one_zone_is_the_single_patch(which, request):
+    """With and without the Dundurs term (its edge exponents in the representation's
+    weight, S15, S26)."""
+    single = request.getfixturevalue(which)
     par, edges, phi, psi = _as_zone(single)
     h = 0.5 * (edges[1] - edges[0])
     zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None])
@@ -67,12 +76,21 @@ def test_one_zone_is_the_single_patch(single):
         assert np.abs(M - M1).max() < 1e-12 * np.abs(M1).max(), b
 
 
+QUARTIC = Polynomial([0, 0.05]) + (1 / 32) * Polynomial([-4.0, 0, 1]) ** 2
+
+
 @pytest.fixture(scope="module")
 def two_zones():
     """Two zones of a tilted quartic profile with frictional heat (section 14)."""
-    prof = Polynomial([0, 0.05]) + (1 / 32) * Polynomial([-4.0, 0, 1]) ** 2
-    return ZoneModel(10.0, n=N, profile=prof).solve([[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2,
-                                                   0.5)
+    return ZoneModel(10.0, n=N, profile=QUARTIC).solve([[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2,
+                                                      0.5)
+
+
+@pytest.fixture(scope="module")
+def two_zones_dundurs():
+    """The same with the Dundurs term (beta f = 0.3: edge exponents 0.547 and 0.453)."""
+    return ZoneModel(10.0, n=N, profile=QUARTIC, beta_f=0.3).solve(
+        [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
 
 
 def _operator(sol, geometry):
@@ -113,6 +131,10 @@ def _operator(sol, geometry):
                 return np.hstack([ap * M[0], aq * M[1]])
             lb, _ = mom(lambda u: np.log(np.abs(u)), 1.0, True)
             disp[:, cols.start:cols.start + n] += (lb + np.log(hj) * wp) / np.pi
+            if par.free_term:
+                # The Dundurs term's -b int H(X - Y) P dY, H's constant half in D.
+                step, _ = mom(np.sign, 1.0)
+                disp[:, cols.start:cols.start + n] -= 0.5 * par.free_term * step
             w1 = mom(lambda u: cylinder_displacement(ce * u) / cl, ce)
             w2 = mom(lambda u: -0.5 * hj * np.abs(u), 1.0)
             disp[:, cols] += 2 * F * (d * heat(w1, 0) + heat(w2, 1))
@@ -142,8 +164,11 @@ def _operator(sol, geometry):
     return A, r0
 
 
-def test_M0_is_the_jacobian_of_the_steady_contact_set(two_zones):
-    sol = two_zones
+@pytest.mark.parametrize("which", ["two_zones", "two_zones_dundurs"])
+def test_M0_is_the_jacobian_of_the_steady_contact_set(which, request):
+    """With and without the Dundurs term (S26: its step at the other zones a constant,
+    no edges' terms)."""
+    sol = request.getfixturevalue(which)
     n, m = sol.n, sol.zones
     lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
                                sol.psi, sol.profile)
@@ -217,10 +242,10 @@ def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
     from thermocontact.problem.conductance import Conductance
 
     sol = two_zones
-    for change in ({"speed_ratio": 0.3}, {"beta_f": 0.2}):
-        with pytest.raises(InputError, match="stationary half-plane"):
-            LinearisedContactSet(replace(sol.parameters, **change), sol.representation,
-                                 sol.edges, sol.phi, sol.psi, sol.profile)
+    with pytest.raises(InputError, match="stationary half-plane") as err:
+        LinearisedContactSet(replace(sol.parameters, speed_ratio=0.3), sol.representation,
+                             sol.edges, sol.phi, sol.psi, sol.profile)
+    assert err.value.parameters == ("speed_ratio",)
     # A set solved with an interface conductance, before any work.
     with pytest.raises(InputError, match="perfect thermal contact") as err:
         tc.stability(replace(sol, conductance=Conductance.of((3.0, 0.0))))

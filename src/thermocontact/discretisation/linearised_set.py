@@ -1,6 +1,6 @@
 """A contact set of several zones linearised about a steady solution: ``M(b) c = 0``.
 
-Every zone's edges move (derivation section 18b, eqs. S18-S22): zone ``j``, of centre
+Every zone's edges move (derivation section 18b, eqs. S18-S26): zone ``j``, of centre
 ``c_j`` and half-width ``Delta_j`` (units of the Hertz half-width ``l``), carries its
 pressure and heat-flux difference in its own moving coordinate as the single patch
 does (:class:`~.linearised.LinearisedContact`, section 18), with the unknowns
@@ -16,8 +16,9 @@ unit (S19): Flamant's ``(1/pi) ln Delta_j int p~_j`` and the stationary half-pla
 ``int [K_0'(w) X~_i(s) - K_b'(w) Y~_j(r)] q0_j``, ``X~_i = Delta_i(sig~_i + del~_i s)``,
 ``Y~_j = Delta_j(sig~_j + del~_j r)``: the source's edges move, and so do the points;
 at separated arguments every kernel is smooth, and its integral against the source
-zone's interpolant is the midpoint rule in ``tau`` (exponentially convergent, as the
-steady solver's product integration).  The load row is the sum of the zones', and the stationary half-plane's
+zone's interpolant is the midpoint rule in ``tau`` (as the steady solver's product
+integration), the transient kernels interpolated on Chebyshev panels of the pair's
+interval of ``w``; the Dundurs term's step is a constant there (S26).  The load row is the sum of the zones', and the stationary half-plane's
 temperature constant ``l(b)`` multiplies the whole perturbed heat into it on every
 zone (S22): with each later zone's first temperature row less the first zone's, it
 stands on the first zone's alone, as the single patch's does, and ``M(0)`` is the
@@ -29,10 +30,9 @@ Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
 its temperature (``n``), then each later zone's displacement and temperature.  One
 zone is the single patch, its rows and unknowns in its order.
 
-Modelled: a stationary half-plane without the Dundurs term, with perfect thermal
-contact (the transient kernels of a moving half-plane at separated arguments, the
-Dundurs term's cross-zone constants and the interface's scaling are not yet
-derived for several zones).
+Modelled: a stationary half-plane, with or without the Dundurs term, with perfect
+thermal contact (the transient kernels of a moving half-plane at separated arguments
+and the interface's scaling are not yet derived for several zones).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from ..numerics.interpolation import panel_interpolation
-from ..numerics.moment_engine import stretch
+from ..numerics.moment_engine import bounded_weight, singular_weight, stretch
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
@@ -85,7 +85,7 @@ class LinearisedContactSet:
     ----------
     parameters : Parameters
         ``pe = Pe_l`` and ``fhpe = fHPe_l``, in units of the Hertz half-width ``l``
-        (a stationary half-plane, no Dundurs term).
+        (a stationary half-plane; the Dundurs term's ``free_term`` as it is).
     representation : Representation
         An edge-graded one (the steady solution's).
     edges : ndarray, shape (m, 2)
@@ -106,10 +106,9 @@ class LinearisedContactSet:
 
     def __post_init__(self):
         par = self.parameters
-        if par.half_plane_scale or par.free_term:
+        if par.half_plane_scale:
             raise InputError("the stability of a contact set is modelled for a stationary "
-                             "half-plane without the Dundurs term (speed_ratio = 0, "
-                             "beta_f = 0)", parameters=("speed_ratio", "beta_f"))
+                             "half-plane (speed_ratio = 0)", parameters=("speed_ratio",))
         edges = np.asarray(self.edges, dtype=float).reshape(-1, 2)
         if np.any(np.diff(edges.ravel()) <= 0.0):
             raise InputError("edges must be increasing, a1 < b1 < a2 < ...",
@@ -173,20 +172,24 @@ class LinearisedContactSet:
     @cached_property
     def _sources(self):
         """The rule of the cross-zone integrals (S21): ``r = cos T(tau)`` at ``N``
-        midpoints in ``tau`` (``N = max(64, 4n)``), the pressure's and the flux
-        difference's weights ``(pi/N) sin^2 T T'`` and ``(pi/N) T'`` (``p dr`` and
-        ``q' dr`` in ``tau``: smooth and periodic), and the cosine series taking nodal
-        values there: the moments of the zone's interpolant of its density against
-        the kernel, as the steady solver's product integration forms them, to the
-        midpoint rule's error (exponentially small in ``N``)."""
+        midpoints in ``tau``, the pressure's and the flux difference's weights
+        ``(pi/N) w(cos T) sin T T'`` (``sin^2 T T'`` without the Dundurs term) and
+        ``(pi/N) T'`` (``p dr`` and ``q' dr`` in ``tau``), and the cosine series taking
+        nodal values there: the moments of the zone's interpolant of its density
+        against the kernel, as the steady solver's product integration forms them, to
+        the midpoint rule's error: exponentially small in ``N = max(64, 4n)`` for
+        the weights of ``alpha = 1/2``, smooth and periodic; ``O(N^-(6 alpha + 6))``
+        with the Dundurs term's edge exponents (``tau^(6 alpha + 5)`` at the edge,
+        :func:`~thermocontact.numerics.moment_engine.weight_integrals`), below 1e-14
+        with ``N = max(256, 4n)``."""
         rep, n = self.representation, self.n
-        count = max(64, 4 * n)
+        alpha = getattr(rep, "alpha", 0.5)
+        count = max(64 if alpha == 0.5 else 256, 4 * n)
         tau = np.pi * (np.arange(count) + 0.5) / count
-        t = stretch(tau)
-        slope = 2.0 * np.sin(tau) ** 2                   # T'(tau)
         series = np.cos(np.multiply.outer(tau, np.arange(n))) @ rep.to_cos
         step = np.pi / count
-        return np.cos(t), step * np.sin(t) ** 2 * slope, step * slope, series
+        return (np.cos(stretch(tau)), step * bounded_weight(tau, alpha),
+                step * singular_weight(tau), series)
 
     @cached_property
     def _points(self):
@@ -196,7 +199,7 @@ class LinearisedContactSet:
         return pd, pt, s
 
     def matrix(self, b, *, split=False):
-        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S22).
+        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S26).
 
         Parameters
         ----------
@@ -309,8 +312,10 @@ class LinearisedContactSet:
             T = slice(i * B + n + 3, (i + 1) * B)
             own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
             edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
-            # Flamant's logarithm, its derivative 1/w (no rate).
-            full[R, j * B:j * B + n] += pd @ ((np.log(np.abs(u)) / np.pi * wp) @ series)
+            # Flamant's logarithm with the Dundurs term's step (S26), and the
+            # logarithm's derivative 1/w (no rate; the step's vanishes off w = 0).
+            flamant = np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u)
+            full[R, j * B:j * B + n] += pd @ ((flamant * wp) @ series)
             K = 1.0 / (np.pi * u)
             full[R, own] += pd @ self._moved_points(K, P0, i)
             full[R, edge] += pd @ self._moved_sources(K, P0, j)
