@@ -1077,8 +1077,8 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None,
     count is 0, None (with the reason) where the count could not be certified.  A
     stationary or a moving half-plane, with or without the Dundurs term; perfect
     thermal contact only.  A contact set of one or more zones (:func:`contact_set`),
-    every edge free (section 18b): a stationary half-plane, with or without the Dundurs
-    term.
+    every edge free (section 18b): a stationary or a moving half-plane, with or without
+    the Dundurs term; perfect thermal contact.
 
     Parameters
     ----------
@@ -1118,7 +1118,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None,
     InputError
         A solution of neither kind, an interface conductance, a Chebyshev method, a
         physical contact without a branch, a contact set not found at the point asked
-        for or with a moving half-plane, or a region out of range.
+        for, or a region out of range.
 
     Examples
     --------
@@ -1199,10 +1199,6 @@ def _contact_set_stability(found, **region) -> StabilityResult:
     if region["modulus_bound"] is None:
         region["modulus_bound"] = set_bound(sol.half_widths, MODULUS_BOUND)
     if isinstance(found, PhysicalContactSet):
-        par = sol.parameters
-        if par.half_plane_scale:
-            raise InputError("stability of a contact set is modelled with the half-plane "
-                             "at rest: give speed2=0", parameters=("speed2",))
         rate_unit = found.problem.half_plane.k / found.hertz_half_width ** 2
     par = sol.parameters
     model = ZoneModel(par.K2_over_K1, k2_over_k1=par.k2_over_k1,

@@ -1,6 +1,6 @@
 """A contact set of several zones linearised about a steady solution: ``M(b) c = 0``.
 
-Every zone's edges move (derivation section 18b, eqs. S18-S26): zone ``j``, of centre
+Every zone's edges move (derivation section 18b, eqs. S18-S27): zone ``j``, of centre
 ``c_j`` and half-width ``Delta_j`` (units of the Hertz half-width ``l``), carries its
 pressure and heat-flux difference in its own moving coordinate as the single patch
 does (:class:`~.linearised.LinearisedContact`, section 18), with the unknowns
@@ -30,9 +30,9 @@ Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
 its temperature (``n``), then each later zone's displacement and temperature.  One
 zone is the single patch, its rows and unknowns in its order.
 
-Modelled: a stationary half-plane, with or without the Dundurs term, with perfect
-thermal contact (the transient kernels of a moving half-plane at separated arguments
-and the interface's scaling are not yet derived for several zones).
+Modelled: a stationary or a moving half-plane (S27: no temperature constant, every
+temperature row complete), with or without the Dundurs term (S26), with perfect
+thermal contact (the interface's scaling is not yet derived for several zones).
 """
 
 from __future__ import annotations
@@ -67,6 +67,15 @@ CROSS_TOLERANCE = 1e-14
 CYLINDER_GAP = Polynomial([0.0, 0.0, 0.5])
 
 
+def _steady_fields(u, scale):
+    """A body's steady slope ``S_0`` and temperature gradient ``G_0`` (with its Cauchy
+    part ``1/u``) at ``u`` for its signed scale (derivation D4, D7, D14b; at rest
+    ``sgn(u)/2`` and ``1/u``)."""
+    if scale:
+        return moving_slope(u, scale), 1.0 / u + cylinder_temperature_gradient_regular(u, scale)
+    return 0.5 * np.sign(u), 1.0 / u
+
+
 def modulus_bound(half_widths, single) -> float:
     """A contact set's modulus bound in ``k2/l^2`` from the single patch's ``single``
     (``k2/Delta^2``): ``single / Delta_min^2``, ``Delta_min`` the narrowest zone's
@@ -85,7 +94,8 @@ class LinearisedContactSet:
     ----------
     parameters : Parameters
         ``pe = Pe_l`` and ``fhpe = fHPe_l``, in units of the Hertz half-width ``l``
-        (a stationary half-plane; the Dundurs term's ``free_term`` as it is).
+        (the half-plane's ``c2 = R Pe_l``, the Dundurs term's ``free_term`` as they
+        are).
     representation : Representation
         An edge-graded one (the steady solution's).
     edges : ndarray, shape (m, 2)
@@ -106,9 +116,6 @@ class LinearisedContactSet:
 
     def __post_init__(self):
         par = self.parameters
-        if par.half_plane_scale:
-            raise InputError("the stability of a contact set is modelled for a stationary "
-                             "half-plane (speed_ratio = 0)", parameters=("speed_ratio",))
         edges = np.asarray(self.edges, dtype=float).reshape(-1, 2)
         if np.any(np.diff(edges.ravel()) <= 0.0):
             raise InputError("edges must be increasing, a1 < b1 < a2 < ...",
@@ -141,8 +148,9 @@ class LinearisedContactSet:
 
     @property
     def moving(self) -> bool:
-        """False: the half-plane is at rest (its temperature constant, S22)."""
-        return False
+        """Whether the half-plane moves (``c2 = R Pe_l != 0``): no temperature constant,
+        ``b = 0`` no branch point (S27); at rest, the constant of S22."""
+        return self.parameters.half_plane_scale != 0.0
 
     @cached_property
     def zones(self) -> tuple:
@@ -199,14 +207,14 @@ class LinearisedContactSet:
         return pd, pt, s
 
     def matrix(self, b, *, split=False):
-        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S26).
+        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S27).
 
         Parameters
         ----------
         b : complex
             The rate in units of ``k2/l^2``, off the cut ``b < 0``; ``b = 0`` gives the
             limit (S8, S22): the first zone's first temperature row is the heat
-            partition's.
+            partition's (a moving half-plane's, S27: every temperature row complete).
         split : bool
             Return ``(M_reg, ell, row)`` with ``M = M_reg + ell * outer(e, row)``, ``e``
             the first zone's first temperature row, as
@@ -222,13 +230,15 @@ class LinearisedContactSet:
         h, c = self._geometry
         full = np.zeros((m * B, m * B), dtype=complex)
         w = np.zeros(m * B, dtype=complex)
-        ell = 0.0 if b == 0 else logarithm_constant(b)
+        moving = self.moving
+        ell = 0.0 if b == 0 or moving else logarithm_constant(b)
         for i, zone in enumerate(self.zones):
             block = slice(i * B, (i + 1) * B)
             reg, _, row = zone.matrix(self._zone_rate(b, i), split=True)
             reg = np.array(reg, dtype=complex)
             # The common length unit (S19): Flamant's ln Delta_i int p~_i, the
-            # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i.
+            # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i (a moving
+            # one's temperature is scale-free, S27: row = 0).
             lnh = np.log(h[i])
             wp = zone.representation.pressure_rule.weights
             reg[:n + 2, :n] += (lnh / np.pi) * np.outer(pd.sum(axis=1), wp)
@@ -253,6 +263,11 @@ class LinearisedContactSet:
             full[:, 2 * n] += full[:, k]
         M = full[np.ix_(keep_rows, keep_cols)]
         w = w[keep_cols]
+        if moving:
+            # No temperature constant (S27): every temperature row complete.
+            if split:
+                return M, 0.0, np.zeros_like(w)
+            return M.real if b == 0 else M
         # l(b) on every zone's first temperature row: on the first zone's alone.
         M[first[1:]] -= M[first[0]]
         if split:
@@ -305,7 +320,6 @@ class LinearisedContactSet:
         h, _ = self._geometry
         r, wp, _, series = self._sources
         par = self.parameters
-        cyl = par.cylinder_scale
         full = np.zeros((m * B, m * B))
         for (i, j), (u, P0, q0) in self._pairs.items():
             R = slice(i * B, i * B + n + 2)
@@ -319,8 +333,7 @@ class LinearisedContactSet:
             K = 1.0 / (np.pi * u)
             full[R, own] += pd @ self._moved_points(K, P0, i)
             full[R, edge] += pd @ self._moved_sources(K, P0, j)
-            S0 = (moving_slope(u, cyl), 0.5 * np.sign(u))
-            G0 = (1.0 / u + cylinder_temperature_gradient_regular(u, cyl), 1.0 / u)
+            S0, G0 = zip(*(_steady_fields(u, scale) for scale in self._scales))
             # W' = -S, T' = -G: the steady fields at the moved points.
             for (f, sign, _, _), q, S, G in zip(self._weights(), q0, S0, G0):
                 full[R, own] += f * (pd @ self._moved_points(-S, q, i))
@@ -374,27 +387,38 @@ class LinearisedContactSet:
         us = [u for u, _, _ in pairs.values()]
         values = panel_interpolation(f, [(u.min(), u.max()) for u in us], us,
                                      tol=CROSS_TOLERANCE)
-        # The half-plane's constants, taken off the values interpolated (the kernels'
-        # scale, not theirs, sets the tolerance).
-        W0, T0 = 2.0 / (np.pi * np.sqrt(complex(b))), logarithm_constant(complex(b))
+        # The half-plane's constants at rest, taken off the values interpolated (the
+        # kernels' scale, not theirs, sets the tolerance).
+        W0, T0 = ((0.0, 0.0) if self.moving else
+                  (2.0 / (np.pi * np.sqrt(complex(b))), logarithm_constant(complex(b))))
         return {pair: (v[:4], (v[4] - W0, v[5] - T0, v[6], v[7]))
                 for pair, v in zip(pairs, values)}
 
+    @property
+    def _scales(self):
+        """Each body's signed scale in units of ``l``: the cylinder's ``c_l``, the
+        half-plane's ``c2 = R Pe_l`` (0 at rest)."""
+        return self.parameters.cylinder_scale, self.parameters.half_plane_scale
+
     def _kernels(self, u, b, constants=True):
         """Each body's ``(W, T, S_b, G_b)`` at the separated arguments ``u`` (units of
-        ``l``): the cylinder's with ``c_l`` and rate ``b k2/k1``, the stationary
-        half-plane's less the constants ``2/(pi sqrt b)`` and ``l(b)`` (S7, S21; not
-        without ``constants``); at ``b = 0`` the steady kernels."""
+        ``l``), the cylinder's with ``c_l`` and rate ``b k2/k1``, the half-plane's with
+        ``c2`` and rate ``b``: at rest less the constants ``2/(pi sqrt b)`` and
+        ``l(b)`` (S7, S21; not without ``constants``), moving as they are (S27); at
+        ``b = 0`` the steady kernels."""
         par = self.parameters
-        cyl = par.cylinder_scale
-        if b == 0:
-            S0c = moving_slope(u, cyl)
-            return ((cylinder_displacement(cyl * u) / cyl, cylinder_temperature(cyl * u), S0c,
-                     1.0 / u + cylinder_temperature_gradient_regular(u, cyl)),
-                    (-0.5 * np.abs(u), -np.log(np.abs(u)), 0.5 * np.sign(u), 1.0 / u))
-        b = complex(b)
         out = []
-        for scale, rate in ((cyl, b / par.k2_over_k1), (0.0, b)):
+        for scale, rate in zip(self._scales, (b / par.k2_over_k1, b)):
+            if b == 0:
+                S, G = _steady_fields(u, scale)
+                if scale:
+                    W, T = cylinder_displacement(scale * u) / abs(scale), \
+                        cylinder_temperature(scale * u)
+                else:
+                    W, T = -0.5 * np.abs(u), -np.log(np.abs(u))
+                out.append((W, T, S, G))
+                continue
+            rate = complex(rate)
             flat = np.ravel(u)
             W, S = transient_displacement_and_slope(flat, scale, rate)
             T = transient_temperature(flat, scale, rate)
