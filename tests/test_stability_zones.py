@@ -29,8 +29,8 @@ from numpy.polynomial import Polynomial
 from thermocontact import Model
 from thermocontact.discretisation.linearised import projections
 from thermocontact.discretisation.linearised_set import LinearisedContactSet
+from thermocontact.numerics.moment_engine import stretch
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
-from thermocontact.problem.validation import InputError
 from thermocontact.solvers.stability import linearised
 from thermocontact.solvers.zones import ZoneModel
 
@@ -62,14 +62,28 @@ def single_moving():
     return Model(5.0, 10.0, n=N, speed_ratio=0.5).solve_at(N, 0.2, lam=-1.0)
 
 
-@pytest.mark.parametrize("which", ["single", "single_dundurs", "single_moving"])
+@pytest.fixture(scope="module")
+def single_conductance():
+    return Model(5.0, 10.0, n=N, conductance=(10.0, 0.95)).solve_at(N, 0.2, lam=-1.0)
+
+
+@pytest.mark.parametrize("which", ["single", "single_dundurs", "single_moving",
+                                   "single_conductance"])
 def test_one_zone_is_the_single_patch(which, request):
     """With and without the Dundurs term (its edge exponents in the representation's
-    weight, S15, S26), and with the half-plane moving (no temperature constant, S27)."""
+    weight, S15, S26), with the half-plane moving (no temperature constant, S27), and
+    with a conductance growing with the pressure, ``Bi0 = 10``, ``m = 0.95`` in the
+    single patch's scaling, ``Bi0 Delta^(m - 1)`` in units of ``l`` (D37a, S28)."""
+    from thermocontact.problem.conductance import Conductance
+
     single = request.getfixturevalue(which)
     par, edges, phi, psi = _as_zone(single)
     h = 0.5 * (edges[1] - edges[0])
-    zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None])
+    cond = single.conductance
+    if cond is not None:
+        cond = Conductance(cond.biot0 * h ** (cond.exponent - 1.0), cond.exponent)
+    zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None],
+                                conductance=cond)
     lin = linearised(single)
     _, pd, _ = projections(N)
     wp = single.representation.pressure_rule.weights
@@ -95,6 +109,13 @@ def two_zones():
 def two_zones_moving():
     """The same with the half-plane moving (R = 0.5, c2 = 0.5 Pe_l)."""
     return ZoneModel(10.0, n=N, profile=QUARTIC, speed_ratio=0.5).solve(
+        [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
+
+
+@pytest.fixture(scope="module")
+def two_zones_conductance():
+    """The same with a constant interface conductance, Bi0 = h0 l/K2 = 3."""
+    return ZoneModel(10.0, n=N, profile=QUARTIC, conductance=(3.0, 0.0)).solve(
         [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
 
 
@@ -163,6 +184,16 @@ def _operator(sol, geometry):
             if not c2:
                 temp[:, cols.start:cols.start + n] -= 0.5 * (1 - eta) * (-np.log(hj)) * wp
                 temp[:, cols.start + n:cols.stop] -= -0.5 * (-np.log(hj)) * wq
+        cond = sol.conductance
+        if cond is not None:
+            # The interface's (pi/(2 Bi)) Q at the zone's own points, Q = q/Delta_i in
+            # units of l (D33; a constant Bi: linear in the densities).
+            assert cond.exponent == 0.0
+            at = np.cos(np.multiply.outer(aux, np.arange(n))) @ rep.to_cos
+            t = stretch(aux)
+            factor = 0.5 * np.pi / (cond.biot0 * hi)
+            temp[:, 2 * n * i:2 * n * i + n] += factor * (eta * np.sin(t))[:, None] * at
+            temp[:, 2 * n * i + n:2 * n * i + 2 * n] += (factor / np.sin(t))[:, None] * at
         disp[:, -1] = 1.0
         rows.append((pd @ disp, -(2 / np.pi) * (pd @ sol.profile(X)), pt @ temp))
     k = 0
@@ -186,7 +217,8 @@ def _operator(sol, geometry):
     return A, r0
 
 
-@pytest.mark.parametrize("which", ["two_zones", "two_zones_dundurs", "two_zones_moving"])
+@pytest.mark.parametrize("which", ["two_zones", "two_zones_dundurs", "two_zones_moving",
+                                   "two_zones_conductance"])
 def test_M0_is_the_jacobian_of_the_steady_contact_set(which, request):
     """With and without the Dundurs term (S26: its step at the other zones a constant,
     no edges' terms), and with the half-plane moving (S27: at fixed incoming
@@ -194,7 +226,7 @@ def test_M0_is_the_jacobian_of_the_steady_contact_set(which, request):
     sol = request.getfixturevalue(which)
     n, m = sol.n, sol.zones
     lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
-                               sol.psi, sol.profile)
+                               sol.psi, sol.profile, sol.conductance)
     M0 = lin.matrix(0)
     h, c = sol.half_widths, sol.centres
     geometry = list(zip(c, h))
@@ -266,17 +298,16 @@ def test_two_zones_far_apart_factor_into_their_single_patches():
     assert abs(steps[1] - 1.0) < 0.5 * abs(steps[0] - 1.0)
 
 
-def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
-    import thermocontact as tc
+def test_a_contact_set_s_conductance_reaches_each_zone_in_its_own_scaling(two_zones):
+    """``linearised`` of a set solved with an interface conductance (it was refused):
+    each zone's block takes ``Bi0 Delta_j^(1 - m)`` (S28, the inverse of D37a)."""
     from thermocontact.problem.conductance import Conductance
 
-    sol = two_zones
-    # A set solved with an interface conductance, before any work.
-    with pytest.raises(InputError, match="perfect thermal contact") as err:
-        tc.stability(replace(sol, conductance=Conductance.of((3.0, 0.0))))
-    assert err.value.parameters == ("conductance",)
-    with pytest.raises(InputError, match="perfect thermal contact"):
-        linearised(replace(sol, conductance=Conductance.of((3.0, 0.0))))
+    sol = replace(two_zones, conductance=Conductance.of((3.0, 0.5)))
+    lin = linearised(sol)
+    for zone, h in zip(lin.zones, sol.half_widths):
+        assert zone.conductance.exponent == 0.5
+        assert zone.conductance.biot0 == pytest.approx(3.0 * np.sqrt(h), rel=1e-15)
 
 
 def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_zones,
@@ -340,11 +371,10 @@ def test_contact_zones_stability_adds_the_record(capsys, monkeypatch):
     assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
 
 
-def test_zones_stability_adds_the_record_and_refuses_a_conductance(capsys, monkeypatch):
+def test_zones_stability_adds_the_record(capsys, monkeypatch):
     """``zones --stability`` (the dimensionless command) adds the contact set's
     ``"stability"`` record, in its JSON and its text, as ``contact --zones --stability``
-    does (stand-ins keep it fast); with ``--conductance`` it is refused in one line, as
-    there."""
+    does (stand-ins keep it fast), with ``--conductance`` too."""
     import json
 
     import thermocontact.api as api
@@ -371,9 +401,9 @@ def test_zones_stability_adds_the_record_and_refuses_a_conductance(capsys, monke
     assert isinstance(seen[0], Found) and rec["stability"]["stable"] is True
     assert main(args) == 0
     assert "stable        = True" in capsys.readouterr().out
-    assert main(args + ["--conductance", "1:0"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "perfect thermal contact" in err[0]
+    # With an interface conductance too (it was refused, S28).
+    assert main(args + ["--conductance", "1:0", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["stability"]["stable"] is True
 
 
 class _ManyRows:

@@ -1075,10 +1075,9 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None,
     argument principle on the boundary of that region, located by Beyn's contour
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
-    stationary or a moving half-plane, with or without the Dundurs term; perfect
-    thermal contact only.  A contact set of one or more zones (:func:`contact_set`),
-    every edge free (section 18b): a stationary or a moving half-plane, with or without
-    the Dundurs term; perfect thermal contact.
+    stationary or a moving half-plane, with or without the Dundurs term and an
+    interface conductance.  A contact set of one or more zones (:func:`contact_set`),
+    every edge free (section 18b): likewise.
 
     Parameters
     ----------
@@ -1116,9 +1115,9 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None,
     Raises
     ------
     InputError
-        A solution of neither kind, an interface conductance, a Chebyshev method, a
-        physical contact without a branch, a contact set not found at the point asked
-        for, or a region out of range.
+        A solution of neither kind, a Chebyshev method, a physical contact without a
+        branch, a contact set not found at the point asked for, or a region out of
+        range.
 
     Examples
     --------
@@ -1182,7 +1181,6 @@ def _contact_set_stability(found, **region) -> StabilityResult:
     for a physical one.  The set is solved again at the analysis' ``n`` from its edges,
     with its heat partition (the far temperatures' output, where they closed it: the
     perturbation leaves the far field unchanged)."""
-    from .problem.validation import check_perfect_contact
     from .discretisation.linearised_set import modulus_bound as set_bound
     from .solvers.stability import MODULUS_BOUND, stability_of
     from .solvers.zones import ZoneModel, ZoneSolution
@@ -1195,7 +1193,6 @@ def _contact_set_stability(found, **region) -> StabilityResult:
         if sol is None:
             raise InputError(f"stability: no contact set at the point asked for "
                              f"({found.status}: {found.message})", parameters=("solution",))
-    check_perfect_contact(sol.conductance)
     if region["modulus_bound"] is None:
         region["modulus_bound"] = set_bound(sol.half_widths, MODULUS_BOUND)
     if isinstance(found, PhysicalContactSet):
@@ -1203,7 +1200,8 @@ def _contact_set_stability(found, **region) -> StabilityResult:
     par = sol.parameters
     model = ZoneModel(par.K2_over_K1, k2_over_k1=par.k2_over_k1,
                       delta1_over_delta2=par.delta1_over_delta2, beta_f=par.beta_f,
-                      method=sol.method, profile=sol.profile, speed_ratio=par.speed_ratio)
+                      method=sol.method, profile=sol.profile, speed_ratio=par.speed_ratio,
+                      conductance=sol.conductance)
 
     def solve_at(m):
         return model.at_n(m).solve(sol.edges, par.pe, par.fhpe, lam=sol.lam,

@@ -1,6 +1,6 @@
 """A contact set of several zones linearised about a steady solution: ``M(b) c = 0``.
 
-Every zone's edges move (derivation section 18b, eqs. S18-S27): zone ``j``, of centre
+Every zone's edges move (derivation section 18b, eqs. S18-S28): zone ``j``, of centre
 ``c_j`` and half-width ``Delta_j`` (units of the Hertz half-width ``l``), carries its
 pressure and heat-flux difference in its own moving coordinate as the single patch
 does (:class:`~.linearised.LinearisedContact`, section 18), with the unknowns
@@ -32,7 +32,8 @@ zone is the single patch, its rows and unknowns in its order.
 
 Modelled: a stationary or a moving half-plane (S27: no temperature constant, every
 temperature row complete), with or without the Dundurs term (S26), with perfect
-thermal contact (the interface's scaling is not yet derived for several zones).
+thermal contact or an interface conductance (S28: local, each zone's block with its
+own Biot number).
 """
 
 from __future__ import annotations
@@ -50,6 +51,7 @@ from ..physics.green_functions import (cylinder_displacement, cylinder_temperatu
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
                                                  transient_temperature,
                                                  transient_temperature_gradient_regular)
+from ..problem.conductance import Conductance
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .linearised import LinearisedContact, logarithm_constant, projections
@@ -105,6 +107,10 @@ class LinearisedContactSet:
         (:class:`~thermocontact.solvers.zones.ZoneSolution`'s).
     profile : Polynomial, optional
         The initial gap against ``X`` in units of ``l^2/R`` (default ``X^2/2``).
+    conductance : Conductance, optional
+        An interface conductance, ``Bi0 = h0 l/K2`` at ``p_ref = P/(2 l)``
+        (:class:`~thermocontact.solvers.zones.ZoneSolution`'s); None for perfect
+        thermal contact (S28).
     """
 
     parameters: Parameters
@@ -113,6 +119,7 @@ class LinearisedContactSet:
     phi: np.ndarray
     psi: np.ndarray
     profile: Polynomial = field(default_factory=lambda: CYLINDER_GAP)
+    conductance: Conductance | None = None
 
     def __post_init__(self):
         par = self.parameters
@@ -157,10 +164,16 @@ class LinearisedContactSet:
         """Each zone's single patch (:class:`~.linearised.LinearisedContact`): its
         equivalents, its densities times ``Delta_j`` (S19)."""
         out = []
+        cond = self.conductance
         for h, c, ph, ps in zip(*self._geometry, self.phi, self.psi):
+            # The conductance in the zone's own scaling (S28, the inverse of D37a):
+            # Bi0_j = Bi0 Delta_j^(1 - m).
+            own = None if cond is None else Conductance(
+                cond.biot0 * float(h) ** (1.0 - cond.exponent), cond.exponent)
             out.append(LinearisedContact(zone_parameters(self.parameters, float(h)),
                                          self.representation, h * np.asarray(ph),
-                                         h * np.asarray(ps), float(h * h), float(c / h)))
+                                         h * np.asarray(ps), float(h * h), float(c / h),
+                                         own))
         return tuple(out)
 
     @cached_property
@@ -207,7 +220,7 @@ class LinearisedContactSet:
         return pd, pt, s
 
     def matrix(self, b, *, split=False):
-        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S27).
+        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S28).
 
         Parameters
         ----------

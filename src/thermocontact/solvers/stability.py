@@ -24,8 +24,7 @@ from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
 from ..numerics.dense import log_determinants
-from ..problem.validation import (InputError, check_integer, check_perfect_contact,
-                                  check_positive)
+from ..problem.validation import InputError, check_integer, check_positive
 from .zones import ZoneSolution
 
 __all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
@@ -184,14 +183,13 @@ class StabilityResult(Result):
 
 def linearised(solution) -> LinearisedContact | LinearisedContactSet:
     """The linearised contact about a :class:`~.result.ContactSolution`, or about a
-    contact set (:class:`~.zones.ZoneSolution`, perfect thermal contact: its edges free,
-    derivation section 18b)."""
+    contact set (:class:`~.zones.ZoneSolution`, its edges free, derivation section
+    18b)."""
     check_modelled(method=solution.method)
     if isinstance(solution, ZoneSolution):
-        check_perfect_contact(solution.conductance)
         return LinearisedContactSet(solution.parameters, solution.representation,
                                     solution.edges, solution.phi, solution.psi,
-                                    solution.profile)
+                                    solution.profile, solution.conductance)
     return LinearisedContact(solution.parameters, solution.representation, solution.phi,
                              solution.psi, solution.load_ratio, solution.sigma_over_delta,
                              solution.conductance)
