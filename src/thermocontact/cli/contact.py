@@ -171,7 +171,7 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--stability", is_flag=True,
               help="Also every growing mode of the primary branch linearised at fixed load, "
                    "counted, in 1/s (derivation section 18; seconds); with --zones, of the "
-                   "contact set, every edge free (section 18b; with --no-dundurs).")
+                   "contact set, every edge free (section 18b).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
