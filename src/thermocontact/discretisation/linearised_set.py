@@ -18,11 +18,12 @@ unit (S19): Flamant's ``(1/pi) ln Delta_j int p~_j`` and the stationary half-pla
 at separated arguments every kernel is smooth, and its integral against the source
 zone's interpolant is the midpoint rule in ``tau`` (as the steady solver's product
 integration), the transient kernels interpolated on Chebyshev panels of the pair's
-interval of ``w``; the Dundurs term's step is a constant there (S26).  The load row is the sum of the zones', and the stationary half-plane's
-temperature constant ``l(b)`` multiplies the whole perturbed heat into it on every
-zone (S22): with each later zone's first temperature row less the first zone's, it
-stands on the first zone's alone, as the single patch's does, and ``M(0)`` is the
-Jacobian of the steady contact set at fixed load and fixed ``lam``.
+interval of ``w``; the Dundurs term's step is a constant there (S26).  The load row is
+the sum of the zones', and the stationary half-plane's temperature constant ``l(b)``
+multiplies the whole perturbed heat into it on every zone (S22): with each later zone's
+first temperature row less the first zone's, it stands on the first zone's alone, as
+the single patch's does, and ``M(0)`` is the Jacobian of the steady contact set at fixed
+load and fixed ``lam``.
 
 Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
 ``del~``, then each later zone's ``phi~``, ``psi~``, ``sig~``, ``del~``
@@ -297,12 +298,9 @@ class LinearisedContactSet:
         """For each zone ``j`` at each other zone ``i``'s points (S21), what does not
         depend on ``b``: the separated arguments ``u`` (points by sources), the steady
         densities at the sources (the pressure's ``P0`` and each body's heat ``q0``)."""
-        n, par = self.n, self.parameters
-        pd, pt, s = self._points
+        s = self._points[2]
         h, c = self._geometry
         r, wp, wq, series = self._sources
-        eta = par.eta
-        share = ((0.5 * (1.0 + eta), 0.5), (0.5 * (1.0 - eta), -0.5))
         out = {}
         for i in range(len(h)):
             for j in range(len(h)):
@@ -311,7 +309,8 @@ class LinearisedContactSet:
                 zone = self.zones[j]
                 P0, psi0 = wp * (series @ zone.phi), series @ zone.psi
                 u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
-                out[i, j] = u, P0, [ap * P0 + aq * wq * psi0 for ap, aq in share]
+                out[i, j] = u, P0, [ap * P0 + aq * wq * psi0
+                                    for _, _, ap, aq in self._weights()]
         return out
 
     def _weights(self):

@@ -6,7 +6,8 @@ section 18), a nonlinear eigenproblem in the rate ``b`` (units ``k2/Delta^2``). 
 verdict is a count: the roots of ``det M`` in the region ``Re b >= b_min``,
 ``|b| <= R`` (``R`` the modulus bound, the model's range, eq. S11) by the argument
 principle on its boundary (:class:`Winding`: the phase of the determinant followed
-with steps each confirmed by its midpoint, eq. S12).  Where the count is positive the
+with steps each confirmed by its midpoint, eq. S12; a contact set's steps from the
+eigenvalues of the matrices' ratio, :func:`step_phase`, eq. S25).  Where the count is positive the
 roots are located (a single one, real, by Brent's method on the real axis; several by
 Beyn's contour integral on the smallest half-disc holding them all, :func:`beyn`) and
 each is confirmed by Newton's method on ``det M`` kept on the principal sheet
