@@ -985,7 +985,9 @@ def test_a_valid_contact_with_a_fast_mode_at_its_edges():
 
 
 def test_the_api_states_the_solvers_defaults():
-    """``stability``'s defaults, shown in its signature, are the solver's constants."""
+    """``stability``'s defaults, shown in its signature, are the solver's constants (the
+    modulus bound's, None, is the single patch's MODULUS_BOUND or a contact set's, S24:
+    tests/test_stability_zones.py)."""
     import inspect
 
     import thermocontact as tc
@@ -993,7 +995,7 @@ def test_the_api_states_the_solvers_defaults():
 
     params = inspect.signature(tc.stability).parameters
     assert params["b_min"].default == st.B_MIN
-    assert params["modulus_bound"].default == st.MODULUS_BOUND
+    assert params["modulus_bound"].default is None
     assert params["n"].default == st.STABILITY_N
 
 

@@ -14,6 +14,8 @@ section 18b, S18-S22).
   single-patch determinants grows by ``(2/pi) ln(d2/d1)`` from ``d1`` to ``d2``, its
   sole dependence on the separation ``d`` (the two zones' loads exchanged through
   Flamant's logarithm; every other coupling decays).
+* The zones' transient kernels at each other's points, interpolated on Chebyshev
+  panels, against their values there (and ``M(b)`` built either way).
 """
 
 from __future__ import annotations
@@ -27,8 +29,8 @@ from numpy.polynomial import Polynomial
 from thermocontact import Model
 from thermocontact.discretisation.linearised import projections
 from thermocontact.discretisation.linearised_set import LinearisedContactSet
+from thermocontact.numerics.moment_engine import stretch
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
-from thermocontact.problem.validation import InputError
 from thermocontact.solvers.stability import linearised
 from thermocontact.solvers.zones import ZoneModel
 
@@ -50,10 +52,38 @@ def _as_zone(sol, centre_over_delta=None):
     return par, np.array([c - h, c + h]), sol.phi / h, sol.psi / h
 
 
-def test_one_zone_is_the_single_patch(single):
+@pytest.fixture(scope="module")
+def single_dundurs():
+    return Model(5.0, 10.0, n=N, beta_f=0.6).solve_at(N, 0.2, lam=-1.0)
+
+
+@pytest.fixture(scope="module")
+def single_moving():
+    return Model(5.0, 10.0, n=N, speed_ratio=0.5).solve_at(N, 0.2, lam=-1.0)
+
+
+@pytest.fixture(scope="module")
+def single_conductance():
+    return Model(5.0, 10.0, n=N, conductance=(10.0, 0.95)).solve_at(N, 0.2, lam=-1.0)
+
+
+@pytest.mark.parametrize("which", ["single", "single_dundurs", "single_moving",
+                                   "single_conductance"])
+def test_one_zone_is_the_single_patch(which, request):
+    """With and without the Dundurs term (its edge exponents in the representation's
+    weight, S15, S26), with the half-plane moving (no temperature constant, S27), and
+    with a conductance growing with the pressure, ``Bi0 = 10``, ``m = 0.95`` in the
+    single patch's scaling, ``Bi0 Delta^(m - 1)`` in units of ``l`` (D37a, S28)."""
+    from thermocontact.problem.conductance import Conductance
+
+    single = request.getfixturevalue(which)
     par, edges, phi, psi = _as_zone(single)
     h = 0.5 * (edges[1] - edges[0])
-    zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None])
+    cond = single.conductance
+    if cond is not None:
+        cond = Conductance(cond.biot0 * h ** (cond.exponent - 1.0), cond.exponent)
+    zone = LinearisedContactSet(par, single.representation, [edges], phi[None], psi[None],
+                                conductance=cond)
     lin = linearised(single)
     _, pd, _ = projections(N)
     wp = single.representation.pressure_rule.weights
@@ -65,12 +95,35 @@ def test_one_zone_is_the_single_patch(single):
         assert np.abs(M - M1).max() < 1e-12 * np.abs(M1).max(), b
 
 
+QUARTIC = Polynomial([0, 0.05]) + (1 / 32) * Polynomial([-4.0, 0, 1]) ** 2
+
+
 @pytest.fixture(scope="module")
 def two_zones():
     """Two zones of a tilted quartic profile with frictional heat (section 14)."""
-    prof = Polynomial([0, 0.05]) + (1 / 32) * Polynomial([-4.0, 0, 1]) ** 2
-    return ZoneModel(10.0, n=N, profile=prof).solve([[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2,
-                                                   0.5)
+    return ZoneModel(10.0, n=N, profile=QUARTIC).solve([[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2,
+                                                      0.5)
+
+
+@pytest.fixture(scope="module")
+def two_zones_moving():
+    """The same with the half-plane moving (R = 0.5, c2 = 0.5 Pe_l)."""
+    return ZoneModel(10.0, n=N, profile=QUARTIC, speed_ratio=0.5).solve(
+        [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
+
+
+@pytest.fixture(scope="module")
+def two_zones_conductance():
+    """The same with a constant interface conductance, Bi0 = h0 l/K2 = 3."""
+    return ZoneModel(10.0, n=N, profile=QUARTIC, conductance=(3.0, 0.0)).solve(
+        [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
+
+
+@pytest.fixture(scope="module")
+def two_zones_dundurs():
+    """The same with the Dundurs term (beta f = 0.3: edge exponents 0.547 and 0.453)."""
+    return ZoneModel(10.0, n=N, profile=QUARTIC, beta_f=0.3).solve(
+        [[-2.6, -1.1], [1.1, 2.6]], 1.0, 0.2, 0.5)
 
 
 def _operator(sol, geometry):
@@ -82,13 +135,15 @@ def _operator(sol, geometry):
     zone's points, kernels in units of ``l`` (Flamant's ``ln|Delta_j u|``, the
     stationary half-plane's ``-ln|Delta_j u|``); each later zone's first temperature
     row less the first's (the common temperature constant) and the first zone's the
-    heat partition."""
+    heat partition.  A moving half-plane's kernels are the moving body's with ``c2``
+    (S27); its temperature rows are complete, the difference of the incoming
+    temperatures a constant left out of ``r0``."""
     par, rep, n, m = sol.parameters, sol.representation, sol.n, sol.zones
     x, pd, pt = projections(n)
     s, aux = rep.projection_points(x)
     eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
     wp, wq = rep.pressure_rule.weights, rep.flux_rule.weights
-    cl = par.cylinder_scale
+    cl, c2 = par.cylinder_scale, par.half_plane_scale
     size = 2 * n * m + 1
     A = np.zeros((m * (2 * n + 2) + 1, size))
     r0 = np.zeros(A.shape[0])
@@ -111,14 +166,34 @@ def _operator(sol, geometry):
                 return np.hstack([ap * M[0], aq * M[1]])
             lb, _ = mom(lambda u: np.log(np.abs(u)), 1.0, True)
             disp[:, cols.start:cols.start + n] += (lb + np.log(hj) * wp) / np.pi
+            if par.free_term:
+                # The Dundurs term's -b int H(X - Y) P dY, H's constant half in D.
+                step, _ = mom(np.sign, 1.0)
+                disp[:, cols.start:cols.start + n] -= 0.5 * par.free_term * step
             w1 = mom(lambda u: cylinder_displacement(ce * u) / cl, ce)
-            w2 = mom(lambda u: -0.5 * hj * np.abs(u), 1.0)
-            disp[:, cols] += 2 * F * (d * heat(w1, 0) + heat(w2, 1))
             t1 = mom(lambda u: cylinder_temperature(ce * u), ce, True)
-            t2 = mom(lambda u: -np.log(np.abs(u)), 1.0, True)
+            if c2:
+                c2e = c2 * hj
+                w2 = mom(lambda u: cylinder_displacement(c2e * u) / abs(c2), abs(c2e))
+                t2 = mom(lambda u: cylinder_temperature(c2e * u), abs(c2e), True)
+            else:
+                w2 = mom(lambda u: -0.5 * hj * np.abs(u), 1.0)
+                t2 = mom(lambda u: -np.log(np.abs(u)), 1.0, True)
+            disp[:, cols] += 2 * F * (d * heat(w1, 0) + heat(w2, 1))
             temp[:, cols] += rho * heat(t1, 0) - heat(t2, 1)
-            temp[:, cols.start:cols.start + n] -= 0.5 * (1 - eta) * (-np.log(hj)) * wp
-            temp[:, cols.start + n:cols.stop] -= -0.5 * (-np.log(hj)) * wq
+            if not c2:
+                temp[:, cols.start:cols.start + n] -= 0.5 * (1 - eta) * (-np.log(hj)) * wp
+                temp[:, cols.start + n:cols.stop] -= -0.5 * (-np.log(hj)) * wq
+        cond = sol.conductance
+        if cond is not None:
+            # The interface's (pi/(2 Bi)) Q at the zone's own points, Q = q/Delta_i in
+            # units of l (D33; a constant Bi: linear in the densities).
+            assert cond.exponent == 0.0
+            at = np.cos(np.multiply.outer(aux, np.arange(n))) @ rep.to_cos
+            t = stretch(aux)
+            factor = 0.5 * np.pi / (cond.biot0 * hi)
+            temp[:, 2 * n * i:2 * n * i + n] += factor * (eta * np.sin(t))[:, None] * at
+            temp[:, 2 * n * i + n:2 * n * i + 2 * n] += (factor / np.sin(t))[:, None] * at
         disp[:, -1] = 1.0
         rows.append((pd @ disp, -(2 / np.pi) * (pd @ sol.profile(X)), pt @ temp))
     k = 0
@@ -133,6 +208,8 @@ def _operator(sol, geometry):
         first.append(k)
         A[k:k + n] = tp
         k += n
+    if c2:
+        return A, r0
     A[first[1:]] -= A[first[0]]
     heat2 = np.concatenate([0.5 * (1 - eta) * wp, -0.5 * wq])
     A[first[0]] = -np.sum(pt[0]) * np.append(np.concatenate([heat2] * m), 0.0)
@@ -140,11 +217,16 @@ def _operator(sol, geometry):
     return A, r0
 
 
-def test_M0_is_the_jacobian_of_the_steady_contact_set(two_zones):
-    sol = two_zones
+@pytest.mark.parametrize("which", ["two_zones", "two_zones_dundurs", "two_zones_moving",
+                                   "two_zones_conductance"])
+def test_M0_is_the_jacobian_of_the_steady_contact_set(which, request):
+    """With and without the Dundurs term (S26: its step at the other zones a constant,
+    no edges' terms), and with the half-plane moving (S27: at fixed incoming
+    temperatures, every temperature row complete)."""
+    sol = request.getfixturevalue(which)
     n, m = sol.n, sol.zones
     lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
-                               sol.psi, sol.profile)
+                               sol.psi, sol.profile, sol.conductance)
     M0 = lin.matrix(0)
     h, c = sol.half_widths, sol.centres
     geometry = list(zip(c, h))
@@ -160,7 +242,13 @@ def test_M0_is_the_jacobian_of_the_steady_contact_set(two_zones):
     # unit's logarithms are the steady solver's.
     R = A @ z + r0
     temperature = np.r_[n + 3:2 * n + 3, 3 * n + 5:4 * n + 5]
-    assert np.abs(np.delete(R, temperature)).max() < 1e-6
+    if sol.parameters.half_plane_scale:
+        # The incoming temperatures' difference, the same constant on every zone.
+        constant = np.tile(projections(n)[2].sum(axis=1), m)
+        R[temperature] -= R[n + 3] / constant[0] * constant
+    # The displacement rows' residual, measured: 5.2e-7 at rest, 6.2e-7 with the
+    # Dundurs term, 1.3e-6 with the half-plane moving (n = 10).
+    assert np.abs(np.delete(R, temperature)).max() < 3e-6
     assert abs(R[3 * n + 5] - R[n + 3]) < 1e-3 and np.abs(R).max() < 1e-2
     # M(0)'s columns: the linear unknowns as A's, each zone's (sig~, del~) by central
     # differences of the residual in c_j/Delta_j and Delta_j/Delta_j.
@@ -210,21 +298,16 @@ def test_two_zones_far_apart_factor_into_their_single_patches():
     assert abs(steps[1] - 1.0) < 0.5 * abs(steps[0] - 1.0)
 
 
-def test_the_contact_set_refuses_what_it_does_not_model(two_zones):
-    import thermocontact as tc
+def test_a_contact_set_s_conductance_reaches_each_zone_in_its_own_scaling(two_zones):
+    """``linearised`` of a set solved with an interface conductance (it was refused):
+    each zone's block takes ``Bi0 Delta_j^(1 - m)`` (S28, the inverse of D37a)."""
     from thermocontact.problem.conductance import Conductance
 
-    sol = two_zones
-    for change in ({"speed_ratio": 0.3}, {"beta_f": 0.2}):
-        with pytest.raises(InputError, match="stationary half-plane"):
-            LinearisedContactSet(replace(sol.parameters, **change), sol.representation,
-                                 sol.edges, sol.phi, sol.psi, sol.profile)
-    # A set solved with an interface conductance, before any work.
-    with pytest.raises(InputError, match="perfect thermal contact") as err:
-        tc.stability(replace(sol, conductance=Conductance.of((3.0, 0.0))))
-    assert err.value.parameters == ("conductance",)
-    with pytest.raises(InputError, match="perfect thermal contact"):
-        linearised(replace(sol, conductance=Conductance.of((3.0, 0.0))))
+    sol = replace(two_zones, conductance=Conductance.of((3.0, 0.5)))
+    lin = linearised(sol)
+    for zone, h in zip(lin.zones, sol.half_widths):
+        assert zone.conductance.exponent == 0.5
+        assert zone.conductance.biot0 == pytest.approx(3.0 * np.sqrt(h), rel=1e-15)
 
 
 def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_zones,
@@ -246,6 +329,12 @@ def test_stability_of_a_contact_set_solves_it_again_and_counts_in_its_units(two_
     lin = seen["lin"]
     assert isinstance(lin, LinearisedContactSet) and lin.RATE_UNITS == "k2/l^2"
     assert seen["rate_unit"] is None and seen["region"]["n"] == N
+    # The modulus bound: the single patch's for the narrowest zone (S24), unless given.
+    h = two_zones.half_widths
+    assert seen["region"]["modulus_bound"] == pytest.approx(1e6 / h.min() ** 2, rel=1e-15)
+    assert 1.5 < h.max() / h.min() and h.min() < 1.0
+    tc.stability(two_zones, n=N, modulus_bound=5e3)
+    assert seen["region"]["modulus_bound"] == 5e3
     assert np.abs(seen["sol"].edges - two_zones.edges).max() < 1e-12
     assert lin.size == 2 * (2 * N + 2) + 1
     assert list(lin.temperature_rows) == (list(range(N + 3, 2 * N + 3))
@@ -282,11 +371,10 @@ def test_contact_zones_stability_adds_the_record(capsys, monkeypatch):
     assert rec["stability"]["eigenvalues"] == [[0.5, 1.0], [0.5, -1.0]]
 
 
-def test_zones_stability_adds_the_record_and_refuses_a_conductance(capsys, monkeypatch):
+def test_zones_stability_adds_the_record(capsys, monkeypatch):
     """``zones --stability`` (the dimensionless command) adds the contact set's
     ``"stability"`` record, in its JSON and its text, as ``contact --zones --stability``
-    does (stand-ins keep it fast); with ``--conductance`` it is refused in one line, as
-    there."""
+    does (stand-ins keep it fast), with ``--conductance`` too."""
     import json
 
     import thermocontact.api as api
@@ -313,9 +401,9 @@ def test_zones_stability_adds_the_record_and_refuses_a_conductance(capsys, monke
     assert isinstance(seen[0], Found) and rec["stability"]["stable"] is True
     assert main(args) == 0
     assert "stable        = True" in capsys.readouterr().out
-    assert main(args + ["--conductance", "1:0"]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "perfect thermal contact" in err[0]
+    # With an interface conductance too (it was refused, S28).
+    assert main(args + ["--conductance", "1:0", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["stability"]["stable"] is True
 
 
 class _ManyRows:
@@ -350,3 +438,146 @@ def test_the_count_follows_the_phase_of_many_temperature_rows(monkeypatch, line_
     else:
         winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step)
         assert winding.count(1e6)[0] == count
+
+
+def test_the_phase_of_a_step_is_the_sum_of_its_eigenvalues_arguments():
+    """``step_phase(A, B)`` (S25) against the phase of ``det(A + s(B - A))`` followed on
+    a fine grid of ``s``; a step whose eigenvalue turns by pi/4 or more is refused."""
+    from thermocontact.solvers.stability import step_phase
+
+    rng = np.random.default_rng(7)
+    A = rng.standard_normal((8, 8)) + 1j * rng.standard_normal((8, 8))
+    for E in (0.15 * rng.standard_normal((8, 8)), 0.1j * rng.standard_normal((8, 8))):
+        B = A @ (np.eye(8) + E)
+        s = np.linspace(0.0, 1.0, 2001)
+        dets = [np.linalg.det(A + x * (B - A)) for x in s]
+        followed = np.unwrap(np.angle(dets))
+        assert step_phase(A, B) == pytest.approx(followed[-1] - followed[0], abs=1e-10)
+    assert step_phase(A, A @ np.diag(np.r_[np.exp(1j), np.ones(7)])) == np.inf
+
+
+@pytest.mark.parametrize("line_step", [4.0, 8.0])
+def test_steps_by_eigenvalues_do_not_alias_the_turns_of_many_rows(line_step):
+    """The aliasing of the many temperature rows (above: the determinant's phase counts
+    2 from first steps of 4 units) is gone when each step's phase is the sum of the
+    arguments of the eigenvalues of ``A(a)^-1 A(b)`` (S25): 0, from steps of 4 or 8,
+    with fewer samples; and the count of known roots is unchanged."""
+    import thermocontact.solvers.stability as st
+    from test_stability import ROOTS, _known_problem
+
+    winding = st.Winding(st.scaled_matrix(_ManyRows()), 1e-3, line_step=line_step,
+                         ratios=True)
+    assert winding.count(1e6) == (0, None) and len(winding.values) < 40
+    known = st.Winding(_known_problem(ROOTS), 1e-3, ratios=True)
+    assert known.count(30.0) == (6, None) and known.count(1e4) == (8, None)
+    double = st.Winding(_known_problem([2.0 + 0j, 2.0 + 0j]), 1e-3, ratios=True)
+    assert double.count(100.0) == (2, None)
+    count, why = st.Winding(_known_problem([1e-3 + 0.5j, 1e-3 - 0.5j]), 1e-3,
+                            ratios=True).count(10.0)
+    assert count is None and "contour" in why
+
+
+def test_panel_interpolation_resolves_a_boundary_layer_and_evaluates_a_jump_directly():
+    """A boundary layer ``exp(-beta u)`` (``|arg beta| < pi/4``, the transient kernels'
+    form) and a logarithm on intervals of either sign, to their tolerance of the
+    scale; a jump no panel resolves is evaluated at its points directly."""
+    from thermocontact.numerics.interpolation import panel_interpolation
+
+    beta = 40.0 * np.exp(0.6j)
+    calls = []
+
+    def f(x):
+        calls.append(x.size)
+        return np.stack([np.exp(-beta * np.abs(x)), np.log(np.abs(x)),
+                         np.where(x > 1.3, 1.0, 0.0)])
+    rng = np.random.default_rng(1)
+    targets = [rng.uniform(0.01, 3.0, (7, 9)), rng.uniform(-4.0, -0.5, 40)]
+    got = panel_interpolation(f, [(0.01, 3.0), (-4.0, -0.5)], targets, tol=1e-14)
+    for u, g in zip(targets, got):
+        exact = f(u.ravel()).reshape(g.shape)
+        scale = np.maximum(1.0, np.abs(exact).reshape(3, -1).max(axis=1))
+        # The jump's panels, halved ten times, unresolved: its points evaluated.
+        assert np.abs(g - exact).reshape(3, -1).max(axis=1).max() < 1e-13 * scale.max()
+    # Fewer evaluations than a graded rule that resolves the layer everywhere would take.
+    assert sum(calls) < 3000
+
+
+def test_the_zones_kernels_interpolated_agree_with_their_values(two_zones):
+    """The transient kernels of zone j at zone i's points, interpolated on Chebyshev
+    panels of the pair's interval of ``u`` (S21), against their quadrature at every
+    point; and ``M(b)`` assembled from either, from the slow rates to the arc."""
+    sol = two_zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+
+    def direct(b):
+        return {pair: lin._kernels(u, b) for pair, (u, _, _) in lin._pairs.items()}
+    for b in (2e-3 + 0.02j, 1e-3 + 1e4j):
+        fast, slow = lin._cross_kernels(b), direct(b)
+        for pair in slow:
+            for body_f, body_s in zip(fast[pair], slow[pair]):
+                for kf, ks in zip(body_f, body_s):
+                    assert np.abs(kf - ks).max() <= 2e-14 * max(1.0, np.abs(ks).max())
+        M = lin.matrix(b)
+        object.__setattr__(lin, "_cross_kernels", direct)
+        M_direct = lin.matrix(b)
+        del lin.__dict__["_cross_kernels"]
+        assert np.abs(M - M_direct).max() < 1e-14 * np.abs(M_direct).max()
+
+
+def test_at_large_rates_the_zones_couple_only_through_terms_free_of_b(two_zones):
+    """S24: at large ``|b|`` zone j's transient fields at zone i's points fall off (its
+    temperature like ``exp(-Re sqrt(b) d)`` across the gap, beyond the cylinder's wake
+    scale; the half-plane's displacement to its constant ``-2/(pi sqrt b)``, the
+    rest like ``|b|^(-3/2)``), so that ``M(b)`` tends to ``M_inf(b)``, each zone's own
+    block (its single patch's at ``b Delta_j^2``) coupled by what does not depend on
+    ``b``: ``det M / det M_inf -> 1``, and the entries' difference falls at least like
+    ``|b|^(-3/2)``."""
+    from thermocontact.discretisation.linearised import logarithm_constant
+
+    sol = two_zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+
+    def limit(b):
+        out = {}
+        for pair, (u, _, _) in lin._pairs.items():
+            z = np.zeros(u.shape, dtype=complex)
+            out[pair] = ((z, z, z, z), (z - 2.0 / (np.pi * np.sqrt(b)),
+                                        z - logarithm_constant(b), z, z))
+        return out
+    ratios, entries = [], []
+    for b in 1e3 * np.exp(1j * np.pi / 3), 1e5 * np.exp(1j * np.pi / 3):
+        M = lin.matrix(b)
+        object.__setattr__(lin, "_cross_kernels", limit)
+        M_inf = lin.matrix(b)
+        del lin.__dict__["_cross_kernels"]
+        s, ld = np.linalg.slogdet(M)
+        s_inf, ld_inf = np.linalg.slogdet(M_inf)
+        ratios.append(abs(s / s_inf * np.exp(ld - ld_inf) - 1.0))
+        entries.append(np.abs(M - M_inf).max() / np.abs(M).max())
+    # Measured (n = 10): 3.1e-5 and 1.2e-7; entries 2.1e-4 (the cylinder's wake,
+    # Re mu - c = 2.6 at |b| = 1e3) and 1.7e-9.
+    assert ratios[1] < 1e-6 and ratios[1] < 1e-2 * ratios[0]
+    assert entries[1] < 1e-8
+
+
+def test_a_fold_is_recorded_for_a_contact_set_as_for_the_single_patch():
+    """Next to the fold of the load on the ray K2/K1 = 1, lam = 1, fH = 1 (Pe = 1.22; the
+    fold at 1.235) ``det M(0)`` is small and the exponentially slow real root of (S8)
+    lies below b_min: the single patch as one zone records both, the root in
+    ``k2/l^2`` (``b*/Delta^2``, as ``l(b Delta^2) = l(b) - ln Delta`` moves the ratio
+    ``det M_reg(0)/det M(0)`` by ``-ln Delta``: S22), and a fold measure of the same
+    size."""
+    from thermocontact.solvers.stability import _fold
+
+    sol = Model(1.22, 1.0, n=N).solve_at(N, 1.22, lam=1.0, check_validity=False)
+    par, edges, phi, psi = _as_zone(sol)
+    h = 0.5 * (edges[1] - edges[0])
+    zone = LinearisedContactSet(par, sol.representation, [edges], phi[None], psi[None])
+    fold, slow = _fold(linearised(sol))
+    fold_set, slow_set = _fold(zone)
+    assert slow is not None and slow < 1e-10
+    assert slow_set * h * h == pytest.approx(slow, rel=1e-8)
+    assert 1.0 / fold_set == pytest.approx(1.0 / fold + np.log(h), rel=1e-8)
+    assert fold < 0.1 and fold_set < 0.1

@@ -1064,7 +1064,7 @@ def tei(slider, counterface, friction, wavelength, speed=None, dundurs=True, mat
 
 @deprecated_spellings(renamed=(("re_min", "b_min"),),
                       retired=("re_max", "im_max", "points"))
-def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
+def stability(solution, *, n=12, b_min=1e-3, modulus_bound=None,
               progress=None) -> StabilityResult:
     """Every growing mode of a steady single patch, counted: is it stable?
 
@@ -1075,9 +1075,9 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     argument principle on the boundary of that region, located by Beyn's contour
     integral and confirmed by Newton's method; ``stable`` is True only where the
     count is 0, None (with the reason) where the count could not be certified.  A
-    stationary or a moving half-plane, with or without the Dundurs term; perfect
-    thermal contact only.  A contact set of one or more zones (:func:`contact_set`),
-    every edge free (section 18b): a stationary half-plane without the Dundurs term.
+    stationary or a moving half-plane, with or without the Dundurs term and an
+    interface conductance.  A contact set of one or more zones (:func:`contact_set`),
+    every edge free (section 18b): likewise.
 
     Parameters
     ----------
@@ -1098,7 +1098,10 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     modulus_bound : float, optional
         ``|b|`` beyond which no eigenvalue is sought, ``k2/Delta^2`` (> 10 b_min): a
         mode beyond it has a thermal layer thinner than ``Delta/sqrt(modulus_bound)``
-        (``Delta/1000`` by default), where the model no longer holds (S11).
+        (``Delta/1000`` by default, ``10^6``), where the model no longer holds (S11).
+        For a contact set, in ``k2/l^2``, by default ``10^6/Delta_min^2``, ``Delta_min``
+        its narrowest zone's half-width in units of ``l``: beyond it the thermal layer
+        is thinner than a thousandth of every zone's half-width (S24).
     progress : callable, optional
         ``progress(done, total)`` over the evaluations of ``M(b)`` (``total`` an
         estimate).
@@ -1112,9 +1115,9 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     Raises
     ------
     InputError
-        A solution of neither kind, an interface conductance, a Chebyshev method, a
-        physical contact without a branch, a contact set not found at the point asked
-        for or with the Dundurs term or a moving half-plane, or a region out of range.
+        A solution of neither kind, a Chebyshev method, a physical contact without a
+        branch, a contact set not found at the point asked for, or a region out of
+        range.
 
     Examples
     --------
@@ -1125,7 +1128,7 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     """
     from .discretisation.linearised import check_modelled
     from .solvers.result import ContactSolution
-    from .solvers.stability import stability_of
+    from .solvers.stability import MODULUS_BOUND, stability_of
     from .solvers.zones import ZoneSolution
     from .studies.contact_sets import ContactSetResult
     from .studies.physical_contact import PhysicalContact
@@ -1134,6 +1137,8 @@ def stability(solution, *, n=12, b_min=1e-3, modulus_bound=1e6,
     if isinstance(solution, (ContactSetResult, ZoneSolution)):
         return _contact_set_stability(solution, n=n, b_min=b_min,
                                       modulus_bound=modulus_bound, progress=progress)
+    if modulus_bound is None:
+        modulus_bound = MODULUS_BOUND
     if isinstance(solution, PhysicalContact):
         # A physical contact: its primary branch, rates in 1/s (k2/Delta^2).
         branch = solution.primary
@@ -1176,8 +1181,8 @@ def _contact_set_stability(found, **region) -> StabilityResult:
     for a physical one.  The set is solved again at the analysis' ``n`` from its edges,
     with its heat partition (the far temperatures' output, where they closed it: the
     perturbation leaves the far field unchanged)."""
-    from .problem.validation import check_perfect_contact
-    from .solvers.stability import stability_of
+    from .discretisation.linearised_set import modulus_bound as set_bound
+    from .solvers.stability import MODULUS_BOUND, stability_of
     from .solvers.zones import ZoneModel, ZoneSolution
     from .studies.contact_sets import PhysicalContactSet
 
@@ -1188,18 +1193,15 @@ def _contact_set_stability(found, **region) -> StabilityResult:
         if sol is None:
             raise InputError(f"stability: no contact set at the point asked for "
                              f"({found.status}: {found.message})", parameters=("solution",))
-    check_perfect_contact(sol.conductance)
+    if region["modulus_bound"] is None:
+        region["modulus_bound"] = set_bound(sol.half_widths, MODULUS_BOUND)
     if isinstance(found, PhysicalContactSet):
-        par = sol.parameters
-        if par.free_term or par.half_plane_scale:
-            raise InputError("stability of a contact set is modelled without the Dundurs "
-                             "term and with the half-plane at rest: give dundurs=False and "
-                             "speed2=0", parameters=("dundurs", "speed2"))
         rate_unit = found.problem.half_plane.k / found.hertz_half_width ** 2
     par = sol.parameters
     model = ZoneModel(par.K2_over_K1, k2_over_k1=par.k2_over_k1,
                       delta1_over_delta2=par.delta1_over_delta2, beta_f=par.beta_f,
-                      method=sol.method, profile=sol.profile, speed_ratio=par.speed_ratio)
+                      method=sol.method, profile=sol.profile, speed_ratio=par.speed_ratio,
+                      conductance=sol.conductance)
 
     def solve_at(m):
         return model.at_n(m).solve(sol.edges, par.pe, par.fhpe, lam=sol.lam,

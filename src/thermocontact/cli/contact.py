@@ -10,7 +10,7 @@ import os
 import click
 
 from .._version import __version__
-from ..problem.validation import InputError, check_perfect_contact
+from ..problem.validation import InputError
 from .options import (bulk_temperatures_closure, contact_set_options, far_temperatures,
                       given_here, hertz_unit_options, one_closure, parse_conductance,
                       physical_options)
@@ -117,8 +117,6 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     # Shown once the command has run 2 s: the share of the path to fHPe_l followed.
     bar = ProgressLine("zones: fHPe_l followed", "%")
     one_closure(lam, sigma, theta)
-    if stability:
-        check_perfect_contact(conductance, "--conductance")
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
                       closure=far_temperatures(theta, sink_distance), k2_over_k1=k2_over_k1,
                       delta1_over_delta2=delta1_over_delta2, n=n,
@@ -173,7 +171,7 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
 @click.option("--stability", is_flag=True,
               help="Also every growing mode of the primary branch linearised at fixed load, "
                    "counted, in 1/s (derivation section 18; seconds); with --zones, of the "
-                   "contact set, every edge free (section 18b; with --no-dundurs).")
+                   "contact set, every edge free (section 18b).")
 @click.option("--csv", "csv_file", default=None, help="Write the distributions to this CSV file.")
 @click.option("--plot", "plot_file", default=None,
               help="Write pressure and temperatures to this picture (.png, .svg or .pdf).")
@@ -224,8 +222,6 @@ def contact_cmd(cylinder, half_plane, materials_file, radius, load, speed, frict
         raise InputError(f"--csv and --plot must be different files, got {csv_file!r} twice")
     if zones and (csv_file is not None or plot_file is not None):
         raise InputError("--zones writes no --csv or --plot yet; give --json or neither")
-    if stability:
-        check_perfect_contact(conductance, "--conductance")
     inputs = dict(radius=radius, load=load, speed=speed, friction=friction, lam=lam,
                   closure=bulk_temperatures_closure(lam, bulk_temperatures, sink_distance,
                                                     layer_thickness),

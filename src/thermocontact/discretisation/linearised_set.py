@@ -1,6 +1,6 @@
 """A contact set of several zones linearised about a steady solution: ``M(b) c = 0``.
 
-Every zone's edges move (derivation section 18b, eqs. S18-S22): zone ``j``, of centre
+Every zone's edges move (derivation section 18b, eqs. S18-S28): zone ``j``, of centre
 ``c_j`` and half-width ``Delta_j`` (units of the Hertz half-width ``l``), carries its
 pressure and heat-flux difference in its own moving coordinate as the single patch
 does (:class:`~.linearised.LinearisedContact`, section 18), with the unknowns
@@ -16,12 +16,14 @@ unit (S19): Flamant's ``(1/pi) ln Delta_j int p~_j`` and the stationary half-pla
 ``int [K_0'(w) X~_i(s) - K_b'(w) Y~_j(r)] q0_j``, ``X~_i = Delta_i(sig~_i + del~_i s)``,
 ``Y~_j = Delta_j(sig~_j + del~_j r)``: the source's edges move, and so do the points;
 at separated arguments every kernel is smooth, and its integral against the source
-zone's interpolant is the midpoint rule in ``tau`` (exponentially convergent, as the
-steady solver's product integration).  The load row is the sum of the zones', and the stationary half-plane's
-temperature constant ``l(b)`` multiplies the whole perturbed heat into it on every
-zone (S22): with each later zone's first temperature row less the first zone's, it
-stands on the first zone's alone, as the single patch's does, and ``M(0)`` is the
-Jacobian of the steady contact set at fixed load and fixed ``lam``.
+zone's interpolant is the midpoint rule in ``tau`` (as the steady solver's product
+integration), the transient kernels interpolated on Chebyshev panels of the pair's
+interval of ``w``; the Dundurs term's step is a constant there (S26).  The load row is
+the sum of the zones', and the stationary half-plane's temperature constant ``l(b)``
+multiplies the whole perturbed heat into it on every zone (S22): with each later zone's
+first temperature row less the first zone's, it stands on the first zone's alone, as
+the single patch's does, and ``M(0)`` is the Jacobian of the steady contact set at fixed
+load and fixed ``lam``.
 
 Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
 ``del~``, then each later zone's ``phi~``, ``psi~``, ``sig~``, ``del~``
@@ -29,10 +31,10 @@ Unknowns, in this order: the first zone's ``phi~``, ``psi~``, ``D~``, ``sig~``,
 its temperature (``n``), then each later zone's displacement and temperature.  One
 zone is the single patch, its rows and unknowns in its order.
 
-Modelled: a stationary half-plane without the Dundurs term, with perfect thermal
-contact (the transient kernels of a moving half-plane at separated arguments, the
-Dundurs term's cross-zone constants and the interface's scaling are not yet
-derived for several zones).
+Modelled: a stationary or a moving half-plane (S27: no temperature constant, every
+temperature row complete), with or without the Dundurs term (S26), with perfect
+thermal contact or an interface conductance (S28: local, each zone's block with its
+own Biot number).
 """
 
 from __future__ import annotations
@@ -43,21 +45,48 @@ from functools import cached_property
 import numpy as np
 from numpy.polynomial import Polynomial
 
-from ..numerics.moment_engine import stretch
+from ..numerics.interpolation import panel_interpolation
+from ..numerics.moment_engine import bounded_weight, singular_weight, stretch
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
                                                  transient_temperature,
                                                  transient_temperature_gradient_regular)
+from ..problem.conductance import Conductance
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .linearised import LinearisedContact, logarithm_constant, projections
 from .system import zone_parameters
 
-__all__ = ["LinearisedContactSet"]
+__all__ = ["LinearisedContactSet", "modulus_bound"]
+
+#: The zones' transient kernels at each other's points are interpolated to this, of
+#: their scale (:meth:`LinearisedContactSet._cross_kernels`): ten times the rounding
+#: of their quadrature's values (the last Chebyshev coefficients of a resolved panel
+#: are that rounding, up to 3e-15 of the kernel's size).
+CROSS_TOLERANCE = 1e-14
 
 #: The cylinder's initial gap ``X^2/2`` (units ``l^2/R``), the default profile.
 CYLINDER_GAP = Polynomial([0.0, 0.0, 0.5])
+
+
+def _steady_fields(u, scale):
+    """A body's steady slope ``S_0`` and temperature gradient ``G_0`` (with its Cauchy
+    part ``1/u``) at ``u`` for its signed scale (derivation D4, D7, D14b; at rest
+    ``sgn(u)/2`` and ``1/u``)."""
+    if scale:
+        return moving_slope(u, scale), 1.0 / u + cylinder_temperature_gradient_regular(u, scale)
+    return 0.5 * np.sign(u), 1.0 / u
+
+
+def modulus_bound(half_widths, single) -> float:
+    """A contact set's modulus bound in ``k2/l^2`` from the single patch's ``single``
+    (``k2/Delta^2``): ``single / Delta_min^2``, ``Delta_min`` the narrowest zone's
+    half-width in units of ``l`` (derivation S24: at large ``|b|`` the zones couple
+    through terms that do not depend on ``b``, each zone's block is its single
+    patch's at ``b Delta_j^2``, and beyond this bound every zone's thermal layer is
+    thinner than ``Delta_j/sqrt(single)``).  One zone: the single patch's bound."""
+    return float(single) / float(np.min(half_widths)) ** 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,7 +97,8 @@ class LinearisedContactSet:
     ----------
     parameters : Parameters
         ``pe = Pe_l`` and ``fhpe = fHPe_l``, in units of the Hertz half-width ``l``
-        (a stationary half-plane, no Dundurs term).
+        (the half-plane's ``c2 = R Pe_l``, the Dundurs term's ``free_term`` as they
+        are).
     representation : Representation
         An edge-graded one (the steady solution's).
     edges : ndarray, shape (m, 2)
@@ -78,6 +108,10 @@ class LinearisedContactSet:
         (:class:`~thermocontact.solvers.zones.ZoneSolution`'s).
     profile : Polynomial, optional
         The initial gap against ``X`` in units of ``l^2/R`` (default ``X^2/2``).
+    conductance : Conductance, optional
+        An interface conductance, ``Bi0 = h0 l/K2`` at ``p_ref = P/(2 l)``
+        (:class:`~thermocontact.solvers.zones.ZoneSolution`'s); None for perfect
+        thermal contact (S28).
     """
 
     parameters: Parameters
@@ -86,13 +120,10 @@ class LinearisedContactSet:
     phi: np.ndarray
     psi: np.ndarray
     profile: Polynomial = field(default_factory=lambda: CYLINDER_GAP)
+    conductance: Conductance | None = None
 
     def __post_init__(self):
         par = self.parameters
-        if par.half_plane_scale or par.free_term:
-            raise InputError("the stability of a contact set is modelled for a stationary "
-                             "half-plane without the Dundurs term (speed_ratio = 0, "
-                             "beta_f = 0)", parameters=("speed_ratio", "beta_f"))
         edges = np.asarray(self.edges, dtype=float).reshape(-1, 2)
         if np.any(np.diff(edges.ravel()) <= 0.0):
             raise InputError("edges must be increasing, a1 < b1 < a2 < ...",
@@ -125,18 +156,25 @@ class LinearisedContactSet:
 
     @property
     def moving(self) -> bool:
-        """False: the half-plane is at rest (its temperature constant, S22)."""
-        return False
+        """Whether the half-plane moves (``c2 = R Pe_l != 0``): no temperature constant,
+        ``b = 0`` no branch point (S27); at rest, the constant of S22."""
+        return self.parameters.half_plane_scale != 0.0
 
     @cached_property
     def zones(self) -> tuple:
         """Each zone's single patch (:class:`~.linearised.LinearisedContact`): its
         equivalents, its densities times ``Delta_j`` (S19)."""
         out = []
+        cond = self.conductance
         for h, c, ph, ps in zip(*self._geometry, self.phi, self.psi):
+            # The conductance in the zone's own scaling (S28, the inverse of D37a):
+            # Bi0_j = Bi0 Delta_j^(1 - m).
+            own = None if cond is None else Conductance(
+                cond.biot0 * float(h) ** (1.0 - cond.exponent), cond.exponent)
             out.append(LinearisedContact(zone_parameters(self.parameters, float(h)),
                                          self.representation, h * np.asarray(ph),
-                                         h * np.asarray(ps), float(h * h), float(c / h)))
+                                         h * np.asarray(ps), float(h * h), float(c / h),
+                                         own))
         return tuple(out)
 
     @cached_property
@@ -156,20 +194,24 @@ class LinearisedContactSet:
     @cached_property
     def _sources(self):
         """The rule of the cross-zone integrals (S21): ``r = cos T(tau)`` at ``N``
-        midpoints in ``tau`` (``N = max(64, 4n)``), the pressure's and the flux
-        difference's weights ``(pi/N) sin^2 T T'`` and ``(pi/N) T'`` (``p dr`` and
-        ``q' dr`` in ``tau``: smooth and periodic), and the cosine series taking nodal
-        values there: the moments of the zone's interpolant of its density against
-        the kernel, as the steady solver's product integration forms them, to the
-        midpoint rule's error (exponentially small in ``N``)."""
+        midpoints in ``tau``, the pressure's and the flux difference's weights
+        ``(pi/N) w(cos T) sin T T'`` (``sin^2 T T'`` without the Dundurs term) and
+        ``(pi/N) T'`` (``p dr`` and ``q' dr`` in ``tau``), and the cosine series taking
+        nodal values there: the moments of the zone's interpolant of its density
+        against the kernel, as the steady solver's product integration forms them, to
+        the midpoint rule's error: exponentially small in ``N = max(64, 4n)`` for
+        the weights of ``alpha = 1/2``, smooth and periodic; ``O(N^-(6 alpha + 6))``
+        with the Dundurs term's edge exponents (``tau^(6 alpha + 5)`` at the edge,
+        :func:`~thermocontact.numerics.moment_engine.weight_integrals`), below 1e-14
+        with ``N = max(256, 4n)``."""
         rep, n = self.representation, self.n
-        count = max(64, 4 * n)
+        alpha = getattr(rep, "alpha", 0.5)
+        count = max(64 if alpha == 0.5 else 256, 4 * n)
         tau = np.pi * (np.arange(count) + 0.5) / count
-        t = stretch(tau)
-        slope = 2.0 * np.sin(tau) ** 2                   # T'(tau)
         series = np.cos(np.multiply.outer(tau, np.arange(n))) @ rep.to_cos
         step = np.pi / count
-        return np.cos(t), step * np.sin(t) ** 2 * slope, step * slope, series
+        return (np.cos(stretch(tau)), step * bounded_weight(tau, alpha),
+                step * singular_weight(tau), series)
 
     @cached_property
     def _points(self):
@@ -179,14 +221,14 @@ class LinearisedContactSet:
         return pd, pt, s
 
     def matrix(self, b, *, split=False):
-        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S22).
+        """``M(b)``, complex, shape ``(m (2n + 2) + 1,)`` square (eqs. S18-S28).
 
         Parameters
         ----------
         b : complex
             The rate in units of ``k2/l^2``, off the cut ``b < 0``; ``b = 0`` gives the
             limit (S8, S22): the first zone's first temperature row is the heat
-            partition's.
+            partition's (a moving half-plane's, S27: every temperature row complete).
         split : bool
             Return ``(M_reg, ell, row)`` with ``M = M_reg + ell * outer(e, row)``, ``e``
             the first zone's first temperature row, as
@@ -202,13 +244,15 @@ class LinearisedContactSet:
         h, c = self._geometry
         full = np.zeros((m * B, m * B), dtype=complex)
         w = np.zeros(m * B, dtype=complex)
-        ell = 0.0 if b == 0 else logarithm_constant(b)
+        moving = self.moving
+        ell = 0.0 if b == 0 or moving else logarithm_constant(b)
         for i, zone in enumerate(self.zones):
             block = slice(i * B, (i + 1) * B)
             reg, _, row = zone.matrix(self._zone_rate(b, i), split=True)
             reg = np.array(reg, dtype=complex)
             # The common length unit (S19): Flamant's ln Delta_i int p~_i, the
-            # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i.
+            # stationary half-plane's l(b Delta_i^2) - l(b) = -ln Delta_i (a moving
+            # one's temperature is scale-free, S27: row = 0).
             lnh = np.log(h[i])
             wp = zone.representation.pressure_rule.weights
             reg[:n + 2, :n] += (lnh / np.pi) * np.outer(pd.sum(axis=1), wp)
@@ -223,10 +267,9 @@ class LinearisedContactSet:
             reg[:n + 2, 2 * n + 2] += pd @ (extra * s)
             full[block, block] = reg
             w[block] = row
-        for i in range(m):
-            for j in range(m):
-                if i != j:
-                    self._cross(full, i, j, b)
+        full += self._cross_constant
+        for pair, kernels in self._cross_kernels(b).items():
+            self._cross(full, *pair, kernels)
         # Fold the shared approach and the one load row (S22).
         for r in load_rows:
             full[n + 2] += full[r]
@@ -234,6 +277,11 @@ class LinearisedContactSet:
             full[:, 2 * n] += full[:, k]
         M = full[np.ix_(keep_rows, keep_cols)]
         w = w[keep_cols]
+        if moving:
+            # No temperature constant (S27): every temperature row complete.
+            if split:
+                return M, 0.0, np.zeros_like(w)
+            return M.real if b == 0 else M
         # l(b) on every zone's first temperature row: on the first zone's alone.
         M[first[1:]] -= M[first[0]]
         if split:
@@ -245,91 +293,152 @@ class LinearisedContactSet:
             M[first[0]] += ell * w
         return M
 
-    def _cross(self, full, i, j, b):
-        """Zone ``j``'s terms at zone ``i``'s points (S21), added into ``full``."""
-        par, n = self.parameters, self.n
-        B = 2 * n + 3
-        pd, pt, s = self._points
+    @cached_property
+    def _pairs(self) -> dict:
+        """For each zone ``j`` at each other zone ``i``'s points (S21), what does not
+        depend on ``b``: the separated arguments ``u`` (points by sources), the steady
+        densities at the sources (the pressure's ``P0`` and each body's heat ``q0``)."""
+        s = self._points[2]
         h, c = self._geometry
         r, wp, wq, series = self._sources
-        zone = self.zones[j]
-        phi0, psi0 = series @ zone.phi, series @ zone.psi
+        out = {}
+        for i in range(len(h)):
+            for j in range(len(h)):
+                if i == j:
+                    continue
+                zone = self.zones[j]
+                P0, psi0 = wp * (series @ zone.phi), series @ zone.psi
+                u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
+                out[i, j] = u, P0, [ap * P0 + aq * wq * psi0
+                                    for _, _, ap, aq in self._weights()]
+        return out
+
+    def _weights(self):
+        """Each body's ``(f, sign, share of p, share of q')``: its thermal displacement's
+        factor ``2 F d_k`` and its temperature's sign (S3-S4)."""
+        par = self.parameters
         eta, rho, d, F = par.eta, par.K2_over_K1, par.delta1_over_delta2, par.fhpe
-        share = ((0.5 * (1.0 + eta), 0.5), (0.5 * (1.0 - eta), -0.5))
-        u = (c[i] + h[i] * s)[:, None] - (c[j] + h[j] * r)[None, :]
-        P0 = wp * phi0
-        R = (i * B, (i + 1) * B)
-        own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
+        return ((2.0 * F * d, rho, 0.5 * (1.0 + eta), 0.5),
+                (2.0 * F, -1.0, 0.5 * (1.0 - eta), -0.5))
+
+    @cached_property
+    def _cross_constant(self) -> np.ndarray:
+        """The zones' terms at each other's points that do not depend on ``b`` (S18,
+        S21): Flamant's logarithm and its edges' terms, and each body's steady slope
+        and temperature gradient at the receiver's moving points (``K_0' X~_i``)."""
+        n, m = self.n, len(self.edges)
+        B = 2 * n + 3
+        pd, pt, s = self._points
+        h, _ = self._geometry
+        r, wp, _, series = self._sources
+        par = self.parameters
+        full = np.zeros((m * B, m * B))
+        for (i, j), (u, P0, q0) in self._pairs.items():
+            R = slice(i * B, i * B + n + 2)
+            T = slice(i * B + n + 3, (i + 1) * B)
+            own = slice(i * B + 2 * n + 1, i * B + 2 * n + 3)      # sig~_i, del~_i
+            edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
+            # Flamant's logarithm with the Dundurs term's step (S26), and the
+            # logarithm's derivative 1/w (no rate; the step's vanishes off w = 0).
+            flamant = np.log(np.abs(u)) / np.pi - 0.5 * par.free_term * np.sign(u)
+            full[R, j * B:j * B + n] += pd @ ((flamant * wp) @ series)
+            K = 1.0 / (np.pi * u)
+            full[R, own] += pd @ self._moved_points(K, P0, i)
+            full[R, edge] += pd @ self._moved_sources(K, P0, j)
+            S0, G0 = zip(*(_steady_fields(u, scale) for scale in self._scales))
+            # W' = -S, T' = -G: the steady fields at the moved points.
+            for (f, sign, _, _), q, S, G in zip(self._weights(), q0, S0, G0):
+                full[R, own] += f * (pd @ self._moved_points(-S, q, i))
+                full[T, own] += sign * (pt @ self._moved_points(-G, q, i))
+        return full
+
+    def _moved_points(self, K, q0, i):
+        """``int K(w) X~_i q0`` (S18): the receiver's columns ``sig~_i``, ``del~_i``."""
+        a = K @ q0
+        return self._geometry[0][i] * np.stack([a, a * self._points[2]], axis=1)
+
+    def _moved_sources(self, K, q0, j):
+        """``-int K(w) Y~_j q0`` (S18): the source's columns ``sig~_j``, ``del~_j``."""
+        r = self._sources[0]
+        return -self._geometry[0][j] * np.stack([K @ q0, K @ (r * q0)], axis=1)
+
+    def _cross(self, full, i, j, kernels):
+        """Zone ``j``'s terms at zone ``i``'s points that depend on ``b`` (S18, S21),
+        added into ``full``: each body's ``W`` and ``T`` on the perturbed sources, its
+        ``S_b`` and ``G_b`` on the moved sources (``kernels``, at the pair's ``u``)."""
+        n = self.n
+        B = 2 * n + 3
+        pd, pt, s = self._points
+        r, wp, wq, series = self._sources
+        _, _, q0 = self._pairs[i, j]
+        R = slice(i * B, i * B + n + 2)
+        T = slice(i * B + n + 3, (i + 1) * B)
         src = slice(j * B, j * B + 2 * n)                      # phi~_j, psi~_j
         edge = slice(j * B + 2 * n + 1, j * B + 2 * n + 3)     # sig~_j, del~_j
-        disp = np.zeros((s.size, B), dtype=complex)
-        temp = np.zeros((s.size, B), dtype=complex)
-        moving_i = np.zeros((s.size, 2), dtype=complex)
-
-        def edges_of(K0p, Kbp, q0):
-            # int [K_0'(w) X~_i - K_b'(w) Y~_j] q0: the points' columns and the
-            # source's.
-            a = K0p @ q0
-            return (h[i] * np.stack([a, a * s], axis=1),
-                    -h[j] * np.stack([Kbp @ q0, Kbp @ (r * q0)], axis=1))
-
-        # Flamant's logarithm, its derivative 1/w (no rate).
-        disp[:, :n] += (np.log(np.abs(u)) / np.pi * wp) @ series
-        a, e = edges_of(1.0 / (np.pi * u), 1.0 / (np.pi * u), P0)
-        moving_i += a
-        disp[:, 2 * n + 1:] += e
-        for k, (weight, sign, values) in enumerate(zip(
-                (d, 1.0), (rho, -1.0), self._kernels(u, b))):
-            W, T, S0, Sb, G0, Gb = values
-            ap, aq = share[k]
-            q0 = ap * P0 + aq * wq * psi0
-            f = 2.0 * F * weight
-            # W' = -S, T' = -G.
+        for (f, sign, ap, aq), q, (W, Tb, Sb, Gb) in zip(self._weights(), q0, kernels):
             if f:
-                disp[:, :n] += f * ap * (W * wp) @ series
-                disp[:, n:2 * n] += f * aq * (W * wq) @ series
-                a, e = edges_of(-S0, -Sb, q0)
-                moving_i += f * a
-                disp[:, 2 * n + 1:] += f * e
-            temp[:, :n] += sign * ap * (T * wp) @ series
-            temp[:, n:2 * n] += sign * aq * (T * wq) @ series
-            a, e = edges_of(-G0, -Gb, q0)
-            moving_i_t = sign * a
-            temp[:, 2 * n + 1:] += sign * e
-            full[R[0] + n + 3:R[1], own] += pt @ moving_i_t
-        full[R[0]:R[0] + n + 2, own] += pd @ moving_i
-        full[R[0]:R[0] + n + 2, src] += pd @ disp[:, :2 * n]
-        full[R[0]:R[0] + n + 2, edge] += pd @ disp[:, 2 * n + 1:]
-        full[R[0] + n + 3:R[1], src] += pt @ temp[:, :2 * n]
-        full[R[0] + n + 3:R[1], edge] += pt @ temp[:, 2 * n + 1:]
+                full[R, src] += f * (pd @ np.hstack([ap * (W * wp) @ series,
+                                                     aq * (W * wq) @ series]))
+                full[R, edge] += f * (pd @ self._moved_sources(-Sb, q, j))
+            full[T, src] += sign * (pt @ np.hstack([ap * (Tb * wp) @ series,
+                                                    aq * (Tb * wq) @ series]))
+            full[T, edge] += sign * (pt @ self._moved_sources(-Gb, q, j))
 
-    def _kernels(self, u, b):
-        """Each body's ``W``, ``T``, ``S_0``, ``S_b``, ``G_0``, ``G_b`` at the separated
-        arguments ``u`` (units of ``l``): the cylinder's with ``c_l`` and rate
-        ``b k2/k1``, the stationary half-plane's less the constants ``2/(pi sqrt b)``
-        and ``l(b)`` (S7, S21); at ``b = 0`` the steady kernels."""
-        par = self.parameters
-        cyl = par.cylinder_scale
-        out = []
-        S0c = moving_slope(u, cyl)
-        G0c = 1.0 / u + cylinder_temperature_gradient_regular(u, cyl)
-        S0h, G0h = 0.5 * np.sign(u), 1.0 / u
+    def _cross_kernels(self, b) -> dict:
+        """Each body's ``(W, T, S_b, G_b)`` at each pair's ``u`` (S21): the steady kernels
+        at ``b = 0``; otherwise the transient ones (:meth:`_kernels`), interpolated on
+        Chebyshev panels of each pair's interval of ``u`` to :data:`CROSS_TOLERANCE`
+        (:func:`~thermocontact.numerics.interpolation.panel_interpolation`: a few dozen
+        evaluations where the pair has ``N (n + 12)``)."""
+        pairs = self._pairs
         if b == 0:
-            out.append((cylinder_displacement(cyl * u) / cyl, cylinder_temperature(cyl * u),
-                        S0c, S0c, G0c, G0c))
-            out.append((-0.5 * np.abs(u), -np.log(np.abs(u)), S0h, S0h, G0h, G0h))
-            return out
-        b = complex(b)
-        for scale, rate, S0, G0 in ((cyl, b / par.k2_over_k1, S0c, G0c), (0.0, b, S0h, G0h)):
-            flat = u.ravel()
+            return {pair: self._kernels(u, 0) for pair, (u, _, _) in pairs.items()}
+
+        def f(x):
+            return np.concatenate(self._kernels(x, b, constants=False))
+        us = [u for u, _, _ in pairs.values()]
+        values = panel_interpolation(f, [(u.min(), u.max()) for u in us], us,
+                                     tol=CROSS_TOLERANCE)
+        # The half-plane's constants at rest, taken off the values interpolated (the
+        # kernels' scale, not theirs, sets the tolerance).
+        W0, T0 = ((0.0, 0.0) if self.moving else
+                  (2.0 / (np.pi * np.sqrt(complex(b))), logarithm_constant(complex(b))))
+        return {pair: (v[:4], (v[4] - W0, v[5] - T0, v[6], v[7]))
+                for pair, v in zip(pairs, values)}
+
+    @property
+    def _scales(self):
+        """Each body's signed scale in units of ``l``: the cylinder's ``c_l``, the
+        half-plane's ``c2 = R Pe_l`` (0 at rest)."""
+        return self.parameters.cylinder_scale, self.parameters.half_plane_scale
+
+    def _kernels(self, u, b, constants=True):
+        """Each body's ``(W, T, S_b, G_b)`` at the separated arguments ``u`` (units of
+        ``l``), the cylinder's with ``c_l`` and rate ``b k2/k1``, the half-plane's with
+        ``c2`` and rate ``b``: at rest less the constants ``2/(pi sqrt b)`` and
+        ``l(b)`` (S7, S21; not without ``constants``), moving as they are (S27); at
+        ``b = 0`` the steady kernels."""
+        par = self.parameters
+        out = []
+        for scale, rate in zip(self._scales, (b / par.k2_over_k1, b)):
+            if b == 0:
+                S, G = _steady_fields(u, scale)
+                if scale:
+                    W, T = cylinder_displacement(scale * u) / abs(scale), \
+                        cylinder_temperature(scale * u)
+                else:
+                    W, T = -0.5 * np.abs(u), -np.log(np.abs(u))
+                out.append((W, T, S, G))
+                continue
+            rate = complex(rate)
+            flat = np.ravel(u)
             W, S = transient_displacement_and_slope(flat, scale, rate)
             T = transient_temperature(flat, scale, rate)
             G = transient_temperature_gradient_regular(flat, scale, rate) + 1.0 / flat
-            if scale == 0.0:
+            if scale == 0.0 and constants:
                 W = W - 2.0 / (np.pi * np.sqrt(rate))
                 T = T - logarithm_constant(rate)
-            out.append(tuple(np.reshape(v, u.shape) for v in (W, T)) + (
-                S0, np.reshape(S, u.shape), G0, np.reshape(G, u.shape)))
+            out.append(tuple(np.reshape(v, np.shape(u)) for v in (W, T, S, G)))
         return out
 
     def _zone_rate(self, b, j):

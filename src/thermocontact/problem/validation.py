@@ -25,7 +25,6 @@ __all__ = [
     "check_numbers",
     "check_offset_coupling",
     "check_pair",
-    "check_perfect_contact",
     "check_positive",
     "check_range",
     "check_sink_given",
@@ -132,16 +131,6 @@ def check_flag(name: str, value) -> bool:
                                                                                    "bool_")):
         return bool(value)
     _fail(name, "True or False", value)
-
-
-def check_perfect_contact(conductance, given="a conductance") -> None:
-    """Refuse an interface conductance beside a contact set's stability, which is
-    modelled with perfect thermal contact (derivation section 18b; the single patch's
-    takes one); ``given`` names it as the caller's user wrote it."""
-    if conductance is not None:
-        raise InputError(f"the stability of a contact set is modelled with perfect thermal "
-                         f"contact: give no {given} (the single patch's stability takes one)",
-                         parameters=("conductance",))
 
 
 def check_choice(name: str, value, choices) -> str:

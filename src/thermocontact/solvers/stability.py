@@ -6,12 +6,13 @@ section 18), a nonlinear eigenproblem in the rate ``b`` (units ``k2/Delta^2``). 
 verdict is a count: the roots of ``det M`` in the region ``Re b >= b_min``,
 ``|b| <= R`` (``R`` the modulus bound, the model's range, eq. S11) by the argument
 principle on its boundary (:class:`Winding`: the phase of the determinant followed
-with steps each confirmed by its midpoint, eq. S12).  Where the count is positive the
-roots are located (a single one, real, bracketed on a fixed grid of real rates and
-found by the secant method, :func:`_real_root`; several by Beyn's contour integral on the
-smallest half-disc holding them all, :func:`beyn`) and each is confirmed by the secant
-method or Newton's method on ``det M`` kept on the principal sheet (:func:`newton`,
-eq. S13); the error estimate is the change of the eigenvalues between
+with steps each confirmed by its midpoint, eq. S12; a contact set's steps from the
+eigenvalues of the matrices' ratio, :func:`step_phase`, eq. S25).  Where the count is
+positive the roots are located (a single one, real, bracketed on a fixed grid of real
+rates and found by the secant method, :func:`_real_root`; several by Beyn's contour
+integral on the smallest half-disc holding them all, :func:`beyn`) and each is confirmed
+by the secant method or Newton's method on ``det M`` kept on the principal sheet
+(:func:`newton`, eq. S13); the error estimate is the change of the eigenvalues between
 ``n`` and ``3n/2``.
 """
 
@@ -25,12 +26,11 @@ from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
 from ..numerics.dense import log_determinants
-from ..problem.validation import (InputError, check_integer, check_perfect_contact,
-                                  check_positive)
+from ..problem.validation import InputError, check_integer, check_positive
 from .zones import ZoneSolution
 
 __all__ = ["B_MIN", "MODULUS_BOUND", "StabilityResult", "Winding", "beyn", "half_disc",
-           "linearised", "newton", "scaled_matrix", "stability_of"]
+           "linearised", "newton", "scaled_matrix", "stability_of", "step_phase"]
 
 #: Unknowns per function of the stability analysis (its own discretisation).
 STABILITY_N = 12
@@ -68,6 +68,15 @@ COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows tim
                 "confirmed by its midpoint (both halves change it by less than pi/4 and add "
                 "up to the whole); roots located by the secant method in a bracket on a grid "
                 "of real rates (one, real) or Beyn's contour integral and Newton's method")
+#: A contact set's (derivation S25): each step's phase from the eigenvalues of the
+#: matrices' ratio.
+COUNT_METHOD_STEPS = (
+    "argument principle: the phase of det M(b) (temperature rows times sqrt(1 + b)) along "
+    "Re b = b_min and the arc |b| = modulus_bound, each step's change the sum of the "
+    "arguments of the eigenvalues of M(a)^-1 M(b), each below pi/4, confirmed by its "
+    "midpoint (the halves' changes add up to the whole's); roots located by the secant "
+    "method in a bracket on a grid of real rates (one, real) or Beyn's contour integral "
+    "and Newton's method")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -177,14 +186,13 @@ class StabilityResult(Result):
 
 def linearised(solution) -> LinearisedContact | LinearisedContactSet:
     """The linearised contact about a :class:`~.result.ContactSolution`, or about a
-    contact set (:class:`~.zones.ZoneSolution`, perfect thermal contact: its edges free,
-    derivation section 18b)."""
+    contact set (:class:`~.zones.ZoneSolution`, its edges free, derivation section
+    18b)."""
     check_modelled(method=solution.method)
     if isinstance(solution, ZoneSolution):
-        check_perfect_contact(solution.conductance)
         return LinearisedContactSet(solution.parameters, solution.representation,
                                     solution.edges, solution.phi, solution.psi,
-                                    solution.profile)
+                                    solution.profile, solution.conductance)
     return LinearisedContact(solution.parameters, solution.representation, solution.phi,
                              solution.psi, solution.load_ratio, solution.sigma_over_delta,
                              solution.conductance)
@@ -221,12 +229,21 @@ class Winding:
         contact's :meth:`LinearisedContact.matrices`): each round's samples evaluated
         together, in place of ``prepare`` and ``matrix`` one by one (the same
         matrices).
+    ratios : bool
+        Follow each step's phase change as :func:`step_phase` does, from the
+        eigenvalues of ``A(a)^-1 A(b)`` (a contact set's, derivation S25): a turn of
+        the determinant's phase made of many small turns of its factors is then not
+        aliased between samples.
     """
 
-    def __init__(self, matrix, b_min, prepare=None, line_step=None, many=None):
+    def __init__(self, matrix, b_min, prepare=None, line_step=None, many=None,
+                 ratios=False):
         self.matrix, self.b_min, self.prepare = matrix, float(b_min), prepare
         self.line_step = _LINE_STEP if line_step is None else float(line_step)
         self.many = many
+        #: Each step's phase change from the eigenvalues of ``A(a)^-1 A(b)``
+        #: (:func:`step_phase`) instead of the determinant's phase at its ends.
+        self.ratios = bool(ratios)
         self.values, self.matrices, self.phase_errors = {}, {}, {}
         #: ``p`` of the factor ``(1 + b)^p`` divided out of ``f`` before its phase is
         #: followed (:meth:`settled`); set by the first :meth:`count`.
@@ -345,11 +362,17 @@ class Winding:
                     return None, (f"the phase of det M(b) is uncertain near b = "
                                   f"{point(m):.6g} (its rounding up to {worst:.2g} rad: M(b) "
                                   f"too ill-conditioned at this n)")
-                first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
-                whole = float(np.angle(pb / pa))
-                agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
-                if (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP and agree
-                        and lm >= 0.5 * (la + lb) - 2.0):
+                if self.ratios:
+                    first, second, whole = (self._step(point(x), point(y)) for x, y in
+                                            ((a, m), (m, b), (a, b)))
+                    agree = abs(first + second - whole) < 0.1
+                else:
+                    first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
+                    whole = float(np.angle(pb / pa))
+                    agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
+                # With ratios each eigenvalue's turn is bounded instead (step_phase).
+                short = self.ratios or (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP)
+                if short and agree and lm >= 0.5 * (la + lb) - 2.0:
                     total += first + second
                     continue
                 if abs(b - a) < SMALLEST_STEP:
@@ -357,6 +380,16 @@ class Winding:
                 refine += [(point, a, m), (point, m, b)]
             todo = refine
         return total, None
+
+    def _step(self, x, y):
+        """The phase change of ``g`` (:meth:`settled`) from ``x`` to ``y`` by
+        :func:`step_phase`, less ``p`` times that of ``1 + b`` (no winding: ``1 + b``
+        stays in the right half-plane); ``inf`` where an eigenvalue's argument reaches
+        :data:`PHASE_STEP`."""
+        change = step_phase(self.matrices[x], self.matrices[y])
+        if self.power:
+            change -= self.power * float(np.angle(1.0 + y) - np.angle(1.0 + x))
+        return change
 
     def count(self, R):
         """``(N, reason)``: the number of zeros of ``f`` in ``Re b >= b_min``,
@@ -392,6 +425,19 @@ class Winding:
             return None, (f"the winding {N} is negative: the phase of det M(b) was lost "
                           f"between its samples")
         return N, None
+
+
+def step_phase(A, B) -> float:
+    """The change of ``arg det`` from ``A`` to ``B`` along ``A + s (B - A)``,
+    ``0 <= s <= 1``: the sum of the principal arguments of the eigenvalues ``mu`` of
+    ``A^-1 B`` (``det(I + s(A^-1 B - I))`` is the product of ``1 + s(mu - 1)``, each on
+    the segment from 1 to ``mu``; derivation S25); ``inf`` where one of them reaches
+    :data:`PHASE_STEP` (the step too long to be taken as the matrices' chord)."""
+    mu = np.linalg.eigvals(np.linalg.solve(A, B))
+    args = np.angle(mu)
+    if not np.all(np.abs(args) < PHASE_STEP):
+        return np.inf
+    return float(args.sum())
 
 
 def half_disc(b_min, R, *, panels_per_unit=1.0, nodes=8):
@@ -670,7 +716,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
 
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
                       line_step=line_step,
-                      many=counted_many if hasattr(lin, "matrices") else None)
+                      many=counted_many if hasattr(lin, "matrices") else None,
+                      ratios=isinstance(lin, LinearisedContactSet))
     if len(samples):
         winding.evaluate([z for part in winding.boundary(R, map(complex, samples))
                           for z in part])
@@ -712,7 +759,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     return StabilityResult(
         eigenvalues=full, unstable_modes=N, stable=None if N is None else N == 0,
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
-        region=tuple(float(x) for x in region), count_method=COUNT_METHOD,
+        region=tuple(float(x) for x in region),
+        count_method=COUNT_METHOD_STEPS if winding.ratios else COUNT_METHOD,
         error_estimate=change, fold=fold, slow_root=slow,
         evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
