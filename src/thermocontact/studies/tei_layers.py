@@ -801,8 +801,8 @@ def _evaluate(key, payloads):
                                           np.asarray(v, dtype=float))
         shapes.append(b.shape)
         bs.append(b.ravel())
-        ms.append(np.broadcast_to(np.asarray(m, dtype=float), b.shape).ravel())
-        vs.append(np.broadcast_to(np.asarray(v, dtype=float), b.shape).ravel())
+        ms.append(np.full(b.size, m, dtype=float) if np.ndim(m) == 0 else m.ravel())
+        vs.append(np.full(b.size, v, dtype=float) if np.ndim(v) == 0 else v.ravel())
         which.append(np.full(b.size, layups.setdefault(id(layup), (len(layups), layup))[0]))
     b, m, v = np.concatenate(bs), np.concatenate(ms), np.concatenate(vs)
     layups = [lay for _, lay in layups.values()]
