@@ -834,12 +834,14 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     neighbouring intervals, so a lower branch is missed only if it is nowhere the
     lowest at a scanned wavenumber.
 
-    The scans of every family and wavenumber run together
+    The scans of every family and wavenumber, each followed by the continuations from
+    its neutral point, run together
     (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
     needs the dispersion function (or the count's ratio), and the points all of them
     need are evaluated in one call per family, each as it would be alone; so the
-    curves are those of the scans run one by one.  ``progress(done, total)``, if
-    given, is told as each scan ends and at the end (the continuations the last of
+    curves are those of the scans and continuations run one by one (each wavenumber
+    keeps the lowest point, whichever reaches it first).  ``progress(done, total)``,
+    if given, is told as each scan ends and at the end (the continuations the last of
     ``total``).
 
     Returns
@@ -858,40 +860,40 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     tell = progress or (lambda done, total: None)
     tell(0, total)
     ended = []
+    V = [np.full(ms.shape, np.inf) for _ in families]
+    W = [np.full(ms.shape, np.nan) for _ in families]
 
-    def scan(family, m):
-        return lambda ask: first_crossing(replace(family, ask=ask), m)
+    def keep(k, i, point):
+        if point[0] < V[k][i]:
+            V[k][i], W[k][i] = point
 
-    def continuation(family, starts, V, W):
-        return lambda ask: _continue_starts(replace(family, ask=ask), ms, starts, scanned,
-                                            V, W)
+    def scan(k, j):
+        def run(ask):
+            family = replace(families[k], ask=ask)
+            vc, b = first_crossing(family, ms[j])
+            ended.append(j)
+            tell(len(ended), total)
+            if vc is not None:
+                keep(k, j, (vc, b.imag))
+                _continue_starts(family, ms, [(j + 1, float(ms[j]), (vc, b.imag))], scanned,
+                                 V[k], W[k])
+        return run
 
-    def finished(i, result):
-        ended.append(i)
-        tell(len(ended), total)
+    def from_anchor(k, anchor):
+        return lambda ask: _continue_starts(
+            replace(families[k], ask=ask), ms,
+            [(int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
+              (float(anchor[1]), float(anchor[2])))], scanned, V[k], W[k])
 
-    found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate, finished)
-    out, chains = [], []
-    for k, (family, anchor) in enumerate(zip(families, anchors)):
-        V = np.full(ms.shape, np.inf)
-        W = np.full(ms.shape, np.nan)
-        starts = []
-        if anchor is not None:
-            starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
-                           (float(anchor[1]), float(anchor[2]))))
-        for (kk, j), (vc, b) in zip(jobs, found):
-            if kk == k and vc is not None:
-                starts.append((j + 1, float(ms[j]), (vc, b.imag)))
-                if vc < V[j]:
-                    V[j], W[j] = vc, b.imag
-        chains.append(continuation(family, starts, V, W))
-        out.append((V, W))
-    # The families' continuations together too.
-    run_lockstep(chains, _evaluate)
-    for V, _ in out:
-        V[~np.isfinite(V)] = np.nan
+    # Each scan continues its neutral point as soon as it has it, while the others
+    # still scan: the continuations' requests share the scans' rounds.
+    run_lockstep([scan(k, j) for k, j in jobs]
+                 + [from_anchor(k, a) for k, a in enumerate(anchors) if a is not None],
+                 _evaluate)
+    for v in V:
+        v[~np.isfinite(v)] = np.nan
     tell(total, total)
-    return out
+    return list(zip(V, W))
 
 
 def _continue_starts(family, ms, starts, scanned, V, W):
