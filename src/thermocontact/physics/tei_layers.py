@@ -433,7 +433,12 @@ class _Solutions:
 
 def _points_first(a, shape):
     """``a`` with its last axis (the points) moved first and shaped ``shape``."""
-    return np.ascontiguousarray(np.moveaxis(a, -1, 0)).reshape(shape + a.shape[:-1])
+    return np.ascontiguousarray(_last_first(a)).reshape(shape + a.shape[:-1])
+
+
+def _last_first(a):
+    """A view of ``a`` with its last axis first."""
+    return a.transpose((a.ndim - 1,) + tuple(range(a.ndim - 1)))
 
 
 def _fields_last(sol: _Solutions, b, m, U, depths, derivative=False):
@@ -448,32 +453,51 @@ def _fields_last(sol: _Solutions, b, m, U, depths, derivative=False):
     The points are the last axis, so that every array operation runs over them
     innermost, not over the few starts and solutions; each point's values are those
     it has alone."""
+    t = _start_coordinates(sol, m, depths)
+    el = _elastic_last(sol, t)
+    th = _thermal_last(sol, b, m, U, t, derivative)
+    out = np.concatenate([el, th[0] if derivative else th], axis=-2)     # (nb, P, 6, 6, N)
+    return (out,) + th[1:] if derivative else out
+
+
+def _start_coordinates(sol: _Solutions, m, depths):
+    """``t = m (y - y_start)`` at ``depths`` of every start of every body, ``(nb, P,
+    2, N)`` (:class:`_Solutions`)."""
     tau = depths[..., None] * m                                            # (nb, P, N)
-    t = (sol.sign[:, None, None, None] * tau[:, :, None]
-         - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
-    G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
-                / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
+    return (sol.sign[:, None, None, None] * tau[:, :, None]
+            - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
+
+
+def _elastic_last(sol: _Solutions, t):
+    """The elastic columns of :func:`_fields_last`, ``(nb, P, 6, 4, N)``, at the
+    coordinates ``t`` of :func:`_start_coordinates`: they depend on ``m`` only."""
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         g = np.exp(sol.starts[:, None, :, None] * t)[:, :, None, :, None]  # (nb, P, 1, 2, 1, N)
         el = ((sol.A[:, None, ..., None] + sol.B[:, None, ..., None] * t[:, :, None, :, None])
               * g)                                                         # (nb, P, 6, 2, 2, N)
+    return el.reshape(el.shape[:3] + (4, el.shape[-1]))
+
+
+def _thermal_last(sol: _Solutions, b, m, U, t, derivative=False):
+    """The thermal columns of :func:`_fields_last`, ``(nb, P, 6, 2, N)`` (with
+    ``derivative``: and their ``G``-derivatives and ``G``)."""
+    G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
+                / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         dist = np.abs(t)                   # m times the distance from the start face
         e = np.exp(-G * dist)
         D, dD = _potential_profile(G, dist, e)
         th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
               + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
-        if derivative:
-            dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
-            dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
-                   + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
-                   + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
-                                      * (sol.ce[:, None, ..., None]
-                                         + G[:, :, None] * sol.cG[:, None, ..., None])))
-    nb, P = el.shape[:2]
-    out = np.concatenate([el.reshape(nb, P, 6, 4, -1), th], axis=-2)      # (nb, P, 6, 6, N)
-    if not derivative:
-        return out
-    return out, dth, G[:, 0, 0]
+        if not derivative:
+            return th
+        dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
+        dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
+               + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
+               + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
+                                  * (sol.ce[:, None, ..., None]
+                                     + G[:, :, None] * sol.cG[:, None, ..., None])))
+    return th, dth, G[:, 0, 0]
 
 
 @lru_cache(maxsize=64)
@@ -628,7 +652,7 @@ def _applied(terms, F, which=None):
     if which is None:
         w = terms.weights[..., None, None]
     else:
-        w = np.moveaxis(terms.weights, 0, -1)[..., which][..., None, :]
+        w = terms.weights.transpose(1, 2, 3, 0)[..., which][..., None, :]
     out = w[0] * F[terms.slots[0]]
     for t in range(1, terms.slots.shape[0]):
         out += w[t] * F[terms.slots[t]]
@@ -806,13 +830,13 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
         # tr(M^-1 M_1): M_1 nonzero in the rows of the frictional heat only.
         n, k, nh = M.shape[0], len(cols), len(heat_rows)
         rhs = np.zeros((b.size, n, k + nh), dtype=complex)
-        rhs[..., :k] = np.moveaxis(dMb, -1, 0)
+        rhs[..., :k] = _last_first(dMb)
         rhs[:, heat_rows, k + np.arange(nh)] = 1.0
-        X = _solve(np.moveaxis(M, -1, 0), rhs)
+        X = _solve(_last_first(M), rhs)
         own = np.arange(6 * len(layup.bodies)) if asm.own is None else asm.own
         at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
         diag = X[:, at, np.arange(k)]                                     # (N, k)
-        heat = np.diagonal(np.moveaxis(M1, -1, 0) @ X[..., k:], axis1=-2, axis2=-1)
+        heat = np.diagonal(_last_first(M1) @ X[..., k:], axis1=-2, axis2=-1)
         moving = 1j * m[:, None] * sol.moving[bodies]
         out = np.stack([_sum(diag), _sum(moving * diag) + hq * np.sign(V) * _sum(heat)],
                        axis=-1)
@@ -896,8 +920,8 @@ def dispersion_ratio(layup: Layup, b, wavenumber, speed, which=None):
     unit = np.zeros((M0.shape[0], rows.size))
     unit[rows, np.arange(rows.size)] = 1.0
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        Y = _solve(np.moveaxis(M0, -1, 0), np.broadcast_to(unit, (b.size,) + unit.shape))
-        K = np.eye(rows.size) + h[:, None, None] * (np.moveaxis(M1, -1, 0) @ Y)
+        Y = _solve(_last_first(M0), np.broadcast_to(unit, (b.size,) + unit.shape))
+        K = np.eye(rows.size) + h[:, None, None] * (_last_first(M1) @ Y)
         return (K[:, 0, 0] if rows.size == 1 else np.linalg.det(K)).reshape(shape)
 
 
