@@ -345,12 +345,18 @@ def layup_operator(layup, wavenumber, speed, n=32):
     dyn_cols = [offsets[j] + c for j, p in enumerate(parts) for c in p[2]]
     dyn_rows = np.array(dyn)
     dyn_cols = np.array(dyn_cols)
-    st_rows = np.setdiff1d(np.arange(size), dyn_rows)
-    st_cols = np.setdiff1d(np.arange(size), dyn_cols)
+    st_rows, st_cols = _others(size, dyn_rows), _others(size, dyn_cols)
     # The static rows are equations = 0: each scaled to unit size (their magnitudes
     # span 20 decades, and LU then slows on subnormal numbers).
-    scale = 1.0 / np.max(np.abs(L[st_rows]), axis=1, keepdims=True)
-    Lss = L[np.ix_(st_rows, st_cols)] * scale
-    Lsd = L[np.ix_(st_rows, dyn_cols)] * scale
-    return (L[np.ix_(dyn_rows, dyn_cols)]
-            - L[np.ix_(dyn_rows, st_cols)] @ np.linalg.solve(Lss, Lsd))
+    static, dynamic = L[st_rows], L[dyn_rows]
+    scale = 1.0 / np.max(np.abs(static), axis=1, keepdims=True)
+    Lss = static[:, st_cols] * scale
+    Lsd = static[:, dyn_cols] * scale
+    return dynamic[:, dyn_cols] - dynamic[:, st_cols] @ np.linalg.solve(Lss, Lsd)
+
+
+def _others(size, idx):
+    """The indices below ``size`` not in ``idx``, in order."""
+    keep = np.ones(size, dtype=bool)
+    keep[idx] = False
+    return np.flatnonzero(keep)

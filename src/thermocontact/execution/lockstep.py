@@ -8,7 +8,8 @@ when every one still running has asked, their requests are answered by one call 
 kind of request, the points of all of them stacked.
 
 Each computation runs in a thread of its own, but only one at a time, in a fixed
-order, handing control on when it asks: threads here are coroutines whose code is
+order, each handing control straight to the next when it asks (the last to the
+driver, which answers the round's requests): threads here are coroutines whose code is
 ordinary sequential code (it may ask from inside a callback of SciPy's root
 finders), not parallelism.  The order of the computations and of the batches is
 fixed, so a run is repeatable; each computation gets the answers it would get
@@ -27,13 +28,44 @@ class _Cancelled(BaseException):
     """Raised inside a computation's thread to end it (another failed, or Ctrl-C)."""
 
 
-class _Task:
-    """One computation's thread and its handshake with the driver."""
+class _Baton:
+    """Whose turn it is: the computations of a round, each handing control straight
+    to the next when it asks or ends (one switch of threads per request, not two
+    through the driver), the last to the driver."""
 
-    def __init__(self, func):
+    def __init__(self):
+        self.back = threading.Event()      # the round is over (or one failed)
+        self.order = ()
+        self.pos = 0
+        self.closed = False                # cancelling: nobody is waiting
+
+    def run_round(self, order):
+        """Run each of ``order`` in turn until it asks or ends (in the driver's thread:
+        blocks until the last has, or one has failed)."""
+        self.order, self.pos = order, 0
+        self.back.clear()
+        order[0].turn.set()
+        self.back.wait()
+
+    def pass_on(self, task):
+        """``task`` (the one running) has asked or ended: the next of the round runs,
+        or the driver if it was the last or failed."""
+        if self.closed:
+            return
+        self.pos += 1
+        if task.error is None and self.pos < len(self.order):
+            self.order[self.pos].turn.set()
+        else:
+            self.back.set()
+
+
+class _Task:
+    """One computation's thread and its handshake with the others."""
+
+    def __init__(self, func, baton):
         self.func = func
-        self.turn = threading.Event()      # the driver hands control to the task
-        self.back = threading.Event()      # the task hands it back (asked, or ended)
+        self.baton = baton
+        self.turn = threading.Event()      # control handed to the task
         self.request = None                # (key, payload) while waiting for an answer
         self.answer = None
         self.result = None
@@ -42,9 +74,12 @@ class _Task:
         self.cancelled = False
         self.thread = threading.Thread(target=self._run, daemon=True)
 
-    def _run(self):
+    def _wait(self):
         self.turn.wait()
         self.turn.clear()
+
+    def _run(self):
+        self._wait()
         try:
             if not self.cancelled:
                 self.result = self.func(self.ask)
@@ -53,26 +88,20 @@ class _Task:
         except BaseException as exc:  # noqa: BLE001 (handed to the driver, raised there)
             self.error = exc
         self.finished = True
-        self.back.set()
+        self.baton.pass_on(self)
 
     def ask(self, key, payload):
-        """Hand ``(key, payload)`` to the driver and wait for its answer."""
+        """Leave ``(key, payload)`` for the driver, hand control on and wait for the
+        answer."""
         if self.cancelled:
             raise _Cancelled
         self.request = (key, payload)
-        self.back.set()
-        self.turn.wait()
-        self.turn.clear()
+        self.baton.pass_on(self)
+        self._wait()
         if self.cancelled:
             raise _Cancelled
         answer, self.answer = self.answer, None
         return answer
-
-    def step(self):
-        """Run the task until it asks or ends (in the driver's thread: blocks)."""
-        self.back.clear()
-        self.turn.set()
-        self.back.wait()
 
 
 def run_lockstep(funcs, evaluate, finished=None):
@@ -102,14 +131,15 @@ def run_lockstep(funcs, evaluate, finished=None):
     ``evaluate`` (or a ``KeyboardInterrupt`` in the caller) ends the others at
     their next request, and is raised here once all threads have ended.
     """
-    tasks = [_Task(f) for f in funcs]
+    baton = _Baton()
+    tasks = [_Task(f, baton) for f in funcs]
     for task in tasks:
         task.thread.start()
     live = list(tasks)
     try:
         while live:
+            baton.run_round(live)
             for task in live:
-                task.step()
                 if task.error is not None:
                     raise task.error
             done = [t for t in live if t.finished]
@@ -124,6 +154,7 @@ def run_lockstep(funcs, evaluate, finished=None):
                 for task, answer in zip(group, answers):
                     task.request, task.answer = None, answer
     finally:
+        baton.closed = True
         for task in tasks:
             if not task.finished:
                 task.cancelled = True

@@ -339,9 +339,10 @@ def body_fields(body: Body, b, wavenumber, velocity, refs, depths, upper=True, m
     ndarray, shape ``S + (len(depths), 6, columns)``
     """
     sol = _Solutions.of([(body, upper, body.material if mat is None else mat)], refs)
-    F = _fields(sol, *_broadcast(b, wavenumber, velocity),
-                np.asarray(depths, dtype=float).reshape(1, -1))
-    return F[..., 0, :, :, :][..., sol.columns]
+    b, m, U = _broadcast(b, wavenumber, velocity)
+    F = _fields_last(sol, b.reshape(-1), m.reshape(-1), U.reshape(-1),
+                     np.asarray(depths, dtype=float).reshape(1, -1))
+    return _points_first(F[0][:, :, sol.columns], b.shape)
 
 
 def _broadcast(b, wavenumber, velocity):
@@ -430,48 +431,73 @@ class _Solutions:
                           cG, np.array(columns))
 
 
-def _fields(sol: _Solutions, b, m, U, depths, derivative=False):
-    """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m): ``b``,
-    ``m``, ``U`` of one shape ``S``; shape ``S + (bodies, P, 6, 6)``, the six columns
-    of each body as in :class:`_Solutions` (the elastic solutions, two per start, then
-    the thermal, one per start).  With ``derivative``: also their derivatives in the
-    body's ``gamma/m = G`` (L1) of its thermal columns, the only ones that depend
-    on it, ``S + (bodies, P, 6, 2)``, and ``G`` itself, ``S + (bodies,)``.
+def _points_first(a, shape):
+    """``a`` with its last axis (the points) moved first and shaped ``shape``."""
+    return np.ascontiguousarray(_last_first(a)).reshape(shape + a.shape[:-1])
 
-    Computed with the points as the last axis (``N``, the size of ``S``), so that every
-    array operation runs over the points innermost, not over the few starts and
-    solutions; each point's values are those it has alone."""
-    shape = b.shape
-    b, m, U = b.reshape(-1), m.reshape(-1), U.reshape(-1)
+
+def _last_first(a):
+    """A view of ``a`` with its last axis first."""
+    return a.transpose((a.ndim - 1,) + tuple(range(a.ndim - 1)))
+
+
+def _fields_last(sol: _Solutions, b, m, U, depths, derivative=False):
+    """The fields of every body of ``sol`` at ``depths`` (``(bodies, P)``, m), ``b``,
+    ``m``, ``U`` of one axis (the ``N`` points): shape ``(bodies, P, 6, 6, N)``, the
+    six columns of each body as in :class:`_Solutions` (the elastic solutions, two
+    per start, then the thermal, one per start).  With ``derivative``: also their
+    derivatives in the body's ``gamma/m = G`` (L1) of its thermal columns, the only
+    ones that depend on it, ``(bodies, P, 6, 2, N)``, and ``G`` itself, ``(bodies,
+    N)``.
+
+    The points are the last axis, so that every array operation runs over them
+    innermost, not over the few starts and solutions; each point's values are those
+    it has alone."""
+    t = _start_coordinates(sol, m, depths)
+    el = _elastic_last(sol, t)
+    th = _thermal_last(sol, b, m, U, t, derivative)
+    out = np.concatenate([el, th[0] if derivative else th], axis=-2)     # (nb, P, 6, 6, N)
+    return (out,) + th[1:] if derivative else out
+
+
+def _start_coordinates(sol: _Solutions, m, depths):
+    """``t = m (y - y_start)`` at ``depths`` of every start of every body, ``(nb, P,
+    2, N)`` (:class:`_Solutions`)."""
     tau = depths[..., None] * m                                            # (nb, P, N)
-    t = (sol.sign[:, None, None, None] * tau[:, :, None]
-         - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
-    G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
-                / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
+    return (sol.sign[:, None, None, None] * tau[:, :, None]
+            - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
+
+
+def _elastic_last(sol: _Solutions, t):
+    """The elastic columns of :func:`_fields_last`, ``(nb, P, 6, 4, N)``, at the
+    coordinates ``t`` of :func:`_start_coordinates`: they depend on ``m`` only."""
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         g = np.exp(sol.starts[:, None, :, None] * t)[:, :, None, :, None]  # (nb, P, 1, 2, 1, N)
         el = ((sol.A[:, None, ..., None] + sol.B[:, None, ..., None] * t[:, :, None, :, None])
               * g)                                                         # (nb, P, 6, 2, 2, N)
+    return el.reshape(el.shape[:3] + (4, el.shape[-1]))
+
+
+def _thermal_last(sol: _Solutions, b, m, U, t, derivative=False):
+    """The thermal columns of :func:`_fields_last`, ``(nb, P, 6, 2, N)`` (with
+    ``derivative``: and their ``G``-derivatives and ``G``)."""
+    G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
+                / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         dist = np.abs(t)                   # m times the distance from the start face
         e = np.exp(-G * dist)
         D, dD = _potential_profile(G, dist, e)
         th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
               + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
-        if derivative:
-            dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
-            dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
-                   + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
-                   + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
-                                      * (sol.ce[:, None, ..., None]
-                                         + G[:, :, None] * sol.cG[:, None, ..., None])))
-    nb, P = el.shape[:2]
-
-    out = np.concatenate([el.reshape(nb, P, 6, 4, -1), th], axis=-2)      # (nb, P, 6, 6, N)
-    out = np.ascontiguousarray(np.moveaxis(out, -1, 0)).reshape(shape + out.shape[:-1])
-    if not derivative:
-        return out
-    return (out, np.moveaxis(dth, -1, 0).reshape(shape + dth.shape[:-1]),
-            np.moveaxis(G[:, 0, 0], -1, 0).reshape(shape + (nb,)))
+        if not derivative:
+            return th
+        dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
+        dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
+               + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
+               + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
+                                  * (sol.ce[:, None, ..., None]
+                                     + G[:, :, None] * sol.cG[:, None, ..., None])))
+    return th, dth, G[:, 0, 0]
 
 
 @lru_cache(maxsize=64)
@@ -567,29 +593,70 @@ def condition_terms(layup: Layup, b, wavenumber, speed):
     """
     b, m, V = _broadcast(b, wavenumber, speed)
     asm = _assembly(layup)
-    return _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths))
+    M0, heat = _condition_rows(asm, _fields_last(asm.solutions, b.reshape(-1), m.reshape(-1),
+                                                 V.reshape(-1), asm.depths))
+    M1 = np.zeros_like(M0)
+    M1[asm.heat_rows] = heat
+    return _points_first(M0, b.shape), _points_first(M1, b.shape)
 
 
 def _condition_rows(asm, F, group=None):
-    """``(M_0, M_1)`` of :func:`condition_terms` from the face fields ``F``, ``S + (nb,
-    2, 6, 6)`` (``group``: see :func:`_conditions_applied`)."""
-    # Transposed, each body's columns become rows, which stack without copying.
-    return _rows_of(asm, _conditions_applied(
-        asm, F.reshape(F.shape[:-3] + (12, 6)).swapaxes(-1, -2), group))
+    """``(M_0, E^T M_1)`` of :func:`condition_terms`, ``(rows, columns, N)``, from the
+    face fields ``F``, ``(nb, 2, 6, c, N)`` of :func:`_fields_last` (``c`` columns of
+    each body; ``group``: see :func:`_grouped`): ``M_1`` in its rows of the
+    frictional heat only, the columns every body's ``c``, or with ``c = 6`` those of
+    ``M``."""
+    terms, heat_terms, which = (asm.terms, asm.heat_terms, None) if group is None else group
+    F = F.reshape((12 * F.shape[0],) + F.shape[3:])
+    M0, M1 = _applied(terms, F, which), _applied(heat_terms, F, which)
+    if F.shape[1] == 6 and asm.own is not None:
+        return M0[:, asm.own], M1[:, asm.own]
+    return M0, M1
 
 
-def _conditions_applied(asm, FT, group=None):
-    """``FT @ CT``: the rows of :func:`condition_matrix` applied to the transposed face
-    fields ``FT``, ``S + (nb, c, 12)``; with ``group = (assemblies, which)`` (``S`` of
-    one axis), point ``i`` by the conditions of ``assemblies[which[i]]``."""
-    if group is None:
-        return FT @ asm.CT
-    assemblies, which = group
-    out = np.empty(FT.shape[:-1] + (asm.CT.shape[-1],), dtype=complex)
-    for k, a in enumerate(assemblies):
-        sel = which == k
-        out[sel] = FT[sel] @ a.CT
-    return out
+@dataclass(frozen=True)
+class _Terms:
+    """Rows of :func:`condition_matrix` as sums of the few face fields each names:
+    on body ``j``'s columns row ``r`` is ``sum_t weights[t, r, j] F[slots[t, r, j]]``,
+    ``F`` the bodies' face fields flattened (``12 j + 6 face + field``; a shorter sum
+    padded with zero weights), instead of a product with the mostly zero
+    coefficients."""
+
+    slots: np.ndarray       # (T, rows, nb), int
+    weights: np.ndarray     # (T, rows, nb); (K, T, rows, nb) for K layups of a group
+
+    @staticmethod
+    def of(Cs):
+        """From the coefficients ``Cs``, ``(K, rows, nb, 2, 6)``, of ``K`` layups, on
+        the union of their fields (a field some do not name has a zero weight)."""
+        K, rows, nb = Cs.shape[:3]
+        Cs = Cs.reshape(K, rows, nb, 12)
+        used = np.any(Cs != 0, axis=0)
+        T = max(1, int(used.sum(axis=-1).max()))
+        slots = np.zeros((T, rows, nb), dtype=np.intp)
+        weights = np.zeros((K, T, rows, nb), dtype=complex)
+        for r, j in np.ndindex(rows, nb):
+            slots[:, r, j] = 12 * j
+            for t, f in enumerate(np.flatnonzero(used[r, j])):     # in the fields' order
+                slots[t, r, j] = 12 * j + f
+                weights[:, t, r, j] = Cs[:, r, j, f]
+        return _Terms(slots, weights[0] if K == 1 else weights)
+
+
+def _applied(terms, F, which=None):
+    """``(rows, nb c, N)``: the rows of ``terms`` applied to the face fields ``F``,
+    ``(12 nb, c, N)``; with ``which`` (``N``; ``terms`` of a group), point ``i`` by
+    the ``which[i]``-th layup's weights.  A point's value is the one it has alone
+    for finite fields: the same products summed in the same order, the union's
+    other terms zeros."""
+    if which is None:
+        w = terms.weights[..., None, None]
+    else:
+        w = terms.weights.transpose(1, 2, 3, 0)[..., which][..., None, :]
+    out = w[0] * F[terms.slots[0]]
+    for t in range(1, terms.slots.shape[0]):
+        out += w[t] * F[terms.slots[t]]
+    return out.reshape((out.shape[0], out.shape[1] * out.shape[2], out.shape[3]))
 
 
 def field_group(layup: Layup):
@@ -603,39 +670,41 @@ def field_group(layup: Layup):
 
 
 def _grouped(layup, which):
-    """``(the first layup, group)`` for :func:`_conditions_applied`: ``layup`` one
-    layup (``which`` None), or a sequence of layups of one :func:`field_group`."""
+    """``(the first layup, group)``: ``layup`` one layup (``which`` None; group None),
+    or a sequence of layups of one :func:`field_group`, group ``(terms, heat terms,
+    which)``, the :class:`_Terms` of all of them on one pattern."""
     if which is None:
         return layup, None
     layup = tuple(layup)
-    if len({field_group(lay) for lay in layup}) != 1:
-        raise ValueError("layups of one field_group only")
     which = np.asarray(which).reshape(-1)
-    return layup[0], (tuple(_assembly(lay) for lay in layup), which)
+    return layup[0], _group_terms(layup) + (which,)
 
 
-def _rows_of(asm, MT):
-    """``(M_0, M_1)`` from the transposed ``MT``, ``S + (nb, 6, 2n)``: every body's
-    solutions' face fields with the rows of :func:`condition_matrix` applied."""
-    nb = MT.shape[-3]
-    MT = MT.reshape(MT.shape[:-3] + (6 * nb, MT.shape[-1]))
-    if asm.own is not None:
-        MT = MT[..., asm.own, :]
-    n = MT.shape[-2]
-    return MT[..., :n].swapaxes(-1, -2), MT[..., n:].swapaxes(-1, -2)
+@lru_cache(maxsize=64)
+def _group_terms(layups):
+    """The :class:`_Terms` of the conditions and of the rows of the frictional heat of
+    layups of one :func:`field_group`, on the union of their fields."""
+    if len({field_group(lay) for lay in layups}) != 1:
+        raise ValueError("layups of one field_group only")
+    C = [condition_matrix(lay) for lay in layups]
+    rows = _assembly(layups[0]).heat_rows
+    return (_Terms.of(np.array([c[0] for c in C])),
+            _Terms.of(np.array([c[1][rows] for c in C])))
 
 
 @dataclass(frozen=True)
 class _Assembly:
     """What :func:`condition_terms` needs of a layup, made once: every body's
-    solutions, the rows of ``C_0`` beside those of ``C_1`` of :func:`condition_matrix`
-    acting on each body's face fields, transposed, ``(bodies, 12, 2 n)``, the faces'
+    solutions, the rows of ``C_0`` and those of ``C_1`` that carry the frictional heat
+    (``heat_rows``) of :func:`condition_matrix` as :class:`_Terms`, the faces'
     depths, which of the bodies' six columns each are theirs (None: all), the
     frictional heat's coefficient per ``|V|/m`` and the conducting layers' ``(kappa,
     moving)`` (:func:`layup_dispersion`)."""
 
     solutions: _Solutions
-    CT: np.ndarray
+    terms: _Terms
+    heat_terms: _Terms
+    heat_rows: np.ndarray
     depths: np.ndarray
     own: np.ndarray | None
     heat: float
@@ -650,7 +719,7 @@ def _assembly(layup: Layup) -> _Assembly:
         last = len(layup.bodies) - 1
         sol = _Solutions.of([(body, j == last, layup.elastic(body))
                              for j, body in enumerate(layup.bodies)], layup.references())
-        C = np.concatenate([C0, C1]).reshape(2 * C0.shape[0], len(layup.bodies), 12)
+        heat_rows = np.flatnonzero(np.any(C1.reshape(C1.shape[0], -1) != 0, axis=1))
         own = sol.columns
         if np.array_equal(own, np.arange(6 * len(layup.bodies))):
             own = None
@@ -658,8 +727,8 @@ def _assembly(layup: Layup) -> _Assembly:
                         if b.thickness is not None and b.conducts])
         mov = np.array([float(b.moving) for b in layup.bodies
                         if b.thickness is not None and b.conducts])
-        cached = _Assembly(sol, np.ascontiguousarray(C.transpose(1, 2, 0)),
-                           np.array([_face_depths(body) for body in layup.bodies]),
+        cached = _Assembly(sol, _Terms.of(C0[None]), _Terms.of(C1[None, heat_rows]),
+                           heat_rows, np.array([_face_depths(body) for body in layup.bodies]),
                            own, float(heat_coefficient(layup, 1.0, 1.0)), (kap, mov))
         object.__setattr__(layup, "_assembly", cached)
     return cached
@@ -740,46 +809,45 @@ def dispersion_log_derivatives(layup: Layup, b, wavenumber, speed, which=None):
     """
     layup, group = _grouped(layup, which)
     b, m, V = _broadcast(b, wavenumber, speed)
+    shape = b.shape
+    b, m, V = b.reshape(-1), m.reshape(-1), V.reshape(-1)
     asm = _assembly(layup)
     sol = asm.solutions
     cols, bodies, heat_rows = _derivative_terms(layup)
-    F, dF, G = _fields(sol, b, m, V, asm.depths, derivative=True)
+    F, dF, G = _fields_last(sol, b, m, V, asm.depths, derivative=True)
     with np.errstate(all="ignore"):
         # dM/db: nonzero in the thermal columns only, each of one body; the same
-        # columns of dM/dV are i m U/V times them (G depends on b + i m U).  Both
-        # mapped by the face conditions in one product.
-        dG_db = 1.0 / (2.0 * G * sol.kappa * (m * m)[..., None])          # S + (nb,)
-        nb = dG_db.shape[-1]
-        th = dF.reshape(dF.shape[:-3] + (12, 2)) * dG_db[..., None, None]
-        MT = _conditions_applied(asm, np.concatenate(
-            [F.reshape(F.shape[:-3] + (12, 6)), th], axis=-1).swapaxes(-1, -2), group)
-        M0, M1 = _rows_of(asm, MT[..., :6, :])
+        # columns of dM/dV are i m U/V times them (G depends on b + i m U).  The
+        # points last until the solve.
+        M, M1 = _condition_rows(asm, F, group)                  # (n, n, N), (rows, n, N)
         hq = asm.heat / m
-        M = M0 + (hq * np.abs(V))[..., None, None] * M1
-        dT = MT[..., 6:, :].reshape(MT.shape[:-3] + (2 * nb, MT.shape[-1]))[..., cols, :]
-        n = M.shape[-1]
-        dMb = dT[..., :n] + (hq * np.abs(V))[..., None, None] * dT[..., n:]
+        h = hq * np.abs(V)
+        M[heat_rows] += h * M1
+        T0, T1 = _condition_rows(asm, dF, group)
+        dG = (1.0 / (2.0 * G * sol.kappa[:, None] * (m * m)))[bodies]   # dG/db, (k, N)
+        dMb = T0[:, cols] * dG
+        dMb[heat_rows] += h * (T1[:, cols] * dG)
         # tr(M^-1 M_1): M_1 nonzero in the rows of the frictional heat only.
-        unit = np.zeros((n, len(heat_rows)))
-        unit[heat_rows, np.arange(len(heat_rows))] = 1.0
-        X = _solve(M, np.concatenate(
-            [dMb.swapaxes(-1, -2), np.broadcast_to(unit, M.shape[:-2] + unit.shape)], axis=-1))
-        k = len(cols)
-        own = np.arange(6 * nb) if asm.own is None else asm.own
+        n, k, nh = M.shape[0], len(cols), len(heat_rows)
+        rhs = np.zeros((b.size, n, k + nh), dtype=complex)
+        rhs[..., :k] = _last_first(dMb)
+        rhs[:, heat_rows, k + np.arange(nh)] = 1.0
+        X = _solve(_last_first(M), rhs)
+        own = np.arange(6 * len(layup.bodies)) if asm.own is None else asm.own
         at = np.flatnonzero(own % 6 >= 4)                  # the thermal columns' places
-        diag = X[..., at, np.arange(k)]                                   # S + (k,)
-        heat = np.diagonal(M1[..., heat_rows, :] @ X[..., k:], axis1=-2, axis2=-1)
-        moving = 1j * m[..., None] * sol.moving[bodies]
+        diag = X[:, at, np.arange(k)]                                     # (N, k)
+        heat = np.diagonal(_last_first(M1) @ X[..., k:], axis1=-2, axis2=-1)
+        moving = 1j * m[:, None] * sol.moving[bodies]
         out = np.stack([_sum(diag), _sum(moving * diag) + hq * np.sign(V) * _sum(heat)],
                        axis=-1)
         kap, mov = asm.layers
         if kap.size:
-            Gl = np.sqrt(1.0 + (b[..., None] + 1j * (m * V)[..., None] * mov)
-                         / (kap * (m * m)[..., None]))
-            dl = 1.0 / (2.0 * Gl * Gl * kap * (m * m)[..., None])          # d ln G/db
-            out[..., 0] -= _sum(dl)
-            out[..., 1] -= _sum(1j * m[..., None] * mov * dl)
-    return out
+            Gl = np.sqrt(1.0 + (b[:, None] + 1j * (m * V)[:, None] * mov)
+                         / (kap * (m * m)[:, None]))
+            dl = 1.0 / (2.0 * Gl * Gl * kap * (m * m)[:, None])             # d ln G/db
+            out[:, 0] -= _sum(dl)
+            out[:, 1] -= _sum(1j * m[:, None] * mov * dl)
+    return out.reshape(shape + (2,))
 
 
 def _sum(a):
@@ -801,9 +869,7 @@ def _derivative_terms(layup: Layup):
     nb = len(layup.bodies)
     own = np.arange(6 * nb) if asm.own is None else asm.own
     thermal = own[own % 6 >= 4]
-    C1 = condition_matrix(layup)[1]
-    heat_rows = np.flatnonzero(np.any(C1.reshape(C1.shape[0], -1) != 0, axis=1))
-    return 2 * (thermal // 6) + thermal % 6 - 4, thermal // 6, heat_rows
+    return 2 * (thermal // 6) + thermal % 6 - 4, thermal // 6, asm.heat_rows
 
 
 def _solve(M, rhs):
@@ -845,16 +911,18 @@ def dispersion_ratio(layup: Layup, b, wavenumber, speed, which=None):
     """
     layup, group = _grouped(layup, which)
     b, m, V = _broadcast(b, wavenumber, speed)
+    shape = b.shape
+    b, m, V = b.reshape(-1), m.reshape(-1), V.reshape(-1)
     asm = _assembly(layup)
-    M0, M1 = _condition_rows(asm, _fields(asm.solutions, b, m, V, asm.depths), group)
-    h = _assembly(layup).heat * np.abs(V) / m
-    rows = _derivative_terms(layup)[2]
-    unit = np.zeros((M0.shape[-1], rows.size))
+    M0, M1 = _condition_rows(asm, _fields_last(asm.solutions, b, m, V, asm.depths), group)
+    h = asm.heat * np.abs(V) / m
+    rows = asm.heat_rows
+    unit = np.zeros((M0.shape[0], rows.size))
     unit[rows, np.arange(rows.size)] = 1.0
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        Y = _solve(M0, np.broadcast_to(unit, M0.shape[:-2] + unit.shape))
-        K = np.eye(rows.size) + h[..., None, None] * (M1[..., rows, :] @ Y)
-        return K[..., 0, 0] if rows.size == 1 else np.linalg.det(K)
+        Y = _solve(_last_first(M0), np.broadcast_to(unit, (b.size,) + unit.shape))
+        K = np.eye(rows.size) + h[:, None, None] * (_last_first(M1) @ Y)
+        return (K[:, 0, 0] if rows.size == 1 else np.linalg.det(K)).reshape(shape)
 
 
 #: The backing plates a pad layer may sit on (:data:`FACE_CONDITIONS`).

@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -107,6 +108,10 @@ class Layered:
     layup: Layup
     ask: Callable | None = field(default=None, compare=False, repr=False)
 
+    def __post_init__(self):
+        # The key of its layup's field group in a batch of requests, made once.
+        object.__setattr__(self, "_batch", _group_token(field_group(self.layup)))
+
     def scale(self, m) -> float:
         return _scale(self.layup, m)
 
@@ -129,7 +134,7 @@ class Layered:
         dispersion_log_derivatives`)."""
         if self.ask is None:
             return dispersion_log_derivatives(self.layup, b, m, speed)
-        return self.ask(("log_derivatives", field_group(self.layup)),
+        return self.ask(("log_derivatives", self._batch),
                         (self.layup, b, m, speed))
 
     def dispersion_ratio(self, b, m, speed):
@@ -137,7 +142,8 @@ class Layered:
         dispersion_ratio`), whose winding counts the growing modes."""
         if self.ask is None:
             return dispersion_ratio(self.layup, b, m, speed)
-        return self.ask(("ratio", field_group(self.layup)), (self.layup, b, m, speed))
+        return self.ask(("ratio", self._batch),
+                        (self.layup, b, m, speed))
 
     def in_continuum(self, b, m, speed):
         """Whether each ``b`` lies on a half-plane's continuous spectrum (to 1e-2 of its
@@ -211,6 +217,14 @@ class Layered:
         return max(1e-9, 1e-4 * K * m / (2.0 * mu * a * max(self.layup.friction, 1e-300)))
 
 
+@lru_cache(maxsize=64)
+def _group_token(group):
+    """A token of one :func:`~thermocontact.physics.tei_layers.field_group`, the key by
+    which its requests are batched: hashed by identity, not through every body's
+    material at every request."""
+    return object()
+
+
 def growth_rate(family, m, speed) -> float:
     """The largest ``Re b`` of the family's modes, 1/s (``-inf`` without a mode)."""
     b = family.modes(m, speed)
@@ -233,7 +247,9 @@ def neutral_point(family, m, speed, omega, iters=40):
     ``s = (omega + phi m V)/(kappa m^2)`` (``phi`` 1 for the moving bodies, 0 for
     those at rest), which Newton's method varies independently.  ``m`` may be an
     array (with ``speed`` and ``omega`` of its shape): the points are solved together,
-    each on its own."""
+    each on its own (each evaluated until it has converged).  A point still stepping
+    by a tenth after 12 iterations is given up (not converged): no convergence is in
+    sight."""
     m = np.asarray(m, dtype=float)
     V = np.array(np.broadcast_to(speed, m.shape), dtype=float)
     w = np.array(np.broadcast_to(omega, m.shape), dtype=float)
@@ -246,17 +262,29 @@ def neutral_point(family, m, speed, omega, iters=40):
     def omega_of(V, s):
         return -phi * m * V + sig * s
 
-    for _ in range(iters):
+    stop = np.zeros(m.shape, dtype=bool)
+    for it in range(iters):
+        if it == 12:
+            # Still stepping by a tenth after 12 iterations: no convergence in sight
+            # (a guess between branches, the steps held at the damping's limits).
+            stop |= ~done & (last > 0.1)
+        act = ~(done | stop)
+        if not act.any():
+            break
         # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
-        L = family.log_derivatives(1j * omega_of(V, s), m, V)
+        if m.ndim:
+            L = np.full(m.shape + (2,), np.nan, dtype=complex)
+            L[act] = family.log_derivatives(1j * omega_of(V, s)[act], m[act], V[act])
+        else:
+            L = family.log_derivatives(1j * omega_of(V, s), m, V)
         ds = 1j * sig * L[..., 0]
         dv = L[..., 1] - 1j * phi * m * L[..., 0]
         det = dv.real * ds.imag - dv.imag * ds.real
         with np.errstate(invalid="ignore", divide="ignore"):
             sV = -ds.imag / det
             sS = dv.imag / det
-        sV = np.where(done | ~np.isfinite(sV), 0.0, sV)
-        sS = np.where(done | ~np.isfinite(sS), 0.0, sS)
+        sV = np.where(~act | ~np.isfinite(sV), 0.0, sV)
+        sS = np.where(~act | ~np.isfinite(sS), 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
         sV = np.clip(sV, -V / 3.0, 0.5 * V)
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
@@ -264,10 +292,8 @@ def neutral_point(family, m, speed, omega, iters=40):
         s = s + sS
         # Converged: both steps at rounding, or small and no longer falling.
         size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
-        done |= (size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last))
-        last = np.where(done, last, size)
-        if done.all():
-            break
+        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last)))
+        last = np.where(act, size, last)
     return V, omega_of(V, s), done
 
 
@@ -284,18 +310,27 @@ def _polish(family, m, speed, b0, reach=None):
     body is a number of size ``kappa m^2``, resolved to rounding, not a frequency near
     ``m V``).  Returns the roots (NaN where Newton's method failed, ran farther than
     ``reach`` from its guess, default half the guess in that frame plus ``10 kappa
-    m^2``, or ended on a half-plane's branch cut) and the frames."""
+    m^2``, or ended on a half-plane's branch cut), the frames, and each root's
+    ``db/dV`` (:func:`_speed_slope`) from the logarithmic derivatives of the last
+    iteration, whose step moved the root by less than its rounding-level tolerance."""
     b0 = np.atleast_1d(np.asarray(b0, dtype=complex))
     scale = max(family.scale(m), 1e-300)
     phi = pattern_frame(m, speed, b0.imag)
     shift = 1j * phi * m * speed
     z0 = b0 + shift
-    roots, ok = newton_roots(
-        lambda z, act: family.log_derivatives(z - shift[act], m, speed)[..., 0], z0, scale)
+    last = np.full(b0.shape + (2,), np.nan, dtype=complex)
+
+    def log_derivative(z, act):
+        last[act] = family.log_derivatives(z - shift[act], m, speed)
+        return last[act, 0]
+
+    roots, ok = newton_roots(log_derivative, z0, scale)
     lim = 0.5 * np.abs(z0) + 10.0 * scale if reach is None else reach
     b = roots - shift
     good = ok & (np.abs(roots - z0) <= lim) & ~family.on_cut(b, m, speed)
-    return np.where(good, b, np.nan), phi
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = np.where(good, -last[:, 1] / last[:, 0], np.nan)
+    return np.where(good, b, np.nan), phi, slope
 
 
 def _unique(family, m, b):
@@ -345,10 +380,12 @@ def _speed_slope(family, m, speed, b):
 
 def _follow(family, m, v0, b0, slope0, v1):
     """The root ``b0`` (slope ``slope0`` at ``v0``) at the speed ``v1``: predicted along
-    its tangent and polished (NaN where Newton's method fails); and the prediction."""
+    its tangent and polished (NaN where Newton's method fails); the prediction; and
+    the root's slope at ``v1`` (:func:`_polish`)."""
     pred = b0 + (v1 - v0) * slope0
     reach = 0.5 * np.abs(pred - b0) + 0.5 * np.abs(b0.real) + 10.0 * family.scale(m)
-    return _polish(family, m, v1, pred, reach)[0], pred
+    b1, _, slope1 = _polish(family, m, v1, pred, reach)
+    return b1, pred, slope1
 
 
 def unstable_count(family, m, speed, points=48):
@@ -519,8 +556,13 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         """b(V) of one mode, followed from the nearest of ``ends``, the points ``(V, b,
         db/dV)`` known on its path (NaN where no follow lands): first predicted by
         the cubic through the nearest known on either side (their values and
-        slopes), then along the tangent of each in turn."""
-        def f(x):
+        slopes), then along the tangent of each in turn.  ``f(x, True)``: also its
+        ``db/dV`` there (:func:`_polish`)."""
+        def f(x, with_slope=False):
+            r, sl = _along(x)
+            return (r, sl) if with_slope else r
+
+        def _along(x):
             below = [e for e in ends if e[0] < x]
             above = [e for e in ends if e[0] > x]
             if below and above:
@@ -531,14 +573,14 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                     (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
                 b0_ = ba if t < 0.5 else bb
                 reach = 0.5 * abs(pred - b0_) + 0.5 * abs(b0_.real) + 10.0 * scale
-                r = _polish(family, m, x, np.array([pred]), reach)[0][0]
-                if np.isfinite(r):
-                    return r
+                r, _, sl = _polish(family, m, x, np.array([pred]), reach)
+                if np.isfinite(r[0]):
+                    return r[0], sl[0]
             for v0, b0_, s0_ in sorted(ends, key=lambda e: abs(math.log(x / e[0]))):
-                r = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)[0][0]
-                if np.isfinite(r):
-                    return r
-            return complex(math.nan)
+                r, _, sl = _follow(family, m, v0, np.array([b0_]), np.array([s0_]), x)
+                if np.isfinite(r[0]):
+                    return r[0], sl[0]
+            return complex(math.nan), complex(math.nan)
         return f
 
     def peak(ends):
@@ -558,8 +600,7 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                 if x == math.log(v0):
                     return s0_.real
             V = math.exp(x)
-            r = growth(known)(V)
-            sl = _speed_slope(family, m, V, np.array([r]))[0] if np.isfinite(r) else r
+            r, sl = growth(known)(V, True)
             if not np.isfinite(sl):
                 raise FloatingPointError
             known.append((V, r, sl))
@@ -622,7 +663,7 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     while v < limit():
         v1 = min(v * ratio, limit())
         if b.size:
-            b1, pred = _follow(family, m, v, b, slope, v1)
+            b1, pred, s1 = _follow(family, m, v, b, slope, v1)
             err = np.abs(b1 - pred)
             tol = 0.2 * np.maximum(np.abs(b.real), np.abs(b1.real)) + 1e-9 * scale
             fine = np.isfinite(b1) & (err <= tol)
@@ -630,15 +671,14 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                 ratio = 1.0 + 0.5 * (ratio - 1.0)
                 continue
         else:
-            b1 = b
+            b1, s1 = b, slope
         # Two modes followed onto one root: the root once.
         keep = np.isfinite(b1)
         for k in range(b1.size):
             if keep[k] and any(keep[j] and abs(b1[k] - b1[j]) <= 1e-8 * (abs(b1[k]) + scale)
                                for j in range(k)):
                 keep[k] = False
-        b0, s0, b1 = b[keep], slope[keep], b1[keep]
-        s1 = _speed_slope(family, m, v1, b1)
+        b0, s0, b1, s1 = b[keep], slope[keep], b1[keep], s1[keep]
         for k in range(b1.size):
             r0, r1 = b0[k].real, b1[k].real
             if (r0 < 0.0) != (r1 < 0.0):
@@ -749,24 +789,34 @@ def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress
 def _evaluate(key, payloads):
     """The answers to one kind of request of :meth:`Layered.dispersion`,
     :meth:`Layered.log_derivatives` or :meth:`Layered.dispersion_ratio` (``key = (kind,
-    group)``: the layup, or its :func:`~thermocontact.physics.tei_layers.field_group`),
-    each payload ``(layup, b, m, V)`` broadcast: all their points in one call, each
-    point's value as alone."""
+    group)``: the layup, or a token of its
+    :func:`~thermocontact.physics.tei_layers.field_group`), each payload ``(layup, b,
+    m, V)`` broadcast: all their points in one call, each point's value as alone."""
     kind = key[0]
-    parts = [np.broadcast_arrays(np.asarray(b, dtype=complex), np.asarray(m, dtype=float),
-                                 np.asarray(v, dtype=float)) for _, b, m, v in payloads]
-    b, m, v = (np.concatenate([p[i].ravel() for p in parts]) for i in range(3))
-    layups = list(dict.fromkeys(p[0] for p in payloads))
+    shapes, bs, ms, vs, which, layups = [], [], [], [], [], {}
+    for layup, b, m, v in payloads:
+        b = np.asarray(b, dtype=complex)
+        if np.ndim(m) or np.ndim(v):
+            b, m, v = np.broadcast_arrays(b, np.asarray(m, dtype=float),
+                                          np.asarray(v, dtype=float))
+        shapes.append(b.shape)
+        bs.append(b.ravel())
+        ms.append(np.full(b.size, m, dtype=float) if np.ndim(m) == 0 else m.ravel())
+        vs.append(np.full(b.size, v, dtype=float) if np.ndim(v) == 0 else v.ravel())
+        which.append(np.full(b.size, layups.setdefault(id(layup), (len(layups), layup))[0]))
+    b, m, v = np.concatenate(bs), np.concatenate(ms), np.concatenate(vs)
+    layups = [lay for _, lay in layups.values()]
     if kind == "dispersion":
         out = layup_dispersion(layups[0], b, m, v)
     else:
         func = dispersion_ratio if kind == "ratio" else dispersion_log_derivatives
-        which = None if len(layups) == 1 else np.concatenate(
-            [np.full(p[0].size, layups.index(q[0])) for p, q in zip(parts, payloads)])
-        out = func(layups if which is not None else layups[0], b, m, v, which=which)
-    ends = np.cumsum([p[0].size for p in parts])
-    return [o.reshape(p[0].shape + o.shape[1:])
-            for o, p in zip(np.split(out, ends[:-1]), parts)]
+        if len(layups) == 1:
+            out = func(layups[0], b, m, v)
+        else:
+            out = func(layups, b, m, v, which=np.concatenate(which))
+    ends = np.cumsum([part.size for part in bs])
+    return [o.reshape(shape + o.shape[1:])
+            for o, shape in zip(np.split(out, ends[:-1]), shapes)]
 
 
 def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
@@ -784,12 +834,14 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     neighbouring intervals, so a lower branch is missed only if it is nowhere the
     lowest at a scanned wavenumber.
 
-    The scans of every family and wavenumber run together
+    The scans of every family and wavenumber, each followed by the continuations from
+    its neutral point, run together
     (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
     needs the dispersion function (or the count's ratio), and the points all of them
     need are evaluated in one call per family, each as it would be alone; so the
-    curves are those of the scans run one by one.  ``progress(done, total)``, if
-    given, is told as each scan ends and at the end (the continuations the last of
+    curves are those of the scans and continuations run one by one (each wavenumber
+    keeps the lowest point, whichever reaches it first).  ``progress(done, total)``,
+    if given, is told as each scan ends and at the end (the continuations the last of
     ``total``).
 
     Returns
@@ -808,40 +860,40 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     tell = progress or (lambda done, total: None)
     tell(0, total)
     ended = []
+    V = [np.full(ms.shape, np.inf) for _ in families]
+    W = [np.full(ms.shape, np.nan) for _ in families]
 
-    def scan(family, m):
-        return lambda ask: first_crossing(replace(family, ask=ask), m)
+    def keep(k, i, point):
+        if point[0] < V[k][i]:
+            V[k][i], W[k][i] = point
 
-    def continuation(family, starts, V, W):
-        return lambda ask: _continue_starts(replace(family, ask=ask), ms, starts, scanned,
-                                            V, W)
+    def scan(k, j):
+        def run(ask):
+            family = replace(families[k], ask=ask)
+            vc, b = first_crossing(family, ms[j])
+            ended.append(j)
+            tell(len(ended), total)
+            if vc is not None:
+                keep(k, j, (vc, b.imag))
+                _continue_starts(family, ms, [(j + 1, float(ms[j]), (vc, b.imag))], scanned,
+                                 V[k], W[k])
+        return run
 
-    def finished(i, result):
-        ended.append(i)
-        tell(len(ended), total)
+    def from_anchor(k, anchor):
+        return lambda ask: _continue_starts(
+            replace(families[k], ask=ask), ms,
+            [(int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
+              (float(anchor[1]), float(anchor[2])))], scanned, V[k], W[k])
 
-    found = run_lockstep([scan(families[k], ms[j]) for k, j in jobs], _evaluate, finished)
-    out, chains = [], []
-    for k, (family, anchor) in enumerate(zip(families, anchors)):
-        V = np.full(ms.shape, np.inf)
-        W = np.full(ms.shape, np.nan)
-        starts = []
-        if anchor is not None:
-            starts.append((int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
-                           (float(anchor[1]), float(anchor[2]))))
-        for (kk, j), (vc, b) in zip(jobs, found):
-            if kk == k and vc is not None:
-                starts.append((j + 1, float(ms[j]), (vc, b.imag)))
-                if vc < V[j]:
-                    V[j], W[j] = vc, b.imag
-        chains.append(continuation(family, starts, V, W))
-        out.append((V, W))
-    # The families' continuations together too.
-    run_lockstep(chains, _evaluate)
-    for V, _ in out:
-        V[~np.isfinite(V)] = np.nan
+    # Each scan continues its neutral point as soon as it has it, while the others
+    # still scan: the continuations' requests share the scans' rounds.
+    run_lockstep([scan(k, j) for k, j in jobs]
+                 + [from_anchor(k, a) for k, a in enumerate(anchors) if a is not None],
+                 _evaluate)
+    for v in V:
+        v[~np.isfinite(v)] = np.nan
     tell(total, total)
-    return out
+    return list(zip(V, W))
 
 
 def _continue_starts(family, ms, starts, scanned, V, W):
