@@ -835,6 +835,27 @@ def fig4_contact():
     return model.solve_at(12, 0.2, lam=-1.0), stability_of(solve_at)
 
 
+def test_steps_confirmed_by_the_eigenvalues_where_the_phase_does_not(growing_pair,
+                                                                     fig4_contact):
+    """The single patch's count confirms a step by the eigenvalues of ``M(a)^-1 M(b)``
+    (S25) where the determinant's phase at its ends and midpoint does not, before
+    cutting it (``ratios="refine"``): past the fold and at Fig. 4's contact the same
+    counts as by the phase alone (2 and 0) on fewer samples of M."""
+    from thermocontact.solvers.stability import Winding, scaled_matrix
+
+    sol, lin, res = growing_pair
+    assert res.unstable_modes == 2 and "eigenvalues of M(a)^-1 M(b)" in res.count_method
+    contacts = [lin, linearised(fig4_contact[0])]
+    for contact, expected in zip(contacts, (2, 0)):
+        counts = {}
+        for mode in (False, "refine"):
+            winding = Winding(scaled_matrix(contact), 1e-3,
+                              many=scaled_matrix(contact, many=True), ratios=mode)
+            counts[mode] = (winding.count(1e6), len(winding.values))
+        assert counts[False][0] == counts["refine"][0] == (expected, None)
+        assert counts["refine"][1] < counts[False][1]
+
+
 def test_a_valid_contact_of_the_paper_is_stable(fig4_contact):
     """No eigenvalue with Re b >= 1e-3 anywhere within |b| <= 1e6; Beyn's rank on the
     boundary of Re b >= 0.05, |b| <= 4 is 0 too (the second method)."""

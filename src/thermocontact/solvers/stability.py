@@ -66,7 +66,8 @@ _ARC_STEPS = 2
 COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows times "
                 "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
                 "confirmed by its midpoint (both halves change it by less than pi/4 and add "
-                "up to the whole); roots located by the secant method in a bracket on a grid "
+                "up to the whole, or else the sums of the arguments of the eigenvalues of "
+                "M(a)^-1 M(b), each below pi/4, do); roots located by the secant method in a bracket on a grid "
                 "of real rates (one, real) or Beyn's contour integral and Newton's method")
 #: A contact set's (derivation S25): each step's phase from the eigenvalues of the
 #: matrices' ratio.
@@ -229,11 +230,14 @@ class Winding:
         contact's :meth:`LinearisedContact.matrices`): each round's samples evaluated
         together, in place of ``prepare`` and ``matrix`` one by one (the same
         matrices).
-    ratios : bool
+    ratios : bool or "refine"
         Follow each step's phase change as :func:`step_phase` does, from the
         eigenvalues of ``A(a)^-1 A(b)`` (a contact set's, derivation S25): a turn of
         the determinant's phase made of many small turns of its factors is then not
-        aliased between samples.
+        aliased between samples.  ``"refine"``: only for a step the determinant's phase
+        at its ends and midpoint does not confirm, before it is cut in two (the single
+        patch's: a step confirmed either way is taken, and the eigenvalues, a few
+        hundred microseconds a step, are paid only where a round of new rates would be).
     """
 
     def __init__(self, matrix, b_min, prepare=None, line_step=None, many=None,
@@ -242,8 +246,9 @@ class Winding:
         self.line_step = _LINE_STEP if line_step is None else float(line_step)
         self.many = many
         #: Each step's phase change from the eigenvalues of ``A(a)^-1 A(b)``
-        #: (:func:`step_phase`) instead of the determinant's phase at its ends.
-        self.ratios = bool(ratios)
+        #: (:func:`step_phase`) instead of the determinant's phase at its ends: always
+        #: (True), or where the determinant's phase does not confirm it ("refine").
+        self.ratios = ratios if ratios == "refine" else bool(ratios)
         self.values, self.matrices, self.phase_errors = {}, {}, {}
         #: ``p`` of the factor ``(1 + b)^p`` divided out of ``f`` before its phase is
         #: followed (:meth:`settled`); set by the first :meth:`count`.
@@ -362,17 +367,21 @@ class Winding:
                     return None, (f"the phase of det M(b) is uncertain near b = "
                                   f"{point(m):.6g} (its rounding up to {worst:.2g} rad: M(b) "
                                   f"too ill-conditioned at this n)")
-                if self.ratios:
-                    first, second, whole = (self._step(point(x), point(y)) for x, y in
-                                            ((a, m), (m, b), (a, b)))
-                    agree = abs(first + second - whole) < 0.1
-                else:
+                # Not a sharp minimum of |f| at the midpoint (a root close by).
+                smooth = lm >= 0.5 * (la + lb) - 2.0
+                confirmed = False
+                if self.ratios is not True:
                     first, second = float(np.angle(pm / pa)), float(np.angle(pb / pm))
                     whole = float(np.angle(pb / pa))
                     agree = abs(np.angle(np.exp(1j * (first + second - whole)))) < 0.1
-                # With ratios each eigenvalue's turn is bounded instead (step_phase).
-                short = self.ratios or (abs(first) < PHASE_STEP and abs(second) < PHASE_STEP)
-                if short and agree and lm >= 0.5 * (la + lb) - 2.0:
+                    confirmed = (smooth and agree and abs(first) < PHASE_STEP
+                                 and abs(second) < PHASE_STEP)
+                if not confirmed and self.ratios and smooth:
+                    # Each eigenvalue's turn bounded instead (step_phase; inf beyond).
+                    first, second, whole = (self._step(point(x), point(y)) for x, y in
+                                            ((a, m), (m, b), (a, b)))
+                    confirmed = abs(first + second - whole) < 0.1
+                if confirmed:
                     total += first + second
                     continue
                 if abs(b - a) < SMALLEST_STEP:
@@ -717,7 +726,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
                       line_step=line_step,
                       many=counted_many if hasattr(lin, "matrices") else None,
-                      ratios=isinstance(lin, LinearisedContactSet))
+                      ratios=True if isinstance(lin, LinearisedContactSet) else "refine")
     if len(samples):
         winding.evaluate([z for part in winding.boundary(R, map(complex, samples))
                           for z in part])
@@ -760,7 +769,7 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         eigenvalues=full, unstable_modes=N, stable=None if N is None else N == 0,
         reason=reason, growth_rate=float(full.real.max()) if full.size else None,
         region=tuple(float(x) for x in region),
-        count_method=COUNT_METHOD_STEPS if winding.ratios else COUNT_METHOD,
+        count_method=COUNT_METHOD_STEPS if winding.ratios is True else COUNT_METHOD,
         error_estimate=change, fold=fold, slow_root=slow,
         evaluations=evaluations[0], n=n, units=units, samples=sampled)
 
