@@ -144,7 +144,8 @@ def stability_summary(record) -> str:
              f"with Re b >= {r['b_min']:g}, |b| <= {r['modulus_bound']:g} "
              f"{record['units']['eigenvalues']}, by the argument principle)",
              f"  eigenvalues   = {found}"
-             + ("" if est is None else f"  (change from n/2: {est:.2g})")]
+             + ("" if est is None else f"  (error estimate {est:.2g}: the change from "
+                                          f"n = {record['n']} to 3n/2, n/2 above 32)")]
     if record["reason"]:
         lines.append(f"  note          = {record['reason']}")
     if record["slow_root"] is not None:
