@@ -55,8 +55,9 @@ def log_determinants(A):
     the scaling, so its phase is off by at most about ``|tr(A^-1 E)| <= N^2 u / rcond``
     radians, times the growth factor of the pivots (derivation S12, *Large n*); an
     exactly singular matrix has ``sign`` 0, ``log|det|`` ``-inf`` and ``rcond`` 0.  The
-    stack is scaled, factorised and inverted as one (NumPy's LAPACK loops: a fifth of
-    the cost of a call per matrix at the stability's sizes).
+    stack is scaled, factorised and inverted as one (NumPy's LAPACK loops: two-thirds
+    of the cost of a call per matrix of ``getrf`` and ``gecon`` at the stability's sizes,
+    43 matrices of 27 x 27 in 2.8 ms against 4.2 ms).
     """
     A = np.asarray(A, dtype=complex)
     mod = np.abs(A)
@@ -73,13 +74,9 @@ def log_determinants(A):
     try:
         inverse = np.linalg.inv(B[regular])
     except np.linalg.LinAlgError:
-        # Singular to the factorisation's pivots though slogdet's was not: one by one.
-        inverse = np.full(B[regular].shape, np.inf + 0j)
-        for j, Bj in enumerate(B[regular]):
-            try:
-                inverse[j] = np.linalg.inv(Bj)
-            except np.linalg.LinAlgError:
-                pass
+        # The same LU's pivots as slogdet's: not reached; rcond 0 (no phase certified)
+        # should it be.
+        return sign, logdet, rcond
     with np.errstate(over="ignore"):
         rcond[regular] = 1.0 / (anorm[regular] * np.abs(inverse).sum(axis=-2).max(axis=-1))
     return sign, logdet, rcond

@@ -25,6 +25,7 @@ import numpy as np
 from ..discretisation.linearised import LinearisedContact, check_modelled
 from ..discretisation.linearised_set import LinearisedContactSet
 from ..io.results import Result
+from ..numerics.continuation import secant
 from ..numerics.dense import log_determinants
 from ..problem.validation import InputError, check_integer, check_positive
 from .zones import ZoneSolution
@@ -236,8 +237,8 @@ class Winding:
         the determinant's phase made of many small turns of its factors is then not
         aliased between samples.  ``"refine"``: only for a step the determinant's phase
         at its ends and midpoint does not confirm, before it is cut in two (the single
-        patch's: a step confirmed either way is taken, and the eigenvalues, a few
-        hundred microseconds a step, are paid only where a round of new rates would be).
+        patch's: a step confirmed either way is taken, and the eigenvalues, about 1 ms
+        a step, are paid only where a round of new rates would be).
     """
 
     def __init__(self, matrix, b_min, prepare=None, line_step=None, many=None,
@@ -303,16 +304,26 @@ class Winding:
         return sign * np.exp(-1j * self.power * w.imag), logdet - self.power * w.real
 
     def _measure_power(self, R):
-        """``p`` from ``log|f|`` at ``b = R`` and ``R/16`` on the real axis (both in the
-        region; 0 where the region is too small to tell)."""
+        """``p`` from ``log|f|`` at ``|b| = R`` and ``R/16`` on three rays, ``arg b = 0``,
+        ``pi/4`` and ``3 pi/8`` (the median of the three: a root within a few
+        millionths of ``R`` on one ray, which makes ``|f|`` there tiny, spoils that
+        ray's only; from the real axis alone such a root gave ``p = -4`` where the
+        power is 6, and the count's whole turns aliased); 0 where the region is too
+        small to tell."""
         low = max(R / 16.0, self.b_min)
         if low >= 0.5 * R:
             self.power = 0.0
             return
-        points = [complex(R), complex(low)]
+        rays = [np.exp(1j * angle) for angle in (0.0, 0.25 * np.pi, 0.375 * np.pi)]
+        points = [complex(r * ray) for ray in rays for r in (R, low)]
         self.evaluate(points)
-        (_, high_log), (_, low_log) = (self.at(z) for z in points)
-        self.power = float((high_log - low_log) / np.log((1.0 + R) / (1.0 + low)))
+        logs = [self.at(z)[1] for z in points]
+        powers = [(logs[2 * j] - logs[2 * j + 1])
+                  / (np.log(abs(1.0 + R * ray)) - np.log(abs(1.0 + low * ray)))
+                  for j, ray in enumerate(rays)]
+        # A ray with a determinant zero to rounding tells nothing.
+        powers = [p for p in powers if np.isfinite(p)]
+        self.power = float(np.median(powers)) if powers else 0.0
 
     def boundary(self, R, points):
         """``(arc, line)``: those of ``points`` on the arc ``|b| = R`` (by angle) and on
@@ -361,7 +372,9 @@ class Winding:
                 m = 0.5 * (a + b)
                 (pa, la), (pm, lm), (pb, lb) = (self.settled(point(t)) for t in (a, m, b))
                 if pa == 0 or pm == 0 or pb == 0:
-                    return None, f"det M(b) = 0 on the contour near b = {point(m):.6g}"
+                    return None, (f"det M(b) = 0 to rounding near b = {point(m):.6g}: a "
+                                  f"root on the contour, or its phase uncertain (M(b) too "
+                                  f"ill-conditioned at this n)")
                 worst = max(self.phase_errors[point(t)] for t in (a, m, b))
                 if worst > PHASE_ERROR_MAX:
                     return None, (f"the phase of det M(b) is uncertain near b = "
@@ -779,6 +792,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
 #: share the kernels at a rate (:data:`~thermocontact.discretisation.linearised.KERNEL_MOMENTS`),
 #: find most of it kept.
 _GRID = 4
+#: ``2^(j/4)``, ``j = 0 ... 3``: the grid's rates ``2^(k/4)`` as exact binary numbers.
+_MANTISSAS = tuple(2.0 ** (j / _GRID) for j in range(_GRID))
 #: Grid points of the polynomial interpolating ``det M`` around a bracket (degree 7:
 #: its root and slope start the secant method close enough that two steps, one
 #: evaluation of ``M`` each, mostly confirm the root; a map's row of 200 points took
@@ -787,43 +802,48 @@ _GRID = 4
 _STENCIL = 8
 
 
-def _real_root(winding, b_min, R, starts=(), *, tol=1e-10, steps=8):
+def _real_root(winding, b_min, R, starts=(), *, tol=1e-11):
     """The real root of ``det M`` in ``[b_min, R]``, where its sign changes once (one
-    root counted: derivation S12, *Locating a real root*).
+    root counted: derivation S13, *Locating the roots*).
 
-    The sign of ``det M`` at the grid's rates ``2^(k/4)`` brackets it: from ``starts[0]``
-    (the grid point nearest, then steps of 1, 2, 4, ... points toward the sign change),
-    else from the whole region, then by bisection of the grid's indices (the region's
-    ends ``b_min`` and ``R``, whose signs the count kept, standing for the points beyond
-    them).  The polynomial through ``det M`` at the :data:`_STENCIL` grid points around
-    the bracket, in ``x = ln b``, gives the estimate and the first slope; the secant method on
-    ``det M(e^x)`` from it (each step one evaluation of ``M`` at a new rate) converges
-    to the root, its last step ``tol`` of ``b`` or less.
+    The sign of ``det M`` at the grid's rates ``2^(k/4)`` (exact binary numbers, the same
+    on every machine) brackets it: from ``starts[0]`` (the grid point nearest, then steps
+    of 1, 2, 4, ... points toward the sign change), else from the whole region, then by
+    bisection of the grid's indices (the region's ends ``b_min`` and ``R`` themselves, whose
+    signs the count kept, standing for the points beyond them).  The polynomial through
+    ``det M`` at the :data:`_STENCIL` grid points around the bracket, in ``x = ln b``,
+    gives the estimate (its root in the bracket and the region) and the first slope; the
+    secant method on ``det M(e^x)`` from it
+    (:func:`~thermocontact.numerics.continuation.secant`, each step one evaluation of
+    ``M`` at a new rate, its iterates kept within the stencil and the region) converges
+    to the root: its last step, proposed and not evaluated as Newton's method's, is
+    ``tol max(1, |ln b|)`` of ``b`` or less.
 
     Returns
     -------
     root, step, estimate
-        The last iterate, its last step (``|b|``'s, ``inf`` where none converged in
-        ``steps``) and the polynomial's estimate; ``None, inf, None`` where the signs at
-        the ends agree or the grid holds no point of the region.
+        The root, a bound on its last step (``|b|``'s) and the polynomial's estimate;
+        ``None, inf, estimate`` where the secant method leaves the bracket or does not
+        converge; ``None, inf, None`` where the signs at the ends agree, the grid holds
+        no point of the region, ``det M`` is not finite at the stencil or the polynomial
+        has no root in the bracket.
     """
-    scale = _GRID / np.log(2.0)      # grid points per unit of ln b
-    first, last = int(np.ceil(scale * np.log(b_min))), int(np.floor(scale * np.log(R)))
+    first, last = int(np.ceil(_GRID * np.log2(b_min))), int(np.floor(_GRID * np.log2(R)))
 
-    def at(x):
-        return winding.at(complex(np.exp(x), 0.0))
+    def grid(k):
+        return float(np.ldexp(_MANTISSAS[k % _GRID], k // _GRID))
 
     def rate(k):
-        return np.log(b_min) if k < first else (np.log(R) if k > last else k / scale)
+        return b_min if k < first else (R if k > last else grid(k))
 
     def negative(k):
-        return float(np.real(at(rate(k))[0])) < 0.0
+        return float(np.real(winding.at(complex(rate(k), 0.0))[0])) < 0.0
     low, high = first - 1, last + 1
     below = negative(low)
     if first > last or negative(high) == below:
         return None, np.inf, None
     if len(starts):
-        k = int(np.clip(np.rint(scale * np.log(starts[0])), first, last))
+        k = int(np.clip(np.rint(_GRID * np.log2(starts[0])), first, last))
         up = negative(k) == below
         low, high = (k, high) if up else (low, k)
         step = 1
@@ -841,36 +861,35 @@ def _real_root(winding, b_min, R, starts=(), *, tol=1e-10, steps=8):
         low, high = (mid, high) if negative(mid) == below else (low, mid)
     # The polynomial in x through det M at the grid points around the bracket (beyond
     # the region's ends too: every b > 0 is on the sheet), relative to the largest.
-    x = np.arange(low - _STENCIL // 2 + 1, low + _STENCIL // 2 + 1) / scale
-    winding.evaluate([complex(np.exp(xi), 0.0) for xi in x])     # together: one product
-    values = [at(xi) for xi in x]
+    rates = [grid(k) for k in range(low - _STENCIL // 2 + 1, low + _STENCIL // 2 + 1)]
+    winding.evaluate([complex(b, 0.0) for b in rates])     # together: one product
+    values = [winding.at(complex(b, 0.0)) for b in rates]
     ref = max(v[1] for v in values)
-    f = np.array([float(np.real(s)) * np.exp(v - ref) for s, v in values])
+    f = np.array([float(np.real(sg)) * np.exp(v - ref) for sg, v in values])
+    if not np.all(np.isfinite(f)):
+        return None, np.inf, None
+    x = np.log(rates)
     poly = np.polynomial.Polynomial.fit(x, f, _STENCIL - 1)
+    # The bracket within the region, widened by a few ulps (a root on a grid point).
+    lo = max(np.log(rate(low)), np.log(b_min))
+    hi = min(np.log(rate(high)), np.log(R))
+    margin = 8 * np.finfo(float).eps * max(1.0, abs(lo), abs(hi))
     inside = [r.real for r in poly.roots() if abs(r.imag) <= 1e-12
-              and x[_STENCIL // 2 - 1] <= r.real <= x[_STENCIL // 2]]
+              and lo - margin <= r.real <= hi + margin]
     if not inside:
         return None, np.inf, None
-    x0 = inside[0]
+    x0 = min(max(inside[0], lo), hi)
     estimate = float(np.exp(x0))
 
     def value(x):
-        s, v = at(x)
-        return float(np.real(s)) * np.exp(np.clip(v - ref, -700.0, 700.0))
-    slope, before = poly.deriv()(x0), None
-    for _ in range(steps):
-        fx = value(x0)
-        if fx == 0.0:
-            return float(np.exp(x0)), 0.0, estimate
-        if before is not None and before[0] != x0:
-            slope = (fx - before[1]) / (x0 - before[0])
-        if not (np.isfinite(slope) and slope != 0.0):
-            break
-        move = fx / slope
-        before, x0 = (x0, fx), x0 - move
-        if abs(move) <= tol:
-            return float(np.exp(x0)), float(np.exp(x0) * abs(move)), estimate
-    return float(np.exp(x0)), np.inf, estimate
+        sg, v = winding.at(complex(np.exp(x), 0.0))
+        return float(np.real(sg)) * np.exp(np.clip(v - ref, -700.0, 700.0))
+    found = secant(value, x0, float(poly.deriv()(x0)), max(x[0], np.log(b_min)),
+                   min(x[-1], np.log(R)), xtol=tol, proposed=True)
+    if found is None:
+        return None, np.inf, estimate
+    root = float(np.exp(found[0]))
+    return root, root * tol * max(1.0, abs(found[0])), estimate
 
 
 def _step_control(lin, samples):
@@ -878,10 +897,10 @@ def _step_control(lin, samples):
     always by the eigenvalues of ``M(a)^-1 M(b)`` (S25: its many rows' turns alias
     otherwise); a single patch's by its phase, and by the eigenvalues only where the phase
     does not confirm it ("refine": a cut step costs new rates, 5-10 ms each, and the
-    eigenvalues about 1 ms a step) unless a neighbour's samples are given, whose
-    refinements the row's kernels keep: a cut step then costs an assembly and a
-    determinant (0.1 ms), and the phase alone is cheaper (a 200 x 200 map 245 s against
-    320 s with the eigenvalues)."""
+    eigenvalues about 1 ms a step, three decompositions of 0.3 ms) unless a neighbour's
+    samples are given, whose refinements the row's kernels keep: a cut step then costs
+    an assembly and a determinant (0.1 ms), and the phase alone is cheaper (a 200 x 200
+    map 250 s against 320 s with the eigenvalues)."""
     if isinstance(lin, LinearisedContactSet):
         return True
     return False if len(samples) else "refine"
