@@ -882,6 +882,27 @@ def test_steps_confirmed_by_the_eigenvalues_where_the_phase_does_not(growing_pai
         assert counts["refine"][1] < counts[False][1]
 
 
+def test_a_stack_of_rates_is_kept_and_found_again(growing_pair):
+    """``LinearisedContact.matrices`` keeps the moments of a stack of rates
+    (``STACKED_MOMENTS``): the same rates give the same matrices from the kept stack as
+    from each rate's own moments, and another contact's cylinder (another Peclet
+    number) finds no stack of the first's."""
+    from thermocontact.discretisation.linearised import STACKED_MOMENTS
+
+    sol, lin, res = growing_pair
+    rates = [complex(b) for b in res.samples[:6]]
+    first = lin.matrices(rates)
+    kept = len(STACKED_MOMENTS)
+    again = lin.matrices(rates)
+    assert len(STACKED_MOMENTS) == kept
+    np.testing.assert_array_equal(again, first)
+    one = np.stack([lin.matrix(b) for b in rates])
+    np.testing.assert_allclose(first, one, rtol=0, atol=1e-12 * np.abs(one).max())
+    other = linearised(_steady(1.6, 1.0, 1.5, 1.0, 12))
+    other.matrices(rates)
+    assert len(STACKED_MOMENTS) == kept + 1
+
+
 def test_a_valid_contact_of_the_paper_is_stable(fig4_contact):
     """No eigenvalue with Re b >= 1e-3 anywhere within |b| <= 1e6; Beyn's rank on the
     boundary of Re b >= 0.05, |b| <= 4 is 0 too (the second method)."""
