@@ -68,8 +68,9 @@ COUNT_METHOD = ("argument principle: the phase of det M(b) (temperature rows tim
                 "sqrt(1 + b)) along Re b = b_min and the arc |b| = modulus_bound, each step "
                 "confirmed by its midpoint (both halves change it by less than pi/4 and add "
                 "up to the whole, or else the sums of the arguments of the eigenvalues of "
-                "M(a)^-1 M(b), each below pi/4, do); roots located by the secant method in a bracket on a grid "
-                "of real rates (one, real) or Beyn's contour integral and Newton's method")
+                "M(a)^-1 M(b), each below pi/4, do); roots located by the secant method in "
+                "a bracket on a grid of real rates (one, real) or Beyn's contour integral "
+                "and Newton's method")
 #: A contact set's (derivation S25): each step's phase from the eigenvalues of the
 #: matrices' ratio.
 COUNT_METHOD_STEPS = (
@@ -308,8 +309,8 @@ class Winding:
         ``pi/4`` and ``3 pi/8`` (the median of the three: a root within a few
         millionths of ``R`` on one ray, which makes ``|f|`` there tiny, spoils that
         ray's only; from the real axis alone such a root gave ``p = -4`` where the
-        power is 6, and the count's whole turns aliased); 0 where the region is too
-        small to tell."""
+        power is about 4, and the count's whole turns aliased); 0 where the region is
+        too small to tell."""
         low = max(R / 16.0, self.b_min)
         if low >= 0.5 * R:
             self.power = 0.0
