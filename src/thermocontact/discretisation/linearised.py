@@ -290,7 +290,7 @@ class LinearisedContact:
     def prepare(self, rates) -> None:
         """Compute and keep the moments (:meth:`kernel_moments`) at several rates at
         once: the kernels' values at each rate not yet kept, and one product of the
-        table with all of them (the table, 5.5 MB at n = 12, read once instead of once
+        table with all of them (the table, 11 MB at n = 12, read once instead of once
         a rate)."""
         table = self._fixed["table"]
         for body in range(2):

@@ -37,17 +37,15 @@ __all__ = ["KernelTable", "NODES", "RATIO", "kernel_nodes", "kernel_table"]
 
 #: Chebyshev points per panel (degree 15 interpolation).
 NODES = 16
-#: Ratio of consecutive panels' ends: ``|u|`` in ``[h, RATIO h]``.  A logarithm (or a
-#: jump) at ``u = 0`` is interpolated on a panel to ``(3 + sqrt 8)^-16 = 6e-13`` of its
-#: size (the Bernstein ellipse through ``u = 0``); a boundary layer ``exp(-beta u)``
-#: (``|arg beta| <= pi/4``) to at most ``4 sum_{j >= 16} I_j(y/2) exp(-3y/(2 sqrt 2))``,
-#: ``y = |beta| h``, of its size at ``u = 0``: 1.2e-10 at the worst ``y`` (17), where
-#: the layer has fallen to ``e^-18``; measured against the moment engine, 6e-14 of the
-#: largest moment for ``|b| <= 100`` and 3e-12 at ``b = 10^6 i``.  Half the nodes of
-#: ratio ``sqrt 2``, whose moments differ from these by 3e-12 at most for ``|c| <= 50``
-#: (1e-10 for the cylinder's gradient at ``c`` = 200 to 1000, where both are that far
-#: from the moment engine) and whose eigenvalues by 1.1e-11 (relative).
-RATIO = 2.0
+#: Ratio of consecutive panels' ends: ``|u|`` in ``[h, RATIO h]``.  A kernel
+#: ``exp(-beta u)`` (a boundary layer of the transient kernels, ``|arg beta| <= pi/4``)
+#: is interpolated to 1e-14 of its size at ``u = 0`` on every panel with this ratio.
+#: Not 2 (half the nodes): a moving body's wake has ``D = b/(rho + |c| s)``, whose
+#: argument reaches ``arg b`` (``pi/2`` on the imaginary axis), a barely damped
+#: oscillation of wavenumber about ``|b|/(2|c|)`` where ``c^2 >~ |b|``, which panels of
+#: ratio 2 resolve only to 6e-7 at ``c = 50, b = 3000i`` and 2e-4 at ``c = 200,
+#: b = 10^4 i`` (this ratio: 1e-10 and 1e-7; derivation S9).
+RATIO = np.sqrt(2.0)
 #: The panels span ``SMALLEST <= |u| <= LARGEST`` (points in ``[-1, 1]``); below
 #: ``SMALLEST`` the kernel is ``a + b ln|u| + c u + d u ln|u|`` to ``O(u^2 ln u)``.
 SMALLEST, LARGEST = 2.0 ** -36, 2.0
@@ -61,7 +59,7 @@ _GAUSS = 24
 _INNER_GAUSS = 12
 _PIECE = 0.125
 
-#: The tables kept per process (5.5 MB at n = 12, 22 MB at n = 24).
+#: The tables kept per process (11 MB at n = 12, 44 MB at n = 24).
 TABLES = BoundedCache("kernel tables", 128 * 2**20)
 
 

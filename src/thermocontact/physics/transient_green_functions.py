@@ -58,9 +58,9 @@ _PANEL_VARIATION = 8.0
 _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
 _BLOCK = 2048
-#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: two panels of the
+#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: four panels of the
 #: stability tables' nodes, ``|u|`` within a factor of 4).
-_GROUP = 32
+_GROUP = 64
 #: Points with ``lam <= _SERIES_REACH``, ``lam = |u| (sqrt|b| + 2|c|)`` (in the wake
 #: ``|u| min(sqrt|b| + 2|c|, |b|/|c|)``), take the series in ``|u|``
 #: (:func:`_phi_series`): ``|u s D| <= lam`` on the whole interval, so its terms fall like
