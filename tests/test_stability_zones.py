@@ -31,6 +31,7 @@ from thermocontact.discretisation.linearised import projections
 from thermocontact.discretisation.linearised_set import LinearisedContactSet
 from thermocontact.numerics.moment_engine import stretch
 from thermocontact.physics.green_functions import cylinder_displacement, cylinder_temperature
+from thermocontact.problem.validation import InputError
 from thermocontact.solvers.stability import linearised
 from thermocontact.solvers.zones import ZoneModel
 
@@ -523,6 +524,19 @@ def test_the_zones_kernels_interpolated_agree_with_their_values(two_zones):
         M_direct = lin.matrix(b)
         del lin.__dict__["_cross_kernels"]
         assert np.abs(M - M_direct).max() < 1e-14 * np.abs(M_direct).max()
+
+
+def test_a_contact_set_s_M_refuses_rates_left_of_the_imaginary_axis(two_zones):
+    """The zones' kernels at each other's points are interpolated only for ``Re b > 0``
+    (S21: to the left the interpolant was off by a tenth where its coefficients looked
+    resolved): such a rate is refused in one line, ``b = 0`` (the limit) is not."""
+    sol = two_zones
+    lin = LinearisedContactSet(sol.parameters, sol.representation, sol.edges, sol.phi,
+                               sol.psi, sol.profile)
+    for b in (-5.0 + 1e-3j, 1e-3j, -1.0):
+        with pytest.raises(InputError, match="positive real part"):
+            lin.matrix(b)
+    assert np.all(np.isfinite(lin.matrix(0)))
 
 
 def test_at_large_rates_the_zones_couple_only_through_terms_free_of_b(two_zones):

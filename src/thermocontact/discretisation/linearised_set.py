@@ -226,9 +226,11 @@ class LinearisedContactSet:
         Parameters
         ----------
         b : complex
-            The rate in units of ``k2/l^2``, off the cut ``b < 0``; ``b = 0`` gives the
-            limit (S8, S22): the first zone's first temperature row is the heat
-            partition's (a moving half-plane's, S27: every temperature row complete).
+            The rate in units of ``k2/l^2``, ``Re b > 0`` (the zones' kernels at each
+            other's points are interpolated there, S21; to the left of the imaginary
+            axis they are not resolved and are refused); ``b = 0`` gives the limit (S8,
+            S22): the first zone's first temperature row is the heat partition's (a
+            moving half-plane's, S27: every temperature row complete).
         split : bool
             Return ``(M_reg, ell, row)`` with ``M = M_reg + ell * outer(e, row)``, ``e``
             the first zone's first temperature row, as
@@ -238,6 +240,9 @@ class LinearisedContactSet:
         -------
         ndarray, or tuple with ``split``
         """
+        if b != 0 and not complex(b).real > 0.0:
+            raise InputError(f"b must have a positive real part (or be 0) for a contact "
+                             f"set's M(b), got {b!r}", parameters=("b",))
         n, m = self.n, len(self.edges)
         B, load_rows, d_cols, keep_rows, keep_cols, first = self._layout
         pd, pt, s = self._points
