@@ -306,7 +306,7 @@ class Winding:
 
     def _measure_power(self, R):
         """``p`` from ``log|f|`` at ``|b| = R`` and ``R/16`` on three rays, ``arg b = 0``,
-        ``pi/4`` and ``3 pi/8`` (the median of the three: a root within a few
+        about ``pi/4`` and ``3 pi/8`` (through the arc's samples; the median of the three: a root within a few
         millionths of ``R`` on one ray, which makes ``|f|`` there tiny, spoils that
         ray's only; from the real axis alone such a root gave ``p = -4`` where the
         power is about 4, and the count's whole turns aliased); 0 where the region is
@@ -315,7 +315,11 @@ class Winding:
         if low >= 0.5 * R:
             self.power = 0.0
             return
-        rays = [np.exp(1j * angle) for angle in (0.0, 0.25 * np.pi, 0.375 * np.pi)]
+        # The rays through the arc's samples (count), whose values at R are kept.
+        edges = np.linspace(float(np.arctan2(np.sqrt(R * R - self.b_min ** 2), self.b_min)),
+                            0.0, _ARC_STEPS + 1)
+        angles = (edges[-1], edges[-2], 0.5 * (edges[-3] + edges[-2]))
+        rays = [np.exp(1j * angle) for angle in angles]
         points = [complex(r * ray) for ray in rays for r in (R, low)]
         self.evaluate(points)
         logs = [self.at(z)[1] for z in points]
@@ -754,7 +758,9 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
-            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
+            # To 1e-7 of b (quadratic convergence: the iterate far closer), against a
+            # change of 1e-3 or more: one or two evaluations fewer than Newton's 1e-10.
+            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min, tol=1e-7,
                                     prepare=getattr(other, "prepare", None))[0] - b)
                          / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
