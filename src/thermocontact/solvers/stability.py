@@ -316,8 +316,7 @@ class Winding:
             self.power = 0.0
             return
         # The rays through the arc's samples (count), whose values at R are kept.
-        edges = np.linspace(float(np.arctan2(np.sqrt(R * R - self.b_min ** 2), self.b_min)),
-                            0.0, _ARC_STEPS + 1)
+        edges = self._arc_edges(R)
         angles = (edges[-1], edges[-2], 0.5 * (edges[-3] + edges[-2]))
         rays = [np.exp(1j * angle) for angle in angles]
         points = [complex(r * ray) for ray in rays for r in (R, low)]
@@ -418,6 +417,13 @@ class Winding:
             change -= self.power * float(np.angle(1.0 + y) - np.angle(1.0 + x))
         return change
 
+    def _arc_edges(self, R):
+        """The angles of the arc's first steps, from where it meets the line to 0 (one
+        expression for :meth:`count` and :meth:`_measure_power`, whose rays must meet
+        the arc's samples exactly)."""
+        theta0 = float(np.arctan2(np.sqrt(R * R - self.b_min * self.b_min), self.b_min))
+        return np.linspace(theta0, 0.0, _ARC_STEPS + 1)
+
     def count(self, R):
         """``(N, reason)``: the number of zeros of ``f`` in ``Re b >= b_min``,
         ``|b| <= R``, with multiplicity, or ``(None, why)`` where the phase could not
@@ -431,8 +437,7 @@ class Winding:
         # The line on a grid common to every R, then to its end at |b| = R.
         grid = np.arange(0.0, T, self.line_step)
         pieces = [(self.line, t0, t1) for t0, t1 in zip(grid, list(grid[1:]) + [T])]
-        theta0 = float(np.arctan2(Y, b_min))
-        edges = np.linspace(theta0, 0.0, _ARC_STEPS + 1)
+        edges = self._arc_edges(R)
 
         def arc(th):
             return R * np.exp(1j * th)
