@@ -13,11 +13,11 @@ from thermocontact.cli import main
 from thermocontact.solvers.single_patch import Model
 from thermocontact.solvers.zones import ZoneModel
 
-#: Copper on steel with a hot cylinder and a sink: lam = -63.4, far outside [-1, 1]
+#: Copper on steel with a hot cylinder (and a sink: lam = -63.4), far outside [-1, 1]
 #: (the cylinder gives heat to the contact).
 HOT = ["--cylinder", "copper", "--half-plane", "steel", "--radius", "10mm", "--load",
        "10kN/m", "--speed", "0.2m/s", "--friction", "0.1", "--bulk-temperatures",
-       "200C,20C", "--sink-distance", "2mm", "--json"]
+       "200C,20C", "--json"]
 
 
 @pytest.mark.parametrize("model, closure", [
@@ -81,13 +81,15 @@ def test_two_zones_held_at_their_far_temperatures():
 
 
 def test_zones_command_takes_every_closure(capsys):
-    """`zones --lam 2` (refused before as outside [-1, 1]), `--sigma` and `--theta` with
-    `--sink-distance` answer, each the single patch at the same n; what solve refuses
-    is refused in one line naming the flags."""
+    """`zones --lam 2` (refused before as outside [-1, 1]), `--sigma`, `--theta` with
+    `--sink-distance`, and `--theta` alone for a moving half-plane with the Dundurs
+    term (`--speed-ratio`, `--beta-f`: absent before) answer, each the single patch at
+    the same n; what solve refuses is refused in one line naming the flags."""
     base = ["zones", "--pe-hertz", "5.43", "--fhpe-hertz", "0.3", "--K2-over-K1", "10",
             "-n", "16", "--json"]
+    moving = ["--theta", "0.3", "--speed-ratio", "-0.5", "--beta-f", "0.1"]
     for closure in (["--lam", "2"], ["--sigma", "-0.05"],
-                    ["--theta", "0.5", "--sink-distance", "10"]):
+                    ["--theta", "0.5", "--sink-distance", "10"], moving):
         assert main(base + closure) == 0
         rec = json.loads(capsys.readouterr().out)
         assert rec["status"] == "solved" and rec["valid"] is True
@@ -95,8 +97,10 @@ def test_zones_command_takes_every_closure(capsys):
         D = 0.5 * (zone["b"] - zone["a"])
         kw = ({"lam": 2.0} if closure[0] == "--lam" else
               {"sigma_over_delta": -0.05} if closure[0] == "--sigma" else
+              {"temperatures": (0.3, None)} if closure is moving else
               {"temperatures": (0.5, 10.0 / D)})
-        core = Model(5.43 * D, 10.0, n=16).solve_at(16, 0.3 * D, **kw)
+        model = {"speed_ratio": -0.5, "beta_f": 0.1} if closure is moving else {}
+        core = Model(5.43 * D, 10.0, n=16, **model).solve_at(16, 0.3 * D, **kw)
         assert D * D == pytest.approx(core.load_ratio, abs=1e-8)
         assert rec["lam"] == pytest.approx(core.lam, abs=1e-8)
     for args, message in (
@@ -105,7 +109,9 @@ def test_zones_command_takes_every_closure(capsys):
              "--theta only"),
             (["--lam", "1e7"], "--lam must be in [-1e+06, 1e+06], got 10000000.0"),
             (["--lam", "1", "--theta", "1"], "give exactly one of --lam and --sigma"),
-            (["--theta", "2e6", "--sink-distance", "10"], "--theta must be in [-1e+06, 1e+06]")):
+            (["--theta", "2e6", "--sink-distance", "10"], "--theta must be in [-1e+06, 1e+06]"),
+            (["--lam", "1", "--speed-ratio", "1"], "--speed-ratio 1 is pure rolling, which "
+             "makes no frictional heat: --fhpe-hertz must be 0 there, got 0.3")):
         assert main(base + args) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and message in err[0], err
@@ -114,14 +120,20 @@ def test_zones_command_takes_every_closure(capsys):
     assert "--sigma cannot be imposed when --fhpe-hertz = 0" in capsys.readouterr().err
 
 
-def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys):
-    """`contact --zones --bulk-temperatures ... --sink-distance` (refused before) for a
-    hot copper cylinder on steel, whose partition is -63: the one valid zone (n = 32)
-    equals the single patch's branch (its fields refined to their own target, from
-    n = 32) to 1e-8 in its edges, lam and the peak temperature."""
-    assert main(["contact"] + HOT) == 0
+@pytest.mark.parametrize("half_plane", [
+    ["--sink-distance", "2mm"],
+    # Moving (absent before): its incoming temperature, no sink; lam = -59.9.
+    ["--speed2=-0.1m/s"]], ids=["sink", "moving"])
+def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys, half_plane):
+    """`contact --zones --bulk-temperatures` (refused before) for a hot copper cylinder
+    on steel, whose partition is below -59, the steel held by a sink or moving through
+    the contact (`--speed2`, refused before): the one valid zone (n = 32) equals the
+    single patch's branch (its fields refined to their own target, from n = 32) to
+    1e-8 in its edges, lam and the peak temperature."""
+    args = HOT + half_plane
+    assert main(["contact"] + args) == 0
     (branch,) = json.loads(capsys.readouterr().out)["branches"]
-    assert main(["contact", "--zones"] + HOT) == 0
+    assert main(["contact", "--zones"] + args) == 0
     rec = json.loads(capsys.readouterr().out)
     assert rec["status"] == "solved" and rec["valid"] is True
     assert rec["dimensionless"]["n"] == 32 and branch["n"] >= 32
@@ -129,7 +141,7 @@ def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys):
     ell = rec["hertz_half_width"]
     assert abs(zone["a"] - branch["a"]) < 1e-8 * ell
     assert abs(zone["b"] - branch["b"]) < 1e-8 * ell
-    assert rec["lam"] == pytest.approx(branch["lam"], abs=1e-8) and rec["lam"] < -60
+    assert rec["lam"] == pytest.approx(branch["lam"], abs=1e-8) and rec["lam"] < -59
     assert rec["peak_temperature"] == pytest.approx(branch["peak_temperatures"][0], abs=1e-6)
     assert rec["bulk_temperatures"] == pytest.approx([473.15, 293.15], abs=1e-12)
 

@@ -325,7 +325,7 @@ def test_contact_set_with_a_conductance_starts_from_the_single_patch(zones_map):
 
 def test_contact_set_options_of_a_map_are_checked():
     """A conductance needs the contact sets, and one law for every load (a reference
-    pressure unless constant); a moving half-plane has no contact sets yet."""
+    pressure unless constant); a moving half-plane's contact sets are taken."""
     ax = parse_physical_axis("--x", "speed:2:5:2"), parse_physical_axis("--y", "load:1e5:2e5:2")
     with pytest.raises(InputError, match="conductance needs zones"):
         OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01},
@@ -333,8 +333,8 @@ def test_contact_set_options_of_a_map_are_checked():
     with pytest.raises(InputError, match="h0:m:p_ref"):
         OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True,
                       conductance=PhysicalConductance(1e5, 1.0))
-    with pytest.raises(InputError, match="speed_ratio"):
-        OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True, speed_ratio=-0.5)
+    assert OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True,
+                         speed_ratio=-0.5).problem(load=1e5, speed=2.0).speed2 == -1.0
     OperatingSpec(ST, CU, 0.3, 1.0, *ax, {"radius": 0.01}, zones=True,
                   conductance=PhysicalConductance(1e5, 0.0))
 

@@ -240,7 +240,8 @@ def _physical_contact_set(args, kwargs) -> bool:
 @deprecated_spellings(closure="either", physical=_physical_contact_set)
 def contact_set(pe_hertz=None, fhpe_hertz=None, K2_over_K1=None, *, lam=None,
                 sigma_over_delta=None, closure=None, k2_over_k1=None,
-                delta1_over_delta2=1.0, cylinder=None, half_plane=None, radius=None,
+                delta1_over_delta2=1.0, speed_ratio=None, beta_f=None, cylinder=None,
+                half_plane=None, radius=None,
                 load=None, speed=None, friction=None, speed2=0.0, dundurs=True,
                 materials=None, conductance=None, n=32, progress=None) -> ContactSetResult:
     """The contact set at one load: one zone or several, or why there is none.
@@ -276,9 +277,15 @@ def contact_set(pe_hertz=None, fhpe_hertz=None, K2_over_K1=None, *, lam=None,
         Diffusivity ratio > 0 (default ``K2_over_K1``; dimensionless).
     delta1_over_delta2 : float
         Distortivity ratio >= 0 (dimensionless).
+    speed_ratio : float, optional
+        ``R = v2/v1``, the half-plane's surface speed over the cylinder's (default 0;
+        dimensionless; sections 5b and 16), as for :func:`solve`.
+    beta_f : float, optional
+        The Dundurs term's ``beta f`` (default 0; dimensionless; section 5c), as for
+        :func:`solve`.
     cylinder, half_plane, radius, load, speed, friction, speed2, dundurs, materials
-        The problem in physical units, as for :func:`contact` (a stationary
-        half-plane: ``speed2 = 0``).
+        The problem in physical units, as for :func:`contact` (``speed2`` the
+        half-plane's surface speed, m/s; ``dundurs`` the term from the materials).
     conductance : tuple, optional
         An interface conductance ``h = h0 (p/p_ref)^m`` (section 15); default perfect
         thermal contact.  Dimensionless ``(Bi0, m)``: the Biot number
@@ -319,9 +326,13 @@ def contact_set(pe_hertz=None, fhpe_hertz=None, K2_over_K1=None, *, lam=None,
             if value is not None:
                 raise InputError(f"{name} belongs to a dimensionless contact set, not to one "
                                  f"with cylinder", parameters=(name, "cylinder"))
-        if delta1_over_delta2 != 1.0:
-            raise InputError("delta1_over_delta2 belongs to a dimensionless contact set: "
-                             "the materials give it", parameters=("delta1_over_delta2",))
+        for name, value in (("delta1_over_delta2", None if delta1_over_delta2 == 1.0
+                             else delta1_over_delta2), ("speed_ratio", speed_ratio),
+                            ("beta_f", beta_f)):
+            if value is not None:
+                raise InputError(f"{name} belongs to a dimensionless contact set: the "
+                                 f"physical problem gives it (speed2, dundurs, the materials)",
+                                 parameters=(name,))
         for name, value in physical.items():
             if value is None:
                 raise InputError(f"{name} must be given for a contact set in physical units",
@@ -353,7 +364,9 @@ def contact_set(pe_hertz=None, fhpe_hertz=None, K2_over_K1=None, *, lam=None,
                             temperatures=temperature_closure(given.get("theta"),
                                                              given.get("sink_distance")),
                             k2_over_k1=k2_over_k1,
-                            delta1_over_delta2=delta1_over_delta2, n=n,
+                            delta1_over_delta2=delta1_over_delta2,
+                            speed_ratio=_zero_absent("speed_ratio", speed_ratio) or 0.0,
+                            beta_f=_zero_absent("beta_f", beta_f) or 0.0, n=n,
                             conductance=None if conductance is None else check_pair(
                                 "conductance", conductance, "(Bi0, m), two numbers"),
                             progress=progress)

@@ -12,8 +12,8 @@ import click
 from .._version import __version__
 from ..problem.validation import InputError
 from .options import (bulk_temperatures_closure, contact_set_options, far_temperatures,
-                      given_here, hertz_unit_options, one_closure, parse_conductance,
-                      physical_options)
+                      given_here, hertz_unit_options, moving_and_dundurs_options, one_closure,
+                      parse_conductance, physical_options, stacked)
 
 __all__ = ["contact_cmd", "zones_cmd"]
 
@@ -80,6 +80,7 @@ def contact_summary(res) -> str:
 
 @click.command("zones")
 @hertz_unit_options
+@stacked(moving_and_dundurs_options())
 @click.option("--lam", type=float, default=None,
               help="Heat partition (Q1 - Q2)/(Q1 + Q2), |lam| <= 1e6 as for solve (beyond "
                    "[-1, 1] one body gives heat to the contact); or give --sigma or --theta.")
@@ -103,8 +104,8 @@ def contact_summary(res) -> str:
               help="Also count the contact set's growing modes (every edge free; rates in "
                    "k2/l^2), as contact --zones --stability.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, lam,
-              sigma, theta, sink_distance, conductance, n, stability, as_json):
+def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, speed_ratio,
+              beta_f, lam, sigma, theta, sink_distance, conductance, n, stability, as_json):
     """The contact set at one load: one zone or several, or why there is none.
 
     Lengths in units of the Hertz half-width l of the load, from the undeformed
@@ -119,7 +120,8 @@ def zones_cmd(pe_hertz, fhpe_hertz, K2_over_K1, k2_over_k1, delta1_over_delta2, 
     one_closure(lam, sigma, theta)
     res = contact_set(pe_hertz, fhpe_hertz, K2_over_K1, lam=lam, sigma_over_delta=sigma,
                       closure=far_temperatures(theta, sink_distance), k2_over_k1=k2_over_k1,
-                      delta1_over_delta2=delta1_over_delta2, n=n,
+                      delta1_over_delta2=delta1_over_delta2, speed_ratio=speed_ratio,
+                      beta_f=beta_f, n=n,
                       conductance=parse_conductance(conductance, "the Biot number h0 l/K2"),
                       progress=lambda fraction: bar(round(100 * fraction), 100))
     bar.close()

@@ -6,8 +6,36 @@ import click
 
 from ..problem.validation import InputError
 
-__all__ = ["contact_set_options", "given_here", "one_closure", "parse_conductance",
-           "physical_options", "problem_options"]
+__all__ = ["contact_set_options", "given_here", "moving_and_dundurs_options", "one_closure",
+           "parse_conductance", "physical_options", "problem_options", "stacked"]
+
+
+def stacked(options):
+    """One decorator applying ``options`` in order (the first listed first in help)."""
+    def deco(func):
+        for option in reversed(options):
+            func = option(func)
+        return func
+    return deco
+
+
+def moving_and_dundurs_options(note: str = "") -> tuple:
+    """``--speed-ratio`` and ``--beta-f``, the dimensionless model's moving half-plane
+    (sections 5b, 16) and Dundurs term (section 5c), for the single patch and contact
+    sets alike; ``note`` ends the speed ratio's help."""
+    return (
+        click.option("--speed-ratio", "speed_ratio", type=float, default=0.0,
+                     show_default=True,
+                     help="v2/v1: the half-plane's surface speed through the contact over the "
+                          "cylinder's, positive in the same direction; 0 is a stationary "
+                          "half-plane. Pe is made with v1, fHPe with the sliding speed "
+                          "|v1 - v2|." + note),
+        click.option("--beta-f", "beta_f", type=float, default=0.0, show_default=True,
+                     help="B = beta f, beta = [(1 - 2 nu1)/mu1 - (1 - 2 nu2)/mu2]/A (the "
+                          "paper's eq. 10): the Dundurs term -(B/2) p of the contact "
+                          "equation; 0 drops it, as the paper does. |B| <= 20; graded "
+                          "methods only."),
+    )
 
 
 def problem_options(required: bool):
@@ -26,28 +54,13 @@ def problem_options(required: bool):
         click.option("--delta1-over-delta2", type=float, default=None,
                      help="Distortivity ratio delta1/delta2 >= 0 (up to 1e6 on paths and "
                           "maps) [default: 1; dimensionless problems only]."),
-        click.option("--speed-ratio", "speed_ratio", type=float, default=0.0,
-                     show_default=True,
-                     help="v2/v1: the half-plane's surface speed through the contact over the "
-                          "cylinder's, positive in the same direction; 0 is a stationary "
-                          "half-plane. Pe is made with v1, fHPe with the sliding speed "
-                          "|v1 - v2|. With --cylinder (boundary, map), --speed is v1."),
-        click.option("--beta-f", "beta_f", type=float, default=0.0, show_default=True,
-                     help="B = beta f, beta = [(1 - 2 nu1)/mu1 - (1 - 2 nu2)/mu2]/A (the "
-                          "paper's eq. 10): the Dundurs term -(B/2) p of the contact "
-                          "equation; 0 drops it, as the paper does. |B| <= 20; graded "
-                          "methods only."),
+        *moving_and_dundurs_options(" With --cylinder (boundary, map), --speed is v1."),
         click.option("--lam", type=float, default=None,
                      help="Heat partition (Q1 - Q2)/(Q1 + Q2); give this or --sigma."),
         click.option("--sigma", type=float, default=None,
                      help="Contact offset sigma/Delta; give this or --lam."),
     ]
-
-    def deco(func):
-        for option in reversed(options):
-            func = option(func)
-        return func
-    return deco
+    return stacked(options)
 
 
 def physical_options(required: bool):
@@ -77,12 +90,7 @@ def physical_options(required: bool):
                           "-(beta f/2) p, beta from the two materials' nu and E "
                           "(derivation section 5c)."),
     ]
-
-    def deco(func):
-        for option in reversed(options):
-            func = option(func)
-        return func
-    return deco
+    return stacked(options)
 
 
 def hertz_unit_options(func):
@@ -100,9 +108,7 @@ def hertz_unit_options(func):
         click.option("--delta1-over-delta2", type=float, default=1.0, show_default=True,
                      help="Distortivity ratio in [0, 1000] (the materials known span 550)."),
     ]
-    for option in reversed(options):
-        func = option(func)
-    return func
+    return stacked(options)(func)
 
 
 def contact_set_options(zones_help: str, p_ref_help: str):

@@ -29,7 +29,8 @@ from ..discretisation.system import check_temperatures
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
 from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveError
-from ..problem.validation import InputError, check_exactly_one, check_positive, check_range
+from ..problem.validation import (InputError, check_exactly_one, check_finite, check_positive,
+                                  check_range)
 from ..solvers.elements import solve_elements
 from ..problem.closure import check_closure_range
 from ..problem.conductance import PhysicalConductance
@@ -134,8 +135,8 @@ def _first_failure(sol: ZoneSolution) -> str:
 
 
 def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=None,
-                     delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
-                     progress=None, start=None, sigma_over_delta=None,
+                     delta1_over_delta2=1.0, beta_f=0.0, conductance=None, speed_ratio=0.0,
+                     n=32, progress=None, start=None, sigma_over_delta=None,
                      temperatures=None) -> ContactSetResult:
     """The contact set at ``Pe_l``, ``fHPe_l`` (units of the Hertz half-width ``l``),
     followed from Hertz's zone along ``fHPe_l`` at fixed ``Pe_l``.
@@ -161,6 +162,10 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=N
         ``(Bi0, m)``: an interface conductance ``h = h0 (p/p_ref)^m`` with
         ``Bi0 = h0 l/K2`` and ``p_ref = P/(2 l)`` (derivation section 15); default
         perfect thermal contact.  The second method is then not tried.
+    speed_ratio : float, optional
+        ``R = v2/v1``: the half-plane moving through the contact (default 0, the
+        stationary half-plane; sections 5b and 16).  The second method is then not
+        tried.
     n : int
         Unknowns per function per zone; where the path cannot be followed with them,
         followed again with twice as many (once; the message says so).
@@ -182,9 +187,18 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=N
         raise InputError(f"pe_hertz * k2_over_k1 (the cylinder's kernel scale) must be in "
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
+    speed_ratio = check_finite("speed_ratio", speed_ratio)
+    if speed_ratio and not C_MIN <= abs(speed_ratio) * pe <= C_MAX:
+        raise InputError(f"|speed_ratio| * pe_hertz (the half-plane's kernel scale) must be 0 "
+                         f"or in [{C_MIN:.0e}, {C_MAX:.0e}], got {abs(speed_ratio) * pe:.3g}",
+                         parameters=("speed_ratio", "pe_hertz"))
+    if speed_ratio == 1.0 and target > 0.0:
+        raise InputError(f"speed_ratio 1 is pure rolling, which makes no frictional heat: "
+                         f"fhpe_hertz must be 0 there, got {target:g}",
+                         parameters=("speed_ratio", "fhpe_hertz"))
 
     materials = dict(k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                     beta_f=beta_f, conductance=conductance)
+                     beta_f=beta_f, conductance=conductance, speed_ratio=speed_ratio)
     if sigma_over_delta is not None:
         return _offset_contact_set(pe, target, K2_over_K1, sigma_over_delta, n=n,
                                    progress=progress, **materials)
@@ -257,8 +271,8 @@ class _Budgeted(ZoneModel):
 
 
 def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
-                       delta1_over_delta2=1.0, beta_f=0.0, conductance=None, n=32,
-                       progress=None, start=None, budget=MAX_EVALUATIONS,
+                       delta1_over_delta2=1.0, beta_f=0.0, conductance=None, speed_ratio=0.0,
+                       n=32, progress=None, start=None, budget=MAX_EVALUATIONS,
                        temperatures=None) -> ContactSetResult:
     """Follow the contact set along ``t -> (Pe_l, fHPe_l) = path(t)``, ``0 <= t <= 1``.
 
@@ -296,7 +310,8 @@ def follow_contact_set(path, K2_over_K1, *, lam=None, k2_over_k1=None,
     follower = _Follower(path, K2_over_K1, lam, temperatures, progress,
                          budget if isinstance(budget, _Budget) else _Budget(budget),
                          k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
-                         beta_f=beta_f, conductance=conductance, n=int(n))
+                         beta_f=beta_f, conductance=conductance, speed_ratio=speed_ratio,
+                         n=int(n))
     return follower.result(start)
 
 
@@ -514,9 +529,10 @@ class _Follower:
         (a, b), = single.edges
         h = 0.5 * (b - a)
         try:
-            if self.materials["beta_f"] or self.materials["conductance"] is not None:
-                raise SolveError("not tried: the second method has no Dundurs term and perfect "
-                                 "thermal contact only")
+            if (self.materials["beta_f"] or self.materials["conductance"] is not None
+                    or self.materials["speed_ratio"]):
+                raise SolveError("not tried: the second method has no Dundurs term, a "
+                                 "stationary half-plane and perfect thermal contact only")
             pe, F = self.path(reached)
             # (With the temperatures, at the single zone's partition: its contact set
             # is a start for Newton's method, which then holds the temperatures.)
@@ -763,8 +779,9 @@ def physical_contact_set(problem, *, conductance=None, n=32,
     Parameters
     ----------
     problem : PhysicalProblem
-        With a stationary half-plane; closed by ``lam`` or by the bulk temperatures
-        with a sink (``lam`` then an output, section 17).
+        Closed by ``lam`` or by the bulk temperatures (``lam`` then an output,
+        section 17: a stationary half-plane's with a sink, a moving one's with its
+        incoming temperature).
     conductance : PhysicalConductance or tuple, optional
         ``(h0, m[, p_ref])``: an interface conductance ``h = h0 (p/p_ref)^m``, ``h0``
         in W/(m^2 K), ``p_ref`` in Pa (default: the mean Hertz pressure ``P/(2 l)``).
@@ -778,9 +795,6 @@ def physical_contact_set(problem, *, conductance=None, n=32,
         With the fields of the contact set (pressure, both surfaces' temperatures
         from the zones' heat fluxes, slopes, strains) and whether the theory applies.
     """
-    if problem.speed2:
-        raise InputError("zones needs a stationary half-plane (speed2 = 0), got speed2 = "
-                         f"{problem.speed2:g} m/s", parameters=("zones", "speed2"))
     ell = problem.hertz_half_width
     groups = problem.ray_parameters()
     conductance = None if conductance is None else _physical(conductance)
@@ -788,7 +802,8 @@ def physical_contact_set(problem, *, conductance=None, n=32,
                            lam=problem.lam, temperatures=problem.temperatures(ell),
                            k2_over_k1=groups["k2_over_k1"],
                            delta1_over_delta2=groups["delta1_over_delta2"],
-                           beta_f=groups["beta_f"], n=n, progress=progress,
+                           beta_f=groups["beta_f"], speed_ratio=groups["speed_ratio"],
+                           n=n, progress=progress,
                            conductance=None if conductance is None else
                            conductance.biot(problem),
                            start=None if start is None else np.asarray(start) / ell)

@@ -86,8 +86,7 @@ class OperatingSpec:
         made at ``|1 - R|`` times it.  One ray still covers the plane.
     zones : bool
         Also find the contact set, of one zone or several, at every point (section
-        14c; a stationary half-plane): past the single patch's boundary it says what
-        exists instead.
+        14c): past the single patch's boundary it says what exists instead.
     conductance : PhysicalConductance, optional
         With ``zones``: an interface conductance (section 15), one law for the whole
         map (so with a reference pressure unless constant).
@@ -133,9 +132,6 @@ class OperatingSpec:
             check_finite("lam", self.lam)
         check_positive("tol", self.tol)
         object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
-        if self.zones and self.speed_ratio:
-            raise InputError(f"zones needs a stationary half-plane (speed_ratio 0), got "
-                             f"{self.speed_ratio:g}", parameters=("zones", "speed_ratio"))
         if self.x.name == self.y.name:
             raise InputError(f"y must name a parameter other than x's, got "
                              f"{self.y.name!r} twice", parameters=("y", "x"))
