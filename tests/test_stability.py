@@ -82,8 +82,11 @@ def _residual(sol, z):
         # The interface's (pi/(2 Bi)) q (D33) at the points, the flux scaled by
         # 1/Delta and the pressure's reference fixed: p/p_ref = 2 p / (Delta/Delta0).
         at = np.cos(np.multiply.outer(aux, np.arange(n))) @ rep.to_cos
-        sin_t = np.sin(stretch(aux))      # sqrt(1 - s^2) without cancellation at the edges
-        p_at = sin_t * (at @ phi)
+        t = stretch(aux)                  # s = cos t, without cancellation at the edges
+        sin_t = np.sin(t)
+        # p = w(s) phi with the Dundurs term's edge exponents: w = (1 - s)^a (1 + s)^(1 - a).
+        p_at = (2 * np.sin(t / 2) ** 2) ** rep.alpha * (2 * np.cos(t / 2) ** 2) ** (
+            1 - rep.alpha) * (at @ phi)
         q_at = eta * p_at + (at @ psi) / sin_t
         temp = temp + 0.5 * np.pi * q_at / (dl * sol.conductance.biot(p_at / dl))
     out = np.concatenate([pd @ disp, [wp @ phi - 1.0], pt @ temp])
@@ -105,12 +108,15 @@ def _residual(sol, z):
     (5.0, 10.0, 0.2, -1.0, 1.0, 0.0, 0.0, (3.0, 0.0)),
     (2.0, 1.0, 0.5, 0.5, 0.0, 0.0, 0.0, (0.5, 0.0)),
     (1.0, 3.0, 0.4, 0.0, 2.0, 0.0, 0.0, (3.0, 1.0)),
-    (2.0, 3.0, 0.3, 0.2, 0.5, -0.7, 0.0, (10.0, 0.95))])
+    (2.0, 3.0, 0.3, 0.2, 0.5, -0.7, 0.0, (10.0, 0.95)),
+    # Every model at once.
+    (2.0, 3.0, 0.3, 0.2, 0.5, 0.4, -0.8, (3.0, 1.0))])
 def test_M0_is_the_jacobian_of_the_steady_problem(pe, K, fhpe, lam, d, R, B, conductance):
     """Also for a moving half-plane (R = v2/v1 != 0: its steady kernels, the
     temperature complete, no partition row; derivation S14), with the Dundurs term
     (beta f = B, the edge exponents it makes carried by the representation, S15) and
-    with an interface conductance (Bi0, m), constant or following the pressure (S16)."""
+    with an interface conductance (Bi0, m), constant or following the pressure (S16),
+    and with all three."""
     n = 10
     sol = Model(pe, K, delta1_over_delta2=d, speed_ratio=R, beta_f=B, n=n,
                 conductance=conductance).solve_at(n, fhpe, lam=lam)
