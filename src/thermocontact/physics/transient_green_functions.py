@@ -57,7 +57,7 @@ _PANEL_VARIATION = 8.0
 #: this for good: the integrand there is below ``exp(-45)`` of its largest values.
 _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
-_BLOCK = 2048
+_BLOCK = 4096
 #: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: four panels of the
 #: stability tables' nodes, ``|u|`` within a factor of 4).
 _GROUP = 64
@@ -274,9 +274,11 @@ def _phi_series(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = max(small, 1e-15)
-    # The terms' factors x^k/k!, x = -|u|, by their running product.
-    terms = np.ones((u.size, _SERIES_TERMS))
-    terms[:, 1:] = np.cumprod(-a[:, None] / np.arange(1, _SERIES_TERMS), axis=1)
+    # The terms' factors x^k/k!, x = -|u|, by their running product (one row a term).
+    terms = np.empty((_SERIES_TERMS, u.size))
+    terms[0] = 1.0
+    for k in range(1, _SERIES_TERMS):
+        np.multiply(terms[k - 1], -a / k, out=terms[k])
     rule = None
     for side in np.unique(sg):
         at = sg == side
@@ -290,11 +292,22 @@ def _phi_series(u, c, b, integrand):
             for k in range(1, _SERIES_TERMS):
                 powers[k] = powers[k - 1] * e
         f = integrand(s_, rho, d, side)
-        # The moments of each kernel, then the series at every point, by one product each.
+        # The moments of each kernel, then the series at every point, by one product each
+        # (real: on the moments' real and imaginary parts side by side).
         m = powers @ np.stack([np.broadcast_to(v, e.shape)
                                for v in (f if isinstance(f, tuple) else (f,))], axis=1)
-        out[:, at] = (terms[at] @ m).T
+        out[:, at] = _real_product(m, terms[:, at])
     return (2.0 / np.pi) * out
+
+
+def _real_product(m, terms):
+    """``m.T @ terms`` for real ``terms``, ``m`` real or complex, by one real product
+    (a complex one would first make ``terms`` complex, many times the cost)."""
+    if not np.iscomplexobj(m):
+        return m.T @ terms
+    k = m.shape[1]
+    r = np.concatenate([m.real, m.imag], axis=1).T @ terms
+    return r[:k] + 1j * r[k:]
 
 
 def _phi_graded(u, c, b, integrand):
@@ -336,16 +349,14 @@ def _phi_graded(u, c, b, integrand):
         rows = np.flatnonzero(has)
         lo, hi = coarse[rows, k - 1], coarse[rows, k]
         sub_a, sub_sg, sub_cut = a[rows, 0], sg[rows, 0], cut[rows, 0]
-        for side in np.unique(sub_sg):
-            on = sub_sg == side
-            lo_on, hi_on = lo[on], hi[on]
-            for _ in range(40):
-                mid = 0.5 * (lo_on + hi_on)
-                s = np.sin(mid)
-                over = (sub_a[on] * s * _rho_and_rate(s, c, b, side)[1]).real >= sub_cut[on]
-                hi_on = np.where(over, mid, hi_on)
-                lo_on = np.where(over, lo_on, mid)
-            end[rows[on]] = hi_on
+        # Both sides at once (each point's own D).
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            s = np.sin(mid)
+            over = (sub_a * s * _rho_and_rate(s, c, b, sub_sg)[1]).real >= sub_cut
+            hi = np.where(over, mid, hi)
+            lo = np.where(over, lo, mid)
+        end[rows] = hi
     # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
     # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
     # below 1e-15, where the omitted part is below 1e-15 of the integral.
@@ -370,15 +381,19 @@ def _phi_graded(u, c, b, integrand):
 
 
 def _rho_and_rate(s, c, b, side):
-    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side (in
-    the wake ``b/(rho + |c| s)``, free of cancellation); for ``c = 0`` both are
-    ``sqrt(b)``, without a square root per node."""
+    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side, or
+    of each point's ``side`` (an array like ``s``) (in the wake ``b/(rho + |c| s)``,
+    free of cancellation); for ``c = 0`` both are ``sqrt(b)``, without a square root per
+    node."""
     if c == 0.0:
         rho = np.full(np.shape(s), _sqrt(np.asarray(b))[()])
         return rho, rho
     rho = _sqrt(b + (c * s) ** 2)
+    up = side * c >= 0.0
     with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-        return rho, (rho + abs(c) * s if side * c >= 0.0 else b / (rho + abs(c) * s))
+        if np.ndim(up) == 0:
+            return rho, (rho + abs(c) * s if up else b / (rho + abs(c) * s))
+        return rho, np.where(up, rho + abs(c) * s, b / (rho + abs(c) * s))
 
 
 def _phi_rule(a, sg, end, small, c, b):
