@@ -56,8 +56,7 @@ from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
-                                                 transient_temperature,
-                                                 transient_temperature_gradient_regular)
+                                                 transient_temperature_and_gradient_regular)
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .representations import EdgeGraded
@@ -505,8 +504,7 @@ def _body_values(c, b, coarse=None):
     (derivation S9)."""
     u = kernel_nodes(coarse=c == 0.0 if coarse is None else coarse)
     W, S = transient_displacement_and_slope(u, c, b)
-    T = transient_temperature(u, c, b)
-    dG = transient_temperature_gradient_regular(u, c, b)
+    T, dG = transient_temperature_and_gradient_regular(u, c, b)
     if c == 0.0:
         W = W - 2.0 / (np.pi * np.sqrt(b))
         T = T - logarithm_constant(b)

@@ -42,6 +42,7 @@ __all__ = [
     "transient_displacement_and_slope",
     "transient_slope",
     "transient_temperature",
+    "transient_temperature_and_gradient_regular",
     "transient_temperature_gradient",
     "transient_temperature_gradient_regular",
 ]
@@ -183,15 +184,44 @@ def transient_temperature_gradient_regular(u, c, b):
     -------
     ndarray
     """
+    return transient_temperature_and_gradient_regular(u, c, b)[1]
+
+
+def transient_temperature_and_gradient_regular(u, c, b):
+    """``(T(u), G(u) - 1/u)``: :func:`transient_temperature` and
+    :func:`transient_temperature_gradient_regular` in one pass, ``K0`` and ``K1`` formed
+    once (eqs. T3-T5).  For ``|mu u| < 1e-2`` the temperature too is ``exp(-c u)``
+    times the ascending series of ``K0`` (A&S 9.6.13 to ``z^4``: the first term left
+    out is about ``z^6/2304`` of ``K0``, below 5e-16), without a modified Bessel function
+    of complex argument at each such point.
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``, non-zero.
+    c, b
+        As in :func:`transient_temperature`.
+
+    Returns
+    -------
+    T, G_regular : ndarray
+    """
     c, b = _parameters(c, b)
     u = np.asarray(u, dtype=float)
     mu = _sqrt(np.asarray(c * c + b))
     z = np.abs(mu * u)
     small = z < 1e-2
+    temperature = np.empty(u.shape, dtype=np.result_type(mu, float))
     out = np.empty(u.shape, dtype=np.result_type(mu, float))
     big = ~small
     if np.any(big):
-        out[big] = transient_temperature_gradient(u[big], c, b) - 1.0 / u[big]
+        x = u[big]
+        a, sg = np.abs(x), np.sign(x)
+        zz = mu * a
+        k0 = kve(0, zz)
+        e = np.exp(-a * _convective_rate(mu, c, b, sg))
+        temperature[big] = k0 * e
+        out[big] = e * (c * k0 + mu * sg * kve(1, zz)) - 1.0 / x
     if np.any(small):
         x = u[small]
         sg = np.sign(x)
@@ -203,9 +233,10 @@ def transient_temperature_gradient_regular(u, c, b):
         k1_rest = zz * (0.5 * (lg - 0.5) + z2 / 16.0 * (lg - 1.25)
                         + z2 * z2 / 384.0 * (lg - 5.0 / 3.0))
         e = np.exp(-c * x)
+        temperature[small] = e * k0
         # exp(-c x) mu sgn(x) K1 - 1/x = (exp(-c x) - 1)/x + exp(-c x) mu sgn(x) k1_rest
         out[small] = e * c * k0 + np.expm1(-c * x) / x + e * mu * sg * k1_rest
-    return out
+    return temperature, out
 
 
 def _phi_quadrature(u, c, b, integrand):
