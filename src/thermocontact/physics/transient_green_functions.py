@@ -188,24 +188,12 @@ def transient_temperature_gradient_regular(u, c, b):
 
 
 def transient_temperature_and_gradient_regular(u, c, b):
-    """``(T(u), G(u) - 1/u)``: :func:`transient_temperature` and
-    :func:`transient_temperature_gradient_regular` in one pass, ``K0`` and ``K1`` formed
-    once (eqs. T3-T5).  For ``|mu u| < 1e-2`` the temperature too is ``exp(-c u)``
-    times the ascending series of ``K0`` (A&S 9.6.13 to ``z^4``: the first term left
-    out is about ``z^6/2304`` of ``K0``, below 5e-16), without a modified Bessel function
-    of complex argument at each such point.
-
-    Parameters
-    ----------
-    u : array_like
-        ``(x - xi)/Delta``, non-zero.
-    c, b
-        As in :func:`transient_temperature`.
-
-    Returns
-    -------
-    T, G_regular : ndarray
-    """
+    """The pair ``(T(u), G(u) - 1/u)`` of :func:`transient_temperature` and
+    :func:`transient_temperature_gradient_regular` (the same arguments) in one pass,
+    ``K0`` and ``K1`` formed once (eqs. T3-T5).  For ``|mu u| < 1e-2`` the temperature
+    too is ``exp(-c u)`` times the ascending series of ``K0`` (A&S 9.6.13 to ``z^4``:
+    the first term left out is about ``z^6/2304`` of ``K0``, below 5e-16), without a
+    modified Bessel function of complex argument at each such point."""
     c, b = _parameters(c, b)
     u = np.asarray(u, dtype=float)
     mu = _sqrt(np.asarray(c * c + b))
