@@ -22,8 +22,11 @@ integrated against those four functions on pieces halving toward ``u = 0`` and m
 to the nodes after.  A kernel that is smooth on either side of ``u = 0`` on every
 scale down to :data:`SMALLEST`, with at most a jump or a logarithm at ``0`` (the
 transient kernels of derivation eqs. T3-T10, each side's interpolant then converging
-geometrically), is integrated to about 1e-13 of its size.  The kernels' values are the
-only work per ``b``.
+geometrically), is integrated to about 1e-13 of its size.  A kernel that is a layer
+``exp(-beta u)``, ``|arg beta| <= pi/4`` (the stationary half-plane's), may be given at
+the nodes of every second panel instead (:data:`COARSE_RATIO`), through the map
+composed with each coarse panel's interpolant (:attr:`KernelTable.coarse`; about 5e-12,
+derivation S9).  The kernels' values are the only work per ``b``.
 """
 
 from __future__ import annotations
@@ -225,7 +228,8 @@ class KernelTable:
     def moments(self, values):
         """``(bounded, singular)`` moments, each shape ``(k, n)`` (or with the extra
         trailing axes of ``values``), of the kernels whose values at
-        :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``)."""
+        :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``): at
+        its nodes or at its coarse ones (:attr:`coarse`), told apart by their number."""
         values = np.asarray(values)
         by_nodes = {m.shape[-1]: m for m in (self.matrix, self.coarse)}
         if values.shape[0] not in by_nodes:
