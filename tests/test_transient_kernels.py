@@ -316,18 +316,23 @@ def test_graded_moments_of_a_complex_rate_against_quadrature(kernel, kw):
 
 def test_regular_gradient_series_against_mpmath():
     """``G - 1/u`` near the source, where the series (T5) replaces the Bessel functions
-    (``|mu u| < 1e-2``), and just beyond, against 40-digit ``mpmath`` at complex rates."""
+    (``|mu u| < 1e-2``), and just beyond, against 40-digit ``mpmath`` at complex rates;
+    and the temperature formed in the same pass (the series of ``K0`` there), to 2e-15."""
     mpmath.mp.dps = 40
     for c, b in [(0.0, 3.0 + 4.0j), (0.5, 3.0 + 4.0j), (-2.0, 1.0 - 6.0j)]:
         mu = np.sqrt(c * c + b)
         u = np.array([-2e-2, -9e-3, -2e-3, -1e-7, 1e-7, 9e-4, 9e-3, 2e-2]) / abs(mu)
         got = tk.transient_temperature_gradient_regular(u, c, b)
-        for ui, g in zip(u, got):
+        temperature, again = tk.transient_temperature_and_gradient_regular(u, c, b)
+        np.testing.assert_array_equal(again, got)
+        for ui, g, t in zip(u, got, temperature):
             x, m = mpmath.mpf(ui), mpmath.sqrt(mpmath.mpc(c * c + b))
             k0, k1 = mpmath.besselk(0, m * abs(x)), mpmath.besselk(1, m * abs(x))
             ref = complex(mpmath.exp(-c * x) * (c * k0 + m * mpmath.sign(x) * k1) - 1 / x)
             # 5e-13: the cancellation of 1/u against mu K1 just beyond the series
             assert abs(g - ref) < 5e-13 * abs(ref), (c, ui, g, ref)
+            t_ref = complex(mpmath.exp(-c * x) * k0)
+            assert abs(t - t_ref) < 2e-15 * abs(t_ref), (c, ui, t, t_ref)
 
 
 @pytest.mark.parametrize("c, b", [(0.0, 1.0 + 1.0j), (5.0, 0.3 - 2.0j), (3.0, 0.0), (-2.0, 0.5)])

@@ -56,8 +56,7 @@ from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
                                        cylinder_temperature_gradient_regular, moving_slope)
 from ..physics.transient_green_functions import (transient_displacement_and_slope,
-                                                 transient_temperature,
-                                                 transient_temperature_gradient_regular)
+                                                 transient_temperature_and_gradient_regular)
 from ..problem.parameters import Parameters
 from ..problem.validation import InputError
 from .representations import EdgeGraded
@@ -265,12 +264,13 @@ class LinearisedContact:
                 out[:, 5] = -np.log(np.abs(u))
             return out
         b = complex(b)
-        return np.concatenate([_body_values(c, b / par.k2_over_k1), _body_values(c2, b)],
-                              axis=1)
+        return np.concatenate([_body_values(c, b / par.k2_over_k1, coarse=False),
+                               _body_values(c2, b, coarse=False)], axis=1)
 
     def kernel_moments(self, b):
         """``(bounded, singular)`` moments of :meth:`kernel_values` at the table's
-        points, each shape ``(points, n, 8)``.  Each body's are kept per process by its
+        points, each shape ``(points, n, 8)``, the stationary half-plane's from its values
+        at the coarse nodes (:func:`_body_values`).  Each body's are kept per process by its
         scale and rate (:data:`KERNEL_MOMENTS`): a map's points share the half-plane's
         (they depend on ``b`` alone) and a line's points at one Peclet number the
         cylinder's."""
@@ -495,14 +495,16 @@ def _frozen(arrays):
     return out
 
 
-def _body_values(c, b):
+def _body_values(c, b, coarse=None):
     """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
     kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`,
-    shape (nodes, 4); for ``c = 0`` less the constants ``2/(pi sqrt b)`` and ``l(b)``."""
-    u = kernel_nodes()
+    shape (nodes, 4); for ``c = 0`` less the constants ``2/(pi sqrt b)`` and ``l(b)``.
+    The stationary half-plane's (``c = 0``) at the coarse nodes unless ``coarse`` is
+    False: its kernels, layers of ``sqrt(b)`` alone, need only the panels of ratio 2
+    (derivation S9)."""
+    u = kernel_nodes(coarse=c == 0.0 if coarse is None else coarse)
     W, S = transient_displacement_and_slope(u, c, b)
-    T = transient_temperature(u, c, b)
-    dG = transient_temperature_gradient_regular(u, c, b)
+    T, dG = transient_temperature_and_gradient_regular(u, c, b)
     if c == 0.0:
         W = W - 2.0 / (np.pi * np.sqrt(b))
         T = T - logarithm_constant(b)

@@ -22,8 +22,11 @@ integrated against those four functions on pieces halving toward ``u = 0`` and m
 to the nodes after.  A kernel that is smooth on either side of ``u = 0`` on every
 scale down to :data:`SMALLEST`, with at most a jump or a logarithm at ``0`` (the
 transient kernels of derivation eqs. T3-T10, each side's interpolant then converging
-geometrically), is integrated to about 1e-13 of its size.  The kernels' values are the
-only work per ``b``.
+geometrically), is integrated to about 1e-13 of its size.  A kernel that is a layer
+``exp(-beta u)``, ``|arg beta| <= pi/4`` (the stationary half-plane's), may be given at
+the nodes of every second panel instead (:data:`COARSE_RATIO`), through the map
+composed with each coarse panel's interpolant (:attr:`KernelTable.coarse`; about 5e-12,
+derivation S9).  The kernels' values are the only work per ``b``.
 """
 
 from __future__ import annotations
@@ -33,7 +36,7 @@ import numpy as np
 from .cache import BoundedCache
 from .moment_engine import GRADED, stretch, stretch_inverse
 
-__all__ = ["KernelTable", "NODES", "RATIO", "kernel_nodes", "kernel_table"]
+__all__ = ["COARSE_RATIO", "KernelTable", "NODES", "RATIO", "kernel_nodes", "kernel_table"]
 
 #: Chebyshev points per panel (degree 15 interpolation).
 NODES = 16
@@ -46,6 +49,13 @@ NODES = 16
 #: ratio 2 resolve only to 6e-7 at ``c = 50, b = 3000i`` and 2e-4 at ``c = 200,
 #: b = 10^4 i`` (this ratio: 1e-10 and 1e-7; derivation S9).
 RATIO = np.sqrt(2.0)
+#: The stationary half-plane's panels: every second edge of :data:`RATIO`'s (ratio 2,
+#: half the nodes).  Its kernels have ``D = rho = sqrt(b)``: boundary layers
+#: ``exp(-beta u)``, ``|arg beta| <= pi/4``, with a logarithm or a jump at ``u = 0``,
+#: which panels of ratio 2 interpolate to about 1e-11 of their size (derivation S9,
+#: *Panels of ratio 2 for the stationary half-plane*); a moving body's wake is not such
+#: a layer and keeps :data:`RATIO`.
+COARSE_RATIO = RATIO * RATIO
 #: The panels span ``SMALLEST <= |u| <= LARGEST`` (points in ``[-1, 1]``); below
 #: ``SMALLEST`` the kernel is ``a + b ln|u| + c u + d u ln|u|`` to ``O(u^2 ln u)``.
 SMALLEST, LARGEST = 2.0 ** -36, 2.0
@@ -63,11 +73,14 @@ _PIECE = 0.125
 TABLES = BoundedCache("kernel tables", 128 * 2**20)
 
 
-def _panels():
+def _panels(coarse=False):
+    """The panels' edges in ``|u|``, ascending; with ``coarse`` every second one
+    (:data:`COARSE_RATIO`: the panels an even number)."""
     count = int(np.ceil(np.log(LARGEST / SMALLEST) / np.log(RATIO)))
+    count += count % 2
     edges = SMALLEST * RATIO ** np.arange(count + 1)
     edges[-1] = max(edges[-1], LARGEST)
-    return edges
+    return edges[::2] if coarse else edges
 
 
 def _chebyshev():
@@ -75,10 +88,11 @@ def _chebyshev():
     return np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
 
 
-def kernel_nodes():
+def kernel_nodes(coarse=False):
     """The nodes ``u`` (ascending: the negative side's, then the positive side's) at
-    which a kernel's values are given to :meth:`KernelTable.moments`."""
-    edges = _panels()
+    which a kernel's values are given to :meth:`KernelTable.moments`; with ``coarse``
+    those of the panels of ratio :data:`COARSE_RATIO` (the stationary half-plane's)."""
+    edges = _panels(coarse)
     x = _chebyshev()
     mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])
     pos = np.sort((mid[:, None] + half[:, None] * x[None, :]).ravel())
@@ -204,14 +218,24 @@ class KernelTable:
         table[:, :, :, 0] = table[:, :, :, 0, ::-1, ::-1]
         #: The map, shape ``(2, k, n, nodes)``: nodal values to moments.
         self.matrix = table.reshape(2, tau_k.size, n, -1)
+        #: The map from values at the coarse nodes (:func:`kernel_nodes`, ``coarse``):
+        #: each coarse panel's interpolant is a polynomial of the same degree on each of
+        #: its two halves, which their own interpolants reproduce, so that its moments are
+        #: the map's on its values at the halves' nodes.
+        self.coarse = _coarsened(self.matrix)
         self.shape = (tau_k.size, n)
 
     def moments(self, values):
         """``(bounded, singular)`` moments, each shape ``(k, n)`` (or with the extra
         trailing axes of ``values``), of the kernels whose values at
-        :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``)."""
+        :func:`kernel_nodes` are ``values`` (shape ``(nodes,)`` or ``(nodes, m)``): at
+        its nodes or at its coarse ones (:attr:`coarse`), told apart by their number."""
         values = np.asarray(values)
-        table = self.matrix.reshape(2 * self.shape[0] * self.shape[1], -1)
+        by_nodes = {m.shape[-1]: m for m in (self.matrix, self.coarse)}
+        if values.shape[0] not in by_nodes:
+            raise ValueError(f"values at {values.shape[0]} nodes: the table's are "
+                             f"{sorted(by_nodes)} (kernel_nodes, coarse or not)")
+        table = by_nodes[values.shape[0]].reshape(2 * self.shape[0] * self.shape[1], -1)
         if np.iscomplexobj(values):
             # A real product on the real and imaginary parts side by side (half the
             # work of the complex one).
@@ -220,6 +244,25 @@ class KernelTable:
         else:
             out = table @ values.reshape(values.shape[0], -1)
         return out.reshape((2,) + self.shape + values.shape[1:])
+
+
+def _coarsened(matrix):
+    """``matrix`` (the last axis the nodes of :func:`kernel_nodes`) acting on values at
+    the coarse nodes: each coarse panel's values interpolated to its two halves' nodes
+    (one ``(2 NODES, NODES)`` map, the same for every panel: the panels are similar)."""
+    xc = np.sort(_chebyshev())
+    fine = _panels()[:3] / _panels()[0]                 # [1, sqrt 2, 2]
+    mid, half = 0.5 * (fine[1:] + fine[:-1]), 0.5 * np.diff(fine)
+    # The halves' nodes (ascending |u|) in the coarse panel's [-1, 1].
+    x = ((mid[:, None] + half[:, None] * xc) - 1.5 * fine[0]).ravel() / (0.5 * fine[0])
+    refine = _lagrange(x, xc)                           # (2 NODES, NODES)
+    side = matrix.shape[-1] // 2
+    shape = matrix.shape[:-1] + (side // 2,)
+    # One product a side; the negative side's nodes descend in |u|, and so does the
+    # map's order there.
+    return np.concatenate([
+        (matrix[..., :side].reshape(-1, 2 * NODES) @ refine[::-1, ::-1]).reshape(shape),
+        (matrix[..., side:].reshape(-1, 2 * NODES) @ refine).reshape(shape)], axis=-1)
 
 
 def _basis(tau, to_cos, cmap):

@@ -42,6 +42,7 @@ __all__ = [
     "transient_displacement_and_slope",
     "transient_slope",
     "transient_temperature",
+    "transient_temperature_and_gradient_regular",
     "transient_temperature_gradient",
     "transient_temperature_gradient_regular",
 ]
@@ -57,7 +58,7 @@ _PANEL_VARIATION = 8.0
 #: this for good: the integrand there is below ``exp(-45)`` of its largest values.
 _NEGLIGIBLE = 45.0
 #: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
-_BLOCK = 2048
+_BLOCK = 4096
 #: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: four panels of the
 #: stability tables' nodes, ``|u|`` within a factor of 4).
 _GROUP = 64
@@ -183,15 +184,32 @@ def transient_temperature_gradient_regular(u, c, b):
     -------
     ndarray
     """
+    return transient_temperature_and_gradient_regular(u, c, b)[1]
+
+
+def transient_temperature_and_gradient_regular(u, c, b):
+    """The pair ``(T(u), G(u) - 1/u)`` of :func:`transient_temperature` and
+    :func:`transient_temperature_gradient_regular` (the same arguments) in one pass,
+    ``K0`` and ``K1`` formed once (eqs. T3-T5).  For ``|mu u| < 1e-2`` the temperature
+    too is ``exp(-c u)`` times the ascending series of ``K0`` (A&S 9.6.13 to ``z^4``:
+    the first term left out is about ``z^6/2304`` of ``K0``, below 5e-16), without a
+    modified Bessel function of complex argument at each such point."""
     c, b = _parameters(c, b)
     u = np.asarray(u, dtype=float)
     mu = _sqrt(np.asarray(c * c + b))
     z = np.abs(mu * u)
     small = z < 1e-2
+    temperature = np.empty(u.shape, dtype=np.result_type(mu, float))
     out = np.empty(u.shape, dtype=np.result_type(mu, float))
     big = ~small
     if np.any(big):
-        out[big] = transient_temperature_gradient(u[big], c, b) - 1.0 / u[big]
+        x = u[big]
+        a, sg = np.abs(x), np.sign(x)
+        zz = mu * a
+        k0 = kve(0, zz)
+        e = np.exp(-a * _convective_rate(mu, c, b, sg))
+        temperature[big] = k0 * e
+        out[big] = e * (c * k0 + mu * sg * kve(1, zz)) - 1.0 / x
     if np.any(small):
         x = u[small]
         sg = np.sign(x)
@@ -203,9 +221,10 @@ def transient_temperature_gradient_regular(u, c, b):
         k1_rest = zz * (0.5 * (lg - 0.5) + z2 / 16.0 * (lg - 1.25)
                         + z2 * z2 / 384.0 * (lg - 5.0 / 3.0))
         e = np.exp(-c * x)
+        temperature[small] = e * k0
         # exp(-c x) mu sgn(x) K1 - 1/x = (exp(-c x) - 1)/x + exp(-c x) mu sgn(x) k1_rest
         out[small] = e * c * k0 + np.expm1(-c * x) / x + e * mu * sg * k1_rest
-    return out
+    return temperature, out
 
 
 def _phi_quadrature(u, c, b, integrand):
@@ -274,9 +293,11 @@ def _phi_series(u, c, b, integrand):
     if c != 0.0 and b != 0.0:
         small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
     small = max(small, 1e-15)
-    # The terms' factors x^k/k!, x = -|u|, by their running product.
-    terms = np.ones((u.size, _SERIES_TERMS))
-    terms[:, 1:] = np.cumprod(-a[:, None] / np.arange(1, _SERIES_TERMS), axis=1)
+    # The terms' factors x^k/k!, x = -|u|, by their running product (one row a term).
+    terms = np.empty((_SERIES_TERMS, u.size))
+    terms[0] = 1.0
+    for k in range(1, _SERIES_TERMS):
+        np.multiply(terms[k - 1], -a / k, out=terms[k])
     rule = None
     for side in np.unique(sg):
         at = sg == side
@@ -290,11 +311,22 @@ def _phi_series(u, c, b, integrand):
             for k in range(1, _SERIES_TERMS):
                 powers[k] = powers[k - 1] * e
         f = integrand(s_, rho, d, side)
-        # The moments of each kernel, then the series at every point, by one product each.
+        # The moments of each kernel, then the series at every point, by one product each
+        # (real: on the moments' real and imaginary parts side by side).
         m = powers @ np.stack([np.broadcast_to(v, e.shape)
                                for v in (f if isinstance(f, tuple) else (f,))], axis=1)
-        out[:, at] = (terms[at] @ m).T
+        out[:, at] = _real_product(m, terms[:, at])
     return (2.0 / np.pi) * out
+
+
+def _real_product(m, terms):
+    """``m.T @ terms`` for real ``terms``, ``m`` real or complex, by one real product
+    (a complex one would first make ``terms`` complex, many times the cost)."""
+    if not np.iscomplexobj(m):
+        return m.T @ terms
+    k = m.shape[1]
+    r = np.concatenate([m.real, m.imag], axis=1).T @ terms
+    return r[:k] + 1j * r[k:]
 
 
 def _phi_graded(u, c, b, integrand):
@@ -336,16 +368,14 @@ def _phi_graded(u, c, b, integrand):
         rows = np.flatnonzero(has)
         lo, hi = coarse[rows, k - 1], coarse[rows, k]
         sub_a, sub_sg, sub_cut = a[rows, 0], sg[rows, 0], cut[rows, 0]
-        for side in np.unique(sub_sg):
-            on = sub_sg == side
-            lo_on, hi_on = lo[on], hi[on]
-            for _ in range(40):
-                mid = 0.5 * (lo_on + hi_on)
-                s = np.sin(mid)
-                over = (sub_a[on] * s * _rho_and_rate(s, c, b, side)[1]).real >= sub_cut[on]
-                hi_on = np.where(over, mid, hi_on)
-                lo_on = np.where(over, lo_on, mid)
-            end[rows[on]] = hi_on
+        # Both sides at once (each point's own D).
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            s = np.sin(mid)
+            over = (sub_a * s * _rho_and_rate(s, c, b, sub_sg)[1]).real >= sub_cut
+            hi = np.where(over, mid, hi)
+            lo = np.where(over, lo, mid)
+        end[rows] = hi
     # Panels graded toward 0 from the end: [0, end 2^-J], ..., [end/2, end], down to
     # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
     # below 1e-15, where the omitted part is below 1e-15 of the integral.
@@ -370,15 +400,19 @@ def _phi_graded(u, c, b, integrand):
 
 
 def _rho_and_rate(s, c, b, side):
-    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side (in
-    the wake ``b/(rho + |c| s)``, free of cancellation); for ``c = 0`` both are
-    ``sqrt(b)``, without a square root per node."""
+    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side, or
+    of each point's ``side`` (an array like ``s``) (in the wake ``b/(rho + |c| s)``,
+    free of cancellation); for ``c = 0`` both are ``sqrt(b)``, without a square root per
+    node."""
     if c == 0.0:
         rho = np.full(np.shape(s), _sqrt(np.asarray(b))[()])
         return rho, rho
     rho = _sqrt(b + (c * s) ** 2)
+    up = side * c >= 0.0
     with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-        return rho, (rho + abs(c) * s if side * c >= 0.0 else b / (rho + abs(c) * s))
+        if np.ndim(up) == 0:
+            return rho, (rho + abs(c) * s if up else b / (rho + abs(c) * s))
+        return rho, np.where(up, rho + abs(c) * s, b / (rho + abs(c) * s))
 
 
 def _phi_rule(a, sg, end, small, c, b):

@@ -438,9 +438,11 @@ class Winding:
         grid = np.arange(0.0, T, self.line_step)
         pieces = [(self.line, t0, t1) for t0, t1 in zip(grid, list(grid[1:]) + [T])]
         edges = self._arc_edges(R)
+        # The arc starts where the line ends: one sample, not two a rounding apart.
+        corner = self.line(T)
 
         def arc(th):
-            return R * np.exp(1j * th)
+            return corner if th == edges[0] else R * np.exp(1j * th)
         pieces += [(arc, a, b) for a, b in zip(edges[:-1], edges[1:])]
         change, why = self._follow(pieces)
         if change is None:
