@@ -103,21 +103,40 @@ def test_command_line_speed_ratio(capsys):
 def _jaeger(b, prob, body, s):
     """Jaeger's high-Peclet surface temperature of body 1 or 2 for the computed flux:
     (1/K) sqrt(k/(pi |v|)) times the integral of q over the material upstream of x,
-    in contact units f |v1 - v2| P / K sqrt(1/(2 pi |c|)) integral q / sqrt(|r - s|) dr."""
-    from scipy.integrate import quad
+    in contact units f |v1 - v2| P / K sqrt(1/(2 pi |c|)) integral q / sqrt(|r - s|) dr.
+
+    The integral in the representation's variable tau (r = cos T(tau)), where the
+    flux's factors are cosine series and 1/sqrt(1 -+ r) dr is smooth: only
+    1/sqrt(|tau - tau_s|) is left, integrated by Gauss-Jacobi with 2n nodes (within
+    1e-12 of 4n; within 6e-10 of QUADPACK's algebraic-weight rule in r to 1e-8)."""
+    from scipy.special import roots_jacobi
+
+    from thermocontact.numerics.moment_engine import stretch, stretch_inverse
 
     sol = b.solution
     par, rep, eta = sol.parameters, sol.representation, sol.parameters.eta
-    at = lambda f, r: f(np.array([r]))[0]  # noqa: E731
-    if body == 1:  # enters at s = +1; q1 sqrt(1 - r), smooth
-        K, c, lo, hi = prob.cylinder.K, par.cylinder_scale, s, 1.0
-        f = lambda r: 0.5 * ((1 + eta) * (1 - r) * np.sqrt(1 + r) * at(lambda x: rep.phi_at(sol.phi, x), r)  # noqa: E731
-                             + at(lambda x: rep.psi_at(sol.psi, x), r) / np.sqrt(1 + r))
-    else:  # moving toward +x, enters at s = -1; q2 sqrt(1 + r)
-        K, c, lo, hi = prob.half_plane.K, par.half_plane_scale, -1.0, s
-        f = lambda r: 0.5 * ((1 - eta) * (1 + r) * np.sqrt(1 - r) * at(lambda x: rep.phi_at(sol.phi, x), r)  # noqa: E731
-                             - at(lambda x: rep.psi_at(sol.psi, x), r) / np.sqrt(1 - r))
-    integral = quad(f, lo, hi, weight="alg", wvar=(-0.5, -0.5), epsabs=1e-9, epsrel=1e-8)[0]
+    tau_s = float(stretch_inverse(np.arccos(s)))
+    t_s = float(stretch(tau_s))
+    # Body 1 enters at s = +1 (r from s to 1: tau in [0, tau_s]), body 2 at s = -1.
+    lo, hi = (0.0, tau_s) if body == 1 else (tau_s, np.pi)
+    x, w = roots_jacobi(2 * sol.n, *((-0.5, 0.0) if body == 1 else (0.0, -0.5)))
+    tau = lo + 0.5 * (hi - lo) * (1.0 + x)
+    t, d = stretch(tau), np.abs(tau - tau_s)
+    r = np.cos(t)
+    # |r - s| without cancellation: |T(tau) - T(tau_s)| = |d - cos(tau + tau_s) sin d|.
+    dt = np.abs(d - np.cos(tau + tau_s) * np.sin(d))
+    distance = 2.0 * np.sin(0.5 * (t + t_s)) * np.sin(0.5 * dt)
+    dT = 2.0 * np.sin(tau) ** 2
+    phi, psi = rep.phi_at(sol.phi, r), rep.psi_at(sol.psi, r)
+    if body == 1:  # q1 sqrt(1 - r), smooth; dr/sqrt(1 - r) = sqrt 2 cos(t/2) T' dtau
+        K, c = prob.cylinder.K, par.cylinder_scale
+        f = 0.5 * ((1 + eta) * (1 - r) * np.sqrt(1 + r) * phi + psi / np.sqrt(1 + r))
+        jacobian = np.sqrt(2.0) * np.cos(0.5 * t) * dT
+    else:  # moving toward +x: q2 sqrt(1 + r); dr/sqrt(1 + r) = sqrt 2 sin(t/2) T' dtau
+        K, c = prob.half_plane.K, par.half_plane_scale
+        f = 0.5 * ((1 - eta) * (1 + r) * np.sqrt(1 - r) * phi - psi / np.sqrt(1 - r))
+        jacobian = np.sqrt(2.0) * np.sin(0.5 * t) * dT
+    integral = np.sqrt(0.5 * (hi - lo)) * (w @ (f * jacobian * np.sqrt(d / distance)))
     unit = prob.friction * prob.sliding_speed * prob.load / K
     return unit * np.sqrt(1.0 / (2.0 * np.pi * abs(c))) * integral
 
