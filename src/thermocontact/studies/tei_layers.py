@@ -801,10 +801,11 @@ def _evaluate(key, payloads):
                                           np.asarray(v, dtype=float))
         shapes.append(b.shape)
         bs.append(b.ravel())
-        ms.append(np.full(b.size, m, dtype=float) if np.ndim(m) == 0 else m.ravel())
-        vs.append(np.full(b.size, v, dtype=float) if np.ndim(v) == 0 else v.ravel())
-        which.append(np.full(b.size, layups.setdefault(id(layup), (len(layups), layup))[0]))
-    b, m, v = np.concatenate(bs), np.concatenate(ms), np.concatenate(vs)
+        ms.append(m)
+        vs.append(v)
+        which.append(layups.setdefault(id(layup), (len(layups), layup))[0])
+    sizes = [part.size for part in bs]
+    b, m, v = np.concatenate(bs), _spread(ms, sizes), _spread(vs, sizes)
     layups = [lay for _, lay in layups.values()]
     if kind == "dispersion":
         out = layup_dispersion(layups[0], b, m, v)
@@ -813,10 +814,19 @@ def _evaluate(key, payloads):
         if len(layups) == 1:
             out = func(layups[0], b, m, v)
         else:
-            out = func(layups, b, m, v, which=np.concatenate(which))
-    ends = np.cumsum([part.size for part in bs])
-    return [o.reshape(shape + o.shape[1:])
-            for o, shape in zip(np.split(out, ends[:-1]), shapes)]
+            out = func(layups, b, m, v, which=np.repeat(which, sizes))
+    ends = np.cumsum(sizes).tolist()
+    return [out[end - size:end].reshape(shape + out.shape[1:])
+            for end, size, shape in zip(ends, sizes, shapes)]
+
+
+def _spread(values, sizes):
+    """The payloads' ``values`` (each a number, or an array of its points) as one
+    array of all the points."""
+    if all(np.ndim(x) == 0 for x in values):
+        return np.repeat(np.array(values, dtype=float), sizes)
+    return np.concatenate([np.full(n, x, dtype=float) if np.ndim(x) == 0 else x.ravel()
+                           for x, n in zip(values, sizes)])
 
 
 def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
