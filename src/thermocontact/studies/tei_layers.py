@@ -61,8 +61,10 @@ def _scale(layup: Layup, m) -> float:
 def newton_roots(log_derivative, x0, scale, iters=25):
     """Newton's method on an analytic function ``f`` given its logarithmic derivative
     ``f'/f`` (vectorised; the step ``-f/f'``); returns the roots and which converged: a step
-    below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
-    falls (the rounding of the determinant reached).  Each root is iterated only
+    below ``1e-13 (|x| + scale)``, one below ``1e-9 (|x| + scale)`` that no longer
+    falls (the rounding of the determinant reached), or one below ``1e-7 (|x| + scale)``
+    after which quadratic convergence leaves at most ``1e-14 (|x| + scale)``
+    (:func:`_settled`).  Each root is iterated only
     until it has converged, or given up (NaN) if its step is still above ``1e-6 (|x| +
     scale)`` after 12 iterations (no quadratic convergence in sight: a seed of the
     continuous spectrum); ``log_derivative(z, active)`` gets the indices of those
@@ -83,9 +85,21 @@ def newton_roots(log_derivative, x0, scale, iters=25):
         step = np.where(np.isfinite(step), step, np.nan)
         x[act] = xa - step
         size, unit = np.abs(step), np.abs(x[act]) + scale[act]
-        done[act] = (size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
+        done[act] = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
+                     | _settled(size / unit, last[act] / unit))
         last[act] = size
     return x, done & np.isfinite(x)
+
+
+def _settled(step, last):
+    """Whether Newton's method has converged after a relative ``step`` (a fraction of
+    the unknown's size) that followed one of ``last``: both in the quadratic regime
+    (``last <= 1e-3``, ``step <= 1e-7``), where the error after a step is about ``C
+    step^2`` with ``C = step/last^2`` measured, so at most ``step^3/last^2 <= 1e-14``
+    is left (1e-8 after 1e-4 leaves 1e-16): the iteration that would only see the
+    step fall is saved."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        return (step <= 1e-7) & (last <= 1e-3) & (step ** 3 <= 1e-14 * last ** 2)
 
 
 @dataclass(frozen=True)
@@ -290,9 +304,11 @@ def neutral_point(family, m, speed, omega, iters=40):
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
         V = V + sV
         s = s + sS
-        # Converged: both steps at rounding, or small and no longer falling.
+        # Converged: both steps at rounding, small and no longer falling, or small
+        # after quadratic convergence (_settled).
         size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
-        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last)))
+        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last))
+                       | _settled(size, last))
         last = np.where(act, size, last)
     return V, omega_of(V, s), done
 
