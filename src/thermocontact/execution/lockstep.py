@@ -28,13 +28,32 @@ class _Cancelled(BaseException):
     """Raised inside a computation's thread to end it (another failed, or Ctrl-C)."""
 
 
+class _Signal:
+    """A one-shot handover between threads: :meth:`set` by one, consumed by the
+    :meth:`wait` of another (a bare lock held while unset: a fraction of the cost of
+    an event's condition, the switch being most of a request's overhead)."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._lock.acquire()
+
+    def set(self):
+        try:
+            self._lock.release()
+        except RuntimeError:               # already set
+            pass
+
+    def wait(self):
+        self._lock.acquire()
+
+
 class _Baton:
     """Whose turn it is: the computations of a round, each handing control straight
     to the next when it asks or ends (one switch of threads per request, not two
     through the driver), the last to the driver."""
 
     def __init__(self):
-        self.back = threading.Event()      # the round is over (or one failed)
+        self.back = _Signal()              # the round is over (or one failed)
         self.order = ()
         self.pos = 0
         self.closed = False                # cancelling: nobody is waiting
@@ -43,7 +62,6 @@ class _Baton:
         """Run each of ``order`` in turn until it asks or ends (in the driver's thread:
         blocks until the last has, or one has failed)."""
         self.order, self.pos = order, 0
-        self.back.clear()
         order[0].turn.set()
         self.back.wait()
 
@@ -65,7 +83,7 @@ class _Task:
     def __init__(self, func, baton):
         self.func = func
         self.baton = baton
-        self.turn = threading.Event()      # control handed to the task
+        self.turn = _Signal()              # control handed to the task
         self.request = None                # (key, payload) while waiting for an answer
         self.answer = None
         self.result = None
@@ -76,7 +94,6 @@ class _Task:
 
     def _wait(self):
         self.turn.wait()
-        self.turn.clear()
 
     def _run(self):
         self._wait()

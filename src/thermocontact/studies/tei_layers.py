@@ -58,15 +58,20 @@ def _scale(layup: Layup, m) -> float:
     return min(b.material.k for b in layup.bodies if b.conducts) * m * m
 
 
-def newton_roots(log_derivative, x0, scale, iters=25):
+def newton_roots(log_derivative, x0, scale, iters=25, abandon=None):
     """Newton's method on an analytic function ``f`` given its logarithmic derivative
     ``f'/f`` (vectorised; the step ``-f/f'``); returns the roots and which converged: a step
-    below ``1e-13 (|x| + scale)``, or one below ``1e-9 (|x| + scale)`` that no longer
-    falls (the rounding of the determinant reached).  Each root is iterated only
+    below ``1e-13 (|x| + scale)``, one below ``1e-9 (|x| + scale)`` that no longer
+    falls (the rounding of the determinant reached), or one below ``1e-7 (|x| + scale)``
+    after which quadratic convergence leaves at most ``1e-14 (|x| + scale)``
+    (:func:`_settled`).  Each root is iterated only
     until it has converged, or given up (NaN) if its step is still above ``1e-6 (|x| +
     scale)`` after 12 iterations (no quadratic convergence in sight: a seed of the
     continuous spectrum); ``log_derivative(z, active)`` gets the indices of those
-    iterated."""
+    iterated.  ``abandon(x, step, last)``, if given, is asked after each iteration
+    with the iterates, the size of each one's latest step and of the one before (0
+    for a root converged earlier, inf where there is none): True ends the iteration,
+    no root converged (NaN)."""
     x = np.array(x0, dtype=complex)
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
@@ -83,9 +88,26 @@ def newton_roots(log_derivative, x0, scale, iters=25):
         step = np.where(np.isfinite(step), step, np.nan)
         x[act] = xa - step
         size, unit = np.abs(step), np.abs(x[act]) + scale[act]
-        done[act] = (size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
+        done[act] = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
+                     | _settled(size / unit, last[act] / unit))
+        if abandon is not None:
+            step, before = np.where(done, 0.0, np.inf), np.where(done, 0.0, np.inf)
+            step[act], before[act] = size, last[act]
+            if abandon(x, step, before):
+                return np.full(x.shape, np.nan + 0j), np.zeros(x.shape, dtype=bool)
         last[act] = size
     return x, done & np.isfinite(x)
+
+
+def _settled(step, last):
+    """Whether Newton's method has converged after a relative ``step`` (a fraction of
+    the unknown's size) that followed one of ``last``: both in the quadratic regime
+    (``last <= 1e-3``, ``step <= 1e-7``), where the error after a step is about ``C
+    step^2`` with ``C = step/last^2`` measured, so at most ``step^3/last^2 <= 1e-14``
+    is left (1e-8 after 1e-4 leaves 1e-16): the iteration that would only see the
+    step fall is saved."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        return (step <= 1e-7) & (last <= 1e-3) & (step ** 3 <= 1e-14 * last ** 2)
 
 
 @dataclass(frozen=True)
@@ -290,9 +312,11 @@ def neutral_point(family, m, speed, omega, iters=40):
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
         V = V + sV
         s = s + sS
-        # Converged: both steps at rounding, or small and no longer falling.
+        # Converged: both steps at rounding, small and no longer falling, or small
+        # after quadratic convergence (_settled).
         size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
-        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last)))
+        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last))
+                       | _settled(size, last))
         last = np.where(act, size, last)
     return V, omega_of(V, s), done
 
@@ -304,7 +328,7 @@ def raw_seeds(family, m, speed, points=None, count=SEEDS):
     return seeds[~family.in_continuum(seeds, m, speed)][:count]
 
 
-def _polish(family, m, speed, b0, reach=None):
+def _polish(family, m, speed, b0, reach=None, within=None):
     """Newton's method on the dispersion function from the guesses ``b0``, each in the
     frame it is nearer to rest in (:func:`pattern_frame`: there a mode at rest on a
     body is a number of size ``kappa m^2``, resolved to rounding, not a frequency near
@@ -312,7 +336,12 @@ def _polish(family, m, speed, b0, reach=None):
     ``reach`` from its guess, default half the guess in that frame plus ``10 kappa
     m^2``, or ended on a half-plane's branch cut), the frames, and each root's
     ``db/dV`` (:func:`_speed_slope`) from the logarithmic derivatives of the last
-    iteration, whose step moved the root by less than its rounding-level tolerance."""
+    iteration, whose step moved the root by less than its rounding-level tolerance.
+    ``within = (r0, floor)``: the speed scan's test of a step, each root to land within
+    ``0.2 max(r0, |Re b|) + floor`` of its guess; all NaN as soon as one surely will
+    not (its distance from the guess, less twice its latest step, beyond that with
+    ``|Re b|`` twice its latest step larger; the steps at least halving, so that less
+    than the latest step is left to go), or one is given up."""
     b0 = np.atleast_1d(np.asarray(b0, dtype=complex))
     scale = max(family.scale(m), 1e-300)
     phi = pattern_frame(m, speed, b0.imag)
@@ -324,7 +353,19 @@ def _polish(family, m, speed, b0, reach=None):
         last[act] = family.log_derivatives(z - shift[act], m, speed)
         return last[act, 0]
 
-    roots, ok = newton_roots(log_derivative, z0, scale)
+    abandon = None
+    if within is not None:
+        r0, floor = within
+
+        def abandon(z, step, last):
+            if np.isnan(z).any():
+                return True
+            sure = np.isfinite(step) & (step <= 0.5 * last)
+            off = np.abs(z - z0) - 2.0 * step
+            far = off > 0.2 * np.maximum(r0, np.abs((z - shift).real) + 2.0 * step) + floor
+            return bool(np.any(sure & far))
+
+    roots, ok = newton_roots(log_derivative, z0, scale, abandon=abandon)
     lim = 0.5 * np.abs(z0) + 10.0 * scale if reach is None else reach
     b = roots - shift
     good = ok & (np.abs(roots - z0) <= lim) & ~family.on_cut(b, m, speed)
@@ -378,13 +419,17 @@ def _speed_slope(family, m, speed, b):
         return -L[..., 1] / L[..., 0]
 
 
-def _follow(family, m, v0, b0, slope0, v1):
+def _follow(family, m, v0, b0, slope0, v1, step=False):
     """The root ``b0`` (slope ``slope0`` at ``v0``) at the speed ``v1``: predicted along
     its tangent and polished (NaN where Newton's method fails); the prediction; and
-    the root's slope at ``v1`` (:func:`_polish`)."""
+    the root's slope at ``v1`` (:func:`_polish`).  ``step``: a step of the speed scan,
+    which is refused unless every root lands within a fifth of ``max(|Re b0|, |Re
+    b1|)`` of its prediction: all NaN as soon as one surely will not."""
     pred = b0 + (v1 - v0) * slope0
-    reach = 0.5 * np.abs(pred - b0) + 0.5 * np.abs(b0.real) + 10.0 * family.scale(m)
-    b1, _, slope1 = _polish(family, m, v1, pred, reach)
+    scale = family.scale(m)
+    reach = 0.5 * np.abs(pred - b0) + 0.5 * np.abs(b0.real) + 10.0 * scale
+    within = (np.abs(b0.real), 1e-9 * scale) if step else None
+    b1, _, slope1 = _polish(family, m, v1, pred, reach, within)
     return b1, pred, slope1
 
 
@@ -663,7 +708,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     while v < limit():
         v1 = min(v * ratio, limit())
         if b.size:
-            b1, pred, s1 = _follow(family, m, v, b, slope, v1)
+            # A step that would be refused ends as soon as that is sure (not at the
+            # smallest step, which goes on with the roots as they land).
+            b1, pred, s1 = _follow(family, m, v, b, slope, v1, step=ratio - 1.0 > MIN_STEP)
             err = np.abs(b1 - pred)
             tol = 0.2 * np.maximum(np.abs(b.real), np.abs(b1.real)) + 1e-9 * scale
             fine = np.isfinite(b1) & (err <= tol)
@@ -801,10 +848,11 @@ def _evaluate(key, payloads):
                                           np.asarray(v, dtype=float))
         shapes.append(b.shape)
         bs.append(b.ravel())
-        ms.append(np.full(b.size, m, dtype=float) if np.ndim(m) == 0 else m.ravel())
-        vs.append(np.full(b.size, v, dtype=float) if np.ndim(v) == 0 else v.ravel())
-        which.append(np.full(b.size, layups.setdefault(id(layup), (len(layups), layup))[0]))
-    b, m, v = np.concatenate(bs), np.concatenate(ms), np.concatenate(vs)
+        ms.append(m)
+        vs.append(v)
+        which.append(layups.setdefault(id(layup), (len(layups), layup))[0])
+    sizes = [part.size for part in bs]
+    b, m, v = np.concatenate(bs), _spread(ms, sizes), _spread(vs, sizes)
     layups = [lay for _, lay in layups.values()]
     if kind == "dispersion":
         out = layup_dispersion(layups[0], b, m, v)
@@ -813,10 +861,19 @@ def _evaluate(key, payloads):
         if len(layups) == 1:
             out = func(layups[0], b, m, v)
         else:
-            out = func(layups, b, m, v, which=np.concatenate(which))
-    ends = np.cumsum([part.size for part in bs])
-    return [o.reshape(shape + o.shape[1:])
-            for o, shape in zip(np.split(out, ends[:-1]), shapes)]
+            out = func(layups, b, m, v, which=np.repeat(which, sizes))
+    ends = np.cumsum(sizes).tolist()
+    return [out[end - size:end].reshape(shape + out.shape[1:])
+            for end, size, shape in zip(ends, sizes, shapes)]
+
+
+def _spread(values, sizes):
+    """The payloads' ``values`` (each a number, or an array of its points) as one
+    array of all the points."""
+    if all(np.ndim(x) == 0 for x in values):
+        return np.repeat(np.array(values, dtype=float), sizes)
+    return np.concatenate([np.full(n, x, dtype=float) if np.ndim(x) == 0 else x.ravel()
+                           for x, n in zip(values, sizes)])
 
 
 def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progress=None):
