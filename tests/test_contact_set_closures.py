@@ -120,17 +120,12 @@ def test_zones_command_takes_every_closure(capsys):
     assert "--sigma cannot be imposed when --fhpe-hertz = 0" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("half_plane", [
-    ["--sink-distance", "2mm"],
-    # Moving (absent before): its incoming temperature, no sink; lam = -59.9.
-    ["--speed2=-0.1m/s"]], ids=["sink", "moving"])
-def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys, half_plane):
-    """`contact --zones --bulk-temperatures` (refused before) for a hot copper cylinder
-    on steel, whose partition is below -59, the steel held by a sink or moving through
-    the contact (`--speed2`, refused before): the one valid zone (n = 32) equals the
-    single patch's branch (its fields refined to their own target, from n = 32) to
-    1e-8 in its edges, lam and the peak temperature."""
-    args = HOT + half_plane
+def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys):
+    """`contact --zones --bulk-temperatures ... --sink-distance` (refused before) for a
+    hot copper cylinder on steel, whose partition is -63: the one valid zone (n = 32)
+    equals the single patch's branch (its fields refined to their own target, from
+    n = 32) to 1e-8 in its edges, lam and the peak temperature."""
+    args = HOT + ["--sink-distance", "2mm"]
     assert main(["contact"] + args) == 0
     (branch,) = json.loads(capsys.readouterr().out)["branches"]
     assert main(["contact", "--zones"] + args) == 0
@@ -141,9 +136,37 @@ def test_contact_zones_with_bulk_temperatures_is_the_single_patch(capsys, half_p
     ell = rec["hertz_half_width"]
     assert abs(zone["a"] - branch["a"]) < 1e-8 * ell
     assert abs(zone["b"] - branch["b"]) < 1e-8 * ell
-    assert rec["lam"] == pytest.approx(branch["lam"], abs=1e-8) and rec["lam"] < -59
+    assert rec["lam"] == pytest.approx(branch["lam"], abs=1e-8) and rec["lam"] < -60
     assert rec["peak_temperature"] == pytest.approx(branch["peak_temperatures"][0], abs=1e-6)
     assert rec["bulk_temperatures"] == pytest.approx([473.15, 293.15], abs=1e-12)
+
+
+def test_contact_zones_of_a_moving_half_plane_hold_its_model(capsys, monkeypatch):
+    """`contact --zones --speed2` (refused before): the contact set is sought with the
+    single patch's dimensionless groups, the speed ratio v2/v1 and the Dundurs term
+    among them, and the incoming temperatures without a sink (the solve itself is the
+    zone model's, checked against the single patch with a moving half-plane in
+    `test_zones_command_takes_every_closure`; a stand-in here)."""
+    from thermocontact.studies import contact_sets
+    from thermocontact.studies.physical_contact import PhysicalProblem
+
+    seen = {}
+
+    def stand_in(*args, **kwargs):
+        seen.update(kwargs, args=args)
+        raise contact_sets.SolveError("stand-in")
+    monkeypatch.setattr(contact_sets, "find_contact_set", stand_in)
+    assert main(["contact", "--zones", "--speed2=-0.1m/s"] + HOT) == 2
+    assert "stand-in" in capsys.readouterr().err
+    from thermocontact.problem.materials import get_material
+    problem = PhysicalProblem(get_material("copper"), get_material("steel"), 0.01, 1e4, 0.2,
+                              0.1, None, speed2=-0.1, bulk_temperatures=(473.15, 293.15))
+    groups = problem.ray_parameters()
+    assert seen["speed_ratio"] == -0.5 == groups["speed_ratio"]
+    assert seen["beta_f"] == groups["beta_f"] != 0.0
+    assert seen["temperatures"].sink_distance is None
+    assert seen["args"][:3] == (problem.pe_hertz, problem.fhpe(problem.hertz_half_width),
+                                groups["K2_over_K1"])
 
 
 def test_a_formal_partition_far_out_ends_within_the_budget(monkeypatch):
