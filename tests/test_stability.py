@@ -1016,7 +1016,7 @@ def test_tabulated_moments_are_the_moment_engines(c, b):
     (c = 0) also from its values at the coarse nodes (panels of ratio 2), and its
     displacement less its constant: to the same tolerances (3.6e-12 at b = 1e-3 + 600i;
     on the count's line Re b = 1e-3 and arc |b| = 1e6 at most 4.8e-12, near b = 220i,
-    and 1.3e-14 for |b| < 30, derivation S9)."""
+    between its samples 5.5e-12, and 1.3e-14 for |b| < 30, derivation S9)."""
     from thermocontact.numerics.tabulated_moments import kernel_nodes, kernel_table
     from thermocontact.physics import transient_green_functions as tk
     from thermocontact.physics.green_functions import moving_slope

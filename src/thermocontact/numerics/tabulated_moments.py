@@ -25,8 +25,8 @@ transient kernels of derivation eqs. T3-T10, each side's interpolant then conver
 geometrically), is integrated to about 1e-13 of its size.  A kernel that is a layer
 ``exp(-beta u)``, ``|arg beta| <= pi/4`` (the stationary half-plane's), may be given at
 the nodes of every second panel instead (:data:`COARSE_RATIO`), through the map
-composed with each coarse panel's interpolant (:attr:`KernelTable.coarse`; about 5e-12,
-derivation S9).  The kernels' values are the only work per ``b``.
+composed with each coarse panel's interpolant (:attr:`KernelTable.coarse`; at most
+5.5e-12 for Re b > 0, derivation S9).  The kernels' values are the only work per ``b``.
 """
 
 from __future__ import annotations
@@ -69,7 +69,7 @@ _GAUSS = 24
 _INNER_GAUSS = 12
 _PIECE = 0.125
 
-#: The tables kept per process (11 MB at n = 12, 44 MB at n = 24).
+#: The tables kept per process (16 MB at n = 12, 62 MB at n = 24, the coarse map included).
 TABLES = BoundedCache("kernel tables", 128 * 2**20)
 
 

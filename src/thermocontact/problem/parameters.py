@@ -10,7 +10,7 @@ from .errors import ConvergenceWarning, SolveError
 from .validation import InputError, check_finite, check_nonnegative, check_positive
 
 __all__ = ["ConvergenceWarning", "DISTORTIVITY_RATIO_LIMIT", "DISTORTIVITY_RATIO_MAX",
-           "Parameters", "SolveError"]
+           "Parameters", "SolveError", "check_moving_half_plane"]
 
 
 #: Range of c = Pe k2/k1.  Above C_MAX the cylinder's kernels are narrower than any
@@ -34,6 +34,28 @@ DISTORTIVITY_RATIO_MAX = 1e3
 #: Largest delta1/delta2 given as a dimensionless input (a path's ends, a map's
 #: corners), as lam's 1e6: a path to 1e300 sampled hundreds of decades for minutes.
 DISTORTIVITY_RATIO_LIMIT = 1e6
+
+
+def check_moving_half_plane(speed_ratio, pe, fhpe, *, names=("pe", "fhpe")) -> float:
+    """``speed_ratio`` checked against the Peclet number and the coupling it meets: finite;
+    the half-plane's kernel scale ``|speed_ratio| pe`` 0 or in ``[C_MIN, C_MAX]`` (not
+    checked with ``pe`` None); and 1 (pure rolling, no frictional heat) only with
+    ``fhpe = 0``.  ``names``: how the caller calls ``pe`` and ``fhpe`` (``pe_hertz``,
+    ``fhpe_hertz`` for a contact set)."""
+    speed_ratio = check_finite("speed_ratio", speed_ratio)
+    pe_name, fhpe_name = names
+    if pe is not None:
+        c2 = abs(speed_ratio) * pe
+        if c2 != 0.0 and not C_MIN <= c2 <= C_MAX:
+            raise InputError(
+                f"|speed_ratio| * {pe_name} (the half-plane's kernel scale) must be 0 or in "
+                f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c2:.3g} ({pe_name} = {pe:.3g}, "
+                f"speed_ratio = {speed_ratio:.3g})", parameters=("speed_ratio", pe_name))
+    if speed_ratio == 1.0 and fhpe > 0.0:
+        raise InputError(f"speed_ratio 1 is pure rolling, which makes no frictional heat: "
+                         f"{fhpe_name} must be 0 there, got {fhpe:g}",
+                         parameters=("speed_ratio", fhpe_name))
+    return speed_ratio
 
 
 @dataclass(frozen=True)
@@ -98,14 +120,8 @@ class Parameters:
             "delta1_over_delta2",
             check_nonnegative("delta1_over_delta2", self.delta1_over_delta2),
         )
-        object.__setattr__(self, "speed_ratio", check_finite("speed_ratio", self.speed_ratio))
-        c2 = abs(self.speed_ratio) * self.pe
-        if c2 != 0.0 and not C_MIN <= c2 <= C_MAX:
-            raise InputError(
-                f"|speed_ratio| * pe (the half-plane's kernel scale) must be 0 or in "
-                f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c2:.3g} (pe = {self.pe:.3g}, "
-                f"speed_ratio = {self.speed_ratio:.3g})")
-        self._check_rolling()
+        object.__setattr__(self, "speed_ratio",
+                           check_moving_half_plane(self.speed_ratio, self.pe, self.fhpe))
         object.__setattr__(self, "beta_f", check_finite("beta_f", self.beta_f))
         if abs(self.beta_f) > B_MAX:
             raise InputError(f"beta_f must be in [-{B_MAX:g}, {B_MAX:g}], got {self.beta_f:g}")
@@ -117,9 +133,7 @@ class Parameters:
                 f"k2_over_k1 = {self.k2_over_k1:.3g})")
 
     def _check_rolling(self):
-        if self.speed_ratio == 1.0 and self.fhpe > 0.0:
-            raise InputError("speed_ratio 1 is pure rolling, which makes no frictional "
-                             f"heat: fhpe must be 0 there, got {self.fhpe:g}")
+        check_moving_half_plane(self.speed_ratio, None, self.fhpe)
 
     def with_fhpe(self, fhpe) -> "Parameters":
         """These parameters at another ``fhpe``: ``dataclasses.replace(self, fhpe=fhpe)``

@@ -28,9 +28,9 @@ from ..analysis.fields import ContactFields, contact_fields
 from ..discretisation.system import check_temperatures
 from ..io.results import Result
 from ..numerics.continuation import REJECT, STOP, arclength, locate, march
-from ..problem.parameters import C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveError
-from ..problem.validation import (InputError, check_exactly_one, check_finite, check_positive,
-                                  check_range)
+from ..problem.parameters import (C_MAX, C_MIN, DISTORTIVITY_RATIO_MAX, SolveError,
+                                  check_moving_half_plane)
+from ..problem.validation import InputError, check_exactly_one, check_positive, check_range
 from ..solvers.elements import solve_elements
 from ..problem.closure import check_closure_range
 from ..problem.conductance import PhysicalConductance
@@ -187,15 +187,8 @@ def find_contact_set(pe_hertz, fhpe_hertz, K2_over_K1, *, lam=None, k2_over_k1=N
         raise InputError(f"pe_hertz * k2_over_k1 (the cylinder's kernel scale) must be in "
                          f"[{C_MIN:.0e}, {C_MAX:.0e}], got {pe * k:.3g} (pe_hertz = {pe:.3g}, "
                          f"k2_over_k1 = {k:.3g})", parameters=("pe_hertz", "k2_over_k1"))
-    speed_ratio = check_finite("speed_ratio", speed_ratio)
-    if speed_ratio and not C_MIN <= abs(speed_ratio) * pe <= C_MAX:
-        raise InputError(f"|speed_ratio| * pe_hertz (the half-plane's kernel scale) must be 0 "
-                         f"or in [{C_MIN:.0e}, {C_MAX:.0e}], got {abs(speed_ratio) * pe:.3g}",
-                         parameters=("speed_ratio", "pe_hertz"))
-    if speed_ratio == 1.0 and target > 0.0:
-        raise InputError(f"speed_ratio 1 is pure rolling, which makes no frictional heat: "
-                         f"fhpe_hertz must be 0 there, got {target:g}",
-                         parameters=("speed_ratio", "fhpe_hertz"))
+    speed_ratio = check_moving_half_plane(speed_ratio, pe, target,
+                                          names=("pe_hertz", "fhpe_hertz"))
 
     materials = dict(k2_over_k1=k2_over_k1, delta1_over_delta2=delta1_over_delta2,
                      beta_f=beta_f, conductance=conductance, speed_ratio=speed_ratio)
@@ -531,8 +524,8 @@ class _Follower:
         try:
             if (self.materials["beta_f"] or self.materials["conductance"] is not None
                     or self.materials["speed_ratio"]):
-                raise SolveError("not tried: the second method has no Dundurs term, a "
-                                 "stationary half-plane and perfect thermal contact only")
+                raise SolveError("not tried: the second method has neither the Dundurs term "
+                                 "nor a moving half-plane nor a conductance")
             pe, F = self.path(reached)
             # (With the temperatures, at the single zone's partition: its contact set
             # is a start for Newton's method, which then holds the temperatures.)
