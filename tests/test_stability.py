@@ -1041,6 +1041,11 @@ def test_tabulated_moments_are_the_moment_engines(c, b):
             tabled = table.moments(kernel(u))
             for w in range(2):
                 assert np.abs(tabled[w] - engine[w]).max() < tol * np.abs(engine[w]).max()
+    # The assembly's values: the coarse nodes for the stationary half-plane alone (a
+    # moving body's wake needs the fine ones, S9).
+    from thermocontact.discretisation.linearised import _body_values
+    assert _body_values(c, b).shape[0] == nodes[-1].size == (
+        kernel_nodes(coarse=True) if c == 0 else kernel_nodes()).size
 
 
 def test_a_valid_contact_with_a_fast_mode_at_its_edges():
