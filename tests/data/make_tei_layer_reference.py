@@ -63,6 +63,7 @@ continued in ``ln L``; "boundary" where the least is an end of the range.
 import cmath
 import json
 import math
+import os
 import sys
 import time
 from dataclasses import dataclass
@@ -577,7 +578,10 @@ def main():
                                                               fam, k=8)[1]]
                                  for V in (400.0, 459.0, 600.0, 800.0, 930.0)}
                            for fam in ("sym", "anti")}
-    OUT.write_text(json.dumps(out, indent=1) + "\n")
+    # Whole, or not at all (the package is not imported: a file beside, then renamed).
+    part = OUT.with_name(OUT.name + ".part")
+    part.write_text(json.dumps(out, indent=1) + "\n")
+    os.replace(part, OUT)
     print("written", OUT, f"{time.time() - t0:.0f} s")
 
 

@@ -33,6 +33,8 @@ import numpy as np
 from scipy.integrate import quad_vec
 from scipy.special import kv
 
+from thermocontact.io.files import atomic_write
+
 OUT = pathlib.Path(__file__).resolve().parent / "wake_moments.json"
 #: The body's scale ``c = v Delta/(2k)`` and rate ``b = b_phys Delta^2/k`` (eq. T1).
 CASES = ((50.0, 3000j), (200.0, 1e4j))
@@ -119,7 +121,8 @@ def main():
                       "real": moments.real.tolist(), "imag": moments.imag.tolist()})
     record = {"n": N, "tau": tau.tolist(), "kernel_against_mpmath": kernel_error,
               "cases": cases}
-    OUT.write_text(json.dumps(record, indent=1) + "\n")
+    with atomic_write(OUT) as fh:     # whole, or not at all
+        fh.write(json.dumps(record, indent=1) + "\n")
 
 
 if __name__ == "__main__":
