@@ -108,8 +108,8 @@ def source_points(edges, n, alpha=0.5) -> int:
     then agrees with eight times as many points to 1e-14, 1e-12 and 3e-11 of its
     largest entry at gaps of 1e-3, 1e-5 and 1e-6 to 1e-8 (with 64 points: 2e-12,
     7e-6, 3e-4 and 2e-2; the near-singular kernels' own values limit it then; with the
-    Dundurs term, 2e-10 at 1e-8).  At
-    most :data:`MAX_SOURCE_POINTS` (``delta`` about 5e-14)."""
+    Dundurs term, 2e-10 at 1e-8).  At most :data:`MAX_SOURCE_POINTS` (``delta`` about
+    5e-14)."""
     edges = np.asarray(edges, dtype=float).reshape(-1, 2)
     count = max(64 if alpha == 0.5 else 256, 4 * int(n))
     if len(edges) > 1:
