@@ -240,7 +240,7 @@ def test_boundaries_along_speed_ratio_and_beta_f(along, start, stop, fixed):
     (["--along", "speed-ratio", "--from", "0.5", "--to", "1.5", "--fhpe", "0.2",
       "--beta-f", "0.2"], "must not reach 1"),
     (["--along", "fhpe", "--from", "0", "--to", "0.3", "--beta-f", "0.5", "--method", "product"],
-     "beta_f != 0 needs"),
+     "--beta-f != 0 needs"),
 ])
 def test_paths_refuse_what_no_point_can_solve(args, words, capsys):
     """A path through pure rolling, or with a method that cannot carry the Dundurs

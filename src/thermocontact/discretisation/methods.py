@@ -65,9 +65,9 @@ class Method(NamedTuple):
     def check(self, par: Parameters) -> None:
         """Refuse parameters the method cannot represent."""
         if par.edge_exponent != 0.5 and not self.edge_exponents:
-            raise InputError(f"beta_f != 0 needs a method whose pressure carries the edge "
-                             f"exponents it makes (graded or graded-collocation), got "
-                             f"method {self.name!r}")
+            raise InputError(f"beta_f != 0 needs the edge exponents it makes in the "
+                             f"pressure (method graded or graded-collocation), got "
+                             f"method {self.name!r}", parameters=("beta_f", "method"))
 
     def assemble(self, par: Parameters, n: int) -> Blocks:
         """The method's blocks for ``par`` (``fhpe`` not used) with ``n`` unknowns per function."""

@@ -124,13 +124,14 @@ class Parameters:
                            check_moving_half_plane(self.speed_ratio, self.pe, self.fhpe))
         object.__setattr__(self, "beta_f", check_finite("beta_f", self.beta_f))
         if abs(self.beta_f) > B_MAX:
-            raise InputError(f"beta_f must be in [-{B_MAX:g}, {B_MAX:g}], got {self.beta_f:g}")
+            raise InputError(f"beta_f must be in [-{B_MAX:g}, {B_MAX:g}], got {self.beta_f:g}",
+                             parameters=("beta_f",))
         c = self.pe * self.k2_over_k1
         if not C_MIN <= c <= C_MAX:
             raise InputError(
                 f"pe * k2_over_k1 (the cylinder's kernel scale c) must be in "
                 f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c:.3g} (pe = {self.pe:.3g}, "
-                f"k2_over_k1 = {self.k2_over_k1:.3g})")
+                f"k2_over_k1 = {self.k2_over_k1:.3g})", parameters=("pe", "k2_over_k1"))
 
     def _check_rolling(self):
         check_moving_half_plane(self.speed_ratio, None, self.fhpe)
