@@ -82,7 +82,7 @@ def test_boundary_command(capsys):
     (["--along", "fhpe", "--pe", "5", "--lam", "1"], "--K2-over-K1 must be given"),
     (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10"], "give exactly one closure: --lam"),
     (["--along", "fhpe", "--pe", "5", "--K2-over-K1", "10", "--lam", "1", "--to", "0"],
-     "stop must differ from start"),
+     "--to must differ from --from"),
 ])
 def test_boundary_bad_input(args, words, capsys):
     """One line naming what to change, exit status 2."""

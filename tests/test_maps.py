@@ -218,7 +218,7 @@ def test_bad_scheduler_addresses(address, words, capsys):
     rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
                "--out", "never.nc", "--scheduler", address])
     err = capsys.readouterr().err
-    assert rc == 2 and err.startswith("error: scheduler") and err.count("\n") == 1
+    assert rc == 2 and err.startswith("error: --scheduler") and err.count("\n") == 1
 
 
 def test_ipv6_scheduler_address_accepted():

@@ -164,10 +164,11 @@ def check_scheduler(address) -> str:
     ``tcp://[::1]:port``)."""
     if not isinstance(address, str) or not _ADDRESS.match(address.strip()):
         raise InputError(f"scheduler must be an address with a port, such as "
-                         f"tcp://127.0.0.1:8786, got {address!r}")
+                         f"tcp://127.0.0.1:8786, got {address!r}", parameters=("scheduler",))
     address = address.strip()
     if not 0 < _host_port(address)[1] < 65536:
-        raise InputError(f"scheduler port must be 1 to 65535, got {address!r}")
+        raise InputError(f"scheduler port must be 1 to 65535, got {address!r}",
+                         parameters=("scheduler",))
     return address
 
 
@@ -188,14 +189,15 @@ def connect(address, timeout=10.0):
         from distributed import Client
     except ImportError:
         raise InputError("scheduler needs dask.distributed: pip install "
-                         "'thermocontact[dask]'") from None
+                         "'thermocontact[dask]'", parameters=("scheduler",)) from None
     # A plain connection first: refused, it fails at once, where a Client would retry
     # until its timeout and then take as long again to close.
     try:
         socket.create_connection(_host_port(address), timeout=timeout).close()
     except OSError as exc:
         raise InputError(f"scheduler {address} did not answer "
-                         f"({exc.strerror or type(exc).__name__})") from None
+                         f"({exc.strerror or type(exc).__name__})",
+                         parameters=("scheduler",)) from None
     # Then Dask's own handshake and an identity request, within the timeout: a Client
     # waits without end on a peer that accepts and says nothing, and one that fails
     # leaves a half-made Client whose close waits 20 s more and prints a traceback.

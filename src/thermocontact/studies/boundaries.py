@@ -546,7 +546,8 @@ def trace(at, along: str, fixed: dict, start, stop, *, method=DEFAULT_METHOD, to
     report = progress or (lambda stage, done, total: None)
     start, stop = check_finite("start", start), check_finite("stop", stop)
     if start == stop:
-        raise InputError(f"stop must differ from start, got {stop!r} twice")
+        raise InputError(f"stop must differ from start, got {stop!r} twice",
+                         parameters=("start", "stop"))
     points = check_integer("points", points, 3, 10_000)
     log = bool(log and start > 0 and stop > 0)
 
