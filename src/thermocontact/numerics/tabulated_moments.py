@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .cache import BoundedCache
+from .cache import BoundedCache, small_cache
 from .moment_engine import GRADED, stretch, stretch_inverse
 
 __all__ = ["COARSE_RATIO", "KernelTable", "NODES", "RATIO", "kernel_nodes", "kernel_table"]
@@ -88,6 +88,7 @@ def _chebyshev():
     return np.cos(np.pi * (np.arange(NODES) + 0.5) / NODES)
 
 
+@small_cache(4)
 def kernel_nodes(coarse=False):
     """The nodes ``u`` (ascending: the negative side's, then the positive side's) at
     which a kernel's values are given to :meth:`KernelTable.moments`; with ``coarse``
@@ -96,7 +97,9 @@ def kernel_nodes(coarse=False):
     x = _chebyshev()
     mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * (edges[1:] - edges[:-1])
     pos = np.sort((mid[:, None] + half[:, None] * x[None, :]).ravel())
-    return np.concatenate([-pos[::-1], pos])
+    out = np.concatenate([-pos[::-1], pos])
+    out.setflags(write=False)       # kept: shared by every caller
+    return out
 
 
 def _lagrange(xq, x):

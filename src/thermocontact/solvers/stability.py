@@ -46,6 +46,13 @@ MODULUS_BOUND = 1e6
 #: An eigenvalue that changes by more than this (relative) from n to 3n/2 is said to be
 #: unresolved in the record's reason.
 UNRESOLVED = 0.1
+#: The error estimate's Newton method at the finer n stops at a step below this
+#: (relative to ``max(|b|, 1)``): the change, the sum of its steps, is then that to the
+#: finer n's root within about ``C s^2`` (``s`` the last step, ``C`` the root's
+#: ``|f''/2f'|`` for ``f = det M``, of order 1 where the roots are apart), a thousandth of
+#: itself after one step or ``1e-6`` after more: an estimate to two digits or better,
+#: one step (two evaluations of ``M``) where the change is below ``1e-3``.
+ESTIMATE_TOL = 1e-3
 #: The largest change of the determinant's phase accepted between two samples.
 PHASE_STEP = np.pi / 4
 #: Below this step of the contour's parameter a sample interval is not refined further:
@@ -556,12 +563,13 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     """An eigenvalue of ``M(b) c = 0`` by Newton's method on ``det M`` from ``b0``.
 
     ``b <- b - 1/tr(M^{-1} M')`` (the logarithmic derivative of the determinant), with
-    ``M'`` by central differences of step ``h |b|``, kept from one step to the next
-    while the steps shrink at least tenfold (the simplified Newton method: one
-    evaluation of ``M`` a step instead of three; a step that shrinks less is taken
-    again with ``M'`` at its own start).  Near a simple root ``b*`` a step is
-    ``(b - b*)(1 + O(|b0 - b*|))`` either way, so that a small last step confirms a
-    root as Newton's does.  The iterates stay on the principal sheet,
+    ``M'`` the divided difference of ``M`` at the last two iterates (the secant method
+    on the matrices: one evaluation of ``M`` a step), and at the first step, or at a
+    step that shrinks less than halfway, the forward difference of step ``h |b|``
+    toward larger ``Re b`` (on the sheet).  Near a simple root ``b*`` a step is
+    ``(b - b*)(1 + O(|b' - b*|))``, ``b'`` the difference's other point, so that a small
+    last step confirms a root as Newton's does, and the iterates converge with the
+    secant method's order ``(1 + sqrt 5)/2``.  The iterates stay on the principal sheet,
     ``Re b > floor``: a step that would cross it is halved until it does not (the cut
     ``b <= 0`` of the stationary half-plane's kernels is never reached).  Returns the
     last iterate and its last step as proposed, before any halving (``inf`` where the
@@ -572,31 +580,25 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     if b.real <= floor:
         # A start off the sheet (an estimate left of the line): moved onto it.
         b = complex(floor + max(abs(floor), 1e-12), b.imag)
-    step, dM = np.inf, None
+    step, before = np.inf, None
 
-    def difference(b):
-        # The central difference's step, kept off the floor.
+    def forward(b, M):
         e = h * max(abs(b), 1e-300)
-        return min(e, 0.5 * (b.real - floor)) if b.real - e <= floor else e
-
-    def derivative(b):
-        e = difference(b)
         if prepare is not None:
-            prepare([b + e, b - e])
-        return (matrix(b + e) - matrix(b - e)) / (2.0 * e)
+            prepare([b + e])
+        return (matrix(b + e) - M) / e
     for _ in range(steps):
         if prepare is not None:
-            e = difference(b)
-            prepare([b] if dM is not None else [b, b + e, b - e])
+            prepare([b] if before is not None else [b, b + h * max(abs(b), 1e-300)])
         M = matrix(b)
-        last, kept = step, dM is not None
-        if not kept:
-            dM = derivative(b)
+        last = step
         try:
-            step = 1.0 / np.trace(np.linalg.solve(M, dM))
-            if kept and not abs(step) <= 0.1 * abs(last):
-                dM = derivative(b)
-                step = 1.0 / np.trace(np.linalg.solve(M, dM))
+            if before is None:
+                step = 1.0 / np.trace(np.linalg.solve(M, forward(b, M)))
+            else:
+                step = 1.0 / np.trace(np.linalg.solve(M, (M - before[1]) / (b - before[0])))
+                if not abs(step) <= 0.5 * abs(last):
+                    step = 1.0 / np.trace(np.linalg.solve(M, forward(b, M)))
         except np.linalg.LinAlgError:
             return b, 0.0       # M singular to rounding: b is a root
         if not np.isfinite(step):
@@ -608,6 +610,7 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
             move *= 0.5
         else:
             return b, np.inf
+        before = (b, M)
         b = b - move
         # The step proposed, not the one halved to stay on the sheet, says how close
         # the root is.
@@ -765,9 +768,8 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
-            # To 1e-7 of b (quadratic convergence: the iterate far closer), against a
-            # change of 1e-3 or more: one or two evaluations fewer than Newton's 1e-10.
-            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min, tol=1e-7,
+            # Newton's method there from b, to a step of ESTIMATE_TOL.
+            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min, tol=ESTIMATE_TOL,
                                     prepare=getattr(other, "prepare", None))[0] - b)
                          / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
