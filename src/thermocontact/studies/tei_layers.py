@@ -838,8 +838,11 @@ def _evaluate(key, payloads):
     :meth:`Layered.log_derivatives` or :meth:`Layered.dispersion_ratio` (``key = (kind,
     group)``: the layup, or a token of its
     :func:`~thermocontact.physics.tei_layers.field_group`), each payload ``(layup, b,
-    m, V)`` broadcast: all their points in one call, each point's value as alone."""
+    m, V)`` broadcast: all their points in one call, each point's value as alone;
+    ``("wait", None)``: nothing (a computation waiting for a round to pass)."""
     kind = key[0]
+    if kind == "wait":
+        return [None] * len(payloads)
     shapes, bs, ms, vs, which, layups = [], [], [], [], [], {}
     for layup, b, m, v in payloads:
         b = np.asarray(b, dtype=complex)
@@ -924,61 +927,81 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
         if point[0] < V[k][i]:
             V[k][i], W[k][i] = point
 
+    # Each family's neutral points, from its scans as they end (and its anchor), are
+    # continued by one computation that steps all of them together, while the scans
+    # still go on: their requests share the scans' rounds.
+    starts = [[] for _ in families]
+    scanning = [sum(1 for kk, _ in jobs if kk == k) for k in range(len(families))]
+    for k, a in enumerate(anchors):
+        if a is not None:
+            starts[k].append((int(np.searchsorted(ms, a[0])), float(a[0]),
+                              (float(a[1]), float(a[2]))))
+
     def scan(k, j):
         def run(ask):
-            family = replace(families[k], ask=ask)
-            vc, b = first_crossing(family, ms[j])
+            vc, b = first_crossing(replace(families[k], ask=ask), ms[j])
             ended.append(j)
             tell(len(ended), total)
             if vc is not None:
                 keep(k, j, (vc, b.imag))
-                _continue_starts(family, ms, [(j + 1, float(ms[j]), (vc, b.imag))], scanned,
-                                 V[k], W[k])
+                starts[k].append((j + 1, float(ms[j]), (vc, b.imag)))
+            scanning[k] -= 1
         return run
 
-    def from_anchor(k, anchor):
-        return lambda ask: _continue_starts(
-            replace(families[k], ask=ask), ms,
-            [(int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
-              (float(anchor[1]), float(anchor[2])))], scanned, V[k], W[k])
+    def continuations(k):
+        def run(ask):
+            family = replace(families[k], ask=ask)
+            chains = []
+            while True:
+                chains += _chains(starts[k], ms.size)
+                starts[k].clear()
+                if chains:
+                    chains = _step_chains(family, ms, chains, scanned, V[k], W[k])
+                elif scanning[k]:
+                    ask(("wait", None), None)        # until a scan of the family ends
+                else:
+                    return
+        return run
 
-    # Each scan continues its neutral point as soon as it has it, while the others
-    # still scan: the continuations' requests share the scans' rounds.
     run_lockstep([scan(k, j) for k, j in jobs]
-                 + [from_anchor(k, a) for k, a in enumerate(anchors) if a is not None],
-                 _evaluate)
+                 + [continuations(k) for k in range(len(families))], _evaluate)
     for v in V:
         v[~np.isfinite(v)] = np.nan
     tell(total, total)
     return list(zip(V, W))
 
 
-def _continue_starts(family, ms, starts, scanned, V, W):
-    """Each start ``(k, m0, (V, omega))`` continued up and down the wavenumbers ``ms``
-    to the next scanned one (:func:`continue_steps`), the lowest speed kept in ``V``
-    and ``W`` at each: independent chains, stepped together.  ``k``: the first index
-    above ``m0`` (a scanned wavenumber's own index is ``k - 1``)."""
-    n = ms.size
-    chains = [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
-              for order in (range(k, n), range(k - 1, -1, -1))]
-    while chains:
-        steps = []
-        for order, m0, start, prev in chains:
-            for i in order:
-                if ms[i] != m0:
-                    steps.append((order, m0, start, prev, i))
-                    break
-                # The start's own wavenumber: its point.
-                if start[0] < V[i]:
-                    V[i], W[i] = start
-                prev = (m0, start)
-        found = continue_steps(family, [c[3][0] for c in steps], [c[3][1] for c in steps],
-                               [ms[c[4]] for c in steps]) if steps else []
-        chains = []
-        for (order, m0, start, prev, i), point in zip(steps, found):
-            if point is None:
-                continue
-            if point[0] < V[i]:
-                V[i], W[i] = point
-            if i not in scanned:
-                chains.append((order, m0, start, (float(ms[i]), point)))
+def _chains(starts, n):
+    """The chains of :func:`_step_chains` from each start ``(k, m0, (V, omega))``, up and
+    down the ``n`` wavenumbers. ``k``: the first index above ``m0`` (a scanned
+    wavenumber's own index is ``k - 1``)."""
+    return [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
+            for order in (range(k, n), range(k - 1, -1, -1))]
+
+
+def _step_chains(family, ms, chains, scanned, V, W):
+    """Each chain ``(indices, m0, start, (m, point))`` continued by one wavenumber
+    (:func:`continue_steps`, all together), the lowest speed kept in ``V`` and ``W``
+    at each; the chains that go on (those that reached a scanned wavenumber, or
+    failed, end)."""
+    steps = []
+    for order, m0, start, prev in chains:
+        for i in order:
+            if ms[i] != m0:
+                steps.append((order, m0, start, prev, i))
+                break
+            # The start's own wavenumber: its point.
+            if start[0] < V[i]:
+                V[i], W[i] = start
+            prev = (m0, start)
+    found = continue_steps(family, [c[3][0] for c in steps], [c[3][1] for c in steps],
+                           [ms[c[4]] for c in steps]) if steps else []
+    going = []
+    for (order, m0, start, prev, i), point in zip(steps, found):
+        if point is None:
+            continue
+        if point[0] < V[i]:
+            V[i], W[i] = point
+        if i not in scanned:
+            going.append((order, m0, start, (float(ms[i]), point)))
+    return going
