@@ -894,8 +894,9 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     neighbouring intervals, so a lower branch is missed only if it is nowhere the
     lowest at a scanned wavenumber.
 
-    The scans of every family and wavenumber, each followed by the continuations from
-    its neutral point, run together
+    The scans of every family and wavenumber, and one computation per family that
+    continues its neutral points (every chain stepped together, each scan's joining
+    as the scan ends), run together
     (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
     needs the dispersion function (or the count's ratio), and the points all of them
     need are evaluated in one call per family, each as it would be alone; so the
