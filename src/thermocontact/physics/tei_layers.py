@@ -385,14 +385,27 @@ class _Solutions:
 
     @property
     def thermal_terms(self):
-        """Per field, the coefficients ``(cD, cdD, ce, cG)`` shaped ``(nb, 1, 2, 1)``
-        against ``(nb, P, 2, N)``, None where zero in every body: the terms of
-        :func:`_thermal_sum`."""
+        """The thermal fields by the one term each has (:func:`_thermal_sum`): ``(kind,
+        fields, coefficients)``, the coefficients ``(nb, 1, fields, 2, 1)``; "D", "dD",
+        "e" and "eG" for ``cD D``, ``cdD D'``, ``ce e`` and ``cG G e`` (the solutions of
+        L1-L3 have no field with two)."""
         cached = self.__dict__.get("_thermal_terms")
         if cached is None:
-            cached = tuple(tuple(c[:, None, f, :, None] if np.any(c[:, f]) else None
-                                 for c in (self.cD, self.cdD, self.ce, self.cG))
-                           for f in range(6))
+            names = ("D", "dD", "e", "eG")
+            coefs = (self.cD, self.cdD, self.ce, self.cG)
+            used = np.array([[np.any(c[:, f]) for c in coefs] for f in range(6)])
+            if (used.sum(axis=1) > 1).any():
+                raise ValueError("a thermal field of two kinds of term")
+            cached = []
+            for k, (name, c) in enumerate(zip(names, coefs)):
+                fields = np.flatnonzero(used[:, k])
+                if fields.size:
+                    cached.append((name, fields, c[:, fields][:, None, ..., None]))
+            unused = np.flatnonzero(~used.any(axis=1))
+            if unused.size:
+                cached.append(("D", unused, np.zeros((len(self.kappa), 1, unused.size, 2, 1),
+                                                     dtype=complex)))
+            cached = tuple(cached)
             object.__setattr__(self, "_thermal_terms", cached)
         return cached
 
@@ -521,28 +534,20 @@ def _thermal_last(sol: _Solutions, b, m, U, t, derivative=False, out=None):
 def _thermal_sum(sol: _Solutions, D, dD, e, G, out, dist=None):
     """``out[:, :, f] = cD D + cdD dD + e (ce + cG G)`` for each field ``f`` (shapes
     ``(nb, P, 2, N)``), or with ``dist``, their ``G``-derivative ``cD D + cdD dD + e
-    (cG - dist (ce + cG G))`` (``D``, ``dD`` then the profiles' derivatives): each
-    field's terms with a nonzero coefficient, in that order."""
-    for f, (cD, cdD, ce, cG) in enumerate(sol.thermal_terms):
-        parts = []
-        if cD is not None:
-            parts.append(D * cD)
-        if cdD is not None:
-            parts.append(dD * cdD)
-        if ce is not None or cG is not None:
-            if dist is None:
-                inner = (G * cG if ce is None else ce if cG is None else ce + G * cG)
-            else:
-                lin = G * cG if ce is None else ce if cG is None else ce + G * cG
-                inner = (0.0 - dist * lin) if cG is None else cG - dist * lin
-            parts.append(e * inner)
-        if not parts:
-            out[:, :, f] = 0.0
-            continue
-        total = parts[0]
-        for part in parts[1:]:
-            total = total + part
-        out[:, :, f] = total
+    (cG - dist (ce + cG G))`` (``D``, ``dD`` then the profiles' derivatives): the
+    fields of each kind of term (:attr:`_Solutions.thermal_terms`) in one product, the
+    same as each field's sum of its terms of nonzero coefficient."""
+    for kind, fields, c in sol.thermal_terms:
+        if kind == "D":
+            value = D[:, :, None] * c
+        elif kind == "dD":
+            value = dD[:, :, None] * c
+        elif kind == "e":
+            value = e[:, :, None] * (c if dist is None else 0.0 - dist[:, :, None] * c)
+        else:
+            Gc = G[:, :, None] * c
+            value = e[:, :, None] * (Gc if dist is None else c - dist[:, :, None] * Gc)
+        out[:, :, fields] = value
 
 
 @lru_cache(maxsize=64)
