@@ -981,8 +981,9 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     lowest at a scanned wavenumber.
 
     The scans of every family and wavenumber, and one computation per family that
-    continues its neutral points (every chain stepped together, each scan's joining
-    as the scan ends), run together
+    continues its neutral points (:class:`_Continuation`: every step of every chain
+    iterated together, each at its own pace, a scan's chains joining as it ends), run
+    together
     (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
     needs the dispersion function (or the count's ratio), and the points all of them
     need are evaluated in one call per family, each as it would be alone; so the
@@ -1015,8 +1016,8 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
             V[k][i], W[k][i] = point
 
     # Each family's neutral points, from its scans as they end (and its anchor), are
-    # continued by one computation that steps all of them together, while the scans
-    # still go on: their requests share the scans' rounds.
+    # continued by one computation that iterates all their steps together, while the
+    # scans still go on: their requests share the scans' rounds.
     starts = [[] for _ in families]
     scanning = [sum(1 for kk, _ in jobs if kk == k) for k in range(len(families))]
     for k, a in enumerate(anchors):
