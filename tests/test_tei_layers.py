@@ -648,3 +648,45 @@ def test_plane_stress_half_planes_are_thick_layers_in_plane_stress():
     assert ok and _rel(V, r.critical_speed) < 1e-10
     assert _rel(fam.critical(M)[0], r.critical_speed) < 1e-10
     assert r.critical_speed > tei(STEEL, PAD, 0.4, 0.05).critical_speed
+
+
+def test_conditions_and_batches_against_the_dense_product():
+    """The face conditions applied field by field (a weight of 1 taken as a copy, the
+    terms of zero weight left out) against the product of the whole coefficient matrix
+    (L5-L8) with every body's face fields; and the families of a disc, with the Dundurs
+    term (the friction's weight in the shear rows), and of a clutch pack evaluated
+    together, the count's ratio and the derivatives, against each family alone: to
+    rounding."""
+    from thermocontact.physics.tei_layers import (condition_matrix, condition_terms,
+                                                  dispersion_log_derivatives,
+                                                  dispersion_ratio, face_fields)
+
+    rng = np.random.default_rng(7)
+    groups = [layups(IRON, PAD, 0.4, slider_thickness=0.012, counterface_thickness=0.010),
+              layups(STEEL, SINTERED, 0.12, slider_thickness=0.0012,
+                     counterface_thickness=0.0005, separator=STEEL,
+                     separator_thickness=0.0016)]
+    for group in groups:
+        fams = list(group.values())
+        n = 12
+        b = rng.normal(size=n) * 300.0 + 1j * rng.normal(size=n) * 3e3
+        m = rng.uniform(20.0, 900.0, n)
+        V = rng.uniform(0.1, 60.0, n)
+        for lay in fams:
+            C0, C1 = condition_matrix(lay)
+            blocks = [face_fields(body, b, m, V, lay.references(), j == len(lay.bodies) - 1,
+                                  lay.elastic(body)) for j, body in enumerate(lay.bodies)]
+            dense = [np.concatenate([np.einsum("rfk,nfkc->nrc", C[:, j], F)
+                                     for j, F in enumerate(blocks)], axis=-1)
+                     for C in (C0, C1)]
+            for got, want in zip(condition_terms(lay, b, m, V), dense):
+                assert np.allclose(got, want, rtol=1e-14, atol=1e-14 * np.abs(want).max())
+        which = rng.integers(0, len(fams), n)
+        ratio = dispersion_ratio(fams, b, m, V, which=which)
+        logd = dispersion_log_derivatives(fams, b, m, V, which=which)
+        for k, lay in enumerate(fams):
+            at = which == k
+            assert np.allclose(ratio[at], dispersion_ratio(lay, b[at], m[at], V[at]),
+                               rtol=1e-13, atol=0.0)
+            assert np.allclose(logd[at], dispersion_log_derivatives(lay, b[at], m[at], V[at]),
+                               rtol=1e-13, atol=0.0)

@@ -383,6 +383,32 @@ class _Solutions:
     cG: np.ndarray
     columns: np.ndarray     # each body's own columns among its six, bodies in order
 
+    @property
+    def thermal_terms(self):
+        """The thermal fields by the one term each has (:func:`_thermal_sum`): ``(kind,
+        fields, coefficients)``, the coefficients ``(nb, 1, fields, 2, 1)``; "D", "dD",
+        "e" and "eG" for ``cD D``, ``cdD D'``, ``ce e`` and ``cG G e`` (the solutions of
+        L1-L3 have no field with two)."""
+        cached = self.__dict__.get("_thermal_terms")
+        if cached is None:
+            names = ("D", "dD", "e", "eG")
+            coefs = (self.cD, self.cdD, self.ce, self.cG)
+            used = np.array([[np.any(c[:, f]) for c in coefs] for f in range(6)])
+            if (used.sum(axis=1) > 1).any():
+                raise ValueError("a thermal field of two kinds of term")
+            cached = []
+            for k, (name, c) in enumerate(zip(names, coefs)):
+                fields = np.flatnonzero(used[:, k])
+                if fields.size:
+                    cached.append((name, fields, c[:, fields][:, None, ..., None]))
+            unused = np.flatnonzero(~used.any(axis=1))
+            if unused.size:
+                cached.append(("D", unused, np.zeros((len(self.kappa), 1, unused.size, 2, 1),
+                                                     dtype=complex)))
+            cached = tuple(cached)
+            object.__setattr__(self, "_thermal_terms", cached)
+        return cached
+
     @staticmethod
     def of(bodies, refs) -> "_Solutions":
         """``bodies``: ``(Body, upper, material in plane strain)`` each; ``refs`` as
@@ -452,12 +478,13 @@ def _fields_last(sol: _Solutions, b, m, U, depths, derivative=False):
 
     The points are the last axis, so that every array operation runs over them
     innermost, not over the few starts and solutions; each point's values are those
-    it has alone."""
+    it has alone.  Both kinds of columns are written into one array, not joined."""
     t = _start_coordinates(sol, m, depths)
-    el = _elastic_last(sol, t)
-    th = _thermal_last(sol, b, m, U, t, derivative)
-    out = np.concatenate([el, th[0] if derivative else th], axis=-2)     # (nb, P, 6, 6, N)
-    return (out,) + th[1:] if derivative else out
+    out = np.empty(t.shape[:2] + (6, 6, t.shape[-1]), dtype=complex)
+    pairs = out.reshape(t.shape[:2] + (6, 3, 2, t.shape[-1]))     # the columns by twos
+    _elastic_last(sol, t, pairs[:, :, :, :2])
+    extra = _thermal_last(sol, b, m, U, t, derivative, pairs[:, :, :, 2])
+    return (out,) + extra if derivative else out
 
 
 def _start_coordinates(sol: _Solutions, m, depths):
@@ -468,36 +495,59 @@ def _start_coordinates(sol: _Solutions, m, depths):
             - (sol.thickness[:, None] * m)[:, None, None] * sol.shift[:, None, :, None])
 
 
-def _elastic_last(sol: _Solutions, t):
+def _elastic_last(sol: _Solutions, t, out=None):
     """The elastic columns of :func:`_fields_last`, ``(nb, P, 6, 4, N)``, at the
-    coordinates ``t`` of :func:`_start_coordinates`: they depend on ``m`` only."""
+    coordinates ``t`` of :func:`_start_coordinates` (or into ``out``, ``(nb, P, 6, 2, 2,
+    N)``, by start and solution): they depend on ``m`` only."""
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         g = np.exp(sol.starts[:, None, :, None] * t)[:, :, None, :, None]  # (nb, P, 1, 2, 1, N)
-        el = ((sol.A[:, None, ..., None] + sol.B[:, None, ..., None] * t[:, :, None, :, None])
-              * g)                                                         # (nb, P, 6, 2, 2, N)
-    return el.reshape(el.shape[:3] + (4, el.shape[-1]))
+        el = sol.A[:, None, ..., None] + sol.B[:, None, ..., None] * t[:, :, None, :, None]
+        if out is None:
+            return (el * g).reshape(el.shape[:3] + (4, el.shape[-1]))      # (nb, P, 6, 4, N)
+        return np.multiply(el, g, out=out)
 
 
-def _thermal_last(sol: _Solutions, b, m, U, t, derivative=False):
-    """The thermal columns of :func:`_fields_last`, ``(nb, P, 6, 2, N)`` (with
-    ``derivative``: and their ``G``-derivatives and ``G``)."""
+def _thermal_last(sol: _Solutions, b, m, U, t, derivative=False, out=None):
+    """The thermal columns of :func:`_fields_last`, ``(nb, P, 6, 2, N)`` (into ``out``
+    if given; with ``derivative``: also their ``G``-derivatives and ``G``).
+
+    Each field is ``cD D + cdD D' + e^{-G |t|} (ce + cG G)`` (:class:`_Solutions`),
+    of which every field has one term (:attr:`_Solutions.thermal_terms`): only that
+    term is computed, the same products as in the whole sum."""
     G = np.sqrt(1.0 + (b + sol.moving[:, None] * (1j * (m * U)))
                 / (sol.kappa[:, None] * (m * m)))[:, None, None]            # L1, (nb, 1, 1, N)
+    if out is None:
+        out = np.empty(t.shape[:2] + (6,) + t.shape[2:], dtype=complex)
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         dist = np.abs(t)                   # m times the distance from the start face
         e = np.exp(-G * dist)
         D, dD = _potential_profile(G, dist, e)
-        th = (D[:, :, None] * sol.cD[:, None, ..., None] + dD[:, :, None] * sol.cdD[:, None, ..., None]
-              + e[:, :, None] * (sol.ce[:, None, ..., None] + G[:, :, None] * sol.cG[:, None, ..., None]))
+        _thermal_sum(sol, D, dD, e, G, out)
         if not derivative:
-            return th
+            return out
         dD_G, ddD_G = _potential_profile_dG(G, dist, e, D)
-        dth = (dD_G[:, :, None] * sol.cD[:, None, ..., None]
-               + ddD_G[:, :, None] * sol.cdD[:, None, ..., None]
-               + e[:, :, None] * (sol.cG[:, None, ..., None] - dist[:, :, None]
-                                  * (sol.ce[:, None, ..., None]
-                                     + G[:, :, None] * sol.cG[:, None, ..., None])))
-    return th, dth, G[:, 0, 0]
+        dth = np.empty_like(out)
+        _thermal_sum(sol, dD_G, ddD_G, e, G, dth, dist)
+    return dth, G[:, 0, 0]
+
+
+def _thermal_sum(sol: _Solutions, D, dD, e, G, out, dist=None):
+    """``out[:, :, f] = cD D + cdD dD + e (ce + cG G)`` for each field ``f`` (shapes
+    ``(nb, P, 2, N)``), or with ``dist``, their ``G``-derivative ``cD D + cdD dD + e
+    (cG - dist (ce + cG G))`` (``D``, ``dD`` then the profiles' derivatives): the
+    fields of each kind of term (:attr:`_Solutions.thermal_terms`) in one product, the
+    same as each field's sum of its terms of nonzero coefficient."""
+    for kind, fields, c in sol.thermal_terms:
+        if kind == "D":
+            value = D[:, :, None] * c
+        elif kind == "dD":
+            value = dD[:, :, None] * c
+        elif kind == "e":
+            value = e[:, :, None] * (c if dist is None else 0.0 - dist[:, :, None] * c)
+        else:
+            Gc = G[:, :, None] * c
+            value = e[:, :, None] * (Gc if dist is None else c - dist[:, :, None] * Gc)
+        out[:, :, fields] = value
 
 
 @lru_cache(maxsize=64)
@@ -642,21 +692,80 @@ class _Terms:
                 weights[:, t, r, j] = Cs[:, r, j, f]
         return _Terms(slots, weights[0] if K == 1 else weights)
 
+    @property
+    def plan(self):
+        """How :func:`_applied` takes the sums, made once: ``((slots, fixes), rest)``.
+        The first term of every sum is gathered whole (``slots``, ``(rows, nb)``), then
+        ``fixes`` = ``(kind, r, j, w)`` change the pairs ``(r, j)`` whose first weight
+        is not 1 in every layup: "zero" (0 in every layup), "neg" (-1 in every one),
+        "same" (``w`` the same in every one) or "each" (``w`` per layup, ``(K,
+        n)``).  ``rest``: ``(slots, kind, r, j, w)`` each later term added where its
+        weight is not zero in every layup, "one" (1), "neg" (-1), "same" or "each"."""
+        cached = self.__dict__.get("_plan")
+        if cached is None:
+            W = self.weights if self.weights.ndim == 4 else self.weights[None]
+            same = np.all(W == W[:1], axis=0)                              # (T, rows, nb)
+            w0 = W[0]
+
+            def pick(mask, kind, t):
+                r, j = np.nonzero(mask)
+                w = (w0[t, r, j] if kind == "same" else W[:, t, r, j])
+                return r, j, w
+
+            fixes = []
+            for kind, mask in (("zero", same[0] & (w0[0] == 0)),
+                               ("neg", same[0] & (w0[0] == -1)),
+                               ("same", same[0] & (w0[0] != 0) & (w0[0] != 1) & (w0[0] != -1)),
+                               ("each", ~same[0])):
+                if mask.any():
+                    fixes.append((kind,) + pick(mask, kind, 0))
+            rest = []
+            for t in range(1, W.shape[1]):
+                for kind, mask in (("one", same[t] & (w0[t] == 1)),
+                                   ("neg", same[t] & (w0[t] == -1)),
+                                   ("same", same[t] & (w0[t] != 0) & (w0[t] != 1)
+                                    & (w0[t] != -1)),
+                                   ("each", ~same[t])):
+                    if mask.any():
+                        r, j, w = pick(mask, kind, t)
+                        rest.append((self.slots[t, r, j], kind, r, j, w))
+            cached = ((self.slots[0], tuple(fixes)), tuple(rest))
+            object.__setattr__(self, "_plan", cached)
+        return cached
+
 
 def _applied(terms, F, which=None):
     """``(rows, nb c, N)``: the rows of ``terms`` applied to the face fields ``F``,
     ``(12 nb, c, N)``; with ``which`` (``N``; ``terms`` of a group), point ``i`` by
     the ``which[i]``-th layup's weights.  A point's value is the one it has alone
-    for finite fields: the same products summed in the same order, the union's
-    other terms zeros."""
-    if which is None:
-        w = terms.weights[..., None, None]
-    else:
-        w = terms.weights.transpose(1, 2, 3, 0)[..., which][..., None, :]
-    out = w[0] * F[terms.slots[0]]
-    for t in range(1, terms.slots.shape[0]):
-        out += w[t] * F[terms.slots[t]]
+    for finite fields: the same products summed in the same order, without the
+    terms whose weight is zero in every layup (:meth:`_Terms.plan`), a weight of 1
+    or -1 taken as a copy or a change of sign."""
+    (first, fixes), rest = terms.plan
+    out = F[first]                                                   # (rows, nb, c, N)
+    for kind, r, j, w in fixes:
+        if kind == "zero":
+            out[r, j] = 0.0
+        elif kind == "neg":
+            out[r, j] = -out[r, j]
+        else:
+            out[r, j] = out[r, j] * _weights(kind, w, which)
+    for slot, kind, r, j, w in rest:
+        if kind == "one":
+            out[r, j] += F[slot]
+        elif kind == "neg":
+            out[r, j] -= F[slot]
+        else:
+            out[r, j] += F[slot] * _weights(kind, w, which)
     return out.reshape((out.shape[0], out.shape[1] * out.shape[2], out.shape[3]))
+
+
+def _weights(kind, w, which):
+    """Weights ``w`` of one kind of :meth:`_Terms.plan` against ``(n, c, N)``: the same
+    for every layup (``(n,)``), or per point by its layup (``(K, n)``)."""
+    if kind == "same":
+        return w[:, None, None]
+    return w[which].T[:, None, :]
 
 
 def field_group(layup: Layup):

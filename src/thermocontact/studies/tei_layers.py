@@ -273,52 +273,97 @@ def neutral_point(family, m, speed, omega, iters=40):
     by a tenth after 12 iterations is given up (not converged): no convergence is in
     sight."""
     m = np.asarray(m, dtype=float)
-    V = np.array(np.broadcast_to(speed, m.shape), dtype=float)
-    w = np.array(np.broadcast_to(omega, m.shape), dtype=float)
-    sig = (np.vectorize(family.scale)(m) if m.ndim else np.asarray(family.scale(float(m))))
-    phi = pattern_frame(m, V, w)
-    s = (w + phi * m * V) / sig
-    done = np.zeros(m.shape, dtype=bool)
-    last = np.full(m.shape, np.inf)
-
-    def omega_of(V, s):
-        return -phi * m * V + sig * s
-
-    stop = np.zeros(m.shape, dtype=bool)
-    for it in range(iters):
-        if it == 12:
-            # Still stepping by a tenth after 12 iterations: no convergence in sight
-            # (a guess between branches, the steps held at the damping's limits).
-            stop |= ~done & (last > 0.1)
-        act = ~(done | stop)
-        if not act.any():
+    newton = _NeutralNewton(family, iters)
+    newton.add(m.reshape(-1), np.broadcast_to(speed, m.shape).reshape(-1),
+               np.broadcast_to(omega, m.shape).reshape(-1), range(m.size))
+    V, w, done = np.empty(m.size), np.empty(m.size), np.zeros(m.size, dtype=bool)
+    while True:
+        for j, Vj, wj, ok in newton.finished():
+            V[j], w[j], done[j] = Vj, wj, ok
+        if not newton.size:
             break
+        newton.iterate()
+    return V.reshape(m.shape), w.reshape(m.shape), done.reshape(m.shape)
+
+
+class _NeutralNewton:
+    """The Newton iterations of :func:`neutral_point` for points that may join at any
+    time, each iterated as it would be alone (its own count of iterations): each
+    :meth:`iterate` evaluates every point still going in one request."""
+
+    def __init__(self, family, iters=40):
+        self.family, self.iters = family, iters
+        self.tags = []
+        self.m, self.V, self.s, self.sig, self.phi, self.last = (np.empty(0) for _ in range(6))
+        self.done, self.stop = np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
+        self.it = np.zeros(0, dtype=int)
+
+    @property
+    def size(self):
+        return len(self.tags)
+
+    def add(self, m, speed, omega, tags):
+        """Points from ``speed`` and ``omega`` at wavenumbers ``m`` (1-D), told by
+        :meth:`finished` with their ``tags``."""
+        m = np.asarray(m, dtype=float)
+        V = np.array(speed, dtype=float)
+        w = np.array(omega, dtype=float)
+        sig = np.array([self.family.scale(x) for x in m], dtype=float)
+        phi = pattern_frame(m, V, w)
+        s = (w + phi * m * V) / sig
+        n = m.size
+        self.tags += list(tags)
+        self.m, self.V, self.s, self.sig, self.phi = (
+            np.concatenate([x, y]) for x, y in ((self.m, m), (self.V, V), (self.s, s),
+                                                (self.sig, sig), (self.phi, phi)))
+        self.last = np.concatenate([self.last, np.full(n, np.inf)])
+        self.done = np.concatenate([self.done, np.zeros(n, dtype=bool)])
+        self.stop = np.concatenate([self.stop, np.zeros(n, dtype=bool)])
+        self.it = np.concatenate([self.it, np.zeros(n, dtype=int)])
+
+    def finished(self):
+        """The points that have ended, taken out: ``(tag, V, omega, converged)`` each.
+        A point ends converged, given up (still stepping by a tenth after 12 iterations:
+        no convergence in sight, a guess between branches, the steps held at the
+        damping's limits) or after ``iters`` iterations."""
+        self.stop |= (self.it == 12) & ~self.done & (self.last > 0.1)
+        end = self.done | self.stop | (self.it >= self.iters)
+        if not end.any():
+            return []
+        omega = -self.phi * self.m * self.V + self.sig * self.s
+        out = [(self.tags[j], self.V[j], omega[j], bool(self.done[j]))
+               for j in np.flatnonzero(end)]
+        keep = ~end
+        self.tags = [t for t, k in zip(self.tags, keep) if k]
+        for name in ("m", "V", "s", "sig", "phi", "last", "done", "stop", "it"):
+            setattr(self, name, getattr(self, name)[keep])
+        return out
+
+    def iterate(self):
+        """One iteration of every point (none ended: :meth:`finished` first)."""
+        m, V, s, sig, phi = self.m, self.V, self.s, self.sig, self.phi
         # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
-        if m.ndim:
-            L = np.full(m.shape + (2,), np.nan, dtype=complex)
-            L[act] = family.log_derivatives(1j * omega_of(V, s)[act], m[act], V[act])
-        else:
-            L = family.log_derivatives(1j * omega_of(V, s), m, V)
+        L = self.family.log_derivatives(1j * (-phi * m * V + sig * s), m, V)
         ds = 1j * sig * L[..., 0]
         dv = L[..., 1] - 1j * phi * m * L[..., 0]
         det = dv.real * ds.imag - dv.imag * ds.real
         with np.errstate(invalid="ignore", divide="ignore"):
             sV = -ds.imag / det
             sS = dv.imag / det
-        sV = np.where(~act | ~np.isfinite(sV), 0.0, sV)
-        sS = np.where(~act | ~np.isfinite(sS), 0.0, sS)
+        sV = np.where(~np.isfinite(sV), 0.0, sV)
+        sS = np.where(~np.isfinite(sS), 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
         sV = np.clip(sV, -V / 3.0, 0.5 * V)
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
-        V = V + sV
-        s = s + sS
+        self.V = V = V + sV
+        self.s = s = s + sS
         # Converged: both steps at rounding, small and no longer falling, or small
         # after quadratic convergence (_settled).
         size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
-        done |= act & ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * last))
-                       | _settled(size, last))
-        last = np.where(act, size, last)
-    return V, omega_of(V, s), done
+        self.done = ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * self.last))
+                     | _settled(size, self.last))
+        self.last = size
+        self.it = self.it + 1
 
 
 def raw_seeds(family, m, speed, points=None, count=SEEDS):
@@ -796,29 +841,70 @@ def continue_step(family, m0, point, m1, depth=0):
 
 def continue_steps(family, m0, points, m1, depth=0):
     """:func:`continue_step` for several independent steps ``m0[j] -> m1[j]`` from
-    ``points[j]``: the first attempts solved together (:func:`neutral_point`, each on
-    its own), the halvings one by one; a list of ``(V, omega)`` or None."""
+    ``points[j]``, all iterated together, each at its own pace (:class:`_Continuation`);
+    a list of ``(V, omega)`` or None."""
     m0 = np.asarray(m0, dtype=float)
     m1 = np.asarray(m1, dtype=float)
-    v0 = np.array([p[0] for p in points], dtype=float)
-    w0 = np.array([p[1] for p in points], dtype=float)
-    # Predicted: the same speed and the same frequency in the pattern's frame, in
-    # units of kappa m^2.
-    phi = pattern_frame(m0, v0, w0)
-    s = (w0 + phi * m0 * v0) / family.scale(m0)
-    v, w, ok = neutral_point(family, m1, v0, -phi * m1 * v0 + s * family.scale(m1))
-    out = []
+    out = [None] * m0.size
+    steps = _Continuation(family)
     for j in range(m0.size):
-        if ok[j] and 0.5 * v0[j] < v[j] < 2.0 * v0[j]:
-            out.append((float(v[j]), float(w[j])))
-        elif depth >= 8:
-            out.append(None)
-        else:
-            mid = math.sqrt(m0[j] * m1[j])
-            half = continue_step(family, m0[j], points[j], mid, depth + 1)
-            out.append(None if half is None else continue_step(family, mid, half, m1[j],
-                                                                depth + 1))
+        steps.start(m0[j], points[j], m1[j], lambda point, j=j: out.__setitem__(j, point),
+                    depth)
+    while steps.step():
+        pass
     return out
+
+
+class _Continuation:
+    """Steps of :func:`continue_step`, any number, each with its halvings, iterated
+    together: each first attempt's neutral point by Newton's method
+    (:class:`_NeutralNewton`, every point still going in one request), a step that
+    fails cut in two (in ``ln m``, at most 8 times) and continued as its own steps; a
+    new step may start at any time.  Each step's point is the one it has alone."""
+
+    def __init__(self, family):
+        self.family = family
+        self.newton = _NeutralNewton(family)
+
+    def start(self, m0, point, m1, then, depth=0):
+        """The step ``m0 -> m1`` from ``point = (V, omega)``; ``then(result)`` is told its
+        ``(V, omega)``, or None."""
+        v0, w0 = point
+        # Predicted: the same speed and the same frequency in the pattern's frame, in
+        # units of kappa m^2.
+        phi = pattern_frame(m0, v0, w0)
+        s = (w0 + phi * m0 * v0) / self.family.scale(m0)
+        self.newton.add([m1], [v0], [-phi * m1 * v0 + s * self.family.scale(m1)],
+                        [(m0, point, m1, depth, then)])
+
+    def step(self):
+        """Finish the attempts that have ended (halving those that failed), then one
+        iteration of the others; False once none is left."""
+        while True:
+            ended = self.newton.finished()
+            if not ended:
+                break
+            for (m0, point, m1, depth, then), v, w, ok in ended:
+                if ok and 0.5 * point[0] < v < 2.0 * point[0]:
+                    then((float(v), float(w)))
+                elif depth >= 8:
+                    then(None)
+                else:
+                    mid = math.sqrt(m0 * m1)
+                    self.start(m0, point, mid, self._second_half(mid, m1, depth, then),
+                               depth + 1)
+        if not self.newton.size:
+            return False
+        self.newton.iterate()
+        return True
+
+    def _second_half(self, mid, m1, depth, then):
+        def half(point):
+            if point is None:
+                then(None)
+            else:
+                self.start(mid, point, m1, then, depth + 1)
+        return half
 
 
 def continue_neutral(family, wavenumbers, anchor=None, scan_every=None, progress=None):
@@ -838,8 +924,11 @@ def _evaluate(key, payloads):
     :meth:`Layered.log_derivatives` or :meth:`Layered.dispersion_ratio` (``key = (kind,
     group)``: the layup, or a token of its
     :func:`~thermocontact.physics.tei_layers.field_group`), each payload ``(layup, b,
-    m, V)`` broadcast: all their points in one call, each point's value as alone."""
+    m, V)`` broadcast: all their points in one call, each point's value as alone;
+    ``("wait", None)``: nothing (a computation waiting for a round to pass)."""
     kind = key[0]
+    if kind == "wait":
+        return [None] * len(payloads)
     shapes, bs, ms, vs, which, layups = [], [], [], [], [], {}
     for layup, b, m, v in payloads:
         b = np.asarray(b, dtype=complex)
@@ -891,8 +980,10 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
     neighbouring intervals, so a lower branch is missed only if it is nowhere the
     lowest at a scanned wavenumber.
 
-    The scans of every family and wavenumber, each followed by the continuations from
-    its neutral point, run together
+    The scans of every family and wavenumber, and one computation per family that
+    continues its neutral points (:class:`_Continuation`: every step of every chain
+    iterated together, each at its own pace, a scan's chains joining as it ends), run
+    together
     (:func:`~thermocontact.execution.lockstep.run_lockstep`): each runs until it
     needs the dispersion function (or the count's ratio), and the points all of them
     need are evaluated in one call per family, each as it would be alone; so the
@@ -924,61 +1015,73 @@ def neutral_curves(families, wavenumbers, anchors=None, scan_every=None, progres
         if point[0] < V[k][i]:
             V[k][i], W[k][i] = point
 
+    # Each family's neutral points, from its scans as they end (and its anchor), are
+    # continued by one computation that iterates all their steps together, while the
+    # scans still go on: their requests share the scans' rounds.
+    starts = [[] for _ in families]
+    scanning = [sum(1 for kk, _ in jobs if kk == k) for k in range(len(families))]
+    for k, a in enumerate(anchors):
+        if a is not None:
+            starts[k].append((int(np.searchsorted(ms, a[0])), float(a[0]),
+                              (float(a[1]), float(a[2]))))
+
     def scan(k, j):
         def run(ask):
-            family = replace(families[k], ask=ask)
-            vc, b = first_crossing(family, ms[j])
+            vc, b = first_crossing(replace(families[k], ask=ask), ms[j])
             ended.append(j)
             tell(len(ended), total)
             if vc is not None:
                 keep(k, j, (vc, b.imag))
-                _continue_starts(family, ms, [(j + 1, float(ms[j]), (vc, b.imag))], scanned,
-                                 V[k], W[k])
+                starts[k].append((j + 1, float(ms[j]), (vc, b.imag)))
+            scanning[k] -= 1
         return run
 
-    def from_anchor(k, anchor):
-        return lambda ask: _continue_starts(
-            replace(families[k], ask=ask), ms,
-            [(int(np.searchsorted(ms, anchor[0])), float(anchor[0]),
-              (float(anchor[1]), float(anchor[2])))], scanned, V[k], W[k])
+    def continuations(k):
+        def run(ask):
+            steps = _Continuation(replace(families[k], ask=ask))
+            while True:
+                for start in starts[k]:
+                    _chain(steps, ms, start, scanned, V[k], W[k])
+                starts[k].clear()
+                if not steps.step():
+                    if not scanning[k]:
+                        return
+                    ask(("wait", None), None)        # until a scan of the family ends
+        return run
 
-    # Each scan continues its neutral point as soon as it has it, while the others
-    # still scan: the continuations' requests share the scans' rounds.
     run_lockstep([scan(k, j) for k, j in jobs]
-                 + [from_anchor(k, a) for k, a in enumerate(anchors) if a is not None],
-                 _evaluate)
+                 + [continuations(k) for k in range(len(families))], _evaluate)
     for v in V:
         v[~np.isfinite(v)] = np.nan
     tell(total, total)
     return list(zip(V, W))
 
 
-def _continue_starts(family, ms, starts, scanned, V, W):
-    """Each start ``(k, m0, (V, omega))`` continued up and down the wavenumbers ``ms``
-    to the next scanned one (:func:`continue_steps`), the lowest speed kept in ``V``
-    and ``W`` at each: independent chains, stepped together.  ``k``: the first index
-    above ``m0`` (a scanned wavenumber's own index is ``k - 1``)."""
-    n = ms.size
-    chains = [(iter(order), m0, point, (m0, point)) for k, m0, point in starts
-              for order in (range(k, n), range(k - 1, -1, -1))]
-    while chains:
-        steps = []
-        for order, m0, start, prev in chains:
-            for i in order:
-                if ms[i] != m0:
-                    steps.append((order, m0, start, prev, i))
-                    break
-                # The start's own wavenumber: its point.
-                if start[0] < V[i]:
-                    V[i], W[i] = start
-                prev = (m0, start)
-        found = continue_steps(family, [c[3][0] for c in steps], [c[3][1] for c in steps],
-                               [ms[c[4]] for c in steps]) if steps else []
-        chains = []
-        for (order, m0, start, prev, i), point in zip(steps, found):
-            if point is None:
-                continue
+def _chain(steps, ms, start, scanned, V, W):
+    """The neutral point ``start = (k, m0, (V, omega))`` continued up and down the
+    wavenumbers ``ms`` (``k`` the first index above ``m0``; a scanned wavenumber's
+    own index is ``k - 1``) to the next scanned one, or until a step fails, the
+    lowest speed kept in ``V`` and ``W`` at each: its steps started on ``steps``
+    (:class:`_Continuation`), each as the one before ends."""
+    k, m0, point = start
+
+    def go(order, prev):
+        for i in order:
+            if ms[i] != m0:
+                steps.start(prev[0], prev[1], ms[i], lambda p, i=i: arrived(order, i, p))
+                return
+            # The start's own wavenumber: its point.
             if point[0] < V[i]:
                 V[i], W[i] = point
-            if i not in scanned:
-                chains.append((order, m0, start, (float(ms[i]), point)))
+            prev = (m0, point)
+
+    def arrived(order, i, found):
+        if found is None:
+            return
+        if found[0] < V[i]:
+            V[i], W[i] = found
+        if i not in scanned:
+            go(order, (float(ms[i]), found))
+
+    for order in (range(k, ms.size), range(k - 1, -1, -1)):
+        go(iter(order), (m0, point))
