@@ -6,7 +6,7 @@ import pytest
 from scipy.special import i0e, i1e, k0e, k1e
 
 from thermocontact.physics.kernel_tables import (RANGE, displacement_table, gradient_tables,
-                                                 slope_table)
+                                                 slope_table, temperature_table)
 
 EPS = np.finfo(float).eps
 
@@ -17,6 +17,8 @@ def _exact(name, x):
         return mpmath.exp(-x) * mpmath.besseli(0, x)
     if name == "N":
         return mpmath.exp(-x) * (mpmath.besseli(0, x) - mpmath.besseli(1, x))
+    if name == "T":
+        return mpmath.exp(x) * mpmath.besselk(0, x)
     sign = 1 if name == "G+" else -1
     return mpmath.exp(x) * (mpmath.besselk(0, x) + sign * mpmath.besselk(1, x))
 
@@ -24,13 +26,14 @@ def _exact(name, x):
 TABLES = {"E": (displacement_table, lambda x: i0e(x)),
           "N": (slope_table, lambda x: i0e(x) - i1e(x)),
           "G+": (lambda: gradient_tables()[0], lambda x: k0e(x) + k1e(x)),
-          "G-": (lambda: gradient_tables()[1], lambda x: k0e(x) - k1e(x))}
+          "G-": (lambda: gradient_tables()[1], lambda x: k0e(x) - k1e(x)),
+          "T": (temperature_table, k0e)}
 #: Relative error allowed, in units of eps: a constant and a growth in x.  N and G-
 #: are differences of two functions of nearly equal size for large x (as SciPy's
 #: are: each sample from which the tables are fitted carries that cancellation, and
 #: SciPy's own G- is up to 24 eps off next to x = 2, where its K0, K1 change formula;
 #: the same bounds hold for SciPy's values, measured on 600 points of [0.3, 4]).
-BOUNDS = {"E": (8, 0.0), "N": (8, 8.0), "G+": (8, 0.0), "G-": (16, 16.0)}
+BOUNDS = {"E": (8, 0.0), "N": (8, 8.0), "G+": (8, 0.0), "G-": (16, 16.0), "T": (8, 0.0)}
 
 
 @pytest.mark.parametrize("name", sorted(TABLES))

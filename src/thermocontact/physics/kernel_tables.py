@@ -3,7 +3,7 @@
 The kernels of :mod:`~thermocontact.physics.green_functions` are products of the
 exponentially scaled Bessel functions,
 
-    E(x) = i0e(x),   N(x) = i0e(x) - i1e(x),   G+-(a) = k0e(a) +- k1e(a),
+    E(x) = i0e(x),   N(x) = i0e(x) - i1e(x),   G+-(a) = k0e(a) +- k1e(a),   T(a) = k0e(a),
 
 evaluated at every node of every moment of a grid line's assemblies and validity
 checks (some 400 000 values a line of the benchmark map).  SciPy evaluates each
@@ -39,7 +39,7 @@ import numpy as np
 from scipy.special import i0e, i1e, k0e, k1e
 
 __all__ = ["DEGREE", "PANELS", "RANGE", "GeometricTable", "displacement_table",
-           "gradient_tables", "slope_table"]
+           "gradient_tables", "slope_table", "temperature_table"]
 
 #: Panels per octave.
 PANELS = 64
@@ -161,3 +161,10 @@ def gradient_tables() -> tuple[GeometricTable, GeometricTable]:
     """``k0e(a) + k1e(a)`` and ``k0e(a) - k1e(a)``: ``exp(2a) M(a)`` upstream and
     ``M(-a)`` in the wake (derivation eqs. D9, D10)."""
     return GeometricTable(_upstream), GeometricTable(_wake)
+
+
+@functools.cache
+def temperature_table() -> GeometricTable:
+    """``k0e(a) = exp(a) K0(a)``: the temperature kernel ``exp(-u) K0(|u|)`` is
+    ``k0e(|u|) exp(-u - |u|)`` (derivation eq. D8)."""
+    return GeometricTable(k0e)
