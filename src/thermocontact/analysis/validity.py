@@ -363,6 +363,23 @@ def gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, s):
     return out, np.column_stack([g_left_edge, g_right_edge])
 
 
+def _grid_gaps(par: Parameters, rep, phi, psi, fhpe, load_ratio, sigma, lam, so, base):
+    """:func:`gaps` at the gap margin's points ``so``: an extended grid's points that are
+    also ``base``'s, the grid without the extension (:func:`_outside_grid`), by
+    ``base``'s row operators, which every solution of the same edge terms shares, and
+    only the extension's own points by new ones (the row operators are per point: the
+    same numbers but for rounding)."""
+    known = np.zeros(so.size, dtype=bool) if base is None else np.isin(so, base)
+    if not known.any():
+        return gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam, so)
+    g_base, residual = gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam, base)
+    g = np.empty((g_base.shape[0], so.size))
+    g[:, known] = g_base[:, np.searchsorted(base, so[known])]
+    if not known.all():
+        g[:, ~known] = gaps(par, rep, phi, psi, fhpe, load_ratio, sigma, lam, so[~known])[0]
+    return g, residual
+
+
 def pressure_samples(n: int) -> int:
     """Samples of the pressure margin ``phi`` over the contact, evenly in the
     representation's variable (``tau``): 32 a period of its highest term ``cos(n tau)``,
@@ -630,8 +647,9 @@ def _assess_many(pars, rep, phi, psi, load_ratio, sigma, lam, polish):
     for (end, *key), rows in grids.items():
         rows = np.array(rows)
         so = _outside_grid(end, key)
-        g, residual[rows] = gaps(par, rep, phi[rows], psi[rows], F[rows], L[rows], sigma[rows],
-                                 lam[rows], so)
+        g, residual[rows] = _grid_gaps(par, rep, phi[rows], psi[rows], F[rows], L[rows],
+                                       sigma[rows], lam[rows], so,
+                                       None if end is None else _outside_grid(None, key))
         ig = np.argmin(g, axis=1)
         # g ~ (|s| - 1)^(1 + exponent) outside each edge (3/2 without the Dundurs term).
         power = np.where(so > 0.0, 1.0 + exponents[1], 1.0 + exponents[0])

@@ -17,6 +17,21 @@ POLISH_POINTS = 17
 LOCAL_POINTS = 7
 
 
+def _interpolation_matrix(count):
+    """The matrix taking a function's values at the ``count`` Chebyshev points of the
+    first kind, ascending (``-cos(pi (k + 1/2)/count)``), to the coefficients of its
+    interpolant in the Chebyshev polynomials ``T_0 ... T_{count-1}``: the discrete
+    orthogonality ``c_j = (2/count) sum_k f_k T_j(x_k)``, ``c_0`` halved."""
+    k = np.arange(count)
+    x = -np.cos(np.pi * (k + 0.5) / count)
+    matrix = (2.0 / count) * np.polynomial.chebyshev.chebvander(x, count - 1).T
+    matrix[0] *= 0.5
+    return x, matrix
+
+
+_POLISH_NODES, _POLISH_MATRIX = _interpolation_matrix(POLISH_POINTS)
+
+
 def polish_minimum(f, x, values, i):
     """The least value of ``f`` near the sampled minimum ``values[i]`` at ``x[i]``.
 
@@ -43,19 +58,22 @@ def polish_minimum(f, x, values, i):
     best = (float(x[i]), float(values[i]))
     if not hi > lo:
         return best
-    cheb = np.polynomial.chebyshev.Chebyshev
-    k = np.arange(POLISH_POINTS)
-    pts = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(np.pi * (k + 0.5) / POLISH_POINTS)
-    if np.unique(pts).size < POLISH_POINTS:
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    pts = mid + half * _POLISH_NODES
+    if np.any(pts[1:] == pts[:-1]):
         # Neighbours a few roundings apart (next to an edge, in s): the samples are
         # as fine as floating point resolves; nothing to interpolate.
         return best
-    fit = cheb.fit(pts, f(pts), POLISH_POINTS - 1, domain=[lo, hi])
-    crit = fit.deriv().roots()
+    # The interpolant in the interval's own variable t (x = mid + half t), its
+    # coefficients by the points' discrete orthogonality; the critical points are
+    # the roots of its derivative inside, the candidates those and the points.
+    cheb = np.polynomial.chebyshev
+    c = _POLISH_MATRIX @ f(pts)
+    crit = cheb.chebroots(cheb.chebder(c))
     crit = crit[np.isreal(crit)].real
-    crit = crit[(crit > lo) & (crit < hi)]
-    cand = np.concatenate([crit, pts])
-    at = cand[np.argmin(fit(cand))]
+    crit = crit[(crit > -1.0) & (crit < 1.0)]
+    k = int(np.argmin(cheb.chebval(np.concatenate([crit, _POLISH_NODES]), c)))
+    at = mid + half * crit[k] if k < crit.size else pts[k - crit.size]
     value = float(f(np.array([at]))[0])
     if np.isfinite(value) and value < best[1]:
         best = (float(at), value)

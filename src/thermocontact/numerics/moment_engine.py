@@ -101,20 +101,29 @@ def stretch_increment(tau, d):
 
 
 def stretch_inverse(t):
-    """``tau`` with ``T(tau) = t``, ``t`` in ``[0, pi]``, by Newton's method."""
+    """``tau`` with ``T(tau) = t``, ``t`` in ``[0, pi]``, by Newton's method.
+
+    Each point's iteration stops at the first step of at most ``1e-15`` (the step taken),
+    all points' steps at once."""
     t = np.asarray(t, dtype=float)
     near = np.minimum(t, np.pi - t)
     out = np.zeros_like(near)
     pos = near > 0.0
     if np.any(pos):
-        from scipy.optimize import newton  # here: scipy.optimize is slow to import
-
         x = near[pos]
         # T <= (2/3) tau^3 gives a start at or below the root; T is increasing and
         # convex on [0, pi/2], so the iterates converge from above after one step.
-        x0 = np.minimum(np.cbrt(1.5 * x), 0.5 * np.pi)
-        out[pos] = newton(lambda y: 0.5 * _x_minus_sin(2.0 * y) - x, x0,
-                          fprime=lambda y: 2.0 * np.sin(y) ** 2, tol=1e-15, maxiter=100)
+        y = np.minimum(np.cbrt(1.5 * x), 0.5 * np.pi)
+        live = np.arange(y.size)
+        # Monotone and quadratic from there: a few steps (100 a bound never reached).
+        for _ in range(100):
+            yl, xl = y[live], x[live]
+            step = (0.5 * _x_minus_sin(2.0 * yl) - xl) / (2.0 * np.sin(yl) ** 2)
+            y[live] = yl - step
+            live = live[np.abs(step) > 1e-15]
+            if live.size == 0:
+                break
+        out[pos] = y
     return np.where(t <= 0.5 * np.pi, out, np.pi - out)
 
 

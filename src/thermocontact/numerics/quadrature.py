@@ -174,10 +174,15 @@ def u_series_value(coefficients, s):
     ndarray, shape of ``s``
     """
     s = np.asarray(s, dtype=float)
+    two_s = 2.0 * s
     b1 = np.zeros_like(s)
     b2 = np.zeros_like(s)
     for a in coefficients[::-1]:
-        b1, b2 = a + 2.0 * s * b1 - b2, b1
+        # b1 <- (a + 2 s b1) - b2, in that order, in place.
+        b = two_s * b1
+        b += a
+        b -= b2
+        b1, b2 = b, b1
     return b1
 
 

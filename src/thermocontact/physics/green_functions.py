@@ -9,7 +9,7 @@ not yet passed it) and ``u < 0`` is downstream (its hot wake).  See
 
 All functions are vectorised over ``u`` and use the exponentially scaled Bessel
 functions, so that no factor ``exp(+-u)`` is ever formed on its own: the products
-``E``, ``N`` and ``M`` by the tables of :mod:`.kernel_tables` (SciPy's values to a
+``E``, ``N``, ``M`` and ``k0e`` by the tables of :mod:`.kernel_tables` (SciPy's values to a
 few ulps, at a third of their cost), the rest by SciPy's.
 """
 
@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import k0e, k1e
 
-from .kernel_tables import displacement_table, gradient_tables, slope_table
+from .kernel_tables import displacement_table, gradient_tables, slope_table, temperature_table
 
 __all__ = [
     "cylinder_displacement",
@@ -105,7 +105,7 @@ def cylinder_temperature(u):
     u = np.asarray(u, dtype=float)
     a = np.abs(u)
     # exp(-u) K0(|u|) = k0e(|u|) * exp(-u - |u|): the exponent is 0 downstream.
-    return k0e(a) * np.exp(-u - a)
+    return temperature_table()(a) * np.exp(-u - a)
 
 
 def cylinder_temperature_gradient(u):

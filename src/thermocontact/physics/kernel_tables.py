@@ -3,7 +3,7 @@
 The kernels of :mod:`~thermocontact.physics.green_functions` are products of the
 exponentially scaled Bessel functions,
 
-    E(x) = i0e(x),   N(x) = i0e(x) - i1e(x),   G+-(a) = k0e(a) +- k1e(a),
+    E(x) = i0e(x),   N(x) = i0e(x) - i1e(x),   G+-(a) = k0e(a) +- k1e(a),   T(a) = k0e(a),
 
 evaluated at every node of every moment of a grid line's assemblies and validity
 checks (some 400 000 values a line of the benchmark map).  SciPy evaluates each
@@ -39,7 +39,7 @@ import numpy as np
 from scipy.special import i0e, i1e, k0e, k1e
 
 __all__ = ["DEGREE", "PANELS", "RANGE", "GeometricTable", "displacement_table",
-           "gradient_tables", "slope_table"]
+           "gradient_tables", "slope_table", "temperature_table"]
 
 #: Panels per octave.
 PANELS = 64
@@ -161,3 +161,37 @@ def gradient_tables() -> tuple[GeometricTable, GeometricTable]:
     """``k0e(a) + k1e(a)`` and ``k0e(a) - k1e(a)``: ``exp(2a) M(a)`` upstream and
     ``M(-a)`` in the wake (derivation eqs. D9, D10)."""
     return GeometricTable(_upstream), GeometricTable(_wake)
+
+
+#: ``ln 2 - gamma``, of the ascending series of ``K0``.
+_LN2_MINUS_EULER = float(np.log(2.0) - np.euler_gamma)
+
+
+def _k0e(a):
+    """``k0e(a)``: SciPy's, but for ``0 < a < 2^-10`` (below the table's panels, where
+    the graded quadratures' nodes next to a source put some two in five of the
+    temperature kernel's values) by the ascending series
+    ``K0(a) = (ln 2 - gamma - ln a) I0(a) + sum_k H_k q^k/(k!)^2``, ``q = a^2/4``,
+    ``H_k`` the harmonic numbers, to ``k = 2`` (the next term is ``1e-21`` of the
+    value there), times ``exp(a)``."""
+    a = np.asarray(a, dtype=float)
+    small = (a > 0.0) & (a < 2.0**RANGE[0])
+    if not small.any():
+        return k0e(a)
+    out = np.empty_like(a)
+    x = a[small]
+    q = 0.25 * x * x
+    i0 = 1.0 + q * (1.0 + 0.25 * q)
+    out[small] = np.exp(x) * ((_LN2_MINUS_EULER - np.log(x)) * i0 + q * (1.0 + 0.375 * q))
+    other = ~small
+    if other.any():
+        out[other] = k0e(a[other])
+    return out
+
+
+@functools.cache
+def temperature_table() -> GeometricTable:
+    """``k0e(a) = exp(a) K0(a)``: the temperature kernel ``exp(-u) K0(|u|)`` is
+    ``k0e(|u|) exp(-u - |u|)`` (derivation eq. D8).  Below the panels, ``K0``'s
+    ascending series (:func:`_k0e`); at 0, beyond them and at NaN, SciPy's value."""
+    return GeometricTable(_k0e)
