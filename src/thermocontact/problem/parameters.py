@@ -131,7 +131,7 @@ class Parameters:
             raise InputError(
                 f"pe * k2_over_k1 (the cylinder's kernel scale c) must be in "
                 f"[{C_MIN:.0e}, {C_MAX:.0e}], got {c:.3g} (pe = {self.pe:.3g}, "
-                f"k2_over_k1 = {self.k2_over_k1:.3g})", parameters=("pe", "k2_over_k1"))
+                f"k2_over_k1 = {self.k2_over_k1:.3g})")
 
     def _check_rolling(self):
         check_moving_half_plane(self.speed_ratio, None, self.fhpe)
