@@ -323,7 +323,7 @@ def layup_operator(layup, wavenumber, speed, n=32):
     """
     from ..physics.tei_layers import condition_matrix, heat_coefficient
 
-    m = float(wavenumber)
+    m, speed = float(wavenumber), float(speed)      # keys of the bodies' collocations
     refs = layup.references()          # the scales of the face fields: the layup's own
     heat = heat_coefficient(layup, m, speed)
     whole = len(layup.bodies)
