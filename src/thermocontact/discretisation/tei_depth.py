@@ -130,11 +130,13 @@ def depth_modes(pair: SlidingPair, wavenumber, velocity, n=48):
     return b[np.argsort(-b.real, kind="stable")]
 
 
+@lru_cache(maxsize=64)
 def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     """One body's collocation: the interior rows (heat, then Navier's two equations),
     the rows that hold its fields at zero at infinity (a half-plane), its face fields
     as linear maps of its nodal unknowns, and which unknowns are the interior
-    temperatures.
+    temperatures.  The latest 64 kept (read-only): a disc's two families are often
+    reseeded at the same wavenumber and speed, with the same bodies.
 
     Unknowns ``[T, u_x, u_y]`` at the points (``T`` only for a conductor).  The
     elastic law is written in the plane asked for, directly: plane strain
@@ -209,7 +211,10 @@ def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
             F[f, 3, o_t + i] -= beta
             F[f, 4, o_t + i] = 2.0 * mu_ref * a_ref
             F[f, 5, o_t:o_t + npt] = -mat.K * d1[i] * 2.0 * mu_ref * a_ref / (K_ref * m)
-    return np.array(rows + zero_rows), F, mass, cols, len(rows)
+    rows = np.array(rows + zero_rows)
+    for a in (rows, F):
+        a.flags.writeable = False
+    return rows, F, tuple(mass), cols, len(rows)
 
 
 def _split(layup, m, speed):
@@ -318,7 +323,7 @@ def layup_operator(layup, wavenumber, speed, n=32):
     """
     from ..physics.tei_layers import condition_matrix, heat_coefficient
 
-    m = float(wavenumber)
+    m, speed = float(wavenumber), float(speed)      # keys of the bodies' collocations
     refs = layup.references()          # the scales of the face fields: the layup's own
     heat = heat_coefficient(layup, m, speed)
     whole = len(layup.bodies)
@@ -331,28 +336,29 @@ def layup_operator(layup, wavenumber, speed, n=32):
     size = int(offsets[-1])
     C0, C1 = condition_matrix(layup)
     C = C0 + heat * C1
+    # The interior temperatures (the dynamic unknowns) and their heat rows first, the
+    # static ones after, each body's block written where it goes.
+    dyn_cols = np.concatenate([offsets[j] + np.array(p[2], dtype=int)
+                               for j, p in enumerate(parts)])
+    place = np.empty(size, dtype=int)
+    place[np.concatenate([dyn_cols, _others(size, dyn_cols)])] = np.arange(size)
+    nd = dyn_cols.size
     L = np.zeros((size, size), dtype=complex)
-    dyn = []
-    r0 = 0
-    cond_rows = np.zeros((C.shape[0], size), dtype=complex)
+    r_dyn, r_st = 0, nd
+    cond = size - C.shape[0]
     for j, (rows, F, mass, cols, ninner) in enumerate(parts):
-        o = offsets[j]
-        L[r0:r0 + rows.shape[0], o:o + cols] = rows
-        dyn.extend(r0 + k for k in range(len(mass)))          # heat rows come first
-        r0 += rows.shape[0]
-        cond_rows[:, o:o + cols] = np.einsum("rfk,fkc->rc", C[:, j], F)
-    L[r0:] = cond_rows
-    dyn_cols = [offsets[j] + c for j, p in enumerate(parts) for c in p[2]]
-    dyn_rows = np.array(dyn)
-    dyn_cols = np.array(dyn_cols)
-    st_rows, st_cols = _others(size, dyn_rows), _others(size, dyn_cols)
+        at = place[offsets[j]:offsets[j] + cols]
+        k, rest = len(mass), rows.shape[0] - len(mass)       # heat rows come first
+        L[r_dyn:r_dyn + k, at] = rows[:k]
+        L[r_st:r_st + rest, at] = rows[k:]
+        r_dyn, r_st = r_dyn + k, r_st + rest
+        L[cond:, at] = np.einsum("rfk,fkc->rc", C[:, j], F)
     # The static rows are equations = 0: each scaled to unit size (their magnitudes
     # span 20 decades, and LU then slows on subnormal numbers).
-    static, dynamic = L[st_rows], L[dyn_rows]
-    scale = 1.0 / np.max(np.abs(static), axis=1, keepdims=True)
-    Lss = static[:, st_cols] * scale
-    Lsd = static[:, dyn_cols] * scale
-    return dynamic[:, dyn_cols] - dynamic[:, st_cols] @ np.linalg.solve(Lss, Lsd)
+    static = L[nd:]
+    static *= 1.0 / np.max(np.abs(static), axis=1, keepdims=True)
+    Lss, Lsd = static[:, nd:], static[:, :nd]
+    return L[:nd, :nd] - L[:nd, nd:] @ np.linalg.solve(Lss, Lsd)
 
 
 def _others(size, idx):
