@@ -376,3 +376,18 @@ def test_series_next_to_the_source_is_the_quadrature(monkeypatch, c, b):
     graded = tk.transient_displacement_and_slope(u, c, b)
     for got, ref in zip(series, graded):
         assert np.abs(got - ref).max() < 1e-14 * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("c", [0.0, 1.5, -20.0])
+def test_displacement_and_slope_of_several_rates_in_one_pass(c):
+    """Several rates in one pass (each on its own rules) give each rate's kernels as one
+    at a time do: to rounding (a real rate among complex ones is computed in complex
+    arithmetic), over the series' reach and the graded rule's."""
+    u = np.concatenate([-np.geomspace(1e-8, 3.0, 40), np.geomspace(1e-8, 3.0, 40)])
+    rates = [0.4, 1e-3 + 2.0j, 3e4 - 1e5j, 1e-3 + 1e6j]
+    W, S = tk.transient_displacement_and_slope(u, c, rates)
+    assert W.shape == S.shape == (len(rates), u.size)
+    for j, b in enumerate(rates):
+        w, s = tk.transient_displacement_and_slope(u, c, b)
+        np.testing.assert_allclose(W[j], w, rtol=1e-14, atol=0.0)
+        np.testing.assert_allclose(S[j], s, rtol=1e-14, atol=1e-300)

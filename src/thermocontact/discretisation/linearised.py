@@ -303,8 +303,9 @@ class LinearisedContact:
                         todo[key] = (c, rate)
             if not todo:
                 continue
-            values = np.concatenate([_body_values(c, rate) for c, rate in todo.values()],
-                                    axis=1)
+            # One body's scale, its rates' kernels in one pass.
+            c = next(iter(todo.values()))[0]
+            values = _body_values(c, [rate for _, rate in todo.values()])
             bounded, singular = table.moments(values)
             for j, key in enumerate(todo):
                 part = _frozen(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
@@ -495,21 +496,30 @@ def _frozen(arrays):
     return out
 
 
-def _body_values(c, b, coarse=None):
+def _body_values(c, rates, coarse=None):
     """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
-    kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`,
-    shape (nodes, 4); for ``c = 0`` less the constants ``2/(pi sqrt b)`` and ``l(b)``.
-    The stationary half-plane's (``c = 0``) at the coarse nodes unless ``coarse`` is
-    False: its kernels, layers of ``sqrt(b)`` alone, need only the panels of ratio 2
-    (derivation S9)."""
+    kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes` at each
+    of ``rates`` (one rate or several), shape (nodes, 4 len(rates)), the rates' four columns in turn (``W`` and
+    ``S`` of all the rates in one pass); for ``c = 0`` less the constants
+    ``2/(pi sqrt b)`` and ``l(b)``.  The stationary half-plane's (``c = 0``) at the
+    coarse nodes unless ``coarse`` is False: its kernels, layers of ``sqrt(b)`` alone,
+    need only the panels of ratio 2 (derivation S9)."""
     u = kernel_nodes(coarse=c == 0.0 if coarse is None else coarse)
-    W, S = transient_displacement_and_slope(u, c, b)
-    T, dG = transient_temperature_and_gradient_regular(u, c, b)
-    if c == 0.0:
-        W = W - 2.0 / (np.pi * np.sqrt(b))
-        T = T - logarithm_constant(b)
-        S = S - 0.5 * np.sign(u)
-    else:
-        S = S - moving_slope(u, c)
-        dG = dG - cylinder_temperature_gradient_regular(u, c)
-    return np.stack([W, T, S, dG], axis=1).astype(complex)
+    rates = [complex(b) for b in np.atleast_1d(rates)]
+    W, S = transient_displacement_and_slope(u, c, rates)
+    out = np.empty((u.size, 4 * len(rates)), dtype=complex)
+    if c != 0.0:
+        S0, G0 = moving_slope(u, c), cylinder_temperature_gradient_regular(u, c)
+    for j, b in enumerate(rates):
+        T, dG = transient_temperature_and_gradient_regular(u, c, b)
+        if c == 0.0:
+            out[:, 4 * j] = W[j] - 2.0 / (np.pi * np.sqrt(b))
+            out[:, 4 * j + 1] = T - logarithm_constant(b)
+            out[:, 4 * j + 2] = S[j] - 0.5 * np.sign(u)
+            out[:, 4 * j + 3] = dG
+        else:
+            out[:, 4 * j] = W[j]
+            out[:, 4 * j + 1] = T
+            out[:, 4 * j + 2] = S[j] - S0
+            out[:, 4 * j + 3] = dG - G0
+    return out

@@ -57,10 +57,11 @@ _PANEL_VARIATION = 8.0
 #: The integral is cut where the exponent's real part exceeds its smallest value by
 #: this for good: the integrand there is below ``exp(-45)`` of its largest values.
 _NEGLIGIBLE = 45.0
-#: Points per block (bounds the memory of the ``(points, nodes)`` arrays).
-_BLOCK = 4096
-#: Points sharing one rule in ``phi`` (sorted by side and ``|u|``: four panels of the
-#: stability tables' nodes, ``|u|`` within a factor of 4).
+#: (Rate, point) pairs per block (bounds the memory of the ``(points, levels)`` arrays
+#: of the ends' search: some 30 MB).
+_BLOCK = 2**15
+#: Points sharing one rule in ``phi`` (of one rate, sorted by side and ``|u|``: four
+#: panels of the stability tables' nodes, ``|u|`` within a factor of 4).
 _GROUP = 64
 #: Points with ``lam <= _SERIES_REACH``, ``lam = |u| (sqrt|b| + 2|c|)`` (in the wake
 #: ``|u| min(sqrt|b| + 2|c|, |b|/|c|)``), take the series in ``|u|``
@@ -233,91 +234,119 @@ def _phi_quadrature(u, c, b, integrand):
     """``(2/pi) integral_0^(pi/2) integrand(s, rho, D, sgn u) exp(-|u| s D) dphi`` per point.
 
     ``s = sin(phi)``, ``rho = sqrt(b + c^2 s^2)``, ``D = rho + sgn(u) c s`` (formed as
-    ``b/(rho + |c| s)`` in the wake, free of cancellation).  The integral is cut
-    where the exponent's real part exceeds its smallest value by ``_NEGLIGIBLE``
-    for good (the integrand is below ``exp(-45)`` of its largest values beyond),
-    and the rest is integrated by composite 16-point Gauss-Legendre on panels
-    graded geometrically toward ``phi = 0`` (ratio 2, down to ``1/(2 lam)``,
-    ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate there, and to a
-    quarter of ``sqrt|b|/|c|``, where ``rho`` turns from ``sqrt b`` to ``|c| s``), each cut
-    into equal parts over which the exponent changes by at most
-    ``_PANEL_VARIATION`` (derivation, "Transient kernels", *Evaluation*).
+    ``b/(rho + |c| s)`` in the wake, free of cancellation).  ``b`` is one rate, or a
+    1-D array of rates (their values on a leading axis): all the rates' points in one
+    pass, each rate with its own rules.  Next to the source the series in ``|u|``
+    (:func:`_phi_series`); beyond it the integral is cut where the exponent's real part
+    exceeds its smallest value by ``_NEGLIGIBLE`` for good (the integrand is below
+    ``exp(-45)`` of its largest values beyond), and the rest is integrated by composite
+    16-point Gauss-Legendre on panels graded geometrically toward ``phi = 0`` (ratio 2,
+    down to ``1/(2 lam)``, ``lam = |u| (|sqrt b| + 2|c|)`` bounding the exponent's rate
+    there, and to a quarter of ``sqrt|b|/|c|``, where ``rho`` turns from ``sqrt b`` to
+    ``|c| s``), each cut into equal parts over which the exponent changes by at most
+    ``_PANEL_VARIATION`` (:func:`_phi_graded`; derivation, "Transient kernels",
+    *Evaluation*).
     """
     u = np.asarray(u, dtype=float)
-    shape = u.shape
-    u = u.ravel()
-    dtype = np.result_type(np.asarray(b), float)
-    # An integrand may return several at once (one pass over the panels for all).
+    rates = np.atleast_1d(b)
     count = getattr(integrand, "count", None)
-    out = np.empty((count or 1,) + u.shape, dtype=dtype)
-    # The stationary half-plane's points by |u|: a point and its mirror image in one
-    # block, where they share their quadrature (_phi_graded).
-    order = np.argsort(np.abs(u), kind="stable") if c == 0.0 else None
-    for i in range(0, u.size, _BLOCK):
-        at = slice(i, i + _BLOCK) if order is None else order[i:i + _BLOCK]
-        out[:, at] = _phi_block(u[at], c, b, integrand)
-    if count is None:
-        return out[0].reshape(shape)
-    return tuple(o.reshape(shape) for o in out)
+    out = np.empty(((count or 1), rates.size, u.size), dtype=np.result_type(rates, float))
+    flat = u.ravel()
+    # Blocks of whole rates, or of one rate's points (the stationary half-plane's by
+    # |u|: a point and its mirror image in one block, where they share their quadrature).
+    order = np.argsort(np.abs(flat), kind="stable") if c == 0.0 else np.arange(flat.size)
+    per = max(1, _BLOCK // max(1, flat.size))
+    for r in range(0, rates.size, per):
+        for i in range(0, flat.size, _BLOCK):
+            at = order[i:i + _BLOCK]
+            part = _phi_points(flat[at], np.arange(r, min(r + per, rates.size)), rates, c,
+                               integrand)
+            out.reshape(out.shape[:2] + (-1,))[:, r:r + per, at] = part
+    out = out.reshape(out.shape[:2] + u.shape)
+    if np.ndim(b) == 0:
+        out = out[:, 0]
+    return out[0] if count is None else tuple(out)
 
 
-def _phi_block(u, c, b, integrand):
-    """The quadrature of :func:`_phi_quadrature` for a block of points: the series in
-    ``|u|`` next to the source (:func:`_phi_series`), the graded rule beyond."""
+def _phi_points(u, which, rates, c, integrand):
+    """The integrals of :func:`_phi_quadrature` at points ``u`` for the rates
+    ``rates[which]``, shape ``(kernels, len(which), len(u))``: the series in ``|u|``
+    next to the source (:func:`_phi_series`), the graded rule beyond
+    (:func:`_phi_graded`)."""
+    # Every (rate, point) pair, the rate's index with it.
+    rate = np.repeat(which, u.size)
+    a, sg = np.tile(np.abs(u), which.size), np.tile(np.sign(u), which.size)
     # A bound of |s D| on the interval: |rho| + |c| <= sqrt|b| + 2|c|, and in the wake
     # (D = b/(rho + |c| s), Re rho >= 0) also |b|/|c|.
-    reach = np.full(u.shape, np.sqrt(abs(b)) + 2.0 * abs(c))
+    modulus = np.abs(rates)[rate]
+    reach = np.sqrt(modulus) + 2.0 * abs(c)
     if c != 0.0:
-        reach[np.sign(u) * c < 0.0] = min(reach[0], abs(b) / abs(c))
-    near = np.abs(u) * reach <= _SERIES_REACH
-    if not np.any(near):
-        return _phi_graded(u, c, b, integrand)
-    out = np.empty((getattr(integrand, "count", None) or 1, u.size),
-                   dtype=np.result_type(np.asarray(b), float))
-    out[:, near] = _phi_series(u[near], c, b, integrand)
-    if not np.all(near):
-        out[:, ~near] = _phi_graded(u[~near], c, b, integrand)
-    return out
+        wake = sg * c < 0.0
+        reach[wake] = np.minimum(reach[wake], modulus[wake] / abs(c))
+    near = a * reach <= _SERIES_REACH
+    out = np.empty((getattr(integrand, "count", None) or 1, a.size),
+                   dtype=np.result_type(rates, float))
+    for part, method in ((near, _phi_series), (~near, _phi_graded)):
+        if np.any(part):
+            out[:, part] = method(a[part], sg[part], rate[part], rates, c, integrand)
+    return out.reshape(out.shape[0], which.size, u.size)
 
 
-def _phi_series(u, c, b, integrand):
+def _ragged(counts):
+    """For consecutive runs of ``counts`` items: each item's run and its place in it."""
+    run = np.repeat(np.arange(counts.size), counts)
+    return run, np.arange(run.size) - np.repeat(np.cumsum(counts) - counts, counts)
+
+
+def _starts(counts):
+    """The first index of each of consecutive runs of ``counts`` items."""
+    return np.cumsum(counts) - counts
+
+
+def _integrand_rows(integrand, s, rho, d, side):
+    """The integrand's kernels at the nodes, shape ``(kernels, nodes)``."""
+    f = integrand(s, rho, d, side)
+    return np.stack([np.broadcast_to(v, s.shape) for v in (f if isinstance(f, tuple) else (f,))])
+
+
+def _phi_series(a, sg, rate, rates, c, integrand):
     """``(2/pi) int f exp(-|u| s D) dphi`` as ``sum_k (-|u|)^k/k! m_k``, the moments
-    ``m_k = (2/pi) int f (s D)^k dphi`` of each side ``sgn u`` by the graded rule of
-    :func:`_phi_rule` at ``u = 0`` (the same panels as its points next to the source:
+    ``m_k = (2/pi) int f (s D)^k dphi`` of each rate and side ``sgn u`` by the graded rule
+    of :func:`_phi_rules` at ``u = 0`` (the same panels as its points next to the source:
     toward the scale of ``rho``, a quarter of ``sqrt|b|/|c|``).  The integral over a
     bounded interval of an entire function of ``|u|``: for ``|u s D| <= lam <=``
     :data:`_SERIES_REACH` the terms after :data:`_SERIES_TERMS` are below ``1e-25`` of
     ``int |f|``, and no cancellation beyond a factor ``exp(2 lam)``."""
-    a, sg = np.abs(u), np.sign(u)
-    count = getattr(integrand, "count", None) or 1
-    out = np.empty((count, u.size), dtype=np.result_type(np.asarray(b), float))
-    small = 0.5 / _SERIES_REACH
-    if c != 0.0 and b != 0.0:
-        small = min(small, 0.25 * np.sqrt(abs(b)) / abs(c))
-    small = max(small, 1e-15)
-    # The terms' factors x^k/k!, x = -|u|, by their running product (one row a term).
-    terms = np.empty((_SERIES_TERMS, u.size))
-    terms[0] = 1.0
-    for k in range(1, _SERIES_TERMS):
-        np.multiply(terms[k - 1], -a / k, out=terms[k])
-    rule = None
-    for side in np.unique(sg):
-        at = sg == side
-        if rule is None or c != 0.0:
-            # The stationary half-plane's rule is that of either side (D = rho).
-            w, (s_, rho, d, e) = rule = _phi_rule(np.zeros(1), side, np.array([0.5 * np.pi]),
-                                                  np.array([small]), c, b)
-            # The powers (s D)^k times the weights.
-            powers = np.empty((_SERIES_TERMS, e.size), dtype=e.dtype)
-            powers[0] = w
-            for k in range(1, _SERIES_TERMS):
-                powers[k] = powers[k - 1] * e
-        f = integrand(s_, rho, d, side)
-        # The moments of each kernel, then the series at every point, by one product each
-        # (real: on the moments' real and imaginary parts side by side).
-        m = powers @ np.stack([np.broadcast_to(v, e.shape)
-                               for v in (f if isinstance(f, tuple) else (f,))], axis=1)
-        out[:, at] = _real_product(m, terms[:, at])
+    # One rule per (rate, side).
+    key = rate * 3 + (sg + 1).astype(int)
+    pairs, at = np.unique(key, return_inverse=True)
+    b, side = rates[pairs // 3], (pairs % 3 - 1).astype(float)
+    small = np.full(pairs.size, 0.5 / _SERIES_REACH)
+    if c != 0.0:
+        small = np.where(b != 0.0, np.minimum(small, 0.25 * np.sqrt(np.abs(b)) / abs(c)),
+                         small)
+    small = np.maximum(small, 1e-15)
+    nodes, w, (s, rho, d, e) = _phi_rules(np.zeros(pairs.size), np.arange(pairs.size),
+                                          np.full(pairs.size, 0.5 * np.pi), small, b, side, c)
+    f = _integrand_rows(integrand, s, rho, d, side[nodes])
+    starts = _starts(np.bincount(nodes, minlength=pairs.size))
+    # The moments of each rule and kernel, shape (rules, terms, kernels), and the terms'
+    # factors x^k/k!, x = -|u|, by their running products.
+    moments = np.empty((pairs.size, _SERIES_TERMS, f.shape[0]), dtype=np.result_type(e, f))
+    terms = np.empty((_SERIES_TERMS, a.size))
+    weighted, terms[0] = w * f, 1.0
+    for k in range(_SERIES_TERMS):
+        moments[:, k] = np.add.reduceat(weighted, starts, axis=1).T
+        if k + 1 < _SERIES_TERMS:
+            weighted = weighted * e
+            np.multiply(terms[k], -a / (k + 1), out=terms[k + 1])
+    # The series at each rule's points by one real product.
+    out = np.empty((f.shape[0], a.size), dtype=moments.dtype)
+    order = np.argsort(at, kind="stable")
+    bounds = np.append(_starts(np.bincount(at, minlength=pairs.size)), a.size)
+    for r in range(pairs.size):
+        these = order[bounds[r]:bounds[r + 1]]
+        out[:, these] = _real_product(moments[r], terms[:, these])
     return (2.0 / np.pi) * out
 
 
@@ -331,36 +360,58 @@ def _real_product(m, terms):
     return r[:k] + 1j * r[k:]
 
 
-def _phi_graded(u, c, b, integrand):
-    a = np.abs(u)[:, None]
-    sg = np.sign(u)[:, None]
+def _rho_and_rate(s, c, b, side):
+    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` (``b`` and
+    ``side`` scalars or arrays like ``s``; in the wake ``b/(rho + |c| s)``, free of
+    cancellation); for ``c = 0`` both are ``sqrt(b)``."""
+    if c == 0.0:
+        rho = np.broadcast_to(_sqrt(np.asarray(b)), np.broadcast(s, b).shape)
+        return rho, rho
+    rho = _sqrt(b + (c * s) ** 2)
+    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
+        return rho, np.where(side * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
+
+
+def _sd(phi, c, b, side):
+    """``(s, rho, D, s D)`` at ``phi`` (:func:`_rho_and_rate`), ``s D = 0`` at ``phi = 0``."""
+    s = np.sin(phi)
+    rho, d = _rho_and_rate(s, c, b, side)
+    return s, rho, d, np.where(s == 0.0, 0.0, s * d)
+
+
+def _phi_graded(a, sg, rate, rates, c, integrand):
+    """The graded quadrature of :func:`_phi_quadrature` at points ``a = |u|`` of sides
+    ``sg``, rates ``rates[rate]``: where each point's integrand becomes negligible for
+    good, then the points of one rate and side and similar ``|u|`` (sorted, in runs of
+    :data:`_GROUP`) on a shared rule (:func:`_phi_rules`): the ends and the rules of
+    every point and rate at once, then each group's exponentials and sums (the work
+    that grows with the rule)."""
     sides = None
     if c == 0.0:
-        # D = rho on either side: the rule and the exponentials of each |u| serve both
-        # sides (the integrand of each on them), each |u| once.
+        # D = rho on either side: the rule and the exponentials of each (rate, |u|) serve
+        # both sides (the integrand of each on them), each (rate, |u|) once.
         sides = np.unique(sg)
-        at_side = np.searchsorted(sides, sg[:, 0])
-        a, at_a = np.unique(a[:, 0], return_inverse=True)
-        a = a[:, None]
+        at_side = np.searchsorted(sides, sg)
+        order = np.lexsort((a, rate))
+        new = np.ones(a.size, dtype=bool)
+        new[1:] = (np.diff(a[order]) != 0.0) | (np.diff(rate[order]) != 0)
+        at_a = np.empty(a.size, dtype=int)
+        at_a[order] = np.cumsum(new) - 1
+        a, rate = a[order][new], rate[order][new]
         sg = np.ones_like(a)
-    size = a.shape[0]
+    b = rates[rate]
+    size = a.size
     half_pi = 0.5 * np.pi
-
-    def exponent(phi):
-        s = np.sin(phi)
-        rho = _sqrt(b + (c * s) ** 2)
-        with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-            d = np.where(sg * c >= 0.0, rho + abs(c) * s, b / (rho + abs(c) * s))
-        return s, rho, d, np.where(s == 0.0, 0.0, a * s * d)
-
     # Where the integrand becomes negligible for good: coarse geometric edges, then
     # bisection on the first interval after which Re(exponent) stays above the cut.
-    lam = a[:, 0] * (np.sqrt(abs(b)) + 2.0 * abs(c))
+    lam = a * (np.sqrt(np.abs(b)) + 2.0 * abs(c))
     first = np.minimum(half_pi, 0.5 / np.maximum(lam, 1e-300))
     levels = max(1, int(np.ceil(np.log2(half_pi / first.min()))) + 1)
     coarse = np.minimum(half_pi, first[:, None] * 2.0 ** np.arange(levels)[None, :])
     coarse = np.concatenate([np.zeros((size, 1)), coarse, np.full((size, 1), half_pi)], axis=1)
-    re = exponent(coarse)[3].real
+    sc = np.sin(coarse)
+    d = _rho_and_rate(sc, c, b[:, None], sg[:, None])[1]
+    re = np.where(sc == 0.0, 0.0, a[:, None] * sc * d).real
     cut = np.min(re, axis=1, keepdims=True) + _NEGLIGIBLE
     above = np.flip(np.logical_and.accumulate(np.flip(re >= cut, axis=1), axis=1), axis=1)
     end = np.full(size, half_pi)
@@ -369,12 +420,12 @@ def _phi_graded(u, c, b, integrand):
         k = np.argmax(above[has], axis=1)
         rows = np.flatnonzero(has)
         lo, hi = coarse[rows, k - 1], coarse[rows, k]
-        sub_a, sub_sg, sub_cut = a[rows, 0], sg[rows, 0], cut[rows, 0]
+        sub_a, sub_sg, sub_cut, sub_b = a[rows], sg[rows], cut[rows, 0], b[rows]
         # Both sides at once (each point's own D).
         for _ in range(40):
             mid = 0.5 * (lo + hi)
             s = np.sin(mid)
-            over = (sub_a * s * _rho_and_rate(s, c, b, sub_sg)[1]).real >= sub_cut
+            over = (sub_a * s * _rho_and_rate(s, c, sub_b, sub_sg)[1]).real >= sub_cut
             hi = np.where(over, mid, hi)
             lo = np.where(over, lo, mid)
         end[rows] = hi
@@ -382,83 +433,76 @@ def _phi_graded(u, c, b, integrand):
     # the exponent's scale 1/(2 lam) and to rho's transition at s = sqrt|b|/|c|; not
     # below 1e-15, where the omitted part is below 1e-15 of the integral.
     small = 0.5 / np.maximum(lam, 1e-300)
-    if c != 0.0 and b != 0.0:
-        small = np.minimum(small, 0.25 * np.sqrt(abs(b)) / abs(c))
+    if c != 0.0:
+        small = np.where(b != 0.0, np.minimum(small, 0.25 * np.sqrt(np.abs(b)) / abs(c)),
+                         small)
     small = np.maximum(small, 1e-15)
-    total = np.zeros((getattr(integrand, "count", None) or 1,
-                      1 if sides is None else sides.size, a.shape[0]),
-                     dtype=np.result_type(np.asarray(b), float))
-    # Points of one side and similar |u| share the rule in phi: the integrand's
+    # Points of one rate and side and similar |u| share the rule in phi: the integrand's
     # factors are formed once per node, the exponential once per point and node.
-    order = np.lexsort((a[:, 0], sg[:, 0]))
-    cuts = np.flatnonzero(np.diff(sg[order, 0]) != 0) + 1
-    for run in np.split(order, cuts):
-        for i in range(0, run.size, _GROUP):
-            idx = run[i:i + _GROUP]
-            total[..., idx] = _phi_group(a[idx, 0], sg[idx[0], 0], end[idx], small[idx],
-                                         c, b, integrand, sides)
-    total = total[:, 0] if sides is None else total[:, at_side, at_a]
-    return (2.0 / np.pi) * total
+    order = np.lexsort((a, sg, rate))
+    runs = np.flatnonzero((np.diff(sg[order]) != 0) | (np.diff(rate[order]) != 0)) + 1
+    lengths = np.diff(np.concatenate([[0], runs, [size]]))
+    group = np.cumsum(_ragged(lengths)[1] % _GROUP == 0) - 1
+    groups = group[-1] + 1
+    a, sg, end, small, rate = a[order], sg[order], end[order], small[order], rate[order]
+    first_point = _starts(np.bincount(group, minlength=groups))
+    nodes, w, (s, rho, d, e) = _phi_rules(a, group, end, small, rates[rate[first_point]],
+                                          sg[first_point], c)
+    fs = [_integrand_rows(integrand, s, rho, d, side)
+          for side in ((sg[first_point][nodes],) if sides is None else sides)]
+    total = np.empty((fs[0].shape[0], len(fs), size), dtype=np.result_type(e, fs[0], float))
+    # Each group's points on its nodes (each kernel by its own sum: the same rounding
+    # alone or with the other; no threaded BLAS for these small products).
+    point_start = np.append(first_point, size)
+    node_start = np.append(_starts(np.bincount(nodes, minlength=groups)), nodes.size)
+    for g in range(groups):
+        p, n = slice(point_start[g], point_start[g + 1]), slice(node_start[g], node_start[g + 1])
+        weighted = np.exp(-np.multiply.outer(a[p], e[n])) * w[n]
+        for i, f in enumerate(fs):
+            for k, v in enumerate(f):
+                total[k, i, p] = np.einsum("pn,n->p", weighted, v[n])
+    # Back to the points' order (and for c = 0 each point's side).
+    out = np.empty_like(total)
+    out[..., order] = total
+    out = out[:, 0] if sides is None else out[:, at_side, at_a]
+    return (2.0 / np.pi) * out
 
 
-def _rho_and_rate(s, c, b, side):
-    """``rho = sqrt(b + c^2 s^2)`` and ``D = rho + side c s`` at ``s`` of one side, or
-    of each point's ``side`` (an array like ``s``) (in the wake ``b/(rho + |c| s)``,
-    free of cancellation); for ``c = 0`` both are ``sqrt(b)``, without a square root per
-    node."""
-    if c == 0.0:
-        rho = np.full(np.shape(s), _sqrt(np.asarray(b))[()])
-        return rho, rho
-    rho = _sqrt(b + (c * s) ** 2)
-    up = side * c >= 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 only at phi = 0, b = 0
-        if np.ndim(up) == 0:
-            return rho, (rho + abs(c) * s if up else b / (rho + abs(c) * s))
-        return rho, np.where(up, rho + abs(c) * s, b / (rho + abs(c) * s))
-
-
-def _phi_rule(a, sg, end, small, c, b):
-    """The rule in ``phi`` shared by points ``a = |u|`` of one side ``sg``: from the
-    largest end, graded to the smallest scale, each level in parts over which the
-    exponent changes by at most ``_PANEL_VARIATION`` for every point whose own end lies
-    beyond the level's start (beyond it the integrand is negligible).  Returns the
-    weights and ``(s, rho, D, s D)`` at the nodes."""
-    def sd(phi):
-        s = np.sin(phi)
-        rho, d = _rho_and_rate(s, c, b, sg)
-        return s, rho, d, np.where(s == 0.0, 0.0, s * d)
-
-    top = float(np.max(end))
-    depth = max(1, int(np.ceil(np.log2(max(1.0, top / float(np.min(small))))))) + 1
-    edges = np.concatenate([[0.0], top * 2.0 ** np.arange(-depth, 1)])
-    step = np.abs(np.diff(sd(edges)[3]))
-    live = end[:, None] > edges[None, :-1]
-    change = np.max(np.where(live, a[:, None] * step[None, :], 0.0), axis=0)
+def _phi_rules(a, group, end, small, b, sg, c):
+    """The rules in ``phi`` of groups of points ``a = |u|`` (``group`` the group of each,
+    ascending), each group of one rate ``b`` and side ``sg`` (per group): from the
+    group's largest end, graded to its smallest scale, each level in parts over which
+    the exponent changes by at most ``_PANEL_VARIATION`` for every point of the group
+    whose own end lies beyond the level's start (beyond it the integrand is
+    negligible).  Returns each node's group, the weights and ``(s, rho, D, s D)`` at
+    the nodes, the groups' nodes consecutive."""
+    groups = b.size
+    count = np.bincount(group, minlength=groups)
+    top = np.maximum.reduceat(end, _starts(count))
+    bottom = np.minimum.reduceat(small, _starts(count))
+    depth = np.maximum(1, np.ceil(np.log2(np.maximum(1.0, top / bottom))).astype(int)) + 1
+    # Each group's levels [0, top 2^-depth], [top 2^-depth, top 2^(1-depth)], ...,
+    # [top/2, top].
+    level_group, level = _ragged(depth + 1)
+    top_l, depth_l = top[level_group], depth[level_group]
+    lo = np.where(level == 0, 0.0, top_l * 2.0 ** (level - 1 - depth_l))
+    hi = top_l * 2.0 ** (level - depth_l)
+    b_l, sg_l = b[level_group], sg[level_group]
+    step = np.abs(_sd(hi, c, b_l, sg_l)[3] - _sd(lo, c, b_l, sg_l)[3])
+    # The largest change over each level of its group's live points (level by level,
+    # each group's points in a run).
+    pair_level, place = _ragged(count[level_group])
+    point = _starts(count)[level_group][pair_level] + place
+    change = np.where(end[point] > lo[pair_level], a[point] * step[pair_level], 0.0)
+    change = np.maximum.reduceat(change, _starts(count[level_group]))
     parts = np.maximum(1, np.ceil(change / _PANEL_VARIATION).astype(int))
-    level = np.repeat(np.arange(parts.size), parts)
-    within = np.arange(level.size) - np.repeat(np.cumsum(parts) - parts, parts)
-    half = 0.5 * np.diff(edges)[level] / parts[level]
-    centre = edges[level] + (2 * within + 1) * half
+    panel_level, within = _ragged(parts)
+    half = 0.5 * (hi - lo)[panel_level] / parts[panel_level]
+    centre = lo[panel_level] + (2 * within + 1) * half
     phi = (centre[:, None] + half[:, None] * _GL_X).ravel()
     w = (half[:, None] * _GL_W).ravel()
-    return w, sd(phi)
-
-
-def _phi_group(a, sg, end, small, c, b, integrand, sides=None):
-    """The integrals of :func:`_phi_block` for points ``a = |u|`` of one side ``sg`` on
-    their shared rule (:func:`_phi_rule`), shape ``(kernels, 1, points)``; with
-    ``sides`` (``c = 0``, where the rule is that of either side) those of each side,
-    ``(kernels, sides, points)``."""
-    w, (s, rho, d, e) = _phi_rule(a, sg, end, small, c, b)
-    weighted = np.exp(-np.multiply.outer(a, e)) * w
-    out = []
-    for side in (sg,) if sides is None else sides:
-        f = integrand(s, rho, d, side)
-        # Each kernel by its own sum (the same rounding alone or with the other; no
-        # threaded BLAS for these small products).
-        out.append([np.einsum("pn,n->p", weighted, np.broadcast_to(v, e.shape))
-                    for v in (f if isinstance(f, tuple) else (f,))])
-    return np.array(out).transpose(1, 0, 2)
+    node_group = np.repeat(level_group[panel_level], _GL_X.size)
+    return node_group, w, _sd(phi, c, b[node_group], sg[node_group])
 
 
 def transient_displacement(u, c, b):
@@ -486,8 +530,33 @@ def transient_displacement(u, c, b):
 
 def transient_displacement_and_slope(u, c, b):
     """``(W(u), S(u))`` of :func:`transient_displacement` and :func:`transient_slope`
-    in one pass of their common quadrature (eqs. T9, T10)."""
-    c, b = _parameters(c, b)
+    in one pass of their common quadrature (eqs. T9, T10).
+
+    Parameters
+    ----------
+    u : array_like
+        ``(x - xi)/Delta``.
+    c : float
+        As in :func:`transient_temperature`.
+    b : complex or sequence of complex
+        As in :func:`transient_temperature`; a sequence of rates gives each rate's
+        kernels on a leading axis, all evaluated in one pass (each rate on its own
+        rules: the values those of the rates one at a time).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``W`` and ``S``, each shaped like ``u`` (``(len(b),) + u.shape`` for a
+        sequence); complex where any rate is.
+    """
+    if np.ndim(b) == 0:
+        c, b = _parameters(c, b)
+    else:
+        checked = [_parameters(c, rate) for rate in b]
+        c = checked[0][0] if checked else float(c)
+        b = np.array([rate for _, rate in checked])
+        if b.size == 0:
+            raise InputError("b must hold at least one rate", parameters=("b",))
 
     def integrand(s, rho, d, sg):
         return s / rho, s * s * np.where(sg == 0.0, c * s / rho, sg * d / rho)
