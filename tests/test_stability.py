@@ -381,6 +381,13 @@ def test_newton_stays_on_the_sheet():
         return M(b)
     b, step = newton(guarded, 0.05 + 0.1j, floor=1e-3)
     assert b.real > 1e-3 and not step < 1e-8
+    # A halved step, however small its proposal, does not end the iteration: with the
+    # root at 4e-4 left of the floor 5e-4, the iterates from 1.2e-3 go on to the floor
+    # (the change 7e-4 of the 8e-4 to the root, where stopping at the first halved
+    # step of a tolerance 1e-3 left half of it).
+    M = _known_problem([4e-4 + 0j, 3.0 + 1.0j, 3.0 - 1.0j])
+    b, step = newton(M, 1.2e-3 + 0j, floor=5e-4, tol=1e-3)
+    assert 5e-4 < b.real < 5e-4 + 1e-8 and step == pytest.approx(1e-4, rel=1e-3)
 
 
 def test_the_contour_tells_its_progress(monkeypatch):
@@ -603,15 +610,22 @@ def test_stability_of_orders_pairs_and_estimates(monkeypatch):
     import thermocontact.solvers.stability as st
 
     fine = ROOTS
-    coarse = [r + 1e-3 for r in fine]
+    coarse = [r + 2e-2 for r in fine]
     monkeypatch.setattr(st, "linearised", lambda n: _Stand(fine if n == 12 else coarse))
     res = st.stability_of(lambda n: n, n=12, modulus_bound=30.0)
     expected = [12.0, 4.0 + 0.5j, 4.0 - 0.5j, 1.5 + 2.0j, 1.5 - 2.0j, 0.7]
     assert res.unstable_modes == 6 and res.stable is False and res.reason is None
     np.testing.assert_allclose(res.eigenvalues, expected, atol=1e-9)
     assert res.growth_rate == pytest.approx(12.0, abs=1e-9)
-    # The root 0.7 moves by 1e-3, relative to max(|b|, 1) = 1.
-    assert res.error_estimate == pytest.approx(1e-3, rel=1e-6)
+    # The root 0.7 moves by 2e-2, relative to max(|b|, 1) = 1: Newton's method at 3n/2
+    # runs to a step below ESTIMATE_TOL, the change then within C s s' of the move.
+    assert res.error_estimate == pytest.approx(2e-2, rel=1e-5)
+    # A move below ESTIMATE_TOL is one step: within C s of itself, C ~ 1 here (S13).
+    small = [r + 5e-4 for r in fine]
+    monkeypatch.setattr(st, "linearised", lambda n: _Stand(fine if n == 12 else small))
+    one = st.stability_of(lambda n: n, n=12, modulus_bound=30.0)
+    assert one.error_estimate == pytest.approx(5e-4, rel=2e-3)
+    monkeypatch.setattr(st, "linearised", lambda n: _Stand(fine if n == 12 else coarse))
     per_second = st.stability_of(lambda n: n, n=12, modulus_bound=30.0, rate_unit=2.0)
     np.testing.assert_allclose(per_second.eigenvalues, 2.0 * res.eigenvalues, rtol=1e-12)
     assert per_second.units == "1/s" and per_second.region == (2e-3, 60.0)

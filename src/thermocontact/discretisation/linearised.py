@@ -499,8 +499,9 @@ def _frozen(arrays):
 def _body_values(c, rates, coarse=None):
     """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
     kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes` at each
-    of ``rates`` (one rate or several), shape (nodes, 4 len(rates)), the rates' four columns in turn (``W`` and
-    ``S`` of all the rates in one pass); for ``c = 0`` less the constants
+    of ``rates`` (one rate or several), shape (nodes, 4 len(rates)), the rates' four
+    columns in turn (``W`` and ``S`` of all the rates in one pass); for ``c = 0`` less
+    the constants
     ``2/(pi sqrt b)`` and ``l(b)``.  The stationary half-plane's (``c = 0``) at the
     coarse nodes unless ``coarse`` is False: its kernels, layers of ``sqrt(b)`` alone,
     need only the panels of ratio 2 (derivation S9)."""

@@ -167,6 +167,7 @@ def u_series_value(coefficients, s):
     Parameters
     ----------
     coefficients : ndarray, shape (n,)
+        Real (the recurrence runs in place in ``s``'s real arrays).
     s : array_like
 
     Returns

@@ -47,11 +47,13 @@ MODULUS_BOUND = 1e6
 #: unresolved in the record's reason.
 UNRESOLVED = 0.1
 #: The error estimate's Newton method at the finer n stops at a step below this
-#: (relative to ``max(|b|, 1)``): the change, the sum of its steps, is then that to the
-#: finer n's root within about ``C s^2`` (``s`` the last step, ``C`` the root's
-#: ``|f''/2f'|`` for ``f = det M``, of order 1 where the roots are apart), a thousandth of
-#: itself after one step or ``1e-6`` after more: an estimate to two digits or better,
-#: one step (two evaluations of ``M``) where the change is below ``1e-3``.
+#: (relative to ``max(|b|, 1)``; for a complex eigenvalue below this times
+#: ``2 |Im b|/max(|b|, 1)`` too, as its conjugate is a root ``2 |Im b|`` away): the change,
+#: the sum of its steps, is then that to the finer n's root within about ``C s s'``
+#: (``s`` the last step, ``s'`` the one before or ``s`` itself after one step, ``C`` the
+#: root's ``|f''/2f'|`` for ``f = det M``, about the inverse of the distance to the nearest
+#: other root), a fraction ``C s`` of itself: a thousandth where the roots are apart, one
+#: step (two evaluations of ``M``) where the change is below ``1e-3`` (derivation S13).
 ESTIMATE_TOL = 1e-3
 #: The largest change of the determinant's phase accepted between two samples.
 PHASE_STEP = np.pi / 4
@@ -569,9 +571,10 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     toward larger ``Re b`` (on the sheet).  Near a simple root ``b*`` a step is
     ``(b - b*)(1 + O(|b' - b*|))``, ``b'`` the difference's other point, so that a small
     last step confirms a root as Newton's does, and the iterates converge with the
-    secant method's order ``(1 + sqrt 5)/2``.  The iterates stay on the principal sheet,
-    ``Re b > floor``: a step that would cross it is halved until it does not (the cut
-    ``b <= 0`` of the stationary half-plane's kernels is never reached).  Returns the
+    secant method's order ``(1 + sqrt 5)/2`` (derivation S13).  The iterates stay on the
+    principal sheet, ``Re b > floor``: a step that would cross it is halved until it does
+    not (the cut ``b <= 0`` of the stationary half-plane's kernels is never reached), and
+    a halved step does not end the iteration, however small.  Returns the
     last iterate and its last step as proposed, before any halving (``inf`` where the
     iterates could not stay on the sheet).  ``prepare``, where given, is called with
     the rates of each step before ``matrix`` (:class:`Winding`).
@@ -613,8 +616,8 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
         before = (b, M)
         b = b - move
         # The step proposed, not the one halved to stay on the sheet, says how close
-        # the root is.
-        if abs(step) <= tol * max(1.0, abs(b)):
+        # the root is; a halved step has not reached it.
+        if move == step and abs(step) <= tol * max(1.0, abs(b)):
             break
     return b, abs(step)
 
@@ -768,8 +771,12 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             # The error at n: the change to a finer n (the change to n/2 overstates it
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
-            # Newton's method there from b, to a step of ESTIMATE_TOL.
-            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min, tol=ESTIMATE_TOL,
+            # Newton's method there from b, to a step of ESTIMATE_TOL (finer for a pair
+            # near the real axis, whose conjugate is the nearest root).
+            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
+                                    tol=ESTIMATE_TOL * (min(1.0, 2.0 * abs(b.imag)
+                                                            / max(1.0, abs(b)))
+                                                        if b.imag else 1.0),
                                     prepare=getattr(other, "prepare", None))[0] - b)
                          / max(1.0, abs(b)) for b in found)
     fold, slow = _fold(lin)
