@@ -295,7 +295,7 @@ def _phi_points(u, which, rates, c, integrand):
 def _ragged(counts):
     """For consecutive runs of ``counts`` items: each item's run and its place in it."""
     run = np.repeat(np.arange(counts.size), counts)
-    return run, np.arange(run.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    return run, np.arange(run.size) - _starts(counts)[run]
 
 
 def _starts(counts):
@@ -478,8 +478,9 @@ def _phi_rules(a, group, end, small, b, sg, c):
     the nodes, the groups' nodes consecutive."""
     groups = b.size
     count = np.bincount(group, minlength=groups)
-    top = np.maximum.reduceat(end, _starts(count))
-    bottom = np.minimum.reduceat(small, _starts(count))
+    first = _starts(count)
+    top = np.maximum.reduceat(end, first)
+    bottom = np.minimum.reduceat(small, first)
     depth = np.maximum(1, np.ceil(np.log2(np.maximum(1.0, top / bottom))).astype(int)) + 1
     # Each group's levels [0, top 2^-depth], [top 2^-depth, top 2^(1-depth)], ...,
     # [top/2, top].
@@ -492,7 +493,7 @@ def _phi_rules(a, group, end, small, b, sg, c):
     # The largest change over each level of its group's live points (level by level,
     # each group's points in a run).
     pair_level, place = _ragged(count[level_group])
-    point = _starts(count)[level_group][pair_level] + place
+    point = first[level_group][pair_level] + place
     change = np.where(end[point] > lo[pair_level], a[point] * step[pair_level], 0.0)
     change = np.maximum.reduceat(change, _starts(count[level_group]))
     parts = np.maximum(1, np.ceil(change / _PANEL_VARIATION).astype(int))
