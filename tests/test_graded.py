@@ -21,6 +21,7 @@ def test_stretch_and_inverse():
     tau = np.concatenate([np.geomspace(1e-6, 1, 30), np.linspace(1, np.pi - 0.1, 30)])
     t = graded.stretch(tau)
     assert np.max(np.abs(graded.stretch_inverse(t) / tau - 1)) < 1e-14
+    assert np.isnan(graded.stretch_inverse(np.array([np.nan, 1.0]))[0])
     assert abs(graded.stretch(np.array([1e-6]))[0] / (2 / 3 * 1e-18) - 1) < 1e-11
     with mp.workdps(40):
         d = np.array([1e-12, 1e-6, 0.3])

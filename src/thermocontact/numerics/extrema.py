@@ -53,6 +53,7 @@ def polish_minimum(f, x, values, i):
     Returns
     -------
     x_min, f_min : float
+        The sample's own where ``f`` is not finite at every interpolation point.
     """
     lo, hi = x[max(i - 1, 0)], x[min(i + 1, len(x) - 1)]
     best = (float(x[i]), float(values[i]))
@@ -68,7 +69,12 @@ def polish_minimum(f, x, values, i):
     # coefficients by the points' discrete orthogonality; the critical points are
     # the roots of its derivative inside, the candidates those and the points.
     cheb = np.polynomial.chebyshev
-    c = _POLISH_MATRIX @ f(pts)
+    on_pts = f(pts)
+    if not np.all(np.isfinite(on_pts)):
+        # A closed form undefined between the samples: nothing to interpolate; the
+        # sampled minimum stands.
+        return best
+    c = _POLISH_MATRIX @ on_pts
     crit = cheb.chebroots(cheb.chebder(c))
     crit = crit[np.isreal(crit)].real
     crit = crit[(crit > -1.0) & (crit < 1.0)]

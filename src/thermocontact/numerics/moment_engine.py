@@ -104,7 +104,7 @@ def stretch_inverse(t):
     """``tau`` with ``T(tau) = t``, ``t`` in ``[0, pi]``, by Newton's method.
 
     Each point's iteration stops at the first step of at most ``1e-15`` (the step taken),
-    all points' steps at once."""
+    all points' steps at once; NaN where ``t`` is NaN."""
     t = np.asarray(t, dtype=float)
     near = np.minimum(t, np.pi - t)
     out = np.zeros_like(near)
@@ -124,7 +124,7 @@ def stretch_inverse(t):
             if live.size == 0:
                 break
         out[pos] = y
-    return np.where(t <= 0.5 * np.pi, out, np.pi - out)
+    return np.where(t <= 0.5 * np.pi, out, np.where(np.isnan(t), np.nan, np.pi - out))
 
 
 def tau_of(s):
