@@ -184,7 +184,8 @@ def test_dask_cluster_gives_the_same_numbers(reference, tmp_path, capsys):
         xr.testing.assert_identical(ds, reference)
         # A worker's address is refused, naming what answered there.
         worker = next(iter(cluster.workers.values())).address
-        with pytest.raises(InputError, match="is not a Dask scheduler .a (Nanny|Worker) "):
+        with pytest.raises(InputError,
+                           match="answered as a Dask (Nanny|Worker): give the address "):
             connect(worker, timeout=5.0)
         # From inside a running event loop (a notebook's) too: the probe has its own.
         import asyncio
@@ -299,8 +300,8 @@ def test_a_peer_that_is_not_a_scheduler(listener, capsys, tmp_path, monkeypatch)
         # end on a silent peer) is made.
         patched.setattr(distributed, "Client", made)
         silent = listener(None)
-        with pytest.raises(InputError, match=f"scheduler {silent} did not answer as a Dask "
-                                             "scheduler .no answer in Dask's protocol within "
+        with pytest.raises(InputError, match=f"scheduler {silent} gave no Dask identity "
+                                             ".no answer in Dask's protocol within "
                                              "1.5 s"):
             connect(silent, timeout=1.5)
     web = listener(b"HTTP/1.0 400 Bad Request\r\n\r\n" * 64)
@@ -308,8 +309,8 @@ def test_a_peer_that_is_not_a_scheduler(listener, capsys, tmp_path, monkeypatch)
     rc = main(["map", "--x", X, "--y", Y, "--K2-over-K1", "10", "--lam", "1",
                "--out", "never.nc", "--scheduler", web])
     err = capsys.readouterr().err
-    assert rc == 2 and err.startswith(f"error: scheduler {web} did not answer as a Dask "
-                                      "scheduler (an answer not in Dask's protocol: ")
+    assert rc == 2 and err.startswith(f"error: --scheduler {web} gave no Dask identity "
+                                      "(an answer not in Dask's protocol: ")
     assert err.count("\n") == 1
 
 

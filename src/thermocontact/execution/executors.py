@@ -203,13 +203,13 @@ def connect(address, timeout=10.0):
     # leaves a half-made Client whose close waits 20 s more and prints a traceback.
     kind = _identity(address, timeout)
     if kind != "Scheduler":
-        raise InputError(f"scheduler {address} is not a Dask scheduler (a {kind} answered "
-                         "there)")
+        raise InputError(f"scheduler {address} answered as a Dask {kind}: give the address "
+                         "the cluster's workers connect to", parameters=("scheduler",))
     try:
         return Client(address, timeout=timeout, set_as_default=False)
     except Exception as exc:  # noqa: BLE001 - any failure to connect is one line
         raise InputError(f"scheduler {address} did not answer within {timeout:g} s "
-                         f"({type(exc).__name__})") from None
+                         f"({type(exc).__name__})", parameters=("scheduler",)) from None
 
 
 def _identity(address, timeout) -> str:
@@ -255,7 +255,8 @@ def _identity(address, timeout) -> str:
             why = f"an answer not in Dask's protocol: {type(exc).__name__}"
             reply = None
     if not (isinstance(reply, dict) and isinstance(reply.get("type"), str)):
-        raise InputError(f"scheduler {address} did not answer as a Dask scheduler ({why})")
+        raise InputError(f"scheduler {address} gave no Dask identity ({why})",
+                         parameters=("scheduler",))
     return reply["type"]
 
 
