@@ -50,7 +50,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..numerics.cache import BoundedCache
+from ..numerics.cache import BoundedCache, small_cache
 from ..numerics.moment_engine import graded_map, nodes, stretch
 from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
@@ -517,6 +517,16 @@ def _frozen(arrays):
     return out
 
 
+@small_cache(8)
+def _steady_slope_and_gradient(c, size):
+    """A moving body's steady slope ``S_0`` and regular gradient ``G_0 - 1/u`` at the
+    ``size`` nodes of :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`
+    (the table's or the coarse ones), formed once per scale: every rate's differences
+    take them (:func:`_body_values`)."""
+    u = kernel_nodes(coarse=size != kernel_nodes().size)
+    return _frozen([moving_slope(u, c), cylinder_temperature_gradient_regular(u, c)])
+
+
 def _body_values(c, rates, coarse=None):
     """``W``, ``T``, ``S_b - S_0``, ``G_b - G_0`` of one body (section "Transient
     kernels") at :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes` at each
@@ -531,7 +541,7 @@ def _body_values(c, rates, coarse=None):
     W, S = transient_displacement_and_slope(u, c, rates)
     out = np.empty((u.size, 4 * len(rates)), dtype=complex)
     if c != 0.0:
-        S0, G0 = moving_slope(u, c), cylinder_temperature_gradient_regular(u, c)
+        S0, G0 = _steady_slope_and_gradient(c, u.size)
     for j, b in enumerate(rates):
         T, dG = transient_temperature_and_gradient_regular(u, c, b)
         if c == 0.0:
