@@ -16,7 +16,10 @@ values at those nodes:
 polynomials of the nodes are integrated against the weighted bases by Gauss-Legendre
 in ``tau``, on the ``tau``-interval the panel covers, located without cancellation
 next to ``tau_k`` (offsets ``delta = tau - tau_k``, as the moment engine forms
-them), one matrix product per point and panel.  Below :data:`SMALLEST` the kernel is
+them), one matrix product per point and panel; a cell small against its distance from
+the contact's edges (most of those next to ``u = 0``) by an 8-point product rule in the
+panel's own variable instead (:func:`_tiny_cells`, derivation S9: its error below
+rounding).  Below :data:`SMALLEST` the kernel is
 its fit ``a + b ln|u| + c u + d u ln|u|`` on the first panel's nodes, the bases
 integrated against those four functions on pieces halving toward ``u = 0`` and mapped
 to the nodes after.  A kernel that is smooth on either side of ``u = 0`` on every
