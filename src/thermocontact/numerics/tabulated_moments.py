@@ -304,14 +304,15 @@ def _tiny_cells(tau_k, t_k, low, high, lo, hi, side, to_cos, cmap):
     In ``x``, the panel's variable (``|u| = mid + half x``), a cell's moments are
     ``integral_-1^1 F(x) L_j(x) dx`` with ``F = phi_i W |dtau/dx|``,
     ``|dtau/dx| = half/(sin T T')``: ``F`` interpolated on the points of
-    :func:`_tiny_rule` (their offsets by Newton's method, :func:`_offsets`) and
-    integrated against the panel's Lagrange polynomials exactly (``Q``).  ``F`` is
+    :func:`_tiny_rule` and integrated against the panel's Lagrange polynomials exactly
+    (``Q``).  ``F`` is
     analytic about the cell (its singularities are at the edges ``tau = 0, pi`` alone:
     the map's ``sin T T'`` vanishes nowhere else), so that the rule's error is that of
     interpolation on a Bernstein ellipse of parameter :data:`_TINY_RHO` or more.  The
-    offsets at the points by Newton's method from the line through the ends' (off by
-    about ``(delta/distance) delta``, ``delta`` the half-width, at most ``delta/200``:
-    three steps square that relative error three times, below rounding)."""
+    points' offsets by Newton's method on ``u(tau_k + d)`` from the line through the
+    ends' (off by about ``(delta/distance) delta``, ``delta`` the half-width, at most
+    ``delta/200``: three steps square that relative error three times, below
+    rounding)."""
     x, q = _tiny_rule()
     mid, half = 0.5 * (high + low), 0.5 * (high - low)
     a = (mid[:, None] + half[:, None] * x) * side
