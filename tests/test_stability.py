@@ -370,6 +370,58 @@ def test_newton_takes_one_evaluation_a_step():
         assert len(rates) <= 6 and len(set(rates)) == len(rates)
 
 
+def test_newton_from_two_earlier_iterates():
+    """With ``previous``, the first step's divided difference is taken between it and
+    the start (the error estimate's, from the last two iterates at n whose kernels are
+    kept): no forward difference, the same root as from the start alone."""
+    M = _known_problem(ROOTS)
+    for r in (1.5 + 2.0j, 0.7 + 0j, 12.0 + 0j):
+        rates = []
+
+        def counted(b):
+            rates.append(b)
+            return M(b)
+        start, before = r + 3e-4 - 2e-4j, r + 3e-4 - 2e-4j + 1e-7
+        b, step = newton(counted, start, previous=before, tol=1e-3)
+        assert rates == [before, start]
+        ref, _ = newton(M, start, tol=1e-3)
+        assert abs(b - ref) < 1e-9 * abs(r) and abs(b - r) < 1e-6 * abs(r)
+
+
+def test_the_estimate_starts_from_the_last_iterates():
+    """The error estimate's start (:func:`_estimate_start`): the two rates taken nearest
+    the root, within 1e-6 of it and at least 1e-12 apart; otherwise the root itself and
+    the forward difference."""
+    from thermocontact.solvers.stability import _estimate_start
+
+    b = 0.8 + 1.4j
+    taken = [2.0 + 1j, b + 1e-3, b + 5e-7, b + 2e-10, b + 2e-10, b - 1e-14]
+    assert _estimate_start(b, taken) == (b - 1e-14, b + 2e-10)
+    assert _estimate_start(b, [b + 1e-3, b + 5e-7]) == (b, None)
+    assert _estimate_start(b, [b + 1e-14, b + 2e-14, b + 1e-3]) == (b, None)
+
+
+def test_kept_kernel_values_are_those_formed():
+    """A body's kernel values kept per scale and rate (the error estimate's M at 3n/2
+    takes those of the rates taken at n) are those formed, in the order asked, kept or
+    not, and each rate is kept once."""
+    from thermocontact.discretisation.linearised import (KERNEL_VALUES, _body_values,
+                                                         _kept_values)
+
+    rates = [1e-3 + 0.5j, 2.0 + 0j, 40.0 + 3.0j]
+    for c in (0.0, 1.5):
+        KERNEL_VALUES.clear()
+        formed = _body_values(c, rates)
+        first = _kept_values(c, rates[1:])
+        both = _kept_values(c, rates[::-1])
+        # A pass over other rates forms each rate's on its own rules (to rounding).
+        tol = dict(rtol=1e-14, atol=1e-14 * np.abs(formed).max())
+        np.testing.assert_allclose(first, formed[:, 4:], **tol)
+        np.testing.assert_allclose(
+            both, np.concatenate([formed[:, 8:], formed[:, 4:8], formed[:, :4]], axis=1), **tol)
+        assert len(KERNEL_VALUES) == 3
+
+
 def test_newton_stays_on_the_sheet():
     """A Newton step that would cross ``Re b = floor`` (the cut of the stationary
     half-plane's kernels lies beyond it) is halved: the iterates stay right of it, and

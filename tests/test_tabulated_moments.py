@@ -41,3 +41,21 @@ def test_a_moving_bodys_wake_at_large_rates(stored, c, b):
     for w in range(2):
         error = np.abs(tabled[w] - reference[w]).max() / np.abs(reference[w]).max()
         assert error < TOLERANCE[c, b], (w, error)
+
+
+@pytest.mark.parametrize("n, alpha", [(8, 0.5), (12, 0.62)])
+def test_small_cells_by_their_product_rule(monkeypatch, n, alpha):
+    """The cells small against their distance from the edges, on the 8-point product
+    rule in the panel's variable (derivation S9), give the table Gauss-Legendre in tau
+    gives them (every cell so, the rule switched off): the same entries to 1e-15 of the
+    largest, the pressure's weight with the Dundurs term's edge exponents too."""
+    from thermocontact.numerics import tabulated_moments as tm
+    from thermocontact.numerics.moment_engine import graded_map
+
+    rep = EdgeGraded(n, alpha=alpha)
+    tau = np.pi * (np.arange(2 * n, 0, -1) - 0.5) / (2 * n)
+    built = tm.KernelTable(tau, n, rep.to_cos, graded_map(alpha))
+    monkeypatch.setattr(tm, "_TINY_RHO", np.inf)
+    gauss = tm.KernelTable(tau, n, rep.to_cos, graded_map(alpha))
+    for got, want in ((built.matrix, gauss.matrix), (built.coarse, gauss.coarse)):
+        assert np.abs(got - want).max() < 1e-15 * np.abs(want).max()

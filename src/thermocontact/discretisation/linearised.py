@@ -50,7 +50,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..numerics.cache import BoundedCache
+from ..numerics.cache import BoundedCache, small_cache
 from ..numerics.moment_engine import graded_map, nodes, stretch
 from ..numerics.tabulated_moments import kernel_nodes, kernel_table
 from ..physics.green_functions import (cylinder_displacement, cylinder_temperature,
@@ -303,9 +303,9 @@ class LinearisedContact:
                         todo[key] = (c, rate)
             if not todo:
                 continue
-            # One body's scale, its rates' kernels in one pass.
+            # One body's scale, its rates' kernels in one pass (those not kept).
             c = next(iter(todo.values()))[0]
-            values = _body_values(c, [rate for _, rate in todo.values()])
+            values = _kept_values(c, [rate for _, rate in todo.values()])
             bounded, singular = table.moments(values)
             for j, key in enumerate(todo):
                 part = _frozen(np.array(m[..., 4 * j:4 * j + 4]) for m in (bounded, singular))
@@ -480,11 +480,32 @@ KERNEL_MOMENTS = BoundedCache("transient kernel moments", 64 * 2**20)
 STACKED_MOMENTS = BoundedCache("stacked kernel moments", 16 * 2**20)
 
 
+#: Each body's kernel values at the nodes (:func:`_body_values`) per scale and rate,
+#: kept per process: they do not depend on ``n``, so that the error estimate's ``M(b)``
+#: at ``3n/2`` takes those of the rates Newton's method took at ``n`` (151 kB an entry
+#: for a moving body, 76 kB for the stationary half-plane).
+KERNEL_VALUES = BoundedCache("transient kernel values", 32 * 2**20)
+
+
 def _body_moments(table, c, b):
     """The moments (:meth:`~thermocontact.numerics.tabulated_moments.KernelTable.moments`)
     of one body's :func:`_body_values`, kept in :data:`KERNEL_MOMENTS`."""
     return KERNEL_MOMENTS.get((table.key, float(c), complex(b)),
-                              lambda: _frozen(table.moments(_body_values(c, b))))
+                              lambda: _frozen(table.moments(_kept_values(c, [b]))))
+
+
+def _kept_values(c, rates):
+    """:func:`_body_values` of one body at ``rates``, shape (nodes, 4 len(rates)): each
+    rate's kept in :data:`KERNEL_VALUES`, those not kept formed in one pass."""
+    keys = [(float(c), complex(b)) for b in rates]
+    todo = list(dict.fromkeys(k[1] for k in keys if k not in KERNEL_VALUES))
+    if todo:
+        values = _body_values(c, todo)
+        for j, b in enumerate(todo):
+            part, = _frozen([np.array(values[:, 4 * j:4 * j + 4])])
+            KERNEL_VALUES.get((float(c), b), lambda part=part: part)
+    return np.concatenate([KERNEL_VALUES.get(k, lambda k=k: _body_values(*k)) for k in keys],
+                          axis=1)
 
 
 def _frozen(arrays):
@@ -494,6 +515,16 @@ def _frozen(arrays):
     for m in out:
         m.setflags(write=False)
     return out
+
+
+@small_cache(8)
+def _steady_slope_and_gradient(c, size):
+    """A moving body's steady slope ``S_0`` and regular gradient ``G_0 - 1/u`` at the
+    ``size`` nodes of :func:`~thermocontact.numerics.tabulated_moments.kernel_nodes`
+    (the table's or the coarse ones), formed once per scale: every rate's differences
+    take them (:func:`_body_values`)."""
+    u = kernel_nodes(coarse=size != kernel_nodes().size)
+    return _frozen([moving_slope(u, c), cylinder_temperature_gradient_regular(u, c)])
 
 
 def _body_values(c, rates, coarse=None):
@@ -510,7 +541,7 @@ def _body_values(c, rates, coarse=None):
     W, S = transient_displacement_and_slope(u, c, rates)
     out = np.empty((u.size, 4 * len(rates)), dtype=complex)
     if c != 0.0:
-        S0, G0 = moving_slope(u, c), cylinder_temperature_gradient_regular(u, c)
+        S0, G0 = _steady_slope_and_gradient(c, u.size)
     for j, b in enumerate(rates):
         T, dG = transient_temperature_and_gradient_regular(u, c, b)
         if c == 0.0:

@@ -16,7 +16,10 @@ values at those nodes:
 polynomials of the nodes are integrated against the weighted bases by Gauss-Legendre
 in ``tau``, on the ``tau``-interval the panel covers, located without cancellation
 next to ``tau_k`` (offsets ``delta = tau - tau_k``, as the moment engine forms
-them), one matrix product per point and panel.  Below :data:`SMALLEST` the kernel is
+them), one matrix product per point and panel; a cell small against its distance from
+the contact's edges (most of those next to ``u = 0``) by an 8-point product rule in the
+panel's own variable instead (:func:`_tiny_cells`, derivation S9: its error below
+rounding).  Below :data:`SMALLEST` the kernel is
 its fit ``a + b ln|u| + c u + d u ln|u|`` on the first panel's nodes, the bases
 integrated against those four functions on pieces halving toward ``u = 0`` and mapped
 to the nodes after.  A kernel that is smooth on either side of ``u = 0`` on every
@@ -167,9 +170,10 @@ class KernelTable:
         gx, gw = np.polynomial.legendre.leggauss(_GAUSS)
         ix, iw = np.polynomial.legendre.leggauss(_INNER_GAUSS)
         to_cos = np.asarray(to_cos)
-        # (point, n, side, panel, node): each side's panels outward from u = 0, each
-        # panel's nodes in ascending |u| (the Chebyshev points descend).
-        table = np.zeros((2, tau_k.size, n, 2, npan, NODES))
+        # (side, point, panel, weight, n, node): each side's panels outward from u = 0,
+        # each panel's nodes in the Chebyshev points' (descending) order; a cell's
+        # entries contiguous, laid out as the map once at the end.
+        cells = np.zeros((2, tau_k.size, npan, 2, n, NODES))
         for at_side, side in enumerate((-1.0, 1.0)):
             # The offsets of each panel's ends, cut at the contact's edge.
             end = np.where(side > 0, np.pi - tau_k, -tau_k)
@@ -179,6 +183,19 @@ class KernelTable:
             d = np.where(a >= reach[:, None], end[:, None], d)
             lo, hi = d[:, :-1], d[:, 1:]
             live = np.abs(hi - lo) > 0.0
+            # The cells small against their distance from the edges (tau = 0, pi) and
+            # against 1/n, whole (not cut at the contact's edge): on the rule of
+            # _tiny_rule, the rest by Gauss-Legendre in tau.
+            near = np.minimum(tau_k[:, None] + np.minimum(lo, hi),
+                              np.pi - tau_k[:, None] - np.maximum(lo, hi))
+            tiny = live & (a[:, 1:] < reach[:, None]) & (
+                np.abs(hi - lo) <= np.minimum(2.0 * near, 4.0 / n) / _TINY_RHO)
+            if np.any(tiny):
+                k_t, p_t = np.nonzero(tiny)
+                cells[at_side, k_t, p_t] = _tiny_cells(
+                    tau_k[k_t], t_k[k_t], edges[p_t], edges[p_t + 1], lo[tiny], hi[tiny],
+                    side, to_cos, cmap)
+            live &= ~tiny
             k_idx, p_idx = np.nonzero(live)
             lo, hi = lo[live], hi[live]
             # Each (point, panel) cell's interval in pieces of at most _PIECE, in order.
@@ -202,8 +219,7 @@ class KernelTable:
                 at = (first[these][:, None] + np.arange(m)).ravel()
                 cell = np.matmul(basis[at].reshape(these.size, m * _GAUSS, n).transpose(0, 2, 1),
                                  lag[:, at].reshape(2, these.size, m * _GAUSS, NODES))
-                table[:, k_idx[these], :, at_side, p_idx[these]] = (
-                    cell[..., ::-1].transpose(1, 0, 2, 3))
+                cells[at_side, k_idx[these], p_idx[these]] = cell.transpose(1, 0, 2, 3)
             # The innermost interval [0, d0] in pieces halving toward 0: the kernel there
             # is the fit on the first panel, so that the bases are integrated against
             # its four functions, mapped to the first panel's nodes after.
@@ -216,9 +232,12 @@ class KernelTable:
             weights *= (0.5 * np.abs(ihi - ilo) * iw).reshape(tau_k.size, -1)
             four = _inner_basis(np.abs(_offset_u(tau_k[:, None], t_k[:, None], inodes, cmap)))
             inner = np.matmul(basis.transpose(0, 2, 1), weights[..., None] * four)
-            table[:, :, :, at_side, 0] += (inner @ fit)[..., ::-1]
-        # Ascending u: the negative side's panels inward, its nodes in descending |u|.
-        table[:, :, :, 0] = table[:, :, :, 0, ::-1, ::-1]
+            cells[at_side, :, 0] += (inner @ fit).transpose(1, 0, 2, 3)
+        # Ascending u: the negative side's panels inward, its nodes in descending |u|;
+        # the positive side's outward, its nodes in ascending |u|.
+        table = np.empty((2, tau_k.size, n, 2, npan, NODES))
+        table[:, :, :, 0] = cells[0, :, ::-1].transpose(2, 0, 3, 1, 4)
+        table[:, :, :, 1] = cells[1, ..., ::-1].transpose(2, 0, 3, 1, 4)
         #: The map, shape ``(2, k, n, nodes)``: nodal values to moments.
         self.matrix = table.reshape(2, tau_k.size, n, -1)
         #: The map from values at the coarse nodes (:func:`kernel_nodes`, ``coarse``):
@@ -249,6 +268,66 @@ class KernelTable:
         return out.reshape((2,) + self.shape + values.shape[1:])
 
 
+#: Points of the rule of a small cell (:func:`_tiny_cells`) and the least ratio of the
+#: cell's distance from the edges (and of ``2/n``) to its half-width in ``tau``: the
+#: Bernstein ellipse of that ratio about the cell keeps half that distance from the
+#: edges, where the integrand's only singularities lie, and ``n |Im tau| <= 1``, so
+#: that the interpolation error of its smooth factor is about
+#: ``4 e 8 rho^-M / (rho - 1) = 2e-19`` of its size (derivation S9).
+_TINY_POINTS = 8
+_TINY_RHO = 200.0
+#: Newton's steps for the offsets of those points.
+_TINY_NEWTON = 3
+
+
+@small_cache(2)
+def _tiny_rule():
+    """The Chebyshev points ``x_m`` (first kind) of :data:`_TINY_POINTS` and the
+    matrix ``Q[m, j] = integral_-1^1 l_m(x) L_j(x) dx``, ``l_m`` their Lagrange
+    polynomials and ``L_j`` those of a panel's nodes (:func:`_chebyshev`): exact by
+    Gauss-Legendre (the product has degree ``_TINY_POINTS + NODES - 2``)."""
+    m = _TINY_POINTS
+    x = np.cos(np.pi * (np.arange(m) + 0.5) / m)
+    gx, gw = np.polynomial.legendre.leggauss((m + NODES) // 2 + 1)
+    q = (_lagrange(gx, x) * gw[:, None]).T @ _lagrange(gx, _chebyshev())
+    x.setflags(write=False)
+    q.setflags(write=False)
+    return x, q
+
+
+def _tiny_cells(tau_k, t_k, low, high, lo, hi, side, to_cos, cmap):
+    """The table's entries of cells small against their distance from the edges, the
+    cells' ``|u|`` from ``low`` to ``high`` and their offsets from ``lo`` to ``hi``:
+    shape ``(cells, 2, n, NODES)``, the nodes in the Chebyshev points' (descending)
+    order.
+
+    In ``x``, the panel's variable (``|u| = mid + half x``), a cell's moments are
+    ``integral_-1^1 F(x) L_j(x) dx`` with ``F = phi_i W |dtau/dx|``,
+    ``|dtau/dx| = half/(sin T T')``: ``F`` interpolated on the points of
+    :func:`_tiny_rule` and integrated against the panel's Lagrange polynomials exactly
+    (``Q``).  ``F`` is
+    analytic about the cell (its singularities are at the edges ``tau = 0, pi`` alone:
+    the map's ``sin T T'`` vanishes nowhere else), so that the rule's error is that of
+    interpolation on a Bernstein ellipse of parameter :data:`_TINY_RHO` or more.  The
+    points' offsets by Newton's method on ``u(tau_k + d)`` from the line through the
+    ends' (off by about ``(delta/distance) delta``, ``delta`` the half-width, at most
+    ``delta/200``: three steps square that relative error three times, below
+    rounding)."""
+    x, q = _tiny_rule()
+    mid, half = 0.5 * (high + low), 0.5 * (high - low)
+    a = (mid[:, None] + half[:, None] * x) * side
+    tau_k, t_k = tau_k[:, None], t_k[:, None]
+    d = 0.5 * (hi + lo)[:, None] + 0.5 * (hi - lo)[:, None] * x
+    for _ in range(_TINY_NEWTON):
+        slope = np.sin(cmap.T(tau_k + d)) * cmap.dT(tau_k + d)
+        d = d - (_offset_u(tau_k, t_k, d, cmap) - a) / slope
+    tau = tau_k + d
+    basis, weights = _basis(tau, to_cos, cmap)
+    jacobian = half[:, None] / (np.sin(cmap.T(tau)) * cmap.dT(tau))
+    f = basis[:, None] * (weights * jacobian).transpose(1, 0, 2)[..., None]
+    return np.matmul(f.transpose(0, 1, 3, 2), q)           # (cells, 2, n, NODES)
+
+
 def _coarsened(matrix):
     """``matrix`` (the last axis the nodes of :func:`kernel_nodes`) acting on values at
     the coarse nodes: each coarse panel's values interpolated to its two halves' nodes
@@ -260,12 +339,11 @@ def _coarsened(matrix):
     x = ((mid[:, None] + half[:, None] * xc) - 1.5 * fine[0]).ravel() / (0.5 * fine[0])
     refine = _lagrange(x, xc)                           # (2 NODES, NODES)
     side = matrix.shape[-1] // 2
-    shape = matrix.shape[:-1] + (side // 2,)
-    # One product a side; the negative side's nodes descend in |u|, and so does the
-    # map's order there.
-    return np.concatenate([
-        (matrix[..., :side].reshape(-1, 2 * NODES) @ refine[::-1, ::-1]).reshape(shape),
-        (matrix[..., side:].reshape(-1, 2 * NODES) @ refine).reshape(shape)], axis=-1)
+    # Each side's pairs of panels: one product a side (the negative side's nodes descend
+    # in |u|, and so does the map's order there) on a view of the map, no copy.
+    pairs = matrix.reshape(-1, 2, side // (2 * NODES), 2 * NODES)
+    out = np.matmul(pairs, np.stack([refine[::-1, ::-1], refine]))
+    return out.reshape(matrix.shape[:-1] + (side,))
 
 
 def _basis(tau, to_cos, cmap):

@@ -561,7 +561,8 @@ def beyn(matrix, contour, *, rank=None, probes=8, tol=1e-5, seed=0, progress=Non
     return np.linalg.eigvals(B), k
 
 
-def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
+def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None,
+           previous=None):
     """An eigenvalue of ``M(b) c = 0`` by Newton's method on ``det M`` from ``b0``.
 
     ``b <- b - 1/tr(M^{-1} M')`` (the logarithmic derivative of the determinant), with
@@ -577,13 +578,19 @@ def newton(matrix, b0, *, steps=16, tol=1e-10, h=1e-6, floor=0.0, prepare=None):
     a halved step does not end the iteration, however small.  Returns the
     last iterate and its last step as proposed, before any halving (``inf`` where the
     iterates could not stay on the sheet).  ``prepare``, where given, is called with
-    the rates of each step before ``matrix`` (:class:`Winding`).
+    the rates of each step before ``matrix`` (:class:`Winding`).  ``previous``, where
+    given, is a rate near ``b0`` (an iterate before it) whose ``M`` makes the first
+    step's divided difference in place of the forward one.
     """
     b = complex(b0)
     if b.real <= floor:
         # A start off the sheet (an estimate left of the line): moved onto it.
         b = complex(floor + max(abs(floor), 1e-12), b.imag)
     step, before = np.inf, None
+    if previous is not None and complex(previous) != b:
+        if prepare is not None:
+            prepare([complex(previous), b])
+        before = (complex(previous), matrix(complex(previous)))
 
     def forward(b, M):
         e = h * max(abs(b), 1e-300)
@@ -746,12 +753,17 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             if progress is not None:
                 progress(evaluations[0], max(expected, evaluations[0]))
 
+    # The rates at which M was evaluated: the error estimate starts from Newton's last.
+    taken = []
+
     def counted(b):
         told(1)
+        taken.append(complex(b))
         return scaled(b)
 
     def counted_many(rates):
         told(len(rates))
+        taken.extend(complex(b) for b in rates)
         return scaled_many(rates)
 
     winding = Winding(counted, b_min, prepare=getattr(lin, "prepare", None),
@@ -772,13 +784,18 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
             # many times: the eigenvalues converge faster than any fixed order).
             other = linearised(solve_at(2 * ((3 * n // 2 + 1) // 2) if n <= 32 else n // 2))
             # Newton's method there from b, to a step of ESTIMATE_TOL (finer for a pair
-            # near the real axis, whose conjugate is the nearest root).
-            change = max(abs(newton(other.matrix, b, floor=0.5 * b_min,
-                                    tol=ESTIMATE_TOL * (min(1.0, 2.0 * abs(b.imag)
-                                                            / max(1.0, abs(b)))
-                                                        if b.imag else 1.0),
-                                    prepare=getattr(other, "prepare", None))[0] - b)
-                         / max(1.0, abs(b)) for b in found)
+            # near the real axis, whose conjugate is the nearest root), from the last
+            # two rates taken at n next to b where there are (their kernels' values
+            # kept: no new rate for the first step).
+            changes = []
+            for b in found:
+                start, previous = _estimate_start(b, taken)
+                tol = ESTIMATE_TOL * (min(1.0, 2.0 * abs(b.imag) / max(1.0, abs(b)))
+                                      if b.imag else 1.0)
+                root = newton(other.matrix, start, floor=0.5 * b_min, tol=tol,
+                              prepare=getattr(other, "prepare", None), previous=previous)[0]
+                changes.append(abs(root - b) / max(1.0, abs(b)))
+            change = max(changes)
     fold, slow = _fold(lin)
     if slow is not None and slow >= b_min:
         slow = None     # counted, if anywhere
@@ -808,6 +825,24 @@ def stability_of(solve_at, *, n=STABILITY_N, b_min=B_MIN, modulus_bound=MODULUS_
         count_method=COUNT_METHOD_STEPS if winding.ratios is True else COUNT_METHOD,
         error_estimate=change, fold=fold, slow_root=slow,
         evaluations=evaluations[0], n=n, units=units, samples=sampled)
+
+
+def _estimate_start(b, taken):
+    """``(start, previous)`` of the error estimate's Newton method at the finer ``n``
+    for the root ``b`` (:func:`newton`): the rate taken at ``n`` nearest ``b`` and the
+    next nearest, where both lie within ``1e-6 max(1, |b|)`` of ``b`` and ``1e-12
+    max(1, |b|)`` or more apart (the last iterates of the method that confirmed ``b``:
+    their divided difference is then as close to ``M'`` as the forward difference of
+    step ``1e-6 |b|``, and its rounding below ``1e-4`` of it); otherwise ``(b, None)``
+    (the forward difference)."""
+    scale = max(1.0, abs(b))
+    near = sorted((z for z in set(taken) if abs(z - b) <= 1e-6 * scale),
+                  key=lambda z: abs(z - b))
+    if len(near) >= 2:
+        for z in near[1:]:
+            if abs(z - near[0]) >= 1e-12 * scale:
+                return near[0], z
+    return b, None
 
 
 #: Real rates per octave of the grid ``b = 2^(k/4)`` on which a single real root is
