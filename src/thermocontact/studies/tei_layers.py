@@ -455,6 +455,19 @@ def _cubic_peak(lo, hi):
     return ua + t * H
 
 
+def _peak_bound(lo, hi):
+    """An upper bound of the largest ``Re b`` of one mode between the speeds of ``lo =
+    (V, b, db/dV)`` (``Re b`` rising) and ``hi`` (falling), on the scan's assumption
+    that its growth rate changes on no scale of speed far shorter than the step
+    control's: ``max(r_lo, r_hi) + PEAK_RISE max(r'_lo, -r'_hi) H``, ``r' = d Re b/d
+    ln V`` and ``H`` the bracket's width in ``ln V`` (docs/derivation.md, L15; where
+    ``Re b`` is concave on the bracket its maximum is below ``max(r_lo, r_hi) +
+    min(r'_lo, -r'_hi) H``)."""
+    H = math.log(hi[0]) - math.log(lo[0])
+    rise = max(lo[0] * lo[2].real, -hi[0] * hi[2].real) * H
+    return max(lo[1].real, hi[1].real) + PEAK_RISE * rise
+
+
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
     ``D`` (implicit differentiation), in closed form (:meth:`Layered.log_derivatives`)."""
@@ -549,6 +562,10 @@ MAX_RATIO = 4.0
 MIN_STEP = 1e-6
 #: Speeds of a scan between two reseedings from the depth discretisation (a factor).
 RESEED = 4.0
+#: An interior maximum of a growth rate is located only where it may reach 0: where
+#: rising at this many times the steeper of the slopes at its bracket's ends, over the
+#: whole bracket, it would (:func:`_peak_bound`).
+PEAK_RISE = 4.0
 
 
 @dataclass(frozen=True)
@@ -682,7 +699,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         maximum of the cubic through the values and slopes at the bracket's ends
         (:func:`_cubic_peak`); if that does not settle in 8 steps, Brent's method on
         the bracket; where a follow fails, bounded maximisation of Re b.  Returns the
-        speed, Re b there and the points known."""
+        speed, Re b there and the points known; or, as soon as the bracket shows that
+        the maximum stays below 0 (:func:`_peak_bound`), NaN, that bound and the
+        points known (the maximum not located: no window there)."""
         known = list(ends)
 
         def slope(x):
@@ -699,6 +718,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         try:
             lo, hi = ends
             for _ in range(8):
+                bound = _peak_bound(lo, hi)
+                if bound < 0.0:
+                    return math.nan, bound, known
                 x = _cubic_peak(lo, hi)
                 if len(known) > 3:
                     # The secant of the slope through the two latest points, if inside.
