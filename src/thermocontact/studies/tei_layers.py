@@ -76,26 +76,38 @@ def newton_roots(log_derivative, x0, scale, iters=25, abandon=None):
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
     last = np.full(x.shape, np.inf)
+    every = np.arange(x.size)
     for it in range(iters):
         if it == 12:
             x[~done & (last > 1e-6 * (np.abs(x) + scale))] = np.nan
-        act = np.flatnonzero(~done & np.isfinite(x))
+        going = ~done & np.isfinite(x)
+        # Every root still going (the usual case): the arrays themselves, not gathered.
+        whole = bool(going.all())
+        act = every if whole else np.flatnonzero(going)
         if not act.size:
             break
-        xa = x[act]
-        with np.errstate(invalid="ignore", divide="ignore"):
+        xa, sa, la = (x, scale, last) if whole else (x[act], scale[act], last[act])
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             step = 1.0 / log_derivative(xa, act)
-        step = np.where(np.isfinite(step), step, np.nan)
-        x[act] = xa - step
-        size, unit = np.abs(step), np.abs(x[act]) + scale[act]
-        done[act] = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
-                     | _settled(size / unit, last[act] / unit))
+            step = np.where(np.isfinite(step), step, np.nan)
+            xa = xa - step
+            size, unit = np.abs(step), np.abs(xa) + sa
+            now = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * la))
+                   | _settled(size / unit, la / unit))
+        if whole:
+            x, done = xa, now
+        else:
+            x[act], done[act] = xa, now
         if abandon is not None:
-            step, before = np.where(done, 0.0, np.inf), np.where(done, 0.0, np.inf)
-            step[act], before[act] = size, last[act]
+            step = np.where(done, 0.0, np.inf)
+            before = step.copy()
+            step[act], before[act] = size, la
             if abandon(x, step, before):
                 return np.full(x.shape, np.nan + 0j), np.zeros(x.shape, dtype=bool)
-        last[act] = size
+        if whole:
+            last = size
+        else:
+            last[act] = size
     return x, done & np.isfinite(x)
 
 
@@ -753,15 +765,18 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
 
     def locate(ends, va, vb, direction):
         f = growth(ends)
+        seen = {}                          # b at the speeds Brent's method tried
 
         def g(x):
-            r = f(x).real
+            if x not in seen:
+                seen[x] = f(x)
+            r = seen[x].real
             # Unfollowed: the sign of the nearer end, so that Brent's method stays in
             # the bracket (the neutral point is then polished independently).
             return r if np.isfinite(r) else (-1.0 if (x - va) < (vb - x) else 1.0) * \
                 direction * scale
         vc = brentq(g, va, vb, xtol=1e-300, rtol=1e-11, maxiter=200)
-        bc = f(vc)
+        bc = seen[vc] if vc in seen else f(vc)
         w0 = bc.imag if np.isfinite(bc) else ends[0][1].imag * vc / ends[0][0]
         V, w, ok = neutral_point(family, m, vc, w0)
         if ok and abs(V - vc) <= 1e-7 * vc:
