@@ -77,20 +77,32 @@ def test_depth_operator_does_not_depend_on_the_collocations_kept():
     """The bodies' collocations are kept between calls (a disc's two families share them
     at a wavenumber and speed): each family's operator, its bodies' collocations made
     for the other family first, is the one made afresh; those kept are read-only."""
-    from thermocontact.discretisation.tei_depth import _body_operators
+    from thermocontact.discretisation.tei_depth import _body_collocation, _body_operators
+
+    def clear():
+        _body_operators.cache_clear()
+        _body_collocation.cache_clear()
 
     lay = layups(IRON, PAD, 0.4, slider_thickness=0.012, counterface_thickness=0.01)
     for v in (0.001, 20.0):              # two bodies; four, the thermal skins split off
-        _body_operators.cache_clear()
+        clear()
         shared = [layup_operator(lay[k], M, v, 12) for k in ("symmetric", "antisymmetric")]
         assert _body_operators.cache_info().hits > 0     # the second family's were kept
         fresh = []
         for k in ("symmetric", "antisymmetric"):
-            _body_operators.cache_clear()
+            clear()
             fresh.append(layup_operator(lay[k], M, np.asarray(v), 12))   # a 0-d speed
         for a, b in zip(shared, fresh):
             np.testing.assert_array_equal(a, b)
         assert np.max(np.abs(shared[0] - shared[1])) > 0.0      # two families' operators
+        # Made at another speed first (the layers' collocations kept without their
+        # convection, reused where no thermal skin is split off): the same operator,
+        # to the last bit.
+        clear()
+        layup_operator(lay["symmetric"], M, 3.0 * v, 12)
+        again = layup_operator(lay["symmetric"], M, v, 12)
+        assert (_body_collocation.cache_info().hits > 0) == (v < 1.0)
+        assert again.tobytes() == fresh[0].tobytes()
     rows, F = _body_operators(lay["symmetric"].bodies[0], 12, M, 20.0, "strain", False,
                               lay["symmetric"].references())[:2]
     assert not rows.flags.writeable and not F.flags.writeable
