@@ -598,7 +598,8 @@ class SpeedScan:
     certified : bool
         Every count reliable and equal to the number of growing modes followed.
     maxima : int
-        Interior maxima of a mode's growth rate located between two speeds.
+        Interior maxima of a mode's growth rate between two speeds (each located
+        unless it surely stays below 0, :data:`PEAK_RISE`).
     start, end : float
         The speeds the scan started from (where no mode grows; a mode growing at
         1e-9 m/s, the lowest speed studied, gives that speed as an upper bound of
@@ -634,8 +635,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
     ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
     on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
-    start, negative at its end) is located where that slope vanishes
-    (docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
+    start, negative at its end) is located where that slope vanishes, unless the
+    values and slopes at the step's ends show that it stays below 0 (:data:`PEAK_RISE`;
+    docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
     crossings).  At every accepted speed the growing modes are counted by the argument
     principle (:func:`unstable_count`); where the count exceeds the followed modes that
     grow, and every :data:`RESEED` in speed, the modes are reseeded, and a new one is
