@@ -202,6 +202,30 @@ def test_a_refused_step_given_up_early_changes_nothing_but_the_work(monkeypatch)
     assert work[True, "given up"] > 0 and work[True] < work[False]
 
 
+def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkeypatch):
+    """An interior maximum of a growth rate is located only where the values and slopes
+    at its step's ends allow it to reach 0 (derivation, the speed scan): the scan of the
+    disc's symmetric family at n = 7 on R = 120 mm, with the bound and with every
+    maximum located (``PEAK_RISE`` infinite), has the same crossings, speeds, counts,
+    maxima and certificate to the last bit, and follows its modes fewer times."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    plain, rule = tei_layers._polish, tei_layers.PEAK_RISE
+    scans, work = {}, {}
+    for rise in (rule, math.inf):
+        def polish(*args, rise=rise, **kwargs):
+            work[rise] = work.get(rise, 0) + 1
+            return plain(*args, **kwargs)
+        monkeypatch.setattr(tei_layers, "_polish", polish)
+        monkeypatch.setattr(tei_layers, "PEAK_RISE", rise)
+        scans[rise] = family.scan(7 / 0.12)
+    bounded, located = scans[rule], scans[math.inf]
+    assert bounded == located and bounded.maxima > 0
+    assert work[rule] < work[math.inf]
+
+
 def test_thick_disc_scan_finds_the_half_planes_critical_speed():
     vc, _ = critical_speed(SlidingPair(STEEL, PAD, 0.4), M)
     # m d/2 = 19: the faces see each other through e^{-2 m d/2} = 4e-17.
