@@ -77,20 +77,32 @@ def test_depth_operator_does_not_depend_on_the_collocations_kept():
     """The bodies' collocations are kept between calls (a disc's two families share them
     at a wavenumber and speed): each family's operator, its bodies' collocations made
     for the other family first, is the one made afresh; those kept are read-only."""
-    from thermocontact.discretisation.tei_depth import _body_operators
+    from thermocontact.discretisation.tei_depth import _body_collocation, _body_operators
+
+    def clear():
+        _body_operators.cache_clear()
+        _body_collocation.cache_clear()
 
     lay = layups(IRON, PAD, 0.4, slider_thickness=0.012, counterface_thickness=0.01)
     for v in (0.001, 20.0):              # two bodies; four, the thermal skins split off
-        _body_operators.cache_clear()
+        clear()
         shared = [layup_operator(lay[k], M, v, 12) for k in ("symmetric", "antisymmetric")]
         assert _body_operators.cache_info().hits > 0     # the second family's were kept
         fresh = []
         for k in ("symmetric", "antisymmetric"):
-            _body_operators.cache_clear()
+            clear()
             fresh.append(layup_operator(lay[k], M, np.asarray(v), 12))   # a 0-d speed
         for a, b in zip(shared, fresh):
             np.testing.assert_array_equal(a, b)
         assert np.max(np.abs(shared[0] - shared[1])) > 0.0      # two families' operators
+        # Made at another speed first (the layers' collocations kept without their
+        # convection, reused where no thermal skin is split off): the same operator,
+        # to the last bit.
+        clear()
+        layup_operator(lay["symmetric"], M, 3.0 * v, 12)
+        again = layup_operator(lay["symmetric"], M, v, 12)
+        assert (_body_collocation.cache_info().hits > 0) == (v < 1.0)
+        assert again.tobytes() == fresh[0].tobytes()
     rows, F = _body_operators(lay["symmetric"].bodies[0], 12, M, 20.0, "strain", False,
                               lay["symmetric"].references())[:2]
     assert not rows.flags.writeable and not F.flags.writeable
@@ -188,6 +200,30 @@ def test_a_refused_step_given_up_early_changes_nothing_but_the_work(monkeypatch)
     ((v1, w1, k1),), ((v0, w0, k0),) = with_rule.crossings, without.crossings
     assert k1 == k0 and _rel(v1, v0) < 1e-14 and _rel(w1, w0) < 1e-14
     assert work[True, "given up"] > 0 and work[True] < work[False]
+
+
+def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkeypatch):
+    """An interior maximum of a growth rate is located only where the values and slopes
+    at its step's ends allow it to reach 0 (derivation, the speed scan): the scan of the
+    disc's symmetric family at n = 7 on R = 120 mm, with the bound and with every
+    maximum located (``PEAK_RISE`` infinite), has the same crossings, speeds, counts,
+    maxima and certificate to the last bit, and follows its modes fewer times."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    plain, rule = tei_layers._polish, tei_layers.PEAK_RISE
+    scans, work = {}, {}
+    for rise in (rule, math.inf):
+        def polish(*args, rise=rise, **kwargs):
+            work[rise] = work.get(rise, 0) + 1
+            return plain(*args, **kwargs)
+        monkeypatch.setattr(tei_layers, "_polish", polish)
+        monkeypatch.setattr(tei_layers, "PEAK_RISE", rise)
+        scans[rise] = family.scan(7 / 0.12)
+    bounded, located = scans[rule], scans[math.inf]
+    assert bounded == located and bounded.maxima > 0
+    assert work[rule] < work[math.inf]
 
 
 def test_thick_disc_scan_finds_the_half_planes_critical_speed():

@@ -142,7 +142,28 @@ def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     elastic law is written in the plane asked for, directly: plane strain
     ``lambda = 2 mu nu/(1 - 2 nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - 2 nu)``;
     plane stress ``lambda = 2 mu nu/(1 - nu)``, ``beta = 2 mu (1 + nu) alpha/(1 - nu)``.
+
+    The speed enters a layer only through the convection ``-i m U T`` of a moving
+    one's heat rows: the rest (:func:`_body_collocation`) is kept per wavenumber, for
+    the reseedings of a scan at one wavenumber and many speeds.
     """
+    rows, F, mass, cols, count = _body_collocation(
+        body, n, m, speed if body.thickness is None else 0.0, plane, upper, refs, split)
+    U = speed if body.moving else 0.0
+    if mass and U != 0.0:
+        # The convection on the diagonal of the heat rows, as written whole below
+        # (the off-diagonal terms are zeros); the others are the kept ones.
+        rows = rows.copy()
+        on = (np.arange(len(mass)), np.array(mass))
+        rows[on] = rows[on] - 1j * m * U
+        rows.flags.writeable = False
+    return rows, F, mass, cols, count
+
+
+@lru_cache(maxsize=64)
+def _body_collocation(body, n, m, speed, plane, upper, refs, split=False):
+    """:func:`_body_operators` without the convection (``U = 0``; ``speed`` only for a
+    half-plane's mapped grid)."""
     mat = body.material
     x, d, _ = _chebyshev(n)
     mu = mat.mu
@@ -152,7 +173,7 @@ def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     else:
         lam = 2.0 * mu * mat.nu / (1.0 - mat.nu)
         beta = 2.0 * mu * (1.0 + mat.nu) * mat.alpha / (1.0 - mat.nu)
-    U = speed if body.moving else 0.0
+    U = 0.0
     if body.thickness is not None:
         # y = h (1 - x)/2: x = 1 the bottom face (point 0), x = -1 the top (point n).
         d1 = -(2.0 / body.thickness) * d

@@ -76,26 +76,38 @@ def newton_roots(log_derivative, x0, scale, iters=25, abandon=None):
     scale = np.broadcast_to(np.asarray(scale, dtype=float), x.shape)
     done = np.zeros(x.shape, dtype=bool)
     last = np.full(x.shape, np.inf)
+    every = np.arange(x.size)
     for it in range(iters):
         if it == 12:
             x[~done & (last > 1e-6 * (np.abs(x) + scale))] = np.nan
-        act = np.flatnonzero(~done & np.isfinite(x))
+        going = ~done & np.isfinite(x)
+        # Every root still going (the usual case): the arrays themselves, not gathered.
+        whole = bool(going.all())
+        act = every if whole else np.flatnonzero(going)
         if not act.size:
             break
-        xa = x[act]
-        with np.errstate(invalid="ignore", divide="ignore"):
+        xa, sa, la = (x, scale, last) if whole else (x[act], scale[act], last[act])
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             step = 1.0 / log_derivative(xa, act)
-        step = np.where(np.isfinite(step), step, np.nan)
-        x[act] = xa - step
-        size, unit = np.abs(step), np.abs(x[act]) + scale[act]
-        done[act] = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * last[act]))
-                     | _settled(size / unit, last[act] / unit))
+            step = np.where(np.isfinite(step), step, np.nan)
+            xa = xa - step
+            size, unit = np.abs(step), np.abs(xa) + sa
+            now = ((size <= 1e-13 * unit) | ((size <= 1e-9 * unit) & (size > 0.3 * la))
+                   | _settled(size / unit, la / unit))
+        if whole:
+            x, done = xa, now
+        else:
+            x[act], done[act] = xa, now
         if abandon is not None:
-            step, before = np.where(done, 0.0, np.inf), np.where(done, 0.0, np.inf)
-            step[act], before[act] = size, last[act]
+            step = np.where(done, 0.0, np.inf)
+            before = step.copy()
+            step[act], before[act] = size, la
             if abandon(x, step, before):
                 return np.full(x.shape, np.nan + 0j), np.zeros(x.shape, dtype=bool)
-        last[act] = size
+        if whole:
+            last = size
+        else:
+            last[act] = size
     return x, done & np.isfinite(x)
 
 
@@ -455,6 +467,19 @@ def _cubic_peak(lo, hi):
     return ua + t * H
 
 
+def _peak_bound(lo, hi):
+    """An upper bound of the largest ``Re b`` of one mode between the speeds of ``lo =
+    (V, b, db/dV)`` (``Re b`` rising) and ``hi`` (falling), on the scan's assumption
+    that its growth rate changes on no scale of speed far shorter than the step
+    control's: ``max(r_lo, r_hi) + PEAK_RISE max(r'_lo, -r'_hi) H``, ``r' = d Re b/d
+    ln V`` and ``H`` the bracket's width in ``ln V`` (docs/derivation.md, L15; where
+    ``Re b`` is concave on the bracket its maximum is below ``max(r_lo, r_hi) +
+    min(r'_lo, -r'_hi) H``)."""
+    H = math.log(hi[0]) - math.log(lo[0])
+    rise = max(lo[0] * lo[2].real, -hi[0] * hi[2].real) * H
+    return max(lo[1].real, hi[1].real) + PEAK_RISE * rise
+
+
 def _speed_slope(family, m, speed, b):
     """``db/dV`` of each root ``b`` at ``speed``: ``-D_V/D_b`` of the dispersion function
     ``D`` (implicit differentiation), in closed form (:meth:`Layered.log_derivatives`)."""
@@ -549,6 +574,10 @@ MAX_RATIO = 4.0
 MIN_STEP = 1e-6
 #: Speeds of a scan between two reseedings from the depth discretisation (a factor).
 RESEED = 4.0
+#: An interior maximum of a growth rate is located only where it may reach 0: where
+#: rising at this many times the steeper of the slopes at its bracket's ends, over the
+#: whole bracket, it would (:func:`_peak_bound`).
+PEAK_RISE = 4.0
 
 
 @dataclass(frozen=True)
@@ -569,7 +598,8 @@ class SpeedScan:
     certified : bool
         Every count reliable and equal to the number of growing modes followed.
     maxima : int
-        Interior maxima of a mode's growth rate located between two speeds.
+        Interior maxima of a mode's growth rate between two speeds (each located
+        unless it surely stays below 0, :data:`PEAK_RISE`).
     start, end : float
         The speeds the scan started from (where no mode grows; a mode growing at
         1e-9 m/s, the lowest speed studied, gives that speed as an upper bound of
@@ -605,8 +635,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
     ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
     on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
-    start, negative at its end) is located where that slope vanishes
-    (docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
+    start, negative at its end) is located where that slope vanishes, unless the
+    values and slopes at the step's ends show that it stays below 0 (:data:`PEAK_RISE`;
+    docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
     crossings).  At every accepted speed the growing modes are counted by the argument
     principle (:func:`unstable_count`); where the count exceeds the followed modes that
     grow, and every :data:`RESEED` in speed, the modes are reseeded, and a new one is
@@ -682,7 +713,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         maximum of the cubic through the values and slopes at the bracket's ends
         (:func:`_cubic_peak`); if that does not settle in 8 steps, Brent's method on
         the bracket; where a follow fails, bounded maximisation of Re b.  Returns the
-        speed, Re b there and the points known."""
+        speed, Re b there and the points known; or, as soon as the bracket shows that
+        the maximum stays below 0 (:func:`_peak_bound`), NaN, that bound and the
+        points known (the maximum not located: no window there)."""
         known = list(ends)
 
         def slope(x):
@@ -699,6 +732,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         try:
             lo, hi = ends
             for _ in range(8):
+                bound = _peak_bound(lo, hi)
+                if bound < 0.0:
+                    return math.nan, bound, known
                 x = _cubic_peak(lo, hi)
                 if len(known) > 3:
                     # The secant of the slope through the two latest points, if inside.
@@ -731,15 +767,18 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
 
     def locate(ends, va, vb, direction):
         f = growth(ends)
+        seen = {}                          # b at the speeds Brent's method tried
 
         def g(x):
-            r = f(x).real
+            if x not in seen:
+                seen[x] = f(x)
+            r = seen[x].real
             # Unfollowed: the sign of the nearer end, so that Brent's method stays in
             # the bracket (the neutral point is then polished independently).
             return r if np.isfinite(r) else (-1.0 if (x - va) < (vb - x) else 1.0) * \
                 direction * scale
         vc = brentq(g, va, vb, xtol=1e-300, rtol=1e-11, maxiter=200)
-        bc = f(vc)
+        bc = seen[vc] if vc in seen else f(vc)
         w0 = bc.imag if np.isfinite(bc) else ends[0][1].imag * vc / ends[0][0]
         V, w, ok = neutral_point(family, m, vc, w0)
         if ok and abs(V - vc) <= 1e-7 * vc:
