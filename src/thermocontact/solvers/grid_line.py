@@ -14,7 +14,7 @@ from ..problem.closure import Temperatures
 from ..problem.validation import InputError, check_exactly_one, check_numbers
 from .result import ContactSolution
 
-__all__ = ["all_as_in", "as_in", "line_inputs", "line_validities"]
+__all__ = ["all_as_in", "as_in", "assessed_many", "line_inputs", "line_validities"]
 
 
 def as_in(sol: ContactSolution, fine: ContactSolution) -> ContactSolution:
@@ -87,11 +87,33 @@ def line_validities(refined, polish) -> dict:
         release_freed_memory()  # the heap pages the levels' systems left
     # The finest n first: its moment bases, formed again, serve its checks and polish.
     for _, group in sorted(wanted.items(), reverse=True):
-        found = assess_many([sol.parameters for _, sol in group], group[0][1].representation,
-                            np.array([sol.phi for _, sol in group]),
-                            np.array([sol.psi for _, sol in group]),
-                            [sol.load_ratio for _, sol in group],
-                            [sol.sigma_over_delta for _, sol in group],
-                            [sol.lam for _, sol in group], polish=polish)
-        validities.update({key: v for (key, _), v in zip(group, found)})
+        found = assessed_many([sol for _, sol in group], polish=polish)
+        validities.update({key: sol.validity for (key, _), sol in zip(group, found)})
     return validities
+
+
+def assessed_many(sols, polish=True) -> list:
+    """Solutions with their contact inequalities evaluated, all together
+    (:func:`~thermocontact.analysis.validity.assess_many`: the samples of all formed by
+    the same row operators at once), each as
+    :func:`~thermocontact.solvers.single_patch.assessed` gives it alone.
+
+    Parameters
+    ----------
+    sols : sequence of ContactSolution
+        Solved without validity, in one representation (one model and ``n``), differing
+        only in ``fhpe`` and the closure: a sweep, or a grid line's level.
+    polish : bool
+        As :func:`~thermocontact.analysis.validity.assess`.
+
+    Returns
+    -------
+    list of ContactSolution
+    """
+    if not sols:
+        return []
+    found = assess_many([sol.parameters for sol in sols], sols[0].representation,
+                        np.array([sol.phi for sol in sols]), np.array([sol.psi for sol in sols]),
+                        [sol.load_ratio for sol in sols], [sol.sigma_over_delta for sol in sols],
+                        [sol.lam for sol in sols], polish=polish)
+    return [sol.replace(validity=v) for sol, v in zip(sols, found)]

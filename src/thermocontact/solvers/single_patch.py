@@ -42,7 +42,7 @@ from ..problem.validation import (InputError, check_callable, check_choice, chec
                                   check_offset_coupling, check_positive)
 from ..problem.vocabulary import deprecated_spellings
 from .contact_system import solve_contact_system
-from .grid_line import as_in, line_inputs, line_validities
+from .grid_line import as_in, assessed_many, line_inputs, line_validities
 from .refinement import N_RANGE, QUANTITIES, QUANTITIES_WITH_LAM, error_estimate, refine_each
 from .result import ContactSolution
 
@@ -118,9 +118,7 @@ def assessed(sol: ContactSolution, polish=True) -> ContactSolution:
     """``sol`` with its contact inequalities evaluated
     (:func:`~thermocontact.analysis.validity.assess`): as :func:`solve_system` with
     ``check_validity=True`` gives it, for a solution solved without."""
-    return sol.replace(validity=assess(sol.parameters, sol.representation, sol.phi, sol.psi,
-                                       sol.load_ratio, sol.sigma_over_delta, sol.lam,
-                                       polish=polish))
+    return assessed_many([sol], polish=polish)[0]
 
 
 def _solve_patch(par: Parameters, blocks: Blocks, method: str, lam, sigma_over_delta,

@@ -16,6 +16,7 @@ from ..discretisation.methods import DEFAULT_METHOD, METHODS
 from ..io.results import FieldResult
 from ..problem.parameters import SolveError
 from ..problem.validation import InputError
+from ..solvers.grid_line import assessed_many
 from ..solvers.refinement import refine
 from .boundaries import closure, locate_events, model_for
 
@@ -111,12 +112,12 @@ def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
     return done.n, done.estimate
 
 
-def _solver(fixed: dict, x_name: str, n: int, method: str):
+def _solver(fixed: dict, x_name: str, n: int, method: str, check_validity=True):
     model = model_for(fixed, method)
 
     def at(x):
         kw = {**fixed, x_name: x}
-        return model.solve_at(n, kw["fhpe"], **closure(kw))
+        return model.solve_at(n, kw["fhpe"], check_validity=check_validity, **closure(kw))
 
     return at
 
@@ -158,12 +159,17 @@ def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_MET
         probe = (x[x.size // 2], x[-1])
         n, est = choose_n(fixed, x_name, probe, tol=tol, method=method, n_max=n_max)
     at = _solver(fixed, x_name, n, method)
+    # Every point solved first, then all their contact inequalities evaluated together
+    # (one representation: the samples formed by the same row operators at once).
+    unchecked = _solver(fixed, x_name, n, method, check_validity=False)
     sols = []
     for xi in x:
         try:
-            sols.append(at(xi))
+            sols.append(unchecked(xi))
         except SolveError:
             sols.append(None)
+    checked = iter(assessed_many([s for s in sols if s is not None]))
+    sols = [None if s is None else next(checked) for s in sols]
     ok = [s for s in sols if s is not None]
     nan = float("nan")
 
