@@ -413,12 +413,36 @@ def test_pool_workers_run_on_one_blas_thread_with_their_start_frozen(method, mon
     """A local pool's workers use one BLAS thread each and keep the objects they start
     with out of the garbage collector's reach (gc.freeze), whether they are forked (this
     process has no other thread) or started by a fork server (it has: then BLAS is
-    loaded by the initialiser, so that its threads are limited before any task)."""
+    limited by the initialiser, before any task)."""
     from thermocontact.execution import executors
 
-    monkeypatch.setattr(executors, "_start_method", lambda: method)
+    monkeypatch.setattr(executors, "_start_method", lambda fork=True: method)
     for _, (frozen, threads) in run(_worker_state, [0, 1], workers=2):
         assert frozen > 100 and threads and set(threads) == {1}
+
+
+def test_workers_are_forked_only_where_no_other_thread_runs():
+    """fork with this process alone on its thread; a fork server (which imports the
+    library once for all its workers) while another thread runs, or wherever fork is
+    refused (the explorer's server)."""
+    import multiprocessing
+    import threading
+
+    from thermocontact.execution.executors import process_context
+
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        pytest.skip("no fork server on this platform")
+    assert process_context(fork=False).get_start_method() == "forkserver"
+    if threading.active_count() == 1:
+        assert process_context().get_start_method() == "fork"
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait)
+    other.start()
+    try:
+        assert process_context().get_start_method() == "forkserver"
+    finally:
+        stop.set()
+        other.join()
 
 
 def test_the_callers_preparation_runs_beside_workers_elsewhere_only():

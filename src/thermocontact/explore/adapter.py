@@ -608,6 +608,16 @@ def transient_view(ds) -> dict:
     })
 
 
+def job_context():
+    """The ``multiprocessing`` context of the explorer's jobs: processes forked by a
+    clean server process that has imported the library and this module once (never
+    forked from the server, whose threads may hold locks), ``spawn`` where there is no
+    fork server (:func:`~thermocontact.execution.executors.process_context`)."""
+    from ..execution.executors import process_context
+
+    return process_context(fork=False, preload=[__name__])
+
+
 def run_job(kind, state, folder, progress):
     """A background job, in its own process: the map (``kind="map"``) or the transient
     run (``"transient"``) of ``state``; writes ``<kind>.nc`` and ``view.json`` in

@@ -14,30 +14,18 @@ their folders removed, beyond ``kept``.
 from __future__ import annotations
 
 import json
-import multiprocessing
 import os
 import secrets
 import shutil
 import threading
 import time
 
-from .adapter import UserError, run_job
+from .adapter import UserError, job_context, run_job
 
 __all__ = ["Jobs"]
 
 #: Seconds between two looks at a running job's process.
 POLL = 0.05
-
-
-def _context():
-    """Processes started from a clean server process (``forkserver``) that has imported
-    the library once, so that a job starts in a fraction of a second and never
-    inherits the server's threads; ``spawn`` where there is no fork server."""
-    if "forkserver" in multiprocessing.get_all_start_methods():
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["thermocontact.explore.adapter", "thermocontact.api"])
-        return ctx
-    return multiprocessing.get_context("spawn")
 
 
 class Job:
@@ -80,7 +68,9 @@ class Jobs:
 
     def __init__(self, folder, running=2, kept=40):
         self.folder, self.kept = folder, kept
-        self._ctx = _context()
+        # Started by a fork server that has imported the library once: a job starts in
+        # a fraction of a second and never inherits the server's threads.
+        self._ctx = job_context()
         self._slots = threading.Semaphore(running)
         self._lock = threading.Lock()
         self._jobs: dict[str, Job] = {}
