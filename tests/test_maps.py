@@ -421,18 +421,23 @@ def test_pool_workers_run_on_one_blas_thread_with_their_start_frozen(method, mon
         assert frozen > 100 and threads and set(threads) == {1}
 
 
-def test_workers_are_forked_only_where_no_other_thread_runs():
-    """fork with this process alone on its thread; a fork server (which imports the
-    library once for all its workers) while another thread runs, or wherever fork is
-    refused (the explorer's server)."""
+def test_workers_are_forked_only_where_no_other_thread_runs(monkeypatch):
+    """fork with this process alone on its thread; a fork server, told to import the
+    library (and what a caller adds) before its first worker, while another thread
+    runs, or wherever fork is refused (the explorer's server)."""
     import multiprocessing
+    import multiprocessing.context
     import threading
 
     from thermocontact.execution.executors import process_context
 
     if "forkserver" not in multiprocessing.get_all_start_methods():
         pytest.skip("no fork server on this platform")
-    assert process_context(fork=False).get_start_method() == "forkserver"
+    told = []
+    monkeypatch.setattr(multiprocessing.context.ForkServerContext, "set_forkserver_preload",
+                        lambda self, names: told.append(list(names)))
+    assert process_context(fork=False, preload=["json"]).get_start_method() == "forkserver"
+    assert told and {"thermocontact.api", "json"} <= set(told[-1])
     if threading.active_count() == 1:
         assert process_context().get_start_method() == "fork"
     stop = threading.Event()

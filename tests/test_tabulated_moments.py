@@ -47,8 +47,10 @@ def test_a_moving_bodys_wake_at_large_rates(stored, c, b):
 def test_small_cells_by_their_product_rule(monkeypatch, n, alpha):
     """The cells small against their distance from the edges, on the 8-point product
     rule in the panel's variable (derivation S9), give the table Gauss-Legendre in tau
-    gives them (every cell so, the rule switched off): the same entries to 1e-15 of the
-    largest, the pressure's weight with the Dundurs term's edge exponents too."""
+    gives them (every cell so, the rule switched off): the same entries to 1e-14 of the
+    largest of their weight's and point's row (observed at most 3.8e-16, also next to
+    the edges, whose rows are small), the pressure's weight with the Dundurs term's edge
+    exponents too."""
     from thermocontact.numerics import tabulated_moments as tm
     from thermocontact.numerics.moment_engine import graded_map
 
@@ -58,4 +60,6 @@ def test_small_cells_by_their_product_rule(monkeypatch, n, alpha):
     monkeypatch.setattr(tm, "_TINY_RHO", np.inf)
     gauss = tm.KernelTable(tau, n, rep.to_cos, graded_map(alpha))
     for got, want in ((built.matrix, gauss.matrix), (built.coarse, gauss.coarse)):
-        assert np.abs(got - want).max() < 1e-15 * np.abs(want).max()
+        # Per weight and point (the map's first two axes): a row's largest entry.
+        rows = (2, 3)
+        assert np.all(np.abs(got - want).max(axis=rows) < 1e-14 * np.abs(want).max(axis=rows))

@@ -186,11 +186,13 @@ def test_margins_are_the_minima_of_the_closed_forms(fhpe, lam):
                           options={"xatol": 1e-12})
     assert v.pressure_margin <= res.fun + 1e-12
 
+
 def test_polish_finds_a_closed_forms_minimum_and_keeps_the_sample_where_undefined():
     """Between its neighbours the least sample of (x - 0.3)^2 + 1 is polished to the
     exact minimum 1 at 0.3 (to rounding); a function undefined (NaN) somewhere between
     the neighbours leaves the sampled minimum as it is, never an error."""
     from thermocontact.numerics.extrema import polish_minimum
+
     x = np.linspace(0.0, 1.0, 6)
     f = lambda t: (t - 0.3) ** 2 + 1.0  # noqa: E731
     at, value = polish_minimum(f, x, f(x), 1)

@@ -474,10 +474,14 @@ def _peak_bound(lo, hi):
     control's: ``max(r_lo, r_hi) + PEAK_RISE max(r'_lo, -r'_hi) H``, ``r' = d Re b/d
     ln V`` and ``H`` the bracket's width in ``ln V`` (docs/derivation.md, L15; where
     ``Re b`` is concave on the bracket its maximum is below ``max(r_lo, r_hi) +
-    min(r'_lo, -r'_hi) H``)."""
+    min(r'_lo, -r'_hi) H``); NaN where a value or slope is not finite (no bound: the
+    maximum is located)."""
     H = math.log(hi[0]) - math.log(lo[0])
-    rise = max(lo[0] * lo[2].real, -hi[0] * hi[2].real) * H
-    return max(lo[1].real, hi[1].real) + PEAK_RISE * rise
+    # np.fmax would drop a NaN; Python's max would keep or drop it by its place.
+    values = (lo[1].real, hi[1].real, lo[0] * lo[2].real, -hi[0] * hi[2].real)
+    if not all(math.isfinite(v) for v in values):
+        return math.nan
+    return max(values[:2]) + PEAK_RISE * max(values[2:]) * H
 
 
 def _speed_slope(family, m, speed, b):
