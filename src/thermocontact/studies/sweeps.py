@@ -112,10 +112,10 @@ def choose_n(fixed: dict, x_name: str, x_end, tol=1e-6, method=DEFAULT_METHOD,
     return done.n, done.estimate
 
 
-def _solver(fixed: dict, x_name: str, n: int, method: str, check_validity=True):
+def _solver(fixed: dict, x_name: str, n: int, method: str):
     model = model_for(fixed, method)
 
-    def at(x):
+    def at(x, check_validity=True):
         kw = {**fixed, x_name: x}
         return model.solve_at(n, kw["fhpe"], check_validity=check_validity, **closure(kw))
 
@@ -161,11 +161,10 @@ def sweep(label: str, fixed: dict, x_name: str, x, *, n=None, method=DEFAULT_MET
     at = _solver(fixed, x_name, n, method)
     # Every point solved first, then all their contact inequalities evaluated together
     # (one representation: the samples formed by the same row operators at once).
-    unchecked = _solver(fixed, x_name, n, method, check_validity=False)
     sols = []
     for xi in x:
         try:
-            sols.append(unchecked(xi))
+            sols.append(at(xi, check_validity=False))
         except SolveError:
             sols.append(None)
     checked = iter(assessed_many([s for s in sols if s is not None]))
