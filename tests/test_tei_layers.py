@@ -226,6 +226,84 @@ def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkey
     assert work[rule] < work[math.inf]
 
 
+def test_seeds_of_followed_modes_need_no_polishing(monkeypatch):
+    """A reseeding that only looks for the modes yet to grow leaves unpolished each
+    seed that is alone near one followed mode (derivation, the speed scan): the scan
+    of the disc's symmetric family at n = 7 on R = 120 mm, with the rule and with every
+    seed polished (``SEED_MATCH = 0``), is the same to the last bit, and polishes
+    fewer seeds."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    plain, rule = tei_layers._polish, tei_layers.SEED_MATCH
+    scans, seeds = {}, {}
+    for match in (rule, 0.0):
+        def polish(family, m, speed, b0, *args, match=match, **kwargs):
+            seeds[match] = seeds.get(match, 0) + np.size(b0)
+            return plain(family, m, speed, b0, *args, **kwargs)
+        monkeypatch.setattr(tei_layers, "_polish", polish)
+        monkeypatch.setattr(tei_layers, "SEED_MATCH", match)
+        scans[match] = family.scan(7 / 0.12)
+    assert scans[rule] == scans[0.0] and scans[rule].certified
+    assert seeds[rule] < seeds[0.0]
+
+
+def test_which_seeds_are_followed_modes():
+    """A seed within SEED_MATCH of one followed mode (of that mode's size in its frame),
+    alone there, is that mode; two seeds near one mode, a seed near two modes and a
+    seed near none are polished."""
+    from thermocontact.studies.tei_layers import SEED_MATCH, _seeds_followed
+
+    family = _family("symmetric", IRON, PAD, slider_thickness=0.012)
+    m, V = 50.0, 200.0
+    assert family.scale(m) < 1e-2                 # the sizes below: 100, 100 and 5000
+    # A mode at rest on the pads, one at rest on the disc (frequency -m V = -1e4: its
+    # size in its frame 100), a fast one.
+    b = np.array([-100.0 + 0j, -100.0 - 1j * m * V, -5000.0 + 0j])
+    near = 0.5 * SEED_MATCH * 100.0
+    seeds = np.array([b[0] + near, b[1] - 1j * near, b[1] + 30.0 * near, -2000.0,
+                      b[2] + 200.0 * near, b[2] - 200.0 * near])
+    assert _seeds_followed(family, m, V, seeds, b).tolist() == [True, True, False, False,
+                                                                False, False]
+    pair = np.array([-100.0 + 0j, -100.0 + 1j * near])             # two modes side by side
+    assert not _seeds_followed(family, m, V, np.array([-100.0 + 0.5j * near]), pair).any()
+    assert not _seeds_followed(family, m, V, seeds[:0], b).size
+
+
+def test_chains_that_meet_stop_and_change_nothing_but_the_work(monkeypatch):
+    """A curve's chain of neutral points stops where it reaches the point another chain
+    has reached (derivation, L15): the disc's symmetric family over hot-spot numbers 4
+    to 12 on R = 120 mm, scanned at both ends, with the rule and with every chain run to
+    the next scanned wavenumber, is the same to 1e-12, in fewer steps."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    ms = np.arange(4, 13) / 0.12
+    plain_crossing, plain_start = tei_layers.first_crossing, tei_layers._Continuation.start
+    scanned, steps = {}, {}
+
+    def crossing(family, m, *args, **kwargs):       # each scan once, for both runs
+        if m not in scanned:
+            scanned[m] = plain_crossing(family, m, *args, **kwargs)
+        return scanned[m]
+    monkeypatch.setattr(tei_layers, "first_crossing", crossing)
+    same, curves = tei_layers._same_point, {}
+    for rule in (False, True):
+        def start(self, *args, rule=rule, **kwargs):
+            steps[rule] = steps.get(rule, 0) + 1
+            return plain_start(self, *args, **kwargs)
+        monkeypatch.setattr(tei_layers._Continuation, "start", start)
+        monkeypatch.setattr(tei_layers, "_same_point", same if rule else lambda *a: False)
+        curves[rule] = tei_layers.neutral_curves([family], ms, scan_every=8)[0]
+    (v1, w1), (v0, w0) = curves[True], curves[False]
+    assert np.isfinite(v0).all() and len(scanned) == 2
+    assert np.max(np.abs(v1 - v0) / v0) < 1e-12
+    assert np.max(np.abs(w1 - w0) / (np.abs(w0) + ms * v0)) < 1e-12
+    assert steps[True] < steps[False], steps
+
+
 def test_thick_disc_scan_finds_the_half_planes_critical_speed():
     vc, _ = critical_speed(SlidingPair(STEEL, PAD, 0.4), M)
     # m d/2 = 19: the faces see each other through e^{-2 m d/2} = 4e-17.

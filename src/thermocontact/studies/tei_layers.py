@@ -431,6 +431,19 @@ def _polish(family, m, speed, b0, reach=None, within=None):
     return np.where(good, b, np.nan), phi, slope
 
 
+def _seeds_followed(family, m, speed, seeds, b):
+    """Which of the discretisation's ``seeds`` are plainly the followed modes ``b``
+    (polished, at ``speed``): each alone within :data:`SEED_MATCH` of one of them,
+    in units of that mode's size in its frame (:func:`pattern_frame`) plus ``kappa
+    m^2``, and that mode near no other seed.  Two seeds near one mode (a mode not
+    followed beside it) are both polished."""
+    if not (seeds.size and b.size):
+        return np.zeros(seeds.shape, dtype=bool)
+    size = np.abs(b + 1j * pattern_frame(m, speed, b.imag) * m * speed) + family.scale(m)
+    near = np.abs(seeds[:, None] - b[None, :]) <= SEED_MATCH * size
+    return (near.sum(axis=1) == 1) & (near.sum(axis=0)[np.argmax(near, axis=1)] == 1)
+
+
 def _unique(family, m, b):
     """The finite roots ``b``, by decreasing real part, each once."""
     scale = family.scale(m)
@@ -578,6 +591,10 @@ MAX_RATIO = 4.0
 MIN_STEP = 1e-6
 #: Speeds of a scan between two reseedings from the depth discretisation (a factor).
 RESEED = 4.0
+#: A reseeding's seed within this fraction of a followed mode's size (in the mode's
+#: frame, plus ``kappa m^2``), alone there, is that mode and is not polished
+#: (:func:`_seeds_followed`).
+SEED_MATCH = 1e-2
 #: An interior maximum of a growth rate is located only where it may reach 0: where
 #: rising at this many times the steeper of the slopes at its bracket's ends, over the
 #: whole bracket, it would (:func:`_peak_bound`).
@@ -830,7 +847,12 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         counts += 1
         n, sure = unstable_count(family, m, v1)
         if n != int(np.sum(b1.real > 0.0)) or v1 >= RESEED * seeded:
-            fresh = [x for x in family.modes(m, v1)
+            seeds = raw_seeds(family, m, v1)
+            if n == int(np.sum(b1.real > 0.0)):
+                # Every growing mode followed (a reseeding for the modes yet to grow):
+                # a seed that is plainly a followed mode's needs no polishing.
+                seeds = seeds[~_seeds_followed(family, m, v1, seeds, b1)]
+            fresh = [x for x in family.modes(m, v1, seeds=seeds)
                      if all(abs(x - y) > 1e-8 * (abs(x) + scale) for y in b1)]
             if fresh:
                 # A mode not followed so far: its value at v, for the step's checks.
@@ -1121,10 +1143,23 @@ def _chain(steps, ms, start, scanned, V, W):
     def arrived(order, i, found):
         if found is None:
             return
+        # Another chain's point here already, the same neutral point: that chain has
+        # followed this branch on from here (each chain one branch, L15).
+        met = _same_point(found, (V[i], W[i]), ms[i])
         if found[0] < V[i]:
             V[i], W[i] = found
-        if i not in scanned:
+        if i not in scanned and not met:
             go(order, (float(ms[i]), found))
 
     for order in (range(k, ms.size), range(k - 1, -1, -1)):
         go(iter(order), (m0, point))
+
+
+def _same_point(p, q, m):
+    """Whether the neutral points ``p = (V, omega)`` and ``q`` at wavenumber ``m`` are one
+    (to 1e-9 of the speed and of ``|omega| + m V``; ``q[0]`` infinite: none)."""
+    if not math.isfinite(q[0]):
+        return False
+    return (abs(p[0] - q[0]) <= 1e-9 * p[0]
+            and abs(p[1] - q[1]) <= 1e-9 * (abs(p[1]) + m * p[0]))
+
