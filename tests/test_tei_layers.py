@@ -226,6 +226,30 @@ def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkey
     assert work[rule] < work[math.inf]
 
 
+def test_steps_grown_by_how_near_their_bands_edge_the_modes_came(monkeypatch):
+    """After an accepted step the scan grows the next by less where a mode came near the
+    edge of its band (derivation, the speed scan), instead of doubling its excess: the
+    scan of the disc's symmetric family at n = 7 on R = 120 mm finds the same crossing
+    (to 1e-12), certified both ways, in fewer steps tried."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    plain, rule = tei_layers._follow, tei_layers.STEP_TARGET
+    scans, tried = {}, {}
+    for target in (rule, math.inf):                 # inf: the excess always doubled
+        def follow(*args, target=target, **kwargs):
+            tried[target] = tried.get(target, 0) + 1
+            return plain(*args, **kwargs)
+        monkeypatch.setattr(tei_layers, "_follow", follow)
+        monkeypatch.setattr(tei_layers, "STEP_TARGET", target)
+        scans[target] = family.scan(7 / 0.12)
+    ((v1, w1, k1),), ((v0, w0, k0),) = scans[rule].crossings, scans[math.inf].crossings
+    assert k1 == k0 == 1 and _rel(v1, v0) < 1e-12 and _rel(w1, w0) < 1e-12
+    assert scans[rule].certified and scans[math.inf].certified
+    assert tried[rule] < tried[math.inf]
+
+
 def test_seeds_of_followed_modes_need_no_polishing(monkeypatch):
     """A reseeding that only looks for the modes yet to grow leaves unpolished each
     seed that is alone near one followed mode (derivation, the speed scan): the scan

@@ -589,6 +589,10 @@ def unstable_count(family, m, speed, points=48):
 #: The speed scan's steps: at most this factor, at least ``1 + MIN_STEP``.
 MAX_RATIO = 4.0
 MIN_STEP = 1e-6
+#: After an accepted step the next is made larger (by at most 2 in its excess over 1) so
+#: that the followed modes are predicted to land within this fraction of their band
+#: (the tangent's error growing as the square of the step); never smaller.
+STEP_TARGET = 0.7
 #: Speeds of a scan between two reseedings from the depth discretisation (a factor).
 RESEED = 4.0
 #: A reseeding's seed within this fraction of a followed mode's size (in the mode's
@@ -652,7 +656,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     method from speed to speed, each predicted along its tangent ``db/dV`` (implicit
     differentiation).  A step (a factor at most :data:`MAX_RATIO`) is accepted only if
     every followed mode lands within a fifth of its distance from the imaginary axis
-    of its prediction, otherwise halved (in the factor's excess over 1).  On each
+    of its prediction, otherwise halved (in the factor's excess over 1); after an
+    accepted step the excess grows by up to 2, less where a mode came near its band's
+    edge (:data:`STEP_TARGET`).  On each
     step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
     ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
     on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
@@ -822,8 +828,11 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             if not fine.all() and ratio - 1.0 > MIN_STEP:
                 ratio = 1.0 + 0.5 * (ratio - 1.0)
                 continue
+            # How much of its band the mode nearest its band's edge used.
+            used = float(np.max(err / tol, initial=0.0)) if fine.all() else 1.0
         else:
             b1, s1 = b, slope
+            used = 0.0
         # Two modes followed onto one root: the root once.
         keep = np.isfinite(b1)
         for k in range(b1.size):
@@ -873,7 +882,9 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         b, slope = b1[order], s1[order]
         v = v1
         speeds += 1
-        ratio = min(1.0 + 2.0 * (ratio - 1.0), MAX_RATIO)
+        # Not straight back to a step that would be refused (STEP_TARGET).
+        grow = 2.0 if used <= STEP_TARGET / 4.0 else max(1.0, math.sqrt(STEP_TARGET / used))
+        ratio = min(1.0 + grow * (ratio - 1.0), MAX_RATIO)
     crossings.sort()
     if not every:
         first = [c for c in crossings if c[2] > 0][:1]
