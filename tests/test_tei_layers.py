@@ -250,6 +250,29 @@ def test_steps_grown_by_how_near_their_bands_edge_the_modes_came(monkeypatch):
     assert tried[rule] < tried[math.inf]
 
 
+def test_the_counts_paired_frequencies_once_change_nothing_but_the_work(monkeypatch):
+    """Far from both frames the count's two grids pair up, each pair closer than a
+    hundredth of their spacing: one of each is left out (derivation, the count). The
+    scan of the disc's symmetric family at n = 7 on R = 120 mm, with every frequency
+    (``COUNT_MERGE = 0``) and without the pairs' second, is the same to the last bit,
+    its count's ratio taken at fewer frequencies."""
+    from thermocontact.studies import tei_layers
+
+    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
+                     counterface_thickness=0.010)
+    plain, rule = Layered.dispersion_ratio, tei_layers.COUNT_MERGE
+    scans, points = {}, {}
+    for merge in (rule, 0.0):
+        def ratio(self, b, *args, merge=merge):
+            points[merge] = points.get(merge, 0) + np.size(b)
+            return plain(self, b, *args)
+        monkeypatch.setattr(Layered, "dispersion_ratio", ratio)
+        monkeypatch.setattr(tei_layers, "COUNT_MERGE", merge)
+        scans[merge] = family.scan(7 / 0.12)
+    assert scans[rule] == scans[0.0] and scans[rule].certified
+    assert points[rule] < 0.9 * points[0.0]
+
+
 def test_seeds_of_followed_modes_need_no_polishing(monkeypatch):
     """A reseeding that only looks for the modes yet to grow leaves unpolished each
     seed that is alone near one followed mode (derivation, the speed scan): the scan

@@ -532,8 +532,10 @@ def unstable_count(family, m, speed, points=48):
     pi)`` for ``omega`` from ``-inf`` to ``inf``.  The frequencies: ``points`` per
     decade-spaced side about each body's frame (``0`` and ``-m V``), from ``1e-4``
     times the smallest rate (``kappa m^2``, ``kappa/h^2``, ``m V``) to ``1e6`` times
-    the largest, each step refined (cut into about ``|Delta arg|/0.25`` parts a
-    round) until the argument changes by less than 0.25.
+    the largest (a point closer to the one before it than :data:`COUNT_MERGE` of the
+    spacing there left out: far from both frames their points pair up), each step
+    refined (cut into about ``|Delta arg|/0.25`` parts a round) until the argument
+    changes by less than 0.25.
 
     Returns
     -------
@@ -554,6 +556,12 @@ def unstable_count(family, m, speed, points=48):
     w = np.concatenate([c + np.concatenate([-side[::-1], [0.0], side]) for c in centres]
                        + [[-1e3 * hi - m * speed, 1e3 * hi]])
     w = np.unique(w)
+    if len(centres) > 1:
+        # Far from both frames (|omega| >> m V) their points come in pairs closer than
+        # a hundredth of the grid's spacing there: the first of each pair only.
+        near = np.min([np.abs(w[1:] - c) for c in centres], axis=0)
+        spacing = (side[1] / side[0] - 1.0) * np.maximum(near, lo)
+        w = w[np.concatenate([[True], np.diff(w) > COUNT_MERGE * spacing])]
 
     def ratio(w):
         return family.dispersion_ratio(1j * w, m, speed)
@@ -586,6 +594,9 @@ def unstable_count(family, m, speed, points=48):
     return count, bool(resolved and ends and abs(n - count) < 1e-6)
 
 
+#: The count's frequencies: a point closer than this fraction of the grid's spacing
+#: (about the nearer frame) to the point before it is left out (:func:`unstable_count`).
+COUNT_MERGE = 1e-2
 #: The speed scan's steps: at most this factor, at least ``1 + MIN_STEP``.
 MAX_RATIO = 4.0
 MIN_STEP = 1e-6
