@@ -480,6 +480,28 @@ def _cubic_peak(lo, hi):
     return ua + t * H
 
 
+def _hermite_zero(lo, hi):
+    """Where the cubic through the values and slopes of ``b`` at ``lo = (V, b, db/dV)``
+    and ``hi`` (``Re b`` of opposite signs) has ``Re b = 0``, and ``b`` there on it:
+    ``(V, b)``, the zero inside the bracket nearest the secant's (the secant's zero if
+    the cubic has none there)."""
+    (va, ba, sa), (vb, bb, sb) = lo, hi
+    h = vb - va
+
+    def cubic(t):
+        return ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
+            (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
+    fa, fb, da, db = ba.real, bb.real, h * sa.real, h * sb.real
+    secant = fa / (fa - fb)
+    # The cubic's coefficients in t (Hermite's basis expanded), highest first.
+    coef = [2 * fa - 2 * fb + da + db, -3 * fa + 3 * fb - 2 * da - db, da, fa]
+    with np.errstate(all="ignore"):
+        roots = np.roots(coef) if np.all(np.isfinite(coef)) else np.array([])
+    inside = [r.real for r in roots if abs(r.imag) <= 1e-12 and 0.0 < r.real < 1.0]
+    t = min(inside, key=lambda r: abs(r - secant)) if inside else secant
+    return va + t * h, complex(cubic(t))
+
+
 def _peak_bound(lo, hi):
     """An upper bound of the largest ``Re b`` of one mode between the speeds of ``lo =
     (V, b, db/dV)`` (``Re b`` rising) and ``hi`` (falling), on the scan's assumption
@@ -670,9 +692,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     of its prediction, otherwise halved (in the factor's excess over 1); after an
     accepted step the excess grows by up to 2, less where a mode came near its band's
     edge (:data:`STEP_TARGET`).  On each
-    step, for each mode: a change of sign of ``Re b`` is a crossing (Brent's method on
-    ``Re b(V)``, the mode followed from the nearest point known, then Newton's method
-    on the neutral point); an interior maximum (``dRe b/dV`` positive at the step's
+    step, for each mode: a change of sign of ``Re b`` is a crossing (Newton's method on
+    the neutral point from the zero of the cubic through the step's ends, kept if the
+    mode followed there lands on it; else Brent's method on ``Re b(V)``, the mode
+    followed from the nearest point known, first); an interior maximum (``dRe b/dV`` positive at the step's
     start, negative at its end) is located where that slope vanishes, unless the
     values and slopes at the step's ends show that it stays below 0 (:data:`PEAK_RISE`;
     docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
@@ -805,6 +828,16 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
 
     def locate(ends, va, vb, direction):
         f = growth(ends)
+        if len(ends) == 2 and (ends[0][0], ends[1][0]) == (va, vb):
+            # A step's crossing: the neutral point straight from the cubic through the
+            # step's ends, kept if it lies inside the step on this mode's path (the mode
+            # followed there is it); else Brent's method on Re b(V) first.
+            vg, bg = _hermite_zero(ends[0], ends[1])
+            V, w, ok = neutral_point(family, m, vg, bg.imag)
+            if ok and va < V < vb:
+                on = f(float(V))
+                if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * (abs(w) + scale):
+                    return (float(V), float(w), direction)
         seen = {}                          # b at the speeds Brent's method tried
 
         def g(x):
