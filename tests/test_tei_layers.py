@@ -313,6 +313,30 @@ def test_a_crossing_from_the_cubic_through_its_step_is_brents(monkeypatch):
     assert asked[True] < asked[False]
 
 
+def test_a_neutral_point_whose_step_cannot_be_taken_is_not_converged():
+    """Newton's method on a neutral point: where the logarithmic derivatives are NaN (an
+    evaluation that failed) or make a singular system, the point is given up at once,
+    not converged; where one is infinite (D = 0 at the point itself) it is converged
+    there."""
+    family = _family("symmetric", IRON, PAD, slider_thickness=0.012)
+
+    class Stub:
+        def __init__(self, value):
+            self.value = value
+
+        def scale(self, m):
+            return family.scale(m)
+
+        def log_derivatives(self, b, m, V):
+            return np.broadcast_to(np.asarray(self.value, dtype=complex),
+                                   np.shape(b) + (2,))
+    for value, converged in (([np.nan, 1.0], False), ([0.0, 1.0], False),
+                             ([np.inf, 1.0], True)):
+        V, w, ok = neutral_point(Stub(value), M, 3.0, -2.0)
+        assert bool(ok) is converged, value
+        assert V == 3.0 and w == -2.0                  # no step taken
+
+
 def test_the_zero_of_a_steps_cubic():
     """The cubic through a cubic's values and slopes is that cubic: its zero, and b
     there, exactly."""

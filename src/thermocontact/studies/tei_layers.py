@@ -337,7 +337,8 @@ class _NeutralNewton:
         """The points that have ended, taken out: ``(tag, V, omega, converged)`` each.
         A point ends converged, given up (still stepping by a tenth after 12 iterations:
         no convergence in sight, a guess between branches, the steps held at the
-        damping's limits) or after ``iters`` iterations."""
+        damping's limits; or a step that could not be taken: an evaluation that failed,
+        a singular system) or after ``iters`` iterations."""
         self.stop |= (self.it == 12) & ~self.done & (self.last > 0.1)
         end = self.done | self.stop | (self.it >= self.iters)
         if not end.any():
@@ -356,14 +357,19 @@ class _NeutralNewton:
         m, V, s, sig, phi = self.m, self.V, self.s, self.sig, self.phi
         # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
         L = self.family.log_derivatives(1j * (-phi * m * V + sig * s), m, V)
-        ds = 1j * sig * L[..., 0]
-        dv = L[..., 1] - 1j * phi * m * L[..., 0]
-        det = dv.real * ds.imag - dv.imag * ds.real
         with np.errstate(invalid="ignore", divide="ignore"):
+            ds = 1j * sig * L[..., 0]
+            dv = L[..., 1] - 1j * phi * m * L[..., 0]
+            det = dv.real * ds.imag - dv.imag * ds.real
             sV = -ds.imag / det
             sS = dv.imag / det
-        sV = np.where(~np.isfinite(sV), 0.0, sV)
-        sS = np.where(~np.isfinite(sS), 0.0, sS)
+        # An infinite logarithmic derivative is D = 0 at the point itself: a root to the
+        # last bit, no step.  A step not finite otherwise (an evaluation that failed, a
+        # singular system): the point given up, not converged.
+        at_root = np.isinf(L).any(axis=-1) & ~np.isnan(L).any(axis=-1)
+        failed = ~(np.isfinite(sV) & np.isfinite(sS)) & ~at_root
+        sV = np.where(at_root | failed, 0.0, sV)
+        sS = np.where(at_root | failed, 0.0, sS)
         # Damped: a step changes the speed by at most a factor 1.5.
         sV = np.clip(sV, -V / 3.0, 0.5 * V)
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
@@ -373,7 +379,8 @@ class _NeutralNewton:
         # after quadratic convergence (_settled).
         size = np.maximum(np.abs(sV) / V, np.abs(sS) / (1.0 + np.abs(s)) * 1e-2)
         self.done = ((size <= 1e-13) | ((size <= 1e-10) & (size > 0.3 * self.last))
-                     | _settled(size, self.last))
+                     | _settled(size, self.last)) & ~failed
+        self.stop |= failed
         self.last = size
         self.it = self.it + 1
 
@@ -833,7 +840,8 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             # step's ends, kept if it lies inside the step on this mode's path (the mode
             # followed there is it); else Brent's method on Re b(V) first.
             vg, bg = _hermite_zero(ends[0], ends[1])
-            V, w, ok = neutral_point(family, m, vg, bg.imag)
+            V, w, ok = neutral_point(family, m, vg, bg.imag) if np.isfinite(bg) else (
+                math.nan, math.nan, False)
             if ok and va < V < vb:
                 on = f(float(V))
                 if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * (abs(w) + scale):
