@@ -314,10 +314,9 @@ def test_a_crossing_from_the_cubic_through_its_step_is_brents(monkeypatch):
 
 
 def test_a_neutral_point_whose_step_cannot_be_taken_is_not_converged():
-    """Newton's method on a neutral point: where the logarithmic derivatives are NaN (an
-    evaluation that failed) or make a singular system, the point is given up at once,
-    not converged; where one is infinite (D = 0 at the point itself) it is converged
-    there."""
+    """Newton's method on a neutral point: where finite logarithmic derivatives (D not 0)
+    make a singular system, the point is given up at once, not converged; where they
+    are not finite (M singular, D = 0 at the point itself) it is converged there."""
     family = _family("symmetric", IRON, PAD, slider_thickness=0.012)
 
     class Stub:
@@ -330,7 +329,7 @@ def test_a_neutral_point_whose_step_cannot_be_taken_is_not_converged():
         def log_derivatives(self, b, m, V):
             return np.broadcast_to(np.asarray(self.value, dtype=complex),
                                    np.shape(b) + (2,))
-    for value, converged in (([np.nan, 1.0], False), ([0.0, 1.0], False),
+    for value, converged in (([0.0, 1.0], False), ([np.nan, 1.0], True),
                              ([np.inf, 1.0], True)):
         V, w, ok = neutral_point(Stub(value), M, 3.0, -2.0)
         assert bool(ok) is converged, value

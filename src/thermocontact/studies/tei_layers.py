@@ -337,8 +337,8 @@ class _NeutralNewton:
         """The points that have ended, taken out: ``(tag, V, omega, converged)`` each.
         A point ends converged, given up (still stepping by a tenth after 12 iterations:
         no convergence in sight, a guess between branches, the steps held at the
-        damping's limits; or a step that could not be taken: an evaluation that failed,
-        a singular system) or after ``iters`` iterations."""
+        damping's limits; or a singular system where ``D`` is not 0) or after
+        ``iters`` iterations."""
         self.stop |= (self.it == 12) & ~self.done & (self.last > 0.1)
         end = self.done | self.stop | (self.it >= self.iters)
         if not end.any():
@@ -363,13 +363,13 @@ class _NeutralNewton:
             det = dv.real * ds.imag - dv.imag * ds.real
             sV = -ds.imag / det
             sS = dv.imag / det
-        # An infinite logarithmic derivative is D = 0 at the point itself: a root to the
-        # last bit, no step.  A step not finite otherwise (an evaluation that failed, a
-        # singular system): the point given up, not converged.
-        at_root = np.isinf(L).any(axis=-1) & ~np.isnan(L).any(axis=-1)
-        failed = ~(np.isfinite(sV) & np.isfinite(sS)) & ~at_root
-        sV = np.where(at_root | failed, 0.0, sV)
-        sS = np.where(at_root | failed, 0.0, sS)
+        # Derivatives not finite: M singular, D = 0 at the point itself (a root to the
+        # last bit), no step.  Finite derivatives (D != 0) whose step is not finite (a
+        # singular 2 x 2 system): the point given up, not converged.
+        ok = np.isfinite(sV) & np.isfinite(sS)
+        failed = ~ok & np.isfinite(L).all(axis=-1)
+        sV = np.where(ok, sV, 0.0)
+        sS = np.where(ok, sS, 0.0)
         # Damped: a step changes the speed by at most a factor 1.5.
         sV = np.clip(sV, -V / 3.0, 0.5 * V)
         sS = np.clip(sS, -2.0 * (1.0 + np.abs(s)), 2.0 * (1.0 + np.abs(s)))
