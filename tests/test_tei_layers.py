@@ -172,8 +172,7 @@ def test_a_refused_step_given_up_early_changes_nothing_but_the_work(monkeypatch)
     method fewer evaluations (172 against 193)."""
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
+    family = _disc()
     plain = tei_layers.newton_roots
     work = {}
 
@@ -210,8 +209,7 @@ def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkey
     maxima and certificate to the last bit, and follows its modes fewer times."""
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
+    family = _disc()
     plain, rule = tei_layers._polish, tei_layers.PEAK_RISE
     scans, work = {}, {}
     for rise in (rule, math.inf):
@@ -226,91 +224,104 @@ def test_a_maximum_below_zero_left_unlocated_changes_nothing_but_the_work(monkey
     assert work[rule] < work[math.inf]
 
 
-def _same_scan(a, b):
-    """The same scan: its steps, counts, maxima and certificate, its crossings to 1e-13
-    (the same evaluations in batches of other sizes: not bitwise on every CPU)."""
+def _disc(name="symmetric"):
+    """A family of the worked disc: grey iron 12 mm, organic pads 10 mm on a backing."""
+    return _family(name, IRON, PAD, dundurs=False, slider_thickness=0.012,
+                   counterface_thickness=0.010)
+
+
+def _scan_with_and_without(monkeypatch, rule, off, counted, points=None):
+    """The disc's symmetric family scanned at n = 7 on R = 120 mm with the module
+    setting ``rule = (name, value)`` and with ``off`` in its place, and the work of
+    each: the calls of ``counted = (owner, name)``, or with ``points`` the sum of the
+    sizes of their ``points``-th argument."""
+    from thermocontact.studies import tei_layers
+
+    family = _disc()
+    owner, method = counted
+    plain = getattr(owner, method)
+    scans, work = {}, {}
+    for key, value in (("rule", rule[1]), ("off", off)):
+        work[key] = 0
+
+        def tally(*args, key=key, **kwargs):
+            work[key] += 1 if points is None else np.size(args[points])
+            return plain(*args, **kwargs)
+        monkeypatch.setattr(owner, method, tally)
+        monkeypatch.setattr(tei_layers, rule[0], value)
+        scans[key] = family.scan(7 / 0.12)
+    monkeypatch.setattr(owner, method, plain)
+    return scans["rule"], scans["off"], work["rule"], work["off"]
+
+
+def _same_scan(a, b, crossing=1e-13):
+    """The same scan: its steps, counts, maxima and certificate, its crossings to
+    ``crossing`` (the same evaluations in batches of other sizes: not bitwise on every
+    CPU)."""
     assert (a.speeds, a.counts, a.maxima, a.certified, a.start) == (
         b.speeds, b.counts, b.maxima, b.certified, b.start) and a.certified
-    assert len(a.crossings) == len(b.crossings) > 0
+    _same_crossings(a, b, crossing)
+    assert _rel(a.end, b.end) < crossing
+
+
+def _same_crossings(a, b, tol):
+    assert len(a.crossings) == len(b.crossings) > 0 and a.certified and b.certified
     for (v1, w1, k1), (v0, w0, k0) in zip(a.crossings, b.crossings):
-        assert k1 == k0 and _rel(v1, v0) < 1e-13 and _rel(w1, w0) < 1e-13
-    assert _rel(a.end, b.end) < 1e-13
+        assert k1 == k0 and _rel(v1, v0) < tol and _rel(w1, w0) < tol
 
 
 def test_steps_grown_by_how_near_their_bands_edge_the_modes_came(monkeypatch):
     """After an accepted step the scan grows the next by less where a mode came near the
-    edge of its band (derivation, the speed scan), instead of doubling its excess: the
-    scan of the disc's symmetric family at n = 7 on R = 120 mm finds the same crossing
-    (to 1e-12), certified both ways, in fewer steps tried."""
+    edge of its band (derivation, the speed scan), instead of always doubling its
+    excess (``STEP_TARGET`` infinite): the same crossing (to 1e-12), certified both
+    ways, in fewer steps tried."""
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
-    plain, rule = tei_layers._follow, tei_layers.STEP_TARGET
-    scans, tried = {}, {}
-    for target in (rule, math.inf):                 # inf: the excess always doubled
-        def follow(*args, target=target, **kwargs):
-            tried[target] = tried.get(target, 0) + 1
-            return plain(*args, **kwargs)
-        monkeypatch.setattr(tei_layers, "_follow", follow)
-        monkeypatch.setattr(tei_layers, "STEP_TARGET", target)
-        scans[target] = family.scan(7 / 0.12)
-    ((v1, w1, k1),), ((v0, w0, k0),) = scans[rule].crossings, scans[math.inf].crossings
-    assert k1 == k0 == 1 and _rel(v1, v0) < 1e-12 and _rel(w1, w0) < 1e-12
-    assert scans[rule].certified and scans[math.inf].certified
-    assert tried[rule] < tried[math.inf]
+    new, old, tried, tried_old = _scan_with_and_without(
+        monkeypatch, ("STEP_TARGET", tei_layers.STEP_TARGET), math.inf,
+        (tei_layers, "_follow"))
+    _same_crossings(new, old, 1e-12)
+    assert tried < tried_old
 
 
 def test_the_counts_paired_frequencies_once_change_nothing_but_the_work(monkeypatch):
     """Far from both frames the count's two grids pair up, each pair closer than a
     hundredth of their spacing: one of each is left out (derivation, the count). The
-    scan of the disc's symmetric family at n = 7 on R = 120 mm, with every frequency
-    (``COUNT_MERGE = 0``) and without the pairs' second, is the same (its crossing to
-    rounding),
-    its count's ratio taken at fewer frequencies."""
+    scan with every frequency (``COUNT_MERGE = 0``) is the same (its crossing to
+    rounding), its count's ratio taken at fewer frequencies; and the count where a
+    growing mode is near the moving frame (where an earlier draft, measuring the
+    spacing about 0, lost it) is the same with and without the rule."""
     from thermocontact.studies import tei_layers
+    from thermocontact.studies.tei_layers import unstable_count
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
-    plain, rule = Layered.dispersion_ratio, tei_layers.COUNT_MERGE
-    scans, points = {}, {}
-    for merge in (rule, 0.0):
-        def ratio(self, b, *args, merge=merge):
-            points[merge] = points.get(merge, 0) + np.size(b)
-            return plain(self, b, *args)
-        monkeypatch.setattr(Layered, "dispersion_ratio", ratio)
-        monkeypatch.setattr(tei_layers, "COUNT_MERGE", merge)
-        scans[merge] = family.scan(7 / 0.12)
-    _same_scan(scans[rule], scans[0.0])
-    assert points[rule] < 0.9 * points[0.0]
+    new, old, points, points_old = _scan_with_and_without(
+        monkeypatch, ("COUNT_MERGE", tei_layers.COUNT_MERGE), 0.0,
+        (Layered, "dispersion_ratio"), points=1)
+    _same_scan(new, old)
+    assert points < 0.9 * points_old
+    anti, m = _disc("antisymmetric"), 284.02411370222836
+    counts = [unstable_count(anti, m, 47.196)]
+    monkeypatch.setattr(tei_layers, "COUNT_MERGE", 0.0)
+    counts.append(unstable_count(anti, m, 47.196))
+    assert counts == [(1, True), (1, True)]
 
 
 def test_a_crossing_from_the_cubic_through_its_step_is_brents(monkeypatch):
     """A step's crossing is the neutral point polished from the zero of the cubic
     through the growth rate's values and slopes at the step's ends, kept where the mode
-    followed there lands on it (derivation, the speed scan): the scan of the disc's
-    symmetric family at n = 7 on R = 120 mm, and with every crossing located by Brent's
-    method first (the cubic's zero made NaN), finds the same crossing to 1e-12, with
-    fewer evaluations."""
+    followed there lands on it (derivation, the speed scan): the scan finds it without
+    Brent's method, and the same crossing (to 1e-12) as with Brent's method first (the
+    cubic's zero made NaN)."""
+    import scipy.optimize
+
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
-    plain = Layered.log_derivatives
-    scans, asked = {}, {}
-    for cubic in (True, False):
-        def derivatives(self, *args, cubic=cubic):
-            asked[cubic] = asked.get(cubic, 0) + 1
-            return plain(self, *args)
-        monkeypatch.setattr(Layered, "log_derivatives", derivatives)
-        if not cubic:
-            monkeypatch.setattr(tei_layers, "_hermite_zero",
-                                lambda lo, hi: (math.nan, complex(math.nan, math.nan)))
-        scans[cubic] = family.scan(7 / 0.12)
-    ((v1, w1, k1),), ((v0, w0, k0),) = scans[True].crossings, scans[False].crossings
-    assert k1 == k0 == 1 and _rel(v1, v0) < 1e-12 and _rel(w1, w0) < 1e-12
-    assert scans[True].certified and scans[False].certified
-    assert asked[True] < asked[False]
+    nan = (lambda lo, hi: (math.nan, complex(math.nan, math.nan)))
+    new, old, brent, brent_old = _scan_with_and_without(
+        monkeypatch, ("_hermite_zero", tei_layers._hermite_zero), nan,
+        (scipy.optimize, "brentq"))
+    _same_crossings(new, old, 1e-12)
+    assert brent == 0 and brent_old > 0
 
 
 def test_a_neutral_point_whose_step_cannot_be_taken_is_not_converged():
@@ -352,46 +363,43 @@ def test_the_zero_of_a_steps_cubic():
 
 def test_seeds_of_followed_modes_need_no_polishing(monkeypatch):
     """A reseeding that only looks for the modes yet to grow leaves unpolished each
-    seed that is alone near one followed mode (derivation, the speed scan): the scan
-    of the disc's symmetric family at n = 7 on R = 120 mm, with the rule and with every
-    seed polished (``SEED_MATCH = 0``), is the same (its crossing to rounding), and polishes
-    fewer seeds."""
+    seed that is alone near one followed mode (derivation, the speed scan): the scan,
+    and with every seed polished (``SEED_MATCH = 0``), is the same (its crossing to
+    rounding), and polishes fewer seeds."""
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
-    plain, rule = tei_layers._polish, tei_layers.SEED_MATCH
-    scans, seeds = {}, {}
-    for match in (rule, 0.0):
-        def polish(family, m, speed, b0, *args, match=match, **kwargs):
-            seeds[match] = seeds.get(match, 0) + np.size(b0)
-            return plain(family, m, speed, b0, *args, **kwargs)
-        monkeypatch.setattr(tei_layers, "_polish", polish)
-        monkeypatch.setattr(tei_layers, "SEED_MATCH", match)
-        scans[match] = family.scan(7 / 0.12)
-    _same_scan(scans[rule], scans[0.0])
-    assert seeds[rule] < seeds[0.0]
+    new, old, seeds, seeds_old = _scan_with_and_without(
+        monkeypatch, ("SEED_MATCH", tei_layers.SEED_MATCH), 0.0,
+        (tei_layers, "_polish"), points=3)
+    _same_scan(new, old)
+    assert seeds < seeds_old
 
 
 def test_which_seeds_are_followed_modes():
     """A seed within SEED_MATCH of one followed mode (of that mode's size in its frame),
-    alone there, is that mode; two seeds near one mode, a seed near two modes and a
-    seed near none are polished."""
+    alone there and in its frame, is that mode; two seeds near one mode, a seed near two
+    modes, one near a mode of the other frame and one near none are polished."""
     from thermocontact.studies.tei_layers import SEED_MATCH, _seeds_followed
 
-    family = _family("symmetric", IRON, PAD, slider_thickness=0.012)
+    family = _disc()
     m, V = 50.0, 200.0
     assert family.scale(m) < 1e-2                 # the sizes below: 100, 100 and 5000
     # A mode at rest on the pads, one at rest on the disc (frequency -m V = -1e4: its
-    # size in its frame 100), a fast one.
+    # size in its frame 100), a fast one (its band 50 wide).
     b = np.array([-100.0 + 0j, -100.0 - 1j * m * V, -5000.0 + 0j])
     near = 0.5 * SEED_MATCH * 100.0
     seeds = np.array([b[0] + near, b[1] - 1j * near, b[1] + 30.0 * near, -2000.0,
-                      b[2] + 200.0 * near, b[2] - 200.0 * near])
+                      b[2] + 50.0 * near, b[2] - 50.0 * near])
     assert _seeds_followed(family, m, V, seeds, b).tolist() == [True, True, False, False,
                                                                 False, False]
     pair = np.array([-100.0 + 0j, -100.0 + 1j * near])             # two modes side by side
     assert not _seeds_followed(family, m, V, np.array([-100.0 + 0.5j * near]), pair).any()
+    # A fast mode at rest on the pads and a seed of one at rest on the disc within its
+    # band (m V = 25 at V = 0.5): of the other frame, not that mode's.
+    fast, slow_v = np.array([-3000.0 + 0j]), 0.5
+    other = np.array([-2999.0 - 1j * m * slow_v])
+    assert not _seeds_followed(family, m, slow_v, other, fast).any()
+    assert _seeds_followed(family, m, slow_v, np.array([-2999.0 + 0j]), fast).all()
     assert not _seeds_followed(family, m, V, seeds[:0], b).size
 
 
@@ -402,8 +410,7 @@ def test_chains_that_meet_stop_and_change_nothing_but_the_work(monkeypatch):
     the next scanned wavenumber, is the same to 1e-12, in fewer steps."""
     from thermocontact.studies import tei_layers
 
-    family = _family("symmetric", IRON, PAD, dundurs=False, slider_thickness=0.012,
-                     counterface_thickness=0.010)
+    family = _disc()
     ms = np.arange(4, 13) / 0.12
     plain_crossing, plain_start = tei_layers.first_crossing, tei_layers._Continuation.start
     scanned, steps = {}, {}

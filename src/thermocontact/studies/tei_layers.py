@@ -440,14 +440,17 @@ def _polish(family, m, speed, b0, reach=None, within=None):
 
 def _seeds_followed(family, m, speed, seeds, b):
     """Which of the discretisation's ``seeds`` are plainly the followed modes ``b``
-    (polished, at ``speed``): each alone within :data:`SEED_MATCH` of one of them,
-    in units of that mode's size in its frame (:func:`pattern_frame`) plus ``kappa
-    m^2``, and that mode near no other seed.  Two seeds near one mode (a mode not
-    followed beside it) are both polished."""
+    (polished, at ``speed``): each alone within :data:`SEED_MATCH` of one of them in
+    the same frame (:func:`pattern_frame`), in units of that mode's size there plus
+    ``kappa m^2``, and that mode near no other seed.  Two seeds near one mode (a mode
+    not followed beside it) are both polished; a seed of a mode not followed is taken
+    for a followed one only where that one's own seed is missing."""
     if not (seeds.size and b.size):
         return np.zeros(seeds.shape, dtype=bool)
-    size = np.abs(b + 1j * pattern_frame(m, speed, b.imag) * m * speed) + family.scale(m)
-    near = np.abs(seeds[:, None] - b[None, :]) <= SEED_MATCH * size
+    frame = pattern_frame(m, speed, b.imag)
+    size = np.abs(b + 1j * frame * m * speed) + family.scale(m)
+    near = ((np.abs(seeds[:, None] - b[None, :]) <= SEED_MATCH * size)
+            & (pattern_frame(m, speed, seeds.imag)[:, None] == frame))
     return (near.sum(axis=1) == 1) & (near.sum(axis=0)[np.argmax(near, axis=1)] == 1)
 
 
@@ -487,17 +490,22 @@ def _cubic_peak(lo, hi):
     return ua + t * H
 
 
-def _hermite_zero(lo, hi):
-    """Where the cubic through the values and slopes of ``b`` at ``lo = (V, b, db/dV)``
-    and ``hi`` (``Re b`` of opposite signs) has ``Re b = 0``, and ``b`` there on it:
-    ``(V, b)``, the zero inside the bracket nearest the secant's (the secant's zero if
-    the cubic has none there)."""
+def _hermite(lo, hi, t):
+    """The cubic in ``V`` through ``b`` and ``db/dV`` at ``lo = (V, b, db/dV)`` and ``hi``,
+    at ``V = V_lo + t (V_hi - V_lo)``."""
     (va, ba, sa), (vb, bb, sb) = lo, hi
     h = vb - va
+    return ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
+        (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
 
-    def cubic(t):
-        return ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
-            (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
+
+def _hermite_zero(lo, hi):
+    """Where the cubic of :func:`_hermite` has ``Re b = 0`` (``Re b`` of opposite signs at
+    ``lo`` and ``hi``), and ``b`` there on it: ``(V, b)``, its zero inside the bracket
+    nearest the secant's (the secant's own where rounding leaves none strictly inside,
+    or the coefficients are not finite)."""
+    (va, ba, sa), (vb, bb, sb) = lo, hi
+    h = vb - va
     fa, fb, da, db = ba.real, bb.real, h * sa.real, h * sb.real
     secant = fa / (fa - fb)
     # The cubic's coefficients in t (Hermite's basis expanded), highest first.
@@ -506,7 +514,7 @@ def _hermite_zero(lo, hi):
         roots = np.roots(coef) if np.all(np.isfinite(coef)) else np.array([])
     inside = [r.real for r in roots if abs(r.imag) <= 1e-12 and 0.0 < r.real < 1.0]
     t = min(inside, key=lambda r: abs(r - secant)) if inside else secant
-    return va + t * h, complex(cubic(t))
+    return va + t * h, complex(_hermite(lo, hi, t))
 
 
 def _peak_bound(lo, hi):
@@ -698,26 +706,28 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
     every followed mode lands within a fifth of its distance from the imaginary axis
     of its prediction, otherwise halved (in the factor's excess over 1); after an
     accepted step the excess grows by up to 2, less where a mode came near its band's
-    edge (:data:`STEP_TARGET`).  On each
-    step, for each mode: a change of sign of ``Re b`` is a crossing (Newton's method on
-    the neutral point from the zero of the cubic through the step's ends, kept if the
-    mode followed there lands on it; else Brent's method on ``Re b(V)``, the mode
-    followed from the nearest point known, first); an interior maximum (``dRe b/dV`` positive at the step's
-    start, negative at its end) is located where that slope vanishes, unless the
-    values and slopes at the step's ends show that it stays below 0 (:data:`PEAK_RISE`;
-    docs/derivation.md, L15), and where it reaches 0 it is a window of growth (two
-    crossings).  At every accepted speed the growing modes are counted by the argument
-    principle (:func:`unstable_count`); where the count exceeds the followed modes that
-    grow, and every :data:`RESEED` in speed, the modes are reseeded, and a new one is
-    followed back over the step.
+    edge (:data:`STEP_TARGET`).  On each step, for each mode: a change of sign of
+    ``Re b`` is a crossing (Newton's method on the neutral point from the zero of the
+    cubic through the step's ends, kept if the mode followed there lands on it; else
+    Brent's method on ``Re b(V)``, the mode followed from the nearest point known,
+    first); an interior maximum (``dRe b/dV`` positive at the step's start, negative
+    at its end) is located where that slope vanishes, unless the values and slopes at
+    the step's ends show that it stays below 0 (:data:`PEAK_RISE`; docs/derivation.md,
+    L15), and where it reaches 0 it is a window of growth (two crossings).  At every
+    accepted speed the growing modes are counted by the argument principle
+    (:func:`unstable_count`); where the count exceeds the followed modes that grow,
+    and every :data:`RESEED` in speed, the modes are reseeded (the latter polishing
+    only the seeds that are not plainly followed modes, :data:`SEED_MATCH`), and a
+    new one is followed back over the step.
 
     Returns
     -------
     SpeedScan
         ``certified`` where every count was reliable and equal to the followed modes
         that grow.  Not excluded: a window inside one step of a mode whose growth rate
-        turns twice within it, or of a mode followed at neither end of it
-        (docs/derivation.md, L15).
+        turns twice within it, or of a mode followed at neither end of it (one whose
+        seed a reseeding took for a followed mode beside it, that one's own seed
+        missing, among them) (docs/derivation.md, L15).
     """
     from scipy.optimize import brentq, minimize_scalar
 
@@ -755,12 +765,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             below = [e for e in ends if e[0] < x]
             above = [e for e in ends if e[0] > x]
             if below and above:
-                (va, ba, sa), (vb, bb, sb) = (max(below, key=lambda e: e[0]),
-                                              min(above, key=lambda e: e[0]))
-                h, t = vb - va, (x - va) / (vb - va)
-                pred = ((2 * t - 3) * t * t + 1) * ba + ((t - 2) * t + 1) * t * h * sa + (
-                    (3 - 2 * t) * t * t * bb + (t - 1) * t * t * h * sb)
-                b0_ = ba if t < 0.5 else bb
+                lo, hi = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
+                t = (x - lo[0]) / (hi[0] - lo[0])
+                pred = _hermite(lo, hi, t)
+                b0_ = lo[1] if t < 0.5 else hi[1]
                 reach = 0.5 * abs(pred - b0_) + 0.5 * abs(b0_.real) + 10.0 * scale
                 r, _, sl = _polish(family, m, x, np.array([pred]), reach)
                 if np.isfinite(r[0]):
@@ -833,18 +841,19 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                               method="bounded", options={"xatol": 1e-7})
         return math.exp(res.x), -res.fun, ends
 
-    def locate(ends, va, vb, direction):
+    def locate(ends, va, vb, direction, step=False):
         f = growth(ends)
-        if len(ends) == 2 and (ends[0][0], ends[1][0]) == (va, vb):
-            # A step's crossing: the neutral point straight from the cubic through the
-            # step's ends, kept if it lies inside the step on this mode's path (the mode
-            # followed there is it); else Brent's method on Re b(V) first.
+        if step:
+            # A step's crossing (``ends`` its two ends): the neutral point straight from
+            # the cubic through them, kept if it lies inside the step on this mode's
+            # path (the mode followed there is it); else Brent's method on Re b(V) first.
             vg, bg = _hermite_zero(ends[0], ends[1])
             V, w, ok = neutral_point(family, m, vg, bg.imag) if np.isfinite(bg) else (
                 math.nan, math.nan, False)
             if ok and va < V < vb:
                 on = f(float(V))
-                if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * (abs(w) + scale):
+                size = abs(w + pattern_frame(m, V, w) * m * V) + scale
+                if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * size:
                     return (float(V), float(w), direction)
         seen = {}                          # b at the speeds Brent's method tried
 
@@ -896,7 +905,7 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
             r0, r1 = b0[k].real, b1[k].real
             if (r0 < 0.0) != (r1 < 0.0):
                 ends = [(v, b0[k], s0[k]), (v1, b1[k], s1[k])]
-                crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
+                crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1, step=True))
             elif r0 < 0.0 and s0[k].real > 0.0 and s1[k].real < 0.0:
                 maxima += 1
                 top, rate, known = peak([(v, b0[k], s0[k]), (v1, b1[k], s1[k])])
@@ -925,7 +934,8 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                     if np.isfinite(back[k]) and (back[k].real < 0.0) != (r1 < 0.0):
                         bs = _speed_slope(family, m, v, back[k:k + 1])[0]
                         ends = [(v, back[k], bs), (v1, fresh[k], fs[k])]
-                        crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1))
+                        crossings.append(locate(ends, v, v1, 1 if r1 >= 0.0 else -1,
+                                                step=True))
                 b1 = np.concatenate([b1, fresh])
                 s1 = np.concatenate([s1, fs])
             seeded = v1
