@@ -644,8 +644,8 @@ STEP_TARGET = 0.7
 #: Speeds of a scan between two reseedings from the depth discretisation (a factor).
 RESEED = 4.0
 #: A reseeding's seed within this fraction of a followed mode's size (in the mode's
-#: frame, plus ``kappa m^2``), alone there, is that mode and is not polished
-#: (:func:`_seeds_followed`).
+#: frame, plus ``kappa m^2``), in that frame and alone there, is taken for that mode and
+#: not polished (:func:`_seeds_followed`).
 SEED_MATCH = 1e-2
 #: An interior maximum of a growth rate is located only where it may reach 0: where
 #: rising at this many times the steeper of the slopes at its bracket's ends, over the
