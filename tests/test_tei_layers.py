@@ -76,7 +76,8 @@ def test_solutions_satisfy_the_discretised_equations(plane):
 def test_depth_operator_does_not_depend_on_the_collocations_kept():
     """The bodies' collocations are kept between calls (a disc's two families share them
     at a wavenumber and speed): each family's operator, its bodies' collocations made
-    for the other family first, is the one made afresh; those kept are read-only."""
+    for the other family first, is the one made afresh; those kept are read-only, and
+    emptied by clear_caches."""
     from thermocontact.discretisation.tei_depth import _body_collocation, _body_operators
 
     def clear():
@@ -106,6 +107,11 @@ def test_depth_operator_does_not_depend_on_the_collocations_kept():
     rows, F = _body_operators(lay["symmetric"].bodies[0], 12, M, 20.0, "strain", False,
                               lay["symmetric"].references())[:2]
     assert not rows.flags.writeable and not F.flags.writeable
+    # The public clear_caches empties them.
+    from thermocontact import clear_caches
+
+    clear_caches()
+    assert _body_operators.cache_info().currsize == _body_collocation.cache_info().currsize == 0
 
 
 # --- the derivatives of the dispersion function in closed form (L16) -----------------

@@ -26,17 +26,17 @@ from __future__ import annotations
 
 
 import math
-from functools import lru_cache
 
 import numpy as np
 import scipy.linalg
 
+from ..numerics.cache import small_cache
 from ..physics.tei import SlidingPair
 
 __all__ = ["depth_modes", "layup_modes", "layup_operator"]
 
 
-@lru_cache(maxsize=16)
+@small_cache(16)
 def _chebyshev(n):
     """Lobatto points ``cos(pi j/n)`` (1 first), differentiation matrix and
     Clenshaw–Curtis weights on ``[-1, 1]``; made once per ``n`` (read-only)."""
@@ -130,7 +130,7 @@ def depth_modes(pair: SlidingPair, wavenumber, velocity, n=48):
     return b[np.argsort(-b.real, kind="stable")]
 
 
-@lru_cache(maxsize=64)
+@small_cache(64)
 def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     """One body's collocation: the interior rows (heat, then Navier's two equations),
     the rows that hold its fields at zero at infinity (a half-plane), its face fields
@@ -160,7 +160,7 @@ def _body_operators(body, n, m, speed, plane, upper, refs, split=False):
     return rows, F, mass, cols, count
 
 
-@lru_cache(maxsize=64)
+@small_cache(64)
 def _body_collocation(body, n, m, speed, plane, upper, refs, split=False):
     """:func:`_body_operators` without the convection (``U = 0``; ``speed`` only for a
     half-plane's mapped grid)."""

@@ -31,12 +31,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
 
 import numpy as np
 
 from ..discretisation.tei_depth import layup_modes
 from ..execution.lockstep import run_lockstep
+from ..numerics.cache import small_cache
 from ..physics.tei_layers import (Layup, dispersion_log_derivatives, dispersion_ratio,
                                   field_group, layup_dispersion, mode_shape)
 
@@ -251,7 +251,7 @@ class Layered:
         return max(1e-9, 1e-4 * K * m / (2.0 * mu * a * max(self.layup.friction, 1e-300)))
 
 
-@lru_cache(maxsize=64)
+@small_cache(64)
 def _group_token(group):
     """A token of one :func:`~thermocontact.physics.tei_layers.field_group`, the key by
     which its requests are batched: hashed by identity, not through every body's
