@@ -14,7 +14,9 @@ a steel backing plate they slip on, f = 0.4, no Dundurs term, plane strain, R = 
 * and, for scale, one critical speed by a scan, one neutral point by Newton's method,
   one evaluation of the dispersion function and one depth discretisation's eigenvalues.
 
-Each row is one cold run in this process with one BLAS thread (as the command runs);
+Each row is one cold run in this process with one BLAS thread (as the command runs),
+the library's caches emptied before it (``clear_caches``; the physics' few tables of a
+layup, made in a few milliseconds, are kept);
 its wall and CPU times (this process) and the ratio to the goal.  On a shared machine
 the wall time varies with the load; the CPU time is the one to compare.
 """
@@ -36,6 +38,7 @@ def _time(func, repeat=1):
 
 
 def main():
+    from thermocontact import clear_caches
     from thermocontact.discretisation.tei_depth import layup_modes
     from thermocontact.physics.tei_layers import layups
     from thermocontact.problem.materials import get_material
@@ -76,6 +79,7 @@ def main():
     print("|---|---|---|---|---|")
     with one_blas_thread():
         for name, goal, func, repeat in rows:
+            clear_caches()          # each row cold: no collocation kept from the one before
             wall, cpu = _time(func, repeat)
             ratio = "" if goal is None else f"{cpu / goal:.2f}"
             print(f"| {name} | {wall:.4g} | {cpu:.4g} | {'' if goal is None else goal} | "
