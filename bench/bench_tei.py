@@ -14,10 +14,11 @@ a steel backing plate they slip on, f = 0.4, no Dundurs term, plane strain, R = 
 * and, for scale, one critical speed by a scan, one neutral point by Newton's method,
   one evaluation of the dispersion function and one depth discretisation's eigenvalues.
 
-Each row is one cold run in this process with one BLAS thread (as the command runs),
-the library's caches emptied before it (``clear_caches``; the physics' few tables of a
-layup, made in a few milliseconds, are kept);
-its wall and CPU times (this process) and the ratio to the goal.  On a shared machine
+Each row of a goal is one cold run in this process with one BLAS thread (as the
+command runs), the library's caches emptied before it (``clear_caches``; the physics'
+few tables of a layup, made in a few milliseconds, are kept); a row for scale is the
+mean of a few runs, the first of them cold.  Each row gives its wall and CPU times
+(this process) and the ratio to the goal.  On a shared machine
 the wall time varies with the load; the CPU time is the one to compare.
 """
 

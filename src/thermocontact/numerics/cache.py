@@ -144,7 +144,11 @@ def small_cache(maxsize: int):
 
 
 def clear_caches() -> None:
-    """Empty every cache of this process (the bounded ones and the small tables')."""
+    """Empty the library's caches of this process: the bounded ones and the small
+    tables' of every layer that may register them (numerics and those above it).
+    Kept: the physics layer's tables (the kernels' fixed tables, made once; a layup's
+    face conditions, made in milliseconds), the registries of materials and units, and
+    the explorer's latest contacts."""
     for cache in _ALL.values():
         cache.clear()
     for cached in _SMALL:

@@ -283,7 +283,9 @@ def neutral_point(family, m, speed, omega, iters=40):
     array (with ``speed`` and ``omega`` of its shape): the points are solved together,
     each on its own (each evaluated until it has converged).  A point still stepping
     by a tenth after 12 iterations is given up (not converged): no convergence is in
-    sight."""
+    sight; so is one at once whose finite derivatives make a singular system.  Where
+    the derivatives are not finite (``M`` singular: ``D = 0`` at the point itself)
+    it has converged there."""
     m = np.asarray(m, dtype=float)
     newton = _NeutralNewton(family, iters)
     newton.add(m.reshape(-1), np.broadcast_to(speed, m.shape).reshape(-1),
@@ -357,7 +359,7 @@ class _NeutralNewton:
         m, V, s, sig, phi = self.m, self.V, self.s, self.sig, self.phi
         # 1 + (d ln D/dV) sV + (d ln D/ds) sS = 0, two real equations (D divided out).
         L = self.family.log_derivatives(1j * (-phi * m * V + sig * s), m, V)
-        with np.errstate(invalid="ignore", divide="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             ds = 1j * sig * L[..., 0]
             dv = L[..., 1] - 1j * phi * m * L[..., 0]
             det = dv.real * ds.imag - dv.imag * ds.real
