@@ -420,6 +420,17 @@ def test_kept_kernel_values_are_those_formed():
         np.testing.assert_allclose(
             both, np.concatenate([formed[:, 8:], formed[:, 4:8], formed[:, :4]], axis=1), **tol)
         assert len(KERNEL_VALUES) == 3
+        # A budget of one rate: those kept before are dropped while others are kept.
+        budget = KERNEL_VALUES.max_bytes
+        try:
+            KERNEL_VALUES.clear()
+            KERNEL_VALUES.max_bytes = formed[:, :4].nbytes
+            _kept_values(c, rates[:1])
+            small = _kept_values(c, rates)
+        finally:
+            KERNEL_VALUES.max_bytes = budget
+        np.testing.assert_allclose(small, formed, **tol)
+        assert len(KERNEL_VALUES) == 1
 
 
 def test_newton_stays_on_the_sheet():

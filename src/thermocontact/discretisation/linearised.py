@@ -499,13 +499,18 @@ def _kept_values(c, rates):
     rate's kept in :data:`KERNEL_VALUES`, those not kept formed in one pass."""
     keys = [(float(c), complex(b)) for b in rates]
     todo = list(dict.fromkeys(k[1] for k in keys if k not in KERNEL_VALUES))
+    fresh = {}
     if todo:
         values = _body_values(c, todo)
         for j, b in enumerate(todo):
-            part, = _frozen([np.array(values[:, 4 * j:4 * j + 4])])
-            KERNEL_VALUES.get((float(c), b), lambda part=part: part)
-    return np.concatenate([KERNEL_VALUES.get(k, lambda k=k: _body_values(*k)) for k in keys],
-                          axis=1)
+            fresh[b], = _frozen([np.array(values[:, 4 * j:4 * j + 4])])
+            KERNEL_VALUES.get((float(c), b), lambda part=fresh[b]: part)
+
+    def kept(key):
+        # One kept before may have been dropped by those just kept: formed again.
+        return fresh[key[1]] if key[1] in fresh else KERNEL_VALUES.get(
+            key, lambda: _frozen([_body_values(key[0], [key[1]])])[0])
+    return np.concatenate([kept(k) for k in keys], axis=1)
 
 
 def _frozen(arrays):
