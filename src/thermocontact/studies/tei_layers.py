@@ -449,11 +449,18 @@ def _seeds_followed(family, m, speed, seeds, b):
     for a followed one only where that one's own seed is missing."""
     if not (seeds.size and b.size):
         return np.zeros(seeds.shape, dtype=bool)
-    frame = pattern_frame(m, speed, b.imag)
-    size = np.abs(b + 1j * frame * m * speed) + family.scale(m)
-    near = ((np.abs(seeds[:, None] - b[None, :]) <= SEED_MATCH * size)
-            & (pattern_frame(m, speed, seeds.imag)[:, None] == frame))
+    band = SEED_MATCH * _frame_size(family, m, speed, b)
+    near = ((np.abs(seeds[:, None] - b[None, :]) <= band)
+            & (pattern_frame(m, speed, seeds.imag)[:, None] == pattern_frame(m, speed, b.imag)))
     return (near.sum(axis=1) == 1) & (near.sum(axis=0)[np.argmax(near, axis=1)] == 1)
+
+
+def _frame_size(family, m, speed, b):
+    """The size of each ``b`` in the frame it is nearer to rest in, ``|b + i phi m V|``
+    (:func:`pattern_frame`), plus ``kappa m^2``: the scale of its rounding and of its
+    distance from another root."""
+    b = np.asarray(b, dtype=complex)
+    return np.abs(b + 1j * pattern_frame(m, speed, b.imag) * m * speed) + family.scale(m)
 
 
 def _unique(family, m, b):
@@ -854,8 +861,8 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
                 math.nan, math.nan, False)
             if ok and va < V < vb:
                 on = f(float(V))
-                size = abs(w + pattern_frame(m, V, w) * m * V) + scale
-                if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * size:
+                if np.isfinite(on) and abs(on - 1j * w) <= 1e-8 * _frame_size(
+                        family, m, V, 1j * w):
                     return (float(V), float(w), direction)
         seen = {}                          # b at the speeds Brent's method tried
 
@@ -918,9 +925,10 @@ def speed_scan(family, m, v_high=1e4, v_low=None, every=False, beyond=1.0):
         # exceeds those followed, and every RESEED in speed.
         counts += 1
         n, sure = unstable_count(family, m, v1)
-        if n != int(np.sum(b1.real > 0.0)) or v1 >= RESEED * seeded:
+        every_growing_followed = n == int(np.sum(b1.real > 0.0))
+        if not every_growing_followed or v1 >= RESEED * seeded:
             seeds = raw_seeds(family, m, v1)
-            if n == int(np.sum(b1.real > 0.0)):
+            if every_growing_followed:
                 # Every growing mode followed (a reseeding for the modes yet to grow):
                 # a seed that is plainly a followed mode's needs no polishing.
                 seeds = seeds[~_seeds_followed(family, m, v1, seeds, b1)]
